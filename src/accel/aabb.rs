@@ -1,0 +1,105 @@
+//! Axis-aligned bounding boxes: the cheap test that lets a ray skip everything inside.
+
+use glam::{DAffine3, DVec3};
+
+use crate::geometry::Ray;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub min: DVec3,
+    pub max: DVec3,
+}
+
+impl Aabb {
+    pub fn new(min: DVec3, max: DVec3) -> Aabb {
+        Aabb { min, max }
+    }
+
+    /// The empty box: the identity of `union`.
+    pub fn empty() -> Aabb {
+        Aabb::new(DVec3::INFINITY, DVec3::NEG_INFINITY)
+    }
+
+    /// All of space: for planes and complements, which no box can bound.
+    pub fn everything() -> Aabb {
+        Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY)
+    }
+
+    pub fn point(p: DVec3) -> Aabb {
+        Aabb::new(p, p)
+    }
+
+    /// Bounds of a disc of radius r around `center`, perpendicular to the unit `axis`.
+    pub fn around_disc(center: DVec3, axis: DVec3, r: f64) -> Aabb {
+        // Along coordinate axis i the disc extends r·√(1 − aᵢ²).
+        let e: DVec3 = r * DVec3::from_array(
+            (DVec3::ONE - axis * axis)
+                .max(DVec3::ZERO)
+                .to_array()
+                .map(f64::sqrt),
+        );
+        Aabb::new(center - e, center + e)
+    }
+
+    pub fn is_finite(&self) -> bool {
+        self.min.is_finite() && self.max.is_finite()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
+    }
+
+    pub fn union(&self, o: &Aabb) -> Aabb {
+        Aabb::new(self.min.min(o.min), self.max.max(o.max))
+    }
+
+    pub fn intersection(&self, o: &Aabb) -> Aabb {
+        Aabb::new(self.min.max(o.min), self.max.min(o.max))
+    }
+
+    pub fn grow(&self, p: DVec3) -> Aabb {
+        Aabb::new(self.min.min(p), self.max.max(p))
+    }
+
+    pub fn center(&self) -> DVec3 {
+        0.5 * (self.min + self.max)
+    }
+
+    pub fn surface_area(&self) -> f64 {
+        let e = (self.max - self.min).max(DVec3::ZERO);
+        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+    }
+
+    /// The box around the transformed corners.
+    pub fn transformed(&self, m: &DAffine3) -> Aabb {
+        if !self.is_finite() {
+            return if self.is_empty() {
+                *self
+            } else {
+                Aabb::everything()
+            };
+        }
+        (0..8).fold(Aabb::empty(), |b, i| {
+            let corner = DVec3::new(
+                if i & 1 == 0 { self.min.x } else { self.max.x },
+                if i & 2 == 0 { self.min.y } else { self.max.y },
+                if i & 4 == 0 { self.min.z } else { self.max.z },
+            );
+            b.grow(m.transform_point3(corner))
+        })
+    }
+
+    /// Slab test: does the ray pass through the box for some t in [t_min, t_max]?
+    /// `inv_dir` is 1/d per component (±∞ for zero components).
+    #[inline]
+    pub fn hit(&self, ray: &Ray, inv_dir: DVec3, t_min: f64, t_max: f64) -> bool {
+        let t0 = (self.min - ray.origin) * inv_dir;
+        let t1 = (self.max - ray.origin) * inv_dir;
+        // NaN (0·∞ when the origin lies on a slab plane) must not reject: max/min ignore NaN.
+        let near = t0.min(t1);
+        let far = t0.max(t1);
+        let enter = near.max_element().max(t_min);
+        let exit = far.min_element().min(t_max);
+        enter <= exit + exit.abs() * 4.0 * f64::EPSILON
+    }
+}

@@ -1,0 +1,7 @@
+//! Acceleration: bounding boxes and the bounding volume hierarchy.
+
+mod aabb;
+pub mod bvh;
+
+pub use aabb::Aabb;
+pub use bvh::Bvh;

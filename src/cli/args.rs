@@ -1,0 +1,134 @@
+//! Arguments shared by several subcommands, and their parsers.
+
+use std::path::{Path, PathBuf};
+
+use glam::DVec3;
+
+use super::Failure;
+use crate::geometry::Ray;
+use crate::scene::{Accel, Limits, Scene};
+
+/// `X,Y`
+pub fn parse_pixel(s: &str) -> Result<[u32; 2], String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    match parts.as_slice() {
+        [x, y] => match (x.parse(), y.parse()) {
+            (Ok(x), Ok(y)) => Ok([x, y]),
+            _ => Err(format!(
+                "expected a pixel X,Y of two whole numbers, got `{s}`"
+            )),
+        },
+        _ => Err(format!("expected a pixel X,Y, got `{s}`")),
+    }
+}
+
+fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let v: Result<Vec<f64>, _> = s.split(',').map(|p| p.trim().parse::<f64>()).collect();
+    match v {
+        Ok(v) if v.len() == 3 && v.iter().all(|x| x.is_finite()) => {
+            Ok(DVec3::new(v[0], v[1], v[2]))
+        }
+        _ => Err(format!("expected three finite numbers x,y,z, got `{s}`")),
+    }
+}
+
+/// `OX,OY,OZ:DX,DY,DZ`; the direction is normalised.
+pub fn parse_ray(s: &str) -> Result<Ray, String> {
+    let (o, d) = s
+        .split_once(':')
+        .ok_or_else(|| format!("expected a ray OX,OY,OZ:DX,DY,DZ, got `{s}`"))?;
+    let (o, d) = (parse_vec3(o)?, parse_vec3(d)?);
+    if d == DVec3::ZERO {
+        return Err("the ray direction must not be zero".into());
+    }
+    Ok(Ray::new(o, d))
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum AccelArg {
+    None,
+    #[default]
+    Bvh,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Format {
+    #[default]
+    Text,
+    Json,
+}
+
+/// How a scene is loaded.
+#[derive(clap::Args, Debug, Clone)]
+pub struct SceneArgs {
+    /// The scene file (YAML).
+    pub scene: PathBuf,
+    /// Accept images larger than the pixel budget (64 million pixels).
+    #[arg(long)]
+    pub allow_huge: bool,
+    /// Intersection acceleration: a bounding volume hierarchy, or testing every object.
+    #[arg(long, value_enum, default_value_t = AccelArg::Bvh)]
+    pub accel: AccelArg,
+}
+
+impl SceneArgs {
+    pub fn load(&self) -> Result<Scene, Failure> {
+        load_scene(&self.scene, self.allow_huge, self.accel)
+    }
+}
+
+pub fn load_scene(path: &Path, allow_huge: bool, accel: AccelArg) -> Result<Scene, Failure> {
+    let mut limits = Limits::default();
+    if allow_huge {
+        limits.max_pixels = u64::MAX;
+    }
+    let mut scene = crate::scene::load(path, &limits)?;
+    if accel == AccelArg::None {
+        scene.set_accel(Accel::None);
+    }
+    Ok(scene)
+}
+
+/// A pixel or an explicit ray: where an inspection starts.
+#[derive(clap::Args, Debug, Clone)]
+#[group(required = true, multiple = false)]
+pub struct Target {
+    /// The pixel X,Y ((0,0) is top-left).
+    #[arg(long, value_parser = parse_pixel)]
+    pub pixel: Option<[u32; 2]>,
+    /// An explicit ray OX,OY,OZ:DX,DY,DZ.
+    #[arg(long, value_parser = parse_ray, allow_hyphen_values = true)]
+    pub ray: Option<Ray>,
+}
+
+impl Target {
+    /// The ray to follow; checks the pixel lies in the image.
+    pub fn ray(&self, scene: &Scene) -> Result<Ray, Failure> {
+        match (self.pixel, self.ray) {
+            (Some([x, y]), _) => {
+                let (w, h) = (scene.camera.width, scene.camera.height);
+                if x >= w || y >= h {
+                    return Err(Failure(format!(
+                        "pixel {x},{y} is outside the {w} × {h} image"
+                    )));
+                }
+                Ok(scene.camera.pixel_ray(x, y))
+            }
+            (None, Some(r)) => Ok(r),
+            (None, None) => Err(Failure(
+                "give --pixel X,Y or --ray OX,OY,OZ:DX,DY,DZ".into(),
+            )),
+        }
+    }
+}
+
+/// Checks a --depth override.
+pub fn depth(scene: &Scene, depth: Option<u32>) -> Result<u32, Failure> {
+    match depth {
+        None => Ok(scene.max_depth),
+        Some(d) if (1..=64).contains(&d) => Ok(d),
+        Some(d) => Err(Failure(format!(
+            "--depth must be between 1 and 64, got {d}"
+        ))),
+    }
+}

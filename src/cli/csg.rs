@@ -1,0 +1,99 @@
+//! `raytree csg`: the segment lists at every node of every object a ray meets.
+
+use std::process::ExitCode;
+
+use serde_json::{json, Value};
+
+use super::args::{Format, SceneArgs, Target};
+use super::Failure;
+use crate::geometry::csg::CsgTrace;
+use crate::geometry::Ray;
+use crate::scene::Scene;
+use crate::trace::text;
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    scene: SceneArgs,
+    #[command(flatten)]
+    target: Target,
+    /// Show every object, and evaluate whole trees without bounding boxes, so only the
+    /// notes' pruning rules (empty operands of ∩ and −) skip work.
+    #[arg(long)]
+    all: bool,
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+}
+
+/// Every object the ray's line meets (segments anywhere along it), with its trace.
+/// With `all`, every object, evaluated without bounding boxes.
+pub fn traces(scene: &Scene, ray: &Ray, all: bool) -> Vec<(String, CsgTrace)> {
+    (0..scene.objects.len() as u32)
+        .filter_map(|o| {
+            let (list, trace) = scene.object_trace(o, ray, !all);
+            let met = all || !list.is_empty() || has_segments(&trace);
+            met.then(|| (scene.objects[o as usize].name.clone(), trace))
+        })
+        .collect()
+}
+
+fn has_segments(t: &CsgTrace) -> bool {
+    !t.segments.is_empty() || t.children.iter().any(has_segments)
+}
+
+pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
+    let op = match (t.op, t.leaf) {
+        (Some(op), _) => op.name(),
+        (None, Some(leaf)) => scene.leaves[leaf as usize].shape.kind(),
+        _ => "?",
+    };
+    let point = |t: f64| {
+        if t.is_finite() {
+            json!(ray.at(t).to_array())
+        } else {
+            Value::Null
+        }
+    };
+    let segments: Vec<Value> = t
+        .segments
+        .iter()
+        .map(|s| json!({ "t_in": s.t_in, "t_out": s.t_out, "point_in": point(s.t_in), "point_out": point(s.t_out) }))
+        .collect();
+    let mut node = json!({
+        "op": op,
+        "name": t.node,
+        "segments": segments,
+        "pruned": t.pruned.is_some(),
+        "children": t.children.iter().map(|c| trace_json(scene, ray, c)).collect::<Vec<_>>(),
+    });
+    if let Some(p) = t.pruned {
+        node["pruned_reason"] = json!(p);
+    }
+    node
+}
+
+pub fn run(a: Args) -> Result<ExitCode, Failure> {
+    let scene = a.scene.load()?;
+    let ray = a.target.ray(&scene)?;
+    let objects = traces(&scene, &ray, a.all);
+    match a.format {
+        Format::Json => {
+            let doc = json!({
+                "ray": { "origin": ray.origin.to_array(), "direction": ray.dir.to_array() },
+                "objects": objects.iter().map(|(name, t)| json!({ "object": name, "node": trace_json(&scene, &ray, t) })).collect::<Vec<_>>(),
+            });
+            println!("{}", serde_json::to_string_pretty(&doc)?);
+        }
+        Format::Text => {
+            println!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir));
+            if objects.is_empty() {
+                println!("the ray meets no object");
+            }
+            for (name, t) in &objects {
+                println!("\nobject {name}");
+                print!("{}", text::csg_trace(&scene, &ray, t));
+            }
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

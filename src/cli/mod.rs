@@ -1,0 +1,58 @@
+//! The command line: one module per subcommand; this one parses and dispatches.
+
+mod args;
+mod csg;
+mod inspect;
+mod preview;
+mod render;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// A step-by-step Whitted ray tracer with a ray-tree debugger.
+#[derive(Parser, Debug)]
+#[command(name = "raytree", version, about, long_about = None, arg_required_else_help = true)]
+pub struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render a scene to a PNG or PPM image.
+    Render(render::Args),
+    /// Print the ray tree of a pixel or of any ray.
+    Inspect(inspect::Args),
+    /// Print the segment list at every node of every object a ray meets.
+    Csg(csg::Args),
+    /// Print a half-block (colour) or ASCII preview of a scene to stdout.
+    Preview(preview::Args),
+}
+
+/// An error for the user: printed as one line, exit status 2.
+#[derive(Debug)]
+pub struct Failure(pub String);
+
+impl<E: std::fmt::Display> From<E> for Failure {
+    fn from(e: E) -> Failure {
+        Failure(e.to_string())
+    }
+}
+
+pub fn run() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(a) => render::run(a),
+        Command::Inspect(a) => inspect::run(a),
+        Command::Csg(a) => csg::run(a),
+        Command::Preview(a) => preview::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(Failure(msg)) => {
+            eprintln!("raytree: {msg}");
+            ExitCode::from(2)
+        }
+    }
+}

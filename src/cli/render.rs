@@ -1,0 +1,135 @@
+//! `raytree render`: a scene to an image file.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use super::args::{depth, SceneArgs};
+use super::Failure;
+use crate::render::{render, Encoding, RenderOptions};
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Gamma {
+    Srgb,
+    Linear,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Output image (.png or .ppm).
+    #[arg(short, long)]
+    output: PathBuf,
+    #[arg(long)]
+    width: Option<u32>,
+    #[arg(long)]
+    height: Option<u32>,
+    /// Rays per path, primary included (overrides the scene's max_depth).
+    #[arg(long)]
+    depth: Option<u32>,
+    /// Primary rays per pixel (a square number gives a regular grid).
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Worker threads (default: all cores). The image is identical for any count.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Seed for Monte Carlo sampling. Whitted scenes use no randomness, so it changes nothing there.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Print ray counts and the work skipped.
+    #[arg(long)]
+    stats: bool,
+    /// Encoding of the output: sRGB, or the lecture's raw linear values.
+    #[arg(long, value_enum, default_value_t = Gamma::Srgb)]
+    gamma: Gamma,
+}
+
+pub fn run(a: Args) -> Result<ExitCode, Failure> {
+    let mut scene = a.scene.load()?;
+    let _ = a.seed;
+    let (w, h) = (
+        a.width.unwrap_or(scene.camera.width),
+        a.height.unwrap_or(scene.camera.height),
+    );
+    if w == 0 || h == 0 || w > 1_000_000 || h > 1_000_000 {
+        return Err(Failure(format!(
+            "image size {w} × {h} must be between 1 and 1000000 pixels each way"
+        )));
+    }
+    if (w as u64 * h as u64) > 64_000_000 && !a.scene.allow_huge {
+        return Err(Failure(format!(
+            "{w} × {h} exceeds the budget of 64000000 pixels (use --allow-huge)"
+        )));
+    }
+    scene.camera = scene.camera.resized(w, h);
+    let spp = a.spp.unwrap_or(scene.spp);
+    if !(1..=65_536).contains(&spp) {
+        return Err(Failure(format!(
+            "--spp must be between 1 and 65536, got {spp}"
+        )));
+    }
+    let options = RenderOptions {
+        max_depth: depth(&scene, a.depth)?,
+        spp,
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.threads.unwrap_or(0))
+        .build()?;
+
+    let bar = std::io::stderr().is_terminal().then(|| {
+        let bar = indicatif::ProgressBar::new(h as u64);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{spinner} rendering [{bar:40}] {pos}/{len} rows {elapsed}",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        bar
+    });
+    let start = Instant::now();
+    let on_row = |_| {
+        if let Some(b) = &bar {
+            b.inc(1)
+        }
+    };
+    let (image, stats) = pool
+        .install(|| render(&scene, options, &on_row, &AtomicBool::new(false)))
+        .expect("not cancelled");
+    let elapsed = start.elapsed();
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let encoding = if a.gamma == Gamma::Linear {
+        Encoding::Linear
+    } else {
+        Encoding::Srgb
+    };
+    image.save(&a.output, encoding)?;
+    if let Some((x, y)) = image.first_non_finite() {
+        eprintln!(
+            "warning: pixel {x},{y} is not finite (NaN or ∞); replay it with: raytree inspect {} --pixel {x},{y}",
+            a.scene.scene.display()
+        );
+    }
+    if a.stats {
+        eprintln!(
+            "{} × {} pixels, {} spp, depth {}, {:.3} s",
+            w,
+            h,
+            spp,
+            options.max_depth,
+            elapsed.as_secs_f64()
+        );
+        eprintln!(
+            "{:<40} {:>14.0}",
+            "rays per second",
+            stats.rays() as f64 / elapsed.as_secs_f64().max(1e-9)
+        );
+        eprint!("{}", stats.report());
+    }
+    Ok(ExitCode::SUCCESS)
+}

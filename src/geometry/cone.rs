@@ -1,0 +1,168 @@
+//! Finite cone with a base cap, given (as in seed 003) by its apex, the centre of its base and
+//! the base radius.
+
+use glam::DVec3;
+
+use super::cylinder::{cap_slab, quadratic, Interval, BASE_CAP, SIDE};
+use super::{Ray, Span};
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cone {
+    pub apex: DVec3,
+    pub base: DVec3,
+    pub radius: f64,
+}
+
+/// The cone has no top cap: the apex end of the slab never contributes a face of its own.
+const APEX: u8 = SIDE;
+
+impl Cone {
+    /// Unit axis from the apex towards the base.
+    pub fn axis(&self) -> DVec3 {
+        (self.base - self.apex).normalize()
+    }
+
+    fn cos2(&self) -> f64 {
+        let h2 = (self.base - self.apex).length_squared();
+        h2 / (h2 + self.radius * self.radius)
+    }
+
+    /// A point x is inside the double cone when ((x − apex)·a)² ≥ cos²θ·|x − apex|²; substituting
+    /// the ray gives a quadratic f(t) ≥ 0. The slab 0 ≤ (x − apex)·a ≤ h keeps the one nappe
+    /// between apex and base.
+    pub fn span(&self, ray: &Ray) -> Option<Span> {
+        let axis = self.base - self.apex;
+        let h = axis.length();
+        let a = axis / h;
+        let k = self.cos2();
+        let w = ray.origin - self.apex;
+        let (wa, da) = (w.dot(a), ray.dir.dot(a));
+        let qa = da * da - k * ray.dir.length_squared();
+        let qb = da * wa - k * ray.dir.dot(w);
+        let qc = wa * wa - k * w.length_squared();
+        let slab = cap_slab(wa, da, h, APEX, BASE_CAP)?;
+
+        // The set {t : f(t) ≥ 0} is one interval or two half-lines, depending on the sign of the
+        // leading coefficient; the slab keeps at most one connected piece of the nappe.
+        let pieces: [Option<Interval>; 2] = if qa == 0.0 {
+            if qb == 0.0 {
+                [(qc >= 0.0).then(|| Interval::everything(SIDE)), None]
+            } else {
+                let t = -qc / (2.0 * qb);
+                let piece = if qb > 0.0 {
+                    Interval {
+                        t0: t,
+                        f0: SIDE,
+                        t1: f64::INFINITY,
+                        f1: SIDE,
+                    }
+                } else {
+                    Interval {
+                        t0: f64::NEG_INFINITY,
+                        f0: SIDE,
+                        t1: t,
+                        f1: SIDE,
+                    }
+                };
+                [Some(piece), None]
+            }
+        } else if qa < 0.0 {
+            match quadratic(qa, qb, qc) {
+                Some((t0, t1)) => [
+                    Some(Interval {
+                        t0,
+                        f0: SIDE,
+                        t1,
+                        f1: SIDE,
+                    }),
+                    None,
+                ],
+                None => [None, None],
+            }
+        } else {
+            match quadratic(qa, qb, qc) {
+                Some((t0, t1)) => [
+                    Some(Interval {
+                        t0: f64::NEG_INFINITY,
+                        f0: SIDE,
+                        t1: t0,
+                        f1: SIDE,
+                    }),
+                    Some(Interval {
+                        t0: t1,
+                        f0: SIDE,
+                        t1: f64::INFINITY,
+                        f1: SIDE,
+                    }),
+                ],
+                None => [Some(Interval::everything(SIDE)), None],
+            }
+        };
+        let mut result: Option<Interval> = None;
+        for piece in pieces.into_iter().flatten() {
+            if let Some(cut) = piece.overlap(slab) {
+                // Both pieces survive only within rounding of the apex: take their hull, since a
+                // line meets a convex solid in one interval.
+                result = Some(match result {
+                    None => cut,
+                    Some(r) => Interval {
+                        t0: r.t0.min(cut.t0),
+                        f0: if r.t0 <= cut.t0 { r.f0 } else { cut.f0 },
+                        t1: r.t1.max(cut.t1),
+                        f1: if r.t1 >= cut.t1 { r.f1 } else { cut.f1 },
+                    },
+                });
+            }
+        }
+        result.map(Interval::span)
+    }
+
+    /// Outward normal of the side: the gradient of cos²θ·|w|² − (w·a)², i.e. cos²θ·w − (w·a)·a
+    /// with w = x − apex. (Seed 003 writes a different expression that is not perpendicular to
+    /// the surface; this one is.) At the apex itself the normal is undefined; use −a.
+    pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {
+        let a = self.axis();
+        if face == BASE_CAP {
+            return a;
+        }
+        let w = p - self.apex;
+        let n = self.cos2() * w - w.dot(a) * a;
+        n.try_normalize().unwrap_or(-a)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ray_across_the_axis_enters_and_leaves_the_side() {
+        // Apex (0,2,0), base (0,0,0), radius 1: at height y the radius is (2 − y)/2.
+        let cone = Cone {
+            apex: DVec3::new(0.0, 2.0, 0.0),
+            base: DVec3::ZERO,
+            radius: 1.0,
+        };
+        let s = cone
+            .span(&Ray::new(DVec3::new(-5.0, 1.0, 0.0), DVec3::X))
+            .unwrap();
+        assert!((s.t_in - 4.5).abs() < 1e-12 && (s.t_out - 5.5).abs() < 1e-12);
+        let n = cone.normal(DVec3::new(0.5, 1.0, 0.0), SIDE);
+        // The side rises 2 over a run of 1, so the normal is (2, 1, 0)/√5.
+        assert!((n - DVec3::new(2.0, 1.0, 0.0) / 5f64.sqrt()).length() < 1e-12);
+    }
+
+    #[test]
+    fn ray_up_the_axis_enters_the_base_and_leaves_at_the_apex() {
+        let cone = Cone {
+            apex: DVec3::new(0.0, 2.0, 0.0),
+            base: DVec3::ZERO,
+            radius: 1.0,
+        };
+        let s = cone
+            .span(&Ray::new(DVec3::new(0.0, -1.0, 0.0), DVec3::Y))
+            .unwrap();
+        assert!((s.t_in - 1.0).abs() < 1e-12 && (s.t_out - 3.0).abs() < 1e-9);
+        assert_eq!(s.face_in, BASE_CAP);
+    }
+}

@@ -1,0 +1,406 @@
+//! Constructive solid geometry on segment lists, as seed 000 teaches it: every child returns the
+//! segments where the ray is inside it, and the operation combines the lists.
+//!
+//! The set operations are *regularised*: a result of zero thickness (two solids touching in a
+//! face, the notes' "Cube A ∩ Cube B = a plane") is dropped, and segments that touch are merged.
+//! A surface of the result keeps the leaf it comes from; where a difference carves B out of A,
+//! B's surface bounds the result from the other side, so its normal is flipped.
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::{Ray, Segment, SegmentList, Surface};
+use crate::accel::Aabb;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CsgOp {
+    Union,
+    Intersection,
+    Difference,
+    Complement,
+}
+
+impl CsgOp {
+    pub fn name(self) -> &'static str {
+        match self {
+            CsgOp::Union => "union",
+            CsgOp::Intersection => "intersection",
+            CsgOp::Difference => "difference",
+            CsgOp::Complement => "complement",
+        }
+    }
+
+    /// Inside the result, given inside A and inside B.
+    fn keeps(self, a: bool, b: bool) -> bool {
+        match self {
+            CsgOp::Union => a || b,
+            CsgOp::Intersection => a && b,
+            CsgOp::Difference => a && !b,
+            CsgOp::Complement => !a,
+        }
+    }
+}
+
+/// A node of a CSG tree: a primitive leaf, or an operation over children (n-ary lists fold
+/// left: `difference: [A, B, C]` is (A − B) − C).
+#[derive(Clone, Debug)]
+pub enum CsgNode {
+    Leaf {
+        leaf: u32,
+        bounds: Aabb,
+    },
+    Op {
+        op: CsgOp,
+        name: String,
+        children: Vec<CsgNode>,
+        bounds: Aabb,
+    },
+}
+
+/// Why a node was not evaluated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Pruned {
+    /// The ray misses the node's bounding box.
+    Bounds,
+    /// An earlier operand of an intersection was empty.
+    EmptyIntersection,
+    /// The left operand of a difference was empty.
+    EmptyDifference,
+}
+
+/// What a CSG evaluation did at each node, for `raytree csg` and the inspector.
+#[derive(Clone, Debug)]
+pub struct CsgTrace {
+    pub node: String,
+    pub op: Option<CsgOp>,
+    pub leaf: Option<u32>,
+    pub segments: SegmentList,
+    pub pruned: Option<Pruned>,
+    pub children: Vec<CsgTrace>,
+}
+
+/// Counters of the work CSG did and skipped.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CsgWork {
+    pub leaves_tested: u64,
+    pub pruned: u64,
+}
+
+/// The environment a CSG evaluation needs: the leaf segment lists.
+pub trait LeafSegments {
+    fn leaf_segments(&self, leaf: u32, ray: &Ray) -> SegmentList;
+    fn leaf_name(&self, leaf: u32) -> String;
+}
+
+/// The ray with its reciprocal direction and the window of t that matters: a subtree whose box
+/// the ray misses within the window contributes nothing there (the operations act pointwise
+/// on t, so restricting every input to the window restricts the result to it).
+pub struct CsgRay<'a> {
+    pub ray: &'a Ray,
+    pub inv_dir: DVec3,
+    pub t_min: f64,
+    pub t_max: f64,
+    /// Skip subtrees whose bounding box the ray misses (off to show the notes' own pruning).
+    pub use_bounds: bool,
+}
+
+impl CsgNode {
+    pub fn bounds(&self) -> Aabb {
+        match self {
+            CsgNode::Leaf { bounds, .. } | CsgNode::Op { bounds, .. } => *bounds,
+        }
+    }
+
+    /// The segment list of this subtree along the ray.
+    pub fn segments(&self, env: &impl LeafSegments, r: &CsgRay, work: &mut CsgWork) -> SegmentList {
+        self.evaluate::<false>(env, r, work).0
+    }
+
+    /// The segment list, and what happened at every node on the way.
+    pub fn trace(
+        &self,
+        env: &impl LeafSegments,
+        r: &CsgRay,
+        work: &mut CsgWork,
+    ) -> (SegmentList, CsgTrace) {
+        let (list, trace) = self.evaluate::<true>(env, r, work);
+        (list, trace.expect("tracing records every node"))
+    }
+
+    fn evaluate<const TRACE: bool>(
+        &self,
+        env: &impl LeafSegments,
+        r: &CsgRay,
+        work: &mut CsgWork,
+    ) -> (SegmentList, Option<CsgTrace>) {
+        if r.use_bounds && !self.bounds().hit(r.ray, r.inv_dir, r.t_min, r.t_max) {
+            work.pruned += 1;
+            return (
+                SegmentList::new(),
+                TRACE.then(|| self.skipped(env, Pruned::Bounds)),
+            );
+        }
+        match self {
+            CsgNode::Leaf { leaf, .. } => {
+                work.leaves_tested += 1;
+                let list = env.leaf_segments(*leaf, r.ray);
+                let trace = TRACE.then(|| CsgTrace {
+                    node: env.leaf_name(*leaf),
+                    op: None,
+                    leaf: Some(*leaf),
+                    segments: list.clone(),
+                    pruned: None,
+                    children: vec![],
+                });
+                (list, trace)
+            }
+            CsgNode::Op {
+                op, name, children, ..
+            } => {
+                let mut traces = Vec::new();
+                let (mut acc, first) = children[0].evaluate::<TRACE>(env, r, work);
+                traces.extend(first);
+                if *op == CsgOp::Complement {
+                    acc = complement(&acc);
+                }
+                for child in &children[1..] {
+                    let prune = match op {
+                        CsgOp::Intersection if acc.is_empty() => Some(Pruned::EmptyIntersection),
+                        CsgOp::Difference if acc.is_empty() => Some(Pruned::EmptyDifference),
+                        _ => None,
+                    };
+                    if let Some(why) = prune {
+                        work.pruned += 1;
+                        if TRACE {
+                            traces.push(child.skipped(env, why));
+                        }
+                        continue;
+                    }
+                    let (list, trace) = child.evaluate::<TRACE>(env, r, work);
+                    traces.extend(trace);
+                    acc = combine(*op, &acc, &list);
+                }
+                let trace = TRACE.then(|| CsgTrace {
+                    node: name.clone(),
+                    op: Some(*op),
+                    leaf: None,
+                    segments: acc.clone(),
+                    pruned: None,
+                    children: traces,
+                });
+                (acc, trace)
+            }
+        }
+    }
+
+    /// The trace of a subtree that was not evaluated: every node in it is marked.
+    fn skipped(&self, env: &impl LeafSegments, why: Pruned) -> CsgTrace {
+        match self {
+            CsgNode::Leaf { leaf, .. } => CsgTrace {
+                node: env.leaf_name(*leaf),
+                op: None,
+                leaf: Some(*leaf),
+                segments: SegmentList::new(),
+                pruned: Some(why),
+                children: vec![],
+            },
+            CsgNode::Op {
+                op, name, children, ..
+            } => CsgTrace {
+                node: name.clone(),
+                op: Some(*op),
+                leaf: None,
+                segments: SegmentList::new(),
+                pruned: Some(why),
+                children: children.iter().map(|c| c.skipped(env, why)).collect(),
+            },
+        }
+    }
+}
+
+/// One boundary of a segment list, seen as an event along the ray.
+#[derive(Clone, Copy)]
+struct Event {
+    t: f64,
+    entering: bool,
+    surface: Surface,
+}
+
+fn events(list: &[Segment]) -> impl Iterator<Item = Event> + '_ {
+    list.iter().flat_map(|s| {
+        [
+            Event {
+                t: s.t_in,
+                entering: true,
+                surface: s.enter,
+            },
+            Event {
+                t: s.t_out,
+                entering: false,
+                surface: s.exit,
+            },
+        ]
+    })
+}
+
+/// Combine two segment lists by sweeping their boundaries in order of t. All boundaries at the
+/// same t are applied together before the result is compared with its state before, so
+/// touching segments merge and zero-thickness results never appear.
+pub fn combine(op: CsgOp, a: &[Segment], b: &[Segment]) -> SegmentList {
+    let ea: Vec<Event> = events(a).collect();
+    let eb: Vec<Event> = events(b).collect();
+    let (mut i, mut j) = (0, 0);
+    let (mut in_a, mut in_b) = (false, false);
+    let mut out = SegmentList::new();
+    let mut open: Option<(f64, Surface)> = None;
+    while i < ea.len() || j < eb.len() {
+        let t = match (ea.get(i), eb.get(j)) {
+            (Some(x), Some(y)) => x.t.min(y.t),
+            (Some(x), None) => x.t,
+            (None, Some(y)) => y.t,
+            (None, None) => unreachable!(),
+        };
+        let before = op.keeps(in_a, in_b);
+        // The surface the result crosses here, preferring A's boundary, then B's. B's surfaces
+        // bound a difference from the other side: flip them.
+        let mut candidates: smallvec::SmallVec<[(bool, Surface); 4]> = smallvec::SmallVec::new();
+        while i < ea.len() && ea[i].t == t {
+            in_a = ea[i].entering;
+            candidates.push((ea[i].entering, ea[i].surface));
+            i += 1;
+        }
+        while j < eb.len() && eb[j].t == t {
+            in_b = eb[j].entering;
+            let flip = op == CsgOp::Difference;
+            let s = if flip {
+                eb[j].surface.flipped()
+            } else {
+                eb[j].surface
+            };
+            candidates.push((eb[j].entering != flip, s));
+            j += 1;
+        }
+        let after = op.keeps(in_a, in_b);
+        if before == after {
+            continue;
+        }
+        let surface = candidates
+            .iter()
+            .find(|(entering, _)| *entering == after)
+            .or(candidates.first())
+            .map(|c| c.1)
+            .expect("a change of state needs an event");
+        if after {
+            open = Some((t, surface));
+        } else if let Some((t_in, enter)) = open.take() {
+            out.push(Segment {
+                t_in,
+                t_out: t,
+                enter,
+                exit: surface,
+            });
+        }
+    }
+    out
+}
+
+/// ¬A: the gaps between A's segments, out to ±∞; every surface now faces the other way.
+pub fn complement(a: &[Segment]) -> SegmentList {
+    let mut out = SegmentList::new();
+    let mut start = (f64::NEG_INFINITY, a.first().map(|s| s.enter.flipped()));
+    for s in a {
+        if s.t_in > start.0 {
+            let enter = start.1.unwrap_or(s.enter.flipped());
+            out.push(Segment {
+                t_in: start.0,
+                t_out: s.t_in,
+                enter,
+                exit: s.enter.flipped(),
+            });
+        }
+        start = (s.t_out, Some(s.exit.flipped()));
+    }
+    if start.0 < f64::INFINITY {
+        let surface = start.1.unwrap_or(Surface::new(u32::MAX, 0));
+        out.push(Segment {
+            t_in: start.0,
+            t_out: f64::INFINITY,
+            enter: surface,
+            exit: surface,
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn list(pairs: &[(f64, f64)], leaf: u32) -> SegmentList {
+        pairs
+            .iter()
+            .map(|&(t_in, t_out)| Segment {
+                t_in,
+                t_out,
+                enter: Surface::new(leaf, 0),
+                exit: Surface::new(leaf, 0),
+            })
+            .collect()
+    }
+
+    fn ts(l: &[Segment]) -> Vec<(f64, f64)> {
+        l.iter().map(|s| (s.t_in, s.t_out)).collect()
+    }
+
+    #[test]
+    fn seed_000_sphere_lists_combine_as_the_notes_state() {
+        // Along the ray from (0,0,−10) in +z: A = [13, 23], B = [16, 22], C (touching at 18) = [18, 18].
+        let (a, b, c) = (
+            list(&[(13.0, 23.0)], 0),
+            list(&[(16.0, 22.0)], 1),
+            list(&[(18.0, 18.0)], 2),
+        );
+        assert_eq!(
+            ts(&combine(CsgOp::Difference, &a, &b)),
+            vec![(13.0, 16.0), (22.0, 23.0)]
+        );
+        assert_eq!(
+            ts(&combine(CsgOp::Union, &combine(CsgOp::Union, &a, &b), &c)),
+            vec![(13.0, 23.0)]
+        );
+        assert!(combine(CsgOp::Intersection, &combine(CsgOp::Difference, &b, &a), &c).is_empty());
+    }
+
+    #[test]
+    fn carved_surfaces_are_flipped_and_touching_segments_merge() {
+        let a = list(&[(0.0, 10.0)], 0);
+        let b = list(&[(4.0, 6.0)], 1);
+        let d = combine(CsgOp::Difference, &a, &b);
+        assert_eq!(d[0].exit, Surface::new(1, 0).flipped());
+        assert_eq!(d[1].enter, Surface::new(1, 0).flipped());
+        let touching = combine(
+            CsgOp::Union,
+            &list(&[(0.0, 1.0)], 0),
+            &list(&[(1.0, 2.0)], 1),
+        );
+        assert_eq!(ts(&touching), vec![(0.0, 2.0)]);
+        let face = combine(
+            CsgOp::Intersection,
+            &list(&[(0.0, 1.0)], 0),
+            &list(&[(1.0, 2.0)], 1),
+        );
+        assert!(face.is_empty(), "a shared face has no thickness");
+    }
+
+    #[test]
+    fn complement_then_intersection_is_difference() {
+        let a = list(&[(0.0, 10.0), (12.0, 14.0)], 0);
+        let b = list(&[(4.0, 6.0), (13.0, 20.0)], 1);
+        assert_eq!(
+            ts(&combine(CsgOp::Intersection, &a, &complement(&b))),
+            ts(&combine(CsgOp::Difference, &a, &b))
+        );
+    }
+}

@@ -1,0 +1,148 @@
+//! Finite cylinder with caps: radius r around the segment from `base` to `top`.
+
+use glam::DVec3;
+
+use super::{Ray, Span};
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cylinder {
+    pub base: DVec3,
+    pub top: DVec3,
+    pub radius: f64,
+}
+
+/// Faces: the curved side, the base cap, the top cap.
+pub const SIDE: u8 = 0;
+pub const BASE_CAP: u8 = 1;
+pub const TOP_CAP: u8 = 2;
+
+/// An interval of t with the face at each end.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Interval {
+    pub t0: f64,
+    pub f0: u8,
+    pub t1: f64,
+    pub f1: u8,
+}
+
+impl Interval {
+    pub fn everything(face: u8) -> Interval {
+        Interval {
+            t0: f64::NEG_INFINITY,
+            f0: face,
+            t1: f64::INFINITY,
+            f1: face,
+        }
+    }
+
+    pub fn overlap(self, other: Interval) -> Option<Interval> {
+        let (t0, f0) = if other.t0 > self.t0 {
+            (other.t0, other.f0)
+        } else {
+            (self.t0, self.f0)
+        };
+        let (t1, f1) = if other.t1 < self.t1 {
+            (other.t1, other.f1)
+        } else {
+            (self.t1, self.f1)
+        };
+        (t0 <= t1).then_some(Interval { t0, f0, t1, f1 })
+    }
+
+    pub fn span(self) -> Span {
+        Span::new(self.t0, self.f0, self.t1, self.f1)
+    }
+}
+
+/// The slab 0 ≤ (x − base)·a ≤ h between the two caps, with `height0 = (o − base)·a` and
+/// `rate = d·a`. Leaving through the base means crossing height 0, the top height h.
+pub(crate) fn cap_slab(
+    height0: f64,
+    rate: f64,
+    h: f64,
+    base_face: u8,
+    top_face: u8,
+) -> Option<Interval> {
+    if rate == 0.0 {
+        return (0.0..=h)
+            .contains(&height0)
+            .then(|| Interval::everything(base_face));
+    }
+    let (tb, tt) = (-height0 / rate, (h - height0) / rate);
+    Some(if rate > 0.0 {
+        Interval {
+            t0: tb,
+            f0: base_face,
+            t1: tt,
+            f1: top_face,
+        }
+    } else {
+        Interval {
+            t0: tt,
+            f0: top_face,
+            t1: tb,
+            f1: base_face,
+        }
+    })
+}
+
+/// Roots of a·t² + 2b·t + c = 0 in increasing order, computed stably; None when complex.
+pub(crate) fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    let disc = b * b - a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let q = -(b + b.signum() * disc.sqrt());
+    if q == 0.0 {
+        return Some((0.0, 0.0));
+    }
+    let (x, y) = (q / a, c / q);
+    Some((x.min(y), x.max(y)))
+}
+
+impl Cylinder {
+    pub fn axis(&self) -> DVec3 {
+        (self.top - self.base).normalize()
+    }
+
+    /// Infinite cylinder |w⊥|² = r² (w⊥ = the part of o + t·d − base across the axis),
+    /// clipped by the slab between the caps.
+    pub fn span(&self, ray: &Ray) -> Option<Span> {
+        let axis = self.top - self.base;
+        let h = axis.length();
+        let a = axis / h;
+        let w = ray.origin - self.base;
+        let (wa, da) = (w.dot(a), ray.dir.dot(a));
+        let (w_perp, d_perp) = (w - wa * a, ray.dir - da * a);
+        let qa = d_perp.length_squared();
+        let qc = w_perp.length_squared() - self.radius * self.radius;
+        let side = if qa == 0.0 {
+            if qc > 0.0 {
+                return None;
+            }
+            Interval::everything(SIDE)
+        } else {
+            let (t0, t1) = quadratic(qa, d_perp.dot(w_perp), qc)?;
+            Interval {
+                t0,
+                f0: SIDE,
+                t1,
+                f1: SIDE,
+            }
+        };
+        let caps = cap_slab(wa, da, h, BASE_CAP, TOP_CAP)?;
+        side.overlap(caps).map(Interval::span)
+    }
+
+    pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {
+        let a = self.axis();
+        match face {
+            BASE_CAP => -a,
+            TOP_CAP => a,
+            _ => {
+                let w = p - self.base;
+                (w - w.dot(a) * a).normalize()
+            }
+        }
+    }
+}

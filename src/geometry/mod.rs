@@ -1,0 +1,24 @@
+//! Geometry: rays, the primitive shapes, transforms, segment lists and CSG.
+
+mod aabox;
+pub mod cone;
+pub mod csg;
+pub mod cylinder;
+mod plane;
+mod ray;
+mod segment;
+mod shape;
+mod sphere;
+mod transform;
+mod triangle;
+
+pub use aabox::Aabox;
+pub use cone::Cone;
+pub use cylinder::Cylinder;
+pub use plane::Plane;
+pub use ray::Ray;
+pub use segment::{first_crossing, Segment, SegmentList, Surface};
+pub use shape::{Shape, Span};
+pub use sphere::Sphere;
+pub use transform::Transform;
+pub use triangle::{Triangle, TriangleHit};

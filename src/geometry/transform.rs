@@ -1,0 +1,46 @@
+//! Object transforms. A solid is intersected in its own space: the ray is carried there by the
+//! inverse transform, and normals come back by the inverse transpose.
+
+use glam::{DAffine3, DMat3, DVec3};
+
+use super::Ray;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Transform {
+    pub to_world: DAffine3,
+    pub to_local: DAffine3,
+    /// (M⁻¹)ᵀ of the linear part: keeps normals perpendicular under non-uniform scaling.
+    pub normal_to_world: DMat3,
+}
+
+impl Transform {
+    pub fn new(to_world: DAffine3) -> Transform {
+        let to_local = to_world.inverse();
+        Transform {
+            to_world,
+            to_local,
+            normal_to_world: to_local.matrix3.transpose(),
+        }
+    }
+
+    /// The ray in object space; its direction is not renormalised so `t` keeps its meaning.
+    pub fn ray_to_local(&self, ray: &Ray) -> Ray {
+        Ray::raw(
+            self.to_local.transform_point3(ray.origin),
+            self.to_local.transform_vector3(ray.dir),
+        )
+    }
+
+    pub fn normal_to_world(&self, n: DVec3) -> DVec3 {
+        (self.normal_to_world * n).normalize()
+    }
+
+    pub fn point_to_world(&self, p: DVec3) -> DVec3 {
+        self.to_world.transform_point3(p)
+    }
+
+    /// `self` applied after `inner`.
+    pub fn after(&self, inner: &Transform) -> Transform {
+        Transform::new(self.to_world * inner.to_world)
+    }
+}

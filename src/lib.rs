@@ -1,0 +1,9 @@
+//! raytree: a step-by-step Whitted ray tracer whose every pixel can be inspected as a ray tree.
+
+pub mod accel;
+pub mod cli;
+pub mod geometry;
+pub mod render;
+pub mod scene;
+pub mod shading;
+pub mod trace;

@@ -1,0 +1,159 @@
+//! Cameras: the look-at camera with a field of view, and the lecture's window model (seed 001).
+
+use glam::DVec3;
+
+use crate::geometry::Ray;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Projection {
+    /// Right-handed look-at: right = forward × up, so with the eye looking down +z and up +y,
+    /// +x appears on the left of the image.
+    LookAt {
+        eye: DVec3,
+        forward: DVec3,
+        right: DVec3,
+        up: DVec3,
+        tan_half_fov: f64,
+    },
+    /// Seed 001: pixel (i, j) lies at p_C = (wl + i·Δu, wt + j·Δv, f) in camera coordinates,
+    /// p_W = e + p_C.x·u + p_C.y·v + p_C.z·w in the world.
+    Window {
+        eye: DVec3,
+        u: DVec3,
+        v: DVec3,
+        w: DVec3,
+        f: f64,
+        window: [f64; 4],
+    },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    pub projection: Projection,
+    pub width: u32,
+    pub height: u32,
+}
+
+impl Camera {
+    pub fn look_at(
+        eye: DVec3,
+        target: DVec3,
+        up: DVec3,
+        fov_degrees: f64,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        let forward = (target - eye).normalize();
+        let right = forward.cross(up).normalize();
+        let up = right.cross(forward);
+        let tan_half_fov = (fov_degrees.to_radians() / 2.0).tan();
+        Camera {
+            projection: Projection::LookAt {
+                eye,
+                forward,
+                right,
+                up,
+                tan_half_fov,
+            },
+            width,
+            height,
+        }
+    }
+
+    pub fn eye(&self) -> DVec3 {
+        match &self.projection {
+            Projection::LookAt { eye, .. } | Projection::Window { eye, .. } => *eye,
+        }
+    }
+
+    /// The same view at another image size.
+    pub fn resized(&self, width: u32, height: u32) -> Camera {
+        Camera {
+            projection: self.projection.clone(),
+            width,
+            height,
+        }
+    }
+
+    /// The world point on the image plane at continuous image coordinates (sx, sy); the centre
+    /// of pixel (x, y) is (x + ½, y + ½) and (0, 0) is the top-left corner.
+    pub fn image_point(&self, sx: f64, sy: f64) -> DVec3 {
+        let (w, h) = (self.width as f64, self.height as f64);
+        match &self.projection {
+            Projection::LookAt {
+                eye,
+                forward,
+                right,
+                up,
+                tan_half_fov,
+            } => {
+                let x = (2.0 * sx / w - 1.0) * tan_half_fov * (w / h);
+                let y = (1.0 - 2.0 * sy / h) * tan_half_fov;
+                *eye + *forward + x * *right + y * *up
+            }
+            Projection::Window {
+                eye,
+                u,
+                v,
+                w: axis_w,
+                f,
+                window: [wl, wr, wt, wb],
+            } => {
+                let along = |s: f64, n: f64, lo: f64, hi: f64| {
+                    // Δ = (hi − lo)/(n − 1); with a single pixel, the window's centre.
+                    if n > 1.0 {
+                        lo + (s - 0.5) * (hi - lo) / (n - 1.0)
+                    } else {
+                        0.5 * (lo + hi) + (s - 0.5) * (hi - lo)
+                    }
+                };
+                let pc = DVec3::new(along(sx, w, *wl, *wr), along(sy, h, *wt, *wb), *f);
+                *eye + pc.x * *u + pc.y * *v + pc.z * *axis_w
+            }
+        }
+    }
+
+    pub fn ray(&self, sx: f64, sy: f64) -> Ray {
+        let eye = self.eye();
+        Ray::new(eye, self.image_point(sx, sy) - eye)
+    }
+
+    /// The primary ray through the centre of pixel (x, y).
+    pub fn pixel_ray(&self, x: u32, y: u32) -> Ray {
+        self.ray(x as f64 + 0.5, y as f64 + 0.5)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn window_model_places_pixels_as_seed_001() {
+        // 3 × 3 pixels over the window [−1, 1] × [1, −1] at f = 2: Δu = 1, Δv = −1.
+        let cam = Camera {
+            projection: Projection::Window {
+                eye: DVec3::new(0.0, 0.0, -5.0),
+                u: DVec3::X,
+                v: DVec3::Y,
+                w: DVec3::Z,
+                f: 2.0,
+                window: [-1.0, 1.0, 1.0, -1.0],
+            },
+            width: 3,
+            height: 3,
+        };
+        assert_eq!(cam.image_point(0.5, 0.5), DVec3::new(-1.0, 1.0, -3.0));
+        assert_eq!(cam.image_point(2.5, 1.5), DVec3::new(1.0, 0.0, -3.0));
+    }
+
+    #[test]
+    fn look_at_centre_pixel_looks_forward_and_top_left_is_up_left() {
+        let cam = Camera::look_at(DVec3::ZERO, DVec3::NEG_Z, DVec3::Y, 90.0, 2, 2);
+        let r = cam.ray(1.0, 1.0);
+        assert!((r.dir - DVec3::NEG_Z).length() < 1e-15);
+        let tl = cam.pixel_ray(0, 0).dir;
+        // Looking down −z, right is +x: the top-left pixel looks up and to −x.
+        assert!(tl.x < 0.0 && tl.y > 0.0);
+    }
+}

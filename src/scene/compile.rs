@@ -1,0 +1,678 @@
+//! Compiling a scene file into a runtime scene: every value validated (with its position in
+//! the file), names resolved, transforms composed and inverted, bounds computed.
+
+use std::collections::{BTreeMap, HashSet};
+use std::path::PathBuf;
+
+use glam::{DAffine3, DVec3};
+use serde_saphyr::Spanned;
+
+use super::compiled::{Geometry, Leaf, Object, Scene};
+use super::error::{invalid, Invalid, Pos};
+use super::format::{
+    Bias, CameraSpec, LightSpec, MaterialSpec, ObjectSpec, SceneFile, TransformStep, Triple,
+};
+use crate::accel::Aabb;
+use crate::geometry::csg::{CsgNode, CsgOp};
+use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
+use crate::render::{Camera, Projection};
+use crate::shading::{Fresnel, Highlight, Light, LightKind, Material};
+
+/// Limits that protect against absurd input.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Largest image (width × height) rendered without `--allow-huge`.
+    pub max_pixels: u64,
+    pub max_depth: u32,
+    pub max_spp: u32,
+    /// Deepest CSG nesting accepted.
+    pub max_csg_depth: usize,
+}
+
+impl Default for Limits {
+    fn default() -> Limits {
+        Limits {
+            max_pixels: 64_000_000,
+            max_depth: 64,
+            max_spp: 65_536,
+            max_csg_depth: 200,
+        }
+    }
+}
+
+const TOP: Pos = Pos { line: 1, column: 1 };
+
+fn pos<T>(s: &Spanned<T>) -> Pos {
+    Pos::of(&s.referenced)
+}
+
+pub fn compile(
+    file: SceneFile,
+    source: Option<PathBuf>,
+    limits: &Limits,
+) -> Result<Scene, Invalid> {
+    let camera =
+        match &file.camera {
+            Some(c) => camera(&c.value, pos(c), limits)?,
+            None => return invalid(
+                TOP,
+                "missing `camera`: a scene needs a camera (eye and look_at, or the window model)",
+            ),
+        };
+    let max_depth = match &file.max_depth {
+        None => 5,
+        Some(d) if d.value < 1 || d.value > limits.max_depth as i64 => {
+            return invalid(
+                pos(d),
+                format!(
+                    "max_depth must be between 1 and {}, got {}",
+                    limits.max_depth, d.value
+                ),
+            )
+        }
+        Some(d) => d.value as u32,
+    };
+    let spp = match &file.spp {
+        None => 1,
+        Some(s) if s.value < 1 || s.value > limits.max_spp as i64 => {
+            return invalid(
+                pos(s),
+                format!(
+                    "spp must be between 1 and {}, got {}",
+                    limits.max_spp, s.value
+                ),
+            )
+        }
+        Some(s) => s.value as u32,
+    };
+    let adaptive_threshold = match &file.adaptive_threshold {
+        None => 0.0,
+        Some(a) if !(0.0..=1.0).contains(&a.value) => {
+            return invalid(
+                pos(a),
+                format!(
+                    "adaptive_threshold must be between 0 and 1, got {}",
+                    a.value
+                ),
+            )
+        }
+        Some(a) => a.value,
+    };
+    let shadow_bias = match &file.shadow_bias {
+        None
+        | Some(Spanned {
+            value: Bias::Auto, ..
+        }) => None,
+        Some(
+            b @ Spanned {
+                value: Bias::Fixed(v),
+                ..
+            },
+        ) if *v < 0.0 => {
+            return invalid(
+                pos(b),
+                format!("shadow_bias must be `auto` or ≥ 0, got {v}"),
+            )
+        }
+        Some(Spanned {
+            value: Bias::Fixed(v),
+            ..
+        }) => Some(*v),
+    };
+    let secondary_attenuation = match &file.secondary_attenuation {
+        None => None,
+        Some(a) => Some(attenuation(a)?),
+    };
+
+    let mut lights = Vec::new();
+    let mut light_names = HashSet::new();
+    for (i, l) in file.lights.iter().enumerate() {
+        let light = light(&l.value, pos(l), i)?;
+        if !light_names.insert(light.name.clone()) {
+            return invalid(pos(l), format!("duplicate light name `{}`", light.name));
+        }
+        lights.push(light);
+    }
+
+    let mut materials = Vec::new();
+    let mut material_index = BTreeMap::new();
+    for (name, m) in &file.materials {
+        material_index.insert(name.clone(), materials.len() as u32);
+        materials.push(material(name, &m.value, pos(m))?);
+    }
+
+    let mut builder = Builder {
+        materials: &material_index,
+        leaves: Vec::new(),
+        limits,
+    };
+    let mut objects = Vec::new();
+    let mut names = HashSet::new();
+    for (i, o) in file.objects.iter().enumerate() {
+        let name = o
+            .value
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("object{}", i + 1));
+        if !names.insert(name.clone()) {
+            return invalid(pos(o), format!("duplicate object name `{name}`"));
+        }
+        let Some(m) = &o.value.material else {
+            return invalid(pos(o), format!("object `{name}` has no `material`"));
+        };
+        let material = builder.material(m)?;
+        let object = objects.len() as u32;
+        let mut ctx = Ctx {
+            object,
+            object_name: &name,
+            path: vec![],
+            leaf_count: 0,
+            depth: 0,
+        };
+        let node = builder.node(
+            o,
+            material,
+            &Transform::new(DAffine3::IDENTITY),
+            &mut ctx,
+            true,
+        )?;
+        let (geometry, bounds) = match node {
+            CsgNode::Leaf { leaf, bounds } => {
+                builder.leaves[leaf as usize].name = name.clone();
+                (Geometry::Leaf(leaf), bounds)
+            }
+            node => {
+                let b = node.bounds();
+                (Geometry::Csg(node), b)
+            }
+        };
+        objects.push(Object {
+            name,
+            geometry,
+            bounds,
+        });
+    }
+
+    Ok(Scene::assemble(
+        source,
+        camera,
+        file.background.map_or(DVec3::ZERO, |t| t.0),
+        file.ambient.map_or(DVec3::ZERO, |t| t.0),
+        max_depth,
+        adaptive_threshold,
+        shadow_bias,
+        spp,
+        secondary_attenuation,
+        lights,
+        materials,
+        builder.leaves,
+        objects,
+    ))
+}
+
+fn nonzero(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {
+    v.try_normalize().map_or_else(
+        || invalid(p, format!("{what} must not be the zero vector")),
+        Ok,
+    )
+}
+
+fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
+    let size = |s: &Option<Spanned<i64>>, default: i64, what: &str| -> Result<u32, Invalid> {
+        let (v, at) = s.as_ref().map_or((default, p), |s| (s.value, pos(s)));
+        if v < 1 || v > 1_000_000 {
+            return invalid(
+                at,
+                format!("camera {what} must be between 1 and 1000000 pixels, got {v}"),
+            );
+        }
+        Ok(v as u32)
+    };
+    let width = size(&c.width, 320, "width")?;
+    let height = size(&c.height, 240, "height")?;
+    if width as u64 * height as u64 > limits.max_pixels {
+        return invalid(
+            c.width.as_ref().map_or(p, pos),
+            format!(
+                "image of {width} × {height} pixels exceeds the budget of {} pixels (use --allow-huge to render it anyway)",
+                limits.max_pixels
+            ),
+        );
+    }
+    let Some(eye) = c.eye else {
+        return invalid(p, "camera needs an `eye`");
+    };
+    if let Some(window) = &c.window {
+        let need = |v: Option<DVec3>, k: &str| {
+            v.map_or_else(|| invalid(p, format!("window camera needs `{k}`")), Ok)
+        };
+        let (u, v, w) = (need(c.u, "u")?, need(c.v, "v")?, need(c.w, "w")?);
+        let f = c.f.map_or_else(
+            || invalid(p, "window camera needs the focal distance `f`"),
+            Ok,
+        )?;
+        for (axis, k) in [(u, "u"), (v, "v"), (w, "w")] {
+            nonzero(axis, p, &format!("camera axis {k}"))?;
+        }
+        let [wl, wr, wt, wb] = window.value;
+        if wl == wr || wt == wb {
+            return invalid(
+                pos(window),
+                "camera window has zero width or height (wl = wr or wt = wb)",
+            );
+        }
+        if c.look_at.is_some() || c.fov.is_some() {
+            return invalid(
+                p,
+                "camera mixes the window model (window, u, v, w, f) with look_at/fov: use one",
+            );
+        }
+        return Ok(Camera {
+            projection: Projection::Window {
+                eye,
+                u,
+                v,
+                w,
+                f,
+                window: window.value,
+            },
+            width,
+            height,
+        });
+    }
+    let Some(target) = c.look_at else {
+        return invalid(
+            p,
+            "camera needs `look_at` (or the window model: u, v, w, f, window)",
+        );
+    };
+    let forward = nonzero(target - eye, p, "look_at − eye")?;
+    let (up, up_pos) = c.up.as_ref().map_or((DVec3::Y, p), |u| (u.value, pos(u)));
+    let up = nonzero(up, up_pos, "camera up")?;
+    if forward.cross(up).length() < 1e-9 {
+        return invalid(
+            up_pos,
+            "camera up is parallel to the view direction (look_at − eye)",
+        );
+    }
+    let fov = match &c.fov {
+        None => 40.0,
+        Some(f) if !(f.value > 0.0 && f.value < 180.0) => {
+            return invalid(
+                pos(f),
+                format!(
+                    "fov must be between 0 and 180 degrees (exclusive), got {}",
+                    f.value
+                ),
+            )
+        }
+        Some(f) => f.value,
+    };
+    Ok(Camera::look_at(eye, target, up, fov, width, height))
+}
+
+fn attenuation(a: &Spanned<[f64; 3]>) -> Result<[f64; 3], Invalid> {
+    let [c0, c1, c2] = a.value;
+    if c0 < 0.0 || c1 < 0.0 || c2 < 0.0 || c0 + c1 + c2 <= 0.0 {
+        return invalid(
+            pos(a),
+            "attenuation [c0, c1, c2] must be ≥ 0 and not all zero",
+        );
+    }
+    Ok(a.value)
+}
+
+fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
+    let name = l.name.clone().unwrap_or_else(|| format!("light{}", i + 1));
+    let intensity = l.intensity.map_or(DVec3::ONE, |t| t.0);
+    if intensity.min_element() < 0.0 {
+        return invalid(p, format!("light `{name}` has a negative intensity"));
+    }
+    let kind = match (l.point, &l.direction) {
+        (Some(position), None) => {
+            let attenuation = match &l.attenuation {
+                Some(a) => attenuation(a)?,
+                None => [1.0, 0.0, 0.0],
+            };
+            LightKind::Point {
+                position,
+                attenuation,
+            }
+        }
+        (None, Some(d)) => {
+            if l.attenuation.is_some() {
+                return invalid(
+                    p,
+                    format!("light `{name}`: a directional light has no distance attenuation"),
+                );
+            }
+            LightKind::Directional {
+                direction: nonzero(d.value, pos(d), "light direction")?,
+            }
+        }
+        (Some(_), Some(_)) => {
+            return invalid(
+                p,
+                format!("light `{name}` has both `point` and `direction`: give one"),
+            )
+        }
+        (None, None) => {
+            return invalid(
+                p,
+                format!("light `{name}` needs `point` (a position) or `direction`"),
+            )
+        }
+    };
+    Ok(Light {
+        name,
+        kind,
+        intensity,
+    })
+}
+
+fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
+    let coefficient = |c: &Option<Spanned<f64>>, k: &str| -> Result<f64, Invalid> {
+        match c {
+            None => Ok(0.0),
+            Some(c) if c.value < 0.0 => invalid(
+                pos(c),
+                format!("material `{name}`: {k} must be ≥ 0, got {}", c.value),
+            ),
+            Some(c) => Ok(c.value),
+        }
+    };
+    let ior = match &m.ior {
+        None => 1.0,
+        Some(i) if i.value <= 0.0 => {
+            return invalid(
+                pos(i),
+                format!("material `{name}`: ior must be > 0, got {}", i.value),
+            )
+        }
+        Some(i) => i.value,
+    };
+    let shininess = match &m.shininess {
+        None => 1.0,
+        Some(s) => coefficient(&Some(s.clone()), "shininess")?,
+    };
+    let color = m.color.map_or(DVec3::ONE, |t| t.0);
+    if color.min_element() < 0.0 {
+        return invalid(p, format!("material `{name}`: color must be ≥ 0"));
+    }
+    Ok(Material {
+        name: name.to_string(),
+        color,
+        ka: coefficient(&m.ka, "ka")?,
+        kd: coefficient(&m.kd, "kd")?,
+        ks: coefficient(&m.ks, "ks")?,
+        shininess,
+        highlight: m.highlight.unwrap_or(Highlight::Blinn),
+        kr: coefficient(&m.kr, "kr")?,
+        kt: coefficient(&m.kt, "kt")?,
+        ior,
+        fresnel: m.fresnel.unwrap_or(Fresnel::None),
+        emission: m.emission.map_or(DVec3::ZERO, |t| t.0),
+    })
+}
+
+struct Builder<'a> {
+    materials: &'a BTreeMap<String, u32>,
+    leaves: Vec<Leaf>,
+    limits: &'a Limits,
+}
+
+/// Where in an object's CSG tree the builder is.
+struct Ctx<'a> {
+    object: u32,
+    object_name: &'a str,
+    path: Vec<String>,
+    leaf_count: usize,
+    depth: usize,
+}
+
+impl Builder<'_> {
+    fn material(&self, m: &Spanned<String>) -> Result<u32, Invalid> {
+        self.materials.get(&m.value).copied().map_or_else(
+            || {
+                let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
+                invalid(
+                    pos(m),
+                    format!(
+                        "unknown material `{}` (defined: {})",
+                        m.value,
+                        known.join(", ")
+                    ),
+                )
+            },
+            Ok,
+        )
+    }
+
+    fn node(
+        &mut self,
+        o: &Spanned<ObjectSpec>,
+        material: u32,
+        parent: &Transform,
+        ctx: &mut Ctx,
+        top: bool,
+    ) -> Result<CsgNode, Invalid> {
+        let spec = &o.value;
+        let p = pos(o);
+        if ctx.depth > self.limits.max_csg_depth {
+            return invalid(
+                p,
+                format!(
+                    "CSG tree nested deeper than {} levels",
+                    self.limits.max_csg_depth
+                ),
+            );
+        }
+        let material = match &spec.material {
+            Some(m) if !top => self.material(m)?,
+            _ => material,
+        };
+        let transform = parent.after(&transform(&spec.transform)?);
+        let shapes = [
+            spec.sphere.is_some(),
+            spec.plane.is_some(),
+            spec.aabox.is_some(),
+            spec.cylinder.is_some(),
+            spec.cone.is_some(),
+            spec.triangle.is_some(),
+            spec.union.is_some(),
+            spec.intersection.is_some(),
+            spec.difference.is_some(),
+            spec.complement.is_some(),
+        ];
+        match shapes.iter().filter(|&&b| b).count() {
+            1 => {}
+            0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, union, intersection, difference, complement"),
+            _ => return invalid(p, "more than one shape key in one object: nest them in a union, or write two objects"),
+        }
+        let csg = [
+            (CsgOp::Union, &spec.union),
+            (CsgOp::Intersection, &spec.intersection),
+            (CsgOp::Difference, &spec.difference),
+        ];
+        for (op, children) in csg {
+            if let Some(children) = children {
+                if children.len() < 2 {
+                    return invalid(p, format!("{} needs at least two children", op.name()));
+                }
+                return self.operation(
+                    op,
+                    spec.name.clone(),
+                    children.iter().collect(),
+                    material,
+                    &transform,
+                    ctx,
+                );
+            }
+        }
+        if let Some(child) = &spec.complement {
+            return self.operation(
+                CsgOp::Complement,
+                spec.name.clone(),
+                vec![&**child],
+                material,
+                &transform,
+                ctx,
+            );
+        }
+        let shape = shape(spec, p)?;
+        if !top && !shape.is_solid() {
+            return invalid(
+                p,
+                "a triangle has no inside, so it cannot take part in CSG (use closed solids)",
+            );
+        }
+        ctx.leaf_count += 1;
+        let name = spec
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("{}.{}{}", ctx.object_name, shape.kind(), ctx.leaf_count));
+        let identity = transform.to_world == DAffine3::IDENTITY;
+        let bounds = shape.bounds().transformed(&transform.to_world);
+        let leaf = self.leaves.len() as u32;
+        self.leaves.push(Leaf {
+            name,
+            object: ctx.object,
+            path: ctx.path.clone(),
+            shape,
+            transform: (!identity).then_some(transform),
+            material,
+            bounds,
+        });
+        Ok(CsgNode::Leaf { leaf, bounds })
+    }
+
+    fn operation(
+        &mut self,
+        op: CsgOp,
+        name: Option<String>,
+        children: Vec<&Spanned<ObjectSpec>>,
+        material: u32,
+        transform: &Transform,
+        ctx: &mut Ctx,
+    ) -> Result<CsgNode, Invalid> {
+        let name = name.unwrap_or_else(|| op.name().to_string());
+        ctx.path.push(name.clone());
+        ctx.depth += 1;
+        let mut nodes = Vec::with_capacity(children.len());
+        for c in children {
+            nodes.push(self.node(c, material, transform, ctx, false)?);
+        }
+        ctx.depth -= 1;
+        ctx.path.pop();
+        // A result lies inside the first child for ∩ and −, inside some child for ∪.
+        let bounds = match op {
+            CsgOp::Union => nodes
+                .iter()
+                .fold(Aabb::empty(), |b, n| b.union(&n.bounds())),
+            CsgOp::Intersection => nodes
+                .iter()
+                .fold(Aabb::everything(), |b, n| b.intersection(&n.bounds())),
+            CsgOp::Difference => nodes[0].bounds(),
+            CsgOp::Complement => Aabb::everything(),
+        };
+        Ok(CsgNode::Op {
+            op,
+            name,
+            children: nodes,
+            bounds,
+        })
+    }
+}
+
+/// The steps compose in the order written: the first step is applied first.
+fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
+    let mut m = DAffine3::IDENTITY;
+    for s in steps {
+        let step = match &s.value {
+            TransformStep::Translate(v) => DAffine3::from_translation(*v),
+            TransformStep::RotateX(d) => DAffine3::from_rotation_x(d.to_radians()),
+            TransformStep::RotateY(d) => DAffine3::from_rotation_y(d.to_radians()),
+            TransformStep::RotateZ(d) => DAffine3::from_rotation_z(d.to_radians()),
+            TransformStep::Scale(Triple(v)) => {
+                if v.abs().min_element() < 1e-12 {
+                    return invalid(pos(s), "scale must not be zero in any axis");
+                }
+                DAffine3::from_scale(*v)
+            }
+        };
+        m = step * m;
+    }
+    Ok(Transform::new(m))
+}
+
+fn shape(spec: &ObjectSpec, p: Pos) -> Result<Shape, Invalid> {
+    let positive = |r: &Spanned<f64>, what: &str| -> Result<f64, Invalid> {
+        if r.value > 0.0 {
+            Ok(r.value)
+        } else {
+            invalid(pos(r), format!("{what} must be > 0, got {}", r.value))
+        }
+    };
+    if let Some(s) = &spec.sphere {
+        return Ok(Shape::Sphere(Sphere {
+            center: s.center,
+            radius: positive(&s.radius, "sphere radius")?,
+        }));
+    }
+    if let Some(s) = &spec.plane {
+        return Ok(Shape::Plane(Plane {
+            point: s.point,
+            normal: nonzero(s.normal.value, pos(&s.normal), "plane normal")?,
+        }));
+    }
+    if let Some(s) = &spec.aabox {
+        if !(s.min.value.cmplt(s.max).all()) {
+            return invalid(
+                pos(&s.min),
+                "box min must be smaller than max in every axis",
+            );
+        }
+        return Ok(Shape::Box(Aabox {
+            min: s.min.value,
+            max: s.max,
+        }));
+    }
+    if let Some(s) = &spec.cylinder {
+        let radius = positive(&s.radius, "cylinder radius")?;
+        nonzero(
+            s.top - s.base.value,
+            pos(&s.base),
+            "cylinder axis (top − base)",
+        )?;
+        return Ok(Shape::Cylinder(Cylinder {
+            base: s.base.value,
+            top: s.top,
+            radius,
+        }));
+    }
+    if let Some(s) = &spec.cone {
+        let radius = positive(&s.radius, "cone radius")?;
+        nonzero(
+            s.base - s.apex.value,
+            pos(&s.apex),
+            "cone axis (base − apex)",
+        )?;
+        return Ok(Shape::Cone(Cone {
+            apex: s.apex.value,
+            base: s.base,
+            radius,
+        }));
+    }
+    if let Some(t) = &spec.triangle {
+        let [a, b, c] = t.value;
+        let tri = Triangle { a, b, c };
+        if tri.normal() == DVec3::ZERO {
+            return invalid(
+                pos(t),
+                "degenerate triangle: its three vertices are collinear",
+            );
+        }
+        return Ok(Shape::Triangle(tri));
+    }
+    invalid(p, "no shape")
+}

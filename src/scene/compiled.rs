@@ -1,0 +1,403 @@
+//! The compiled, runtime scene: validated, transforms inverted, bounds computed, BVH built and
+//! the features the scene uses recorded, so the tracer can skip what is absent.
+
+use std::path::PathBuf;
+
+use glam::DVec3;
+
+use crate::accel::{Aabb, Bvh};
+use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
+use crate::geometry::{first_crossing, Ray, Segment, SegmentList, Shape, Span, Surface, Transform};
+use crate::render::Camera;
+use crate::shading::{Light, Material};
+use crate::trace::Stats;
+
+/// A primitive in the scene: a plain object, or a leaf of a CSG tree.
+#[derive(Clone, Debug)]
+pub struct Leaf {
+    /// The leaf's own name (for a plain object, the object's name).
+    pub name: String,
+    /// The object it belongs to.
+    pub object: u32,
+    /// The CSG operations from the object's root down to this leaf ("union/difference").
+    pub path: Vec<String>,
+    pub shape: Shape,
+    pub transform: Option<Transform>,
+    pub material: u32,
+    /// World-space bounds.
+    pub bounds: Aabb,
+}
+
+impl Leaf {
+    pub fn span(&self, ray: &Ray) -> Option<Span> {
+        match &self.transform {
+            Some(tf) => self.shape.span(&tf.ray_to_local(ray)),
+            None => self.shape.span(ray),
+        }
+    }
+
+    /// The leaf's segment list; its surfaces are named by `id`, its index in the scene.
+    pub fn segments(&self, id: u32, ray: &Ray) -> SegmentList {
+        let mut list = SegmentList::new();
+        if let Some(s) = self.span(ray) {
+            list.push(Segment {
+                t_in: s.t_in,
+                t_out: s.t_out,
+                enter: Surface::new(id, s.face_in),
+                exit: Surface::new(id, s.face_out),
+            });
+        }
+        list
+    }
+
+    /// The outward unit normal in world space at a world point on `face`.
+    pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {
+        match &self.transform {
+            Some(tf) => {
+                tf.normal_to_world(self.shape.normal(tf.to_local.transform_point3(p), face))
+            }
+            None => self.shape.normal(p, face),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub enum Geometry {
+    /// A single primitive (index into `Scene::leaves`).
+    Leaf(u32),
+    Csg(CsgNode),
+}
+
+#[derive(Clone, Debug)]
+pub struct Object {
+    pub name: String,
+    pub geometry: Geometry,
+    pub bounds: Aabb,
+}
+
+/// The cheap record of an intersection: enough to find everything else later.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    pub t: f64,
+    pub object: u32,
+    pub surface: Surface,
+}
+
+/// The shading record, built only for the hit that is shaded.
+#[derive(Clone, Copy, Debug)]
+pub struct Interaction {
+    pub point: DVec3,
+    /// Unit normal facing the incoming ray (the one the formulas use).
+    pub normal: DVec3,
+    /// True when the ray arrives from inside the solid (it is leaving it).
+    pub inside: bool,
+    pub leaf: u32,
+    pub object: u32,
+    pub material: u32,
+}
+
+/// What the scene contains, so the tracer can skip what it does not need.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Features {
+    pub reflective: bool,
+    pub transparent: bool,
+    pub csg: bool,
+    pub lights: usize,
+}
+
+/// How intersections are found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Accel {
+    /// Test every object.
+    None,
+    #[default]
+    Bvh,
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    pub source: Option<PathBuf>,
+    pub camera: Camera,
+    pub background: DVec3,
+    pub ambient: DVec3,
+    pub max_depth: u32,
+    pub adaptive_threshold: f64,
+    /// Offset of secondary-ray origins; None = automatic, scaled to the hit point.
+    pub shadow_bias: Option<f64>,
+    pub spp: u32,
+    /// I_r and I_t divided by c0 + c1·d + c2·d² (d = length of the child ray), when set.
+    pub secondary_attenuation: Option<[f64; 3]>,
+    pub lights: Vec<Light>,
+    pub materials: Vec<Material>,
+    pub leaves: Vec<Leaf>,
+    pub objects: Vec<Object>,
+    pub features: Features,
+    accel: Accel,
+    bvh: Bvh,
+    /// Objects the BVH indexes (bounded ones), by BVH item number.
+    bounded: Vec<u32>,
+    /// Objects no box can hold (planes, complements): always tested.
+    unbounded: Vec<u32>,
+}
+
+impl LeafSegments for Scene {
+    fn leaf_segments(&self, leaf: u32, ray: &Ray) -> SegmentList {
+        self.leaves[leaf as usize].segments(leaf, ray)
+    }
+    fn leaf_name(&self, leaf: u32) -> String {
+        self.leaves[leaf as usize].name.clone()
+    }
+}
+
+/// Below this many bounded objects, testing each one beats the BVH (measured by
+/// `benches/intersect.rs`: with 4 spheres brute force is faster, with 16 the BVH wins).
+const BVH_MIN_OBJECTS: usize = 8;
+
+impl Scene {
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn assemble(
+        source: Option<PathBuf>,
+        camera: Camera,
+        background: DVec3,
+        ambient: DVec3,
+        max_depth: u32,
+        adaptive_threshold: f64,
+        shadow_bias: Option<f64>,
+        spp: u32,
+        secondary_attenuation: Option<[f64; 3]>,
+        lights: Vec<Light>,
+        materials: Vec<Material>,
+        leaves: Vec<Leaf>,
+        objects: Vec<Object>,
+    ) -> Scene {
+        let used =
+            |f: fn(&Material) -> bool| leaves.iter().any(|l| f(&materials[l.material as usize]));
+        let features = Features {
+            reflective: used(Material::reflective),
+            transparent: used(Material::transparent),
+            csg: objects
+                .iter()
+                .any(|o| matches!(o.geometry, Geometry::Csg(_))),
+            lights: lights.len(),
+        };
+        let mut scene = Scene {
+            source,
+            camera,
+            background,
+            ambient,
+            max_depth,
+            adaptive_threshold,
+            shadow_bias,
+            spp,
+            secondary_attenuation,
+            lights,
+            materials,
+            leaves,
+            objects,
+            features,
+            accel: Accel::Bvh,
+            bvh: Bvh::default(),
+            bounded: vec![],
+            unbounded: vec![],
+        };
+        scene.set_accel(Accel::Bvh);
+        scene
+    }
+
+    /// Chooses the acceleration structure (rebuilding the BVH if needed).
+    pub fn set_accel(&mut self, accel: Accel) {
+        self.accel = accel;
+        let (bounded, unbounded): (Vec<u32>, Vec<u32>) = (0..self.objects.len() as u32)
+            .partition(|&i| self.objects[i as usize].bounds.is_finite());
+        let use_bvh = accel == Accel::Bvh && bounded.len() >= BVH_MIN_OBJECTS;
+        if use_bvh {
+            let boxes: Vec<Aabb> = bounded
+                .iter()
+                .map(|&i| self.objects[i as usize].bounds)
+                .collect();
+            self.bvh = Bvh::build(&boxes);
+            self.bounded = bounded;
+            self.unbounded = unbounded;
+        } else {
+            self.bvh = Bvh::default();
+            self.bounded = vec![];
+            self.unbounded = (0..self.objects.len() as u32).collect();
+        }
+    }
+
+    pub fn bvh_nodes(&self) -> usize {
+        self.bvh.node_count()
+    }
+
+    pub fn material(&self, index: u32) -> &Material {
+        &self.materials[index as usize]
+    }
+
+    pub fn object_index(&self, name: &str) -> Option<u32> {
+        self.objects
+            .iter()
+            .position(|o| o.name == name)
+            .map(|i| i as u32)
+    }
+
+    /// The segment list of one object along the ray, within [t_min, t_max].
+    pub fn object_segments(
+        &self,
+        object: u32,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> SegmentList {
+        match &self.objects[object as usize].geometry {
+            Geometry::Leaf(leaf) => self.leaves[*leaf as usize].segments(*leaf, ray),
+            Geometry::Csg(root) => {
+                let r = CsgRay {
+                    ray,
+                    inv_dir: ray.dir.recip(),
+                    t_min,
+                    t_max,
+                    use_bounds: true,
+                };
+                let mut work = CsgWork::default();
+                let list = root.segments(self, &r, &mut work);
+                stats.csg_pruned += work.pruned;
+                list
+            }
+        }
+    }
+
+    /// The CSG trace of an object along the whole line of the ray (for `raytree csg`).
+    /// With `use_bounds` false, only the notes' pruning rules apply (empty operands).
+    pub fn object_trace(
+        &self,
+        object: u32,
+        ray: &Ray,
+        use_bounds: bool,
+    ) -> (SegmentList, CsgTrace) {
+        match &self.objects[object as usize].geometry {
+            Geometry::Leaf(leaf) => {
+                let list = self.leaves[*leaf as usize].segments(*leaf, ray);
+                let trace = CsgTrace {
+                    node: self.leaves[*leaf as usize].name.clone(),
+                    op: None,
+                    leaf: Some(*leaf),
+                    segments: list.clone(),
+                    pruned: None,
+                    children: vec![],
+                };
+                (list, trace)
+            }
+            Geometry::Csg(root) => {
+                let r = CsgRay {
+                    ray,
+                    inv_dir: ray.dir.recip(),
+                    t_min: f64::NEG_INFINITY,
+                    t_max: f64::INFINITY,
+                    use_bounds,
+                };
+                root.trace(self, &r, &mut CsgWork::default())
+            }
+        }
+    }
+
+    /// Nearest crossing of one object's surface with t_min < t < t_max.
+    fn object_hit(
+        &self,
+        object: u32,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
+        stats.primitives_tested += 1;
+        let (t, surface) = match &self.objects[object as usize].geometry {
+            Geometry::Leaf(leaf) => {
+                let s = self.leaves[*leaf as usize].span(ray)?;
+                if s.t_in > t_min {
+                    (s.t_in, Surface::new(*leaf, s.face_in))
+                } else {
+                    (s.t_out, Surface::new(*leaf, s.face_out))
+                }
+            }
+            Geometry::Csg(_) => first_crossing(
+                &self.object_segments(object, ray, t_min, t_max, stats),
+                t_min,
+            )?,
+        };
+        (t > t_min && t < t_max && t.is_finite()).then_some(Hit { t, object, surface })
+    }
+
+    /// The nearest hit with t_min < t < t_max.
+    pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut limit = t_max;
+        for &o in &self.unbounded {
+            if let Some(h) = self.object_hit(o, ray, t_min, limit, stats) {
+                limit = h.t;
+                best = Some(h);
+            }
+        }
+        if !self.bounded.is_empty() {
+            let visits = self.bvh.closest(ray, t_min, limit, |item, limit| {
+                let h = self.object_hit(self.bounded[item as usize], ray, t_min, limit, stats)?;
+                best = Some(h);
+                Some(h.t)
+            });
+            stats.bvh_nodes_visited += visits.nodes;
+        }
+        best
+    }
+
+    /// Any hit with t_min < t < t_max (for shadow rays: the first blocker found).
+    pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        for &o in &self.unbounded {
+            if let Some(h) = self.object_hit(o, ray, t_min, t_max, stats) {
+                return Some(h);
+            }
+        }
+        let mut blocker = None;
+        if !self.bounded.is_empty() {
+            let (_, visits) = self.bvh.any(ray, t_min, t_max, |item| {
+                blocker = self.object_hit(self.bounded[item as usize], ray, t_min, t_max, stats);
+                blocker.is_some()
+            });
+            stats.bvh_nodes_visited += visits.nodes;
+        }
+        blocker
+    }
+
+    /// The shading record of a hit.
+    pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
+        let leaf = &self.leaves[hit.surface.leaf as usize];
+        let point = ray.at(hit.t);
+        let mut outward = leaf.normal(point, hit.surface.face);
+        if hit.surface.flip {
+            outward = -outward;
+        }
+        // A triangle has no inside: it is seen from whichever side the ray comes.
+        let inside = leaf.shape.is_solid() && outward.dot(ray.dir) > 0.0;
+        let normal = if outward.dot(ray.dir) > 0.0 {
+            -outward
+        } else {
+            outward
+        };
+        Interaction {
+            point,
+            normal,
+            inside,
+            leaf: hit.surface.leaf,
+            object: hit.object,
+            material: leaf.material,
+        }
+    }
+
+    /// Offset of secondary-ray origins from a surface at distance `t` along a ray from `origin`.
+    /// The automatic bias grows with the magnitude of the coordinates, because that is what
+    /// limits the precision of a computed hit point.
+    pub fn bias(&self, origin: DVec3, point: DVec3) -> f64 {
+        self.shadow_bias.unwrap_or_else(|| {
+            1e-9 * (1.0 + origin.abs().max_element() + point.abs().max_element())
+        })
+    }
+}

@@ -1,0 +1,94 @@
+//! Scenes: the YAML file format, its compilation into a runtime scene, and errors that name
+//! file, line and column.
+
+mod compile;
+mod compiled;
+mod error;
+pub mod format;
+
+use std::path::Path;
+
+pub use compile::Limits;
+pub use compiled::{Accel, Features, Geometry, Hit, Interaction, Leaf, Object, Scene};
+pub use error::SceneError;
+
+/// Parser limits against alias bombs and absurd nesting.
+fn parse_options() -> serde_saphyr::Options {
+    let mut options = serde_saphyr::Options::default();
+    options.with_snippet = false;
+    options
+}
+
+/// Reads and compiles a scene file.
+pub fn load(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
+    let file = path.display().to_string();
+    let fail = |message: String| SceneError {
+        file: file.clone(),
+        line: 1,
+        column: 1,
+        message,
+    };
+    if path.is_dir() {
+        return Err(fail("is a directory, not a scene file".into()));
+    }
+    let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let before = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = before.iter().filter(|&&b| b == b'\n').count() as u64 + 1;
+        let column = before.iter().rev().take_while(|&&b| b != b'\n').count() as u64 + 1;
+        SceneError {
+            file: file.clone(),
+            line,
+            column,
+            message: "not valid UTF-8 text".into(),
+        }
+    })?;
+    parse(&text, &file, Some(path), limits)
+}
+
+/// Parses and compiles scene text; `file` names it in errors.
+pub fn parse(
+    text: &str,
+    file: &str,
+    path: Option<&Path>,
+    limits: &Limits,
+) -> Result<Scene, SceneError> {
+    if text.trim().is_empty() {
+        return Err(SceneError {
+            file: file.into(),
+            line: 1,
+            column: 1,
+            message: "empty scene file".into(),
+        });
+    }
+    let parsed: format::SceneFile = serde_saphyr::from_str_with_options(text, parse_options())
+        .map_err(|e| {
+            let (line, column) = e
+                .location()
+                .map_or((1, 1), |l| (l.line().max(1), l.column().max(1)));
+            SceneError {
+                file: file.into(),
+                line,
+                column,
+                message: parser_message(&e.to_string()),
+            }
+        })?;
+    compile::compile(parsed, path.map(Path::to_path_buf), limits).map_err(|e| SceneError {
+        file: file.into(),
+        line: e.pos.line,
+        column: e.pos.column,
+        message: e.message,
+    })
+}
+
+/// The parser's message on one line, without the position it repeats.
+fn parser_message(raw: &str) -> String {
+    let first = raw.lines().next().unwrap_or(raw).trim();
+    let stripped = first.strip_prefix("error: ").unwrap_or(first);
+    // "line 3 column 7: unknown field" → "unknown field"
+    let stripped = match stripped.strip_prefix("line ") {
+        Some(rest) => rest.split_once(": ").map_or(stripped, |(_, msg)| msg),
+        None => stripped,
+    };
+    stripped.to_string()
+}

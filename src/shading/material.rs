@@ -1,0 +1,69 @@
+//! Materials: the coefficients of the lecture's illumination model.
+
+use glam::DVec3;
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Highlight {
+    /// (h·n)^m with the half vector h = (l + v)/|l + v| (seed 004).
+    #[default]
+    Blinn,
+    /// (r·v)^m with r the mirror direction of l (seed 003).
+    Phong,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Fresnel {
+    #[default]
+    None,
+    /// Schlick's approximation R = R0 + (1 − R0)(1 − cos θ)^5 weights kr by R and kt by 1 − R.
+    Schlick,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    pub name: String,
+    /// O, the object's colour.
+    pub color: DVec3,
+    pub ka: f64,
+    pub kd: f64,
+    pub ks: f64,
+    /// The specular exponent m.
+    pub shininess: f64,
+    pub highlight: Highlight,
+    pub kr: f64,
+    pub kt: f64,
+    pub ior: f64,
+    pub fresnel: Fresnel,
+    /// Light emitted by the surface (used by the path tracer).
+    pub emission: DVec3,
+}
+
+impl Material {
+    pub fn matte(name: &str, color: DVec3) -> Material {
+        Material {
+            name: name.into(),
+            color,
+            ka: 0.0,
+            kd: 1.0,
+            ks: 0.0,
+            shininess: 1.0,
+            highlight: Highlight::Blinn,
+            kr: 0.0,
+            kt: 0.0,
+            ior: 1.0,
+            fresnel: Fresnel::None,
+            emission: DVec3::ZERO,
+        }
+    }
+
+    pub fn reflective(&self) -> bool {
+        self.kr > 0.0
+    }
+
+    pub fn transparent(&self) -> bool {
+        self.kt > 0.0
+    }
+}

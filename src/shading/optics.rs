@@ -1,0 +1,67 @@
+//! Reflection, refraction and Fresnel weights.
+
+use glam::DVec3;
+
+/// Mirror direction (seed 000): v' = v − 2(v·n)n.
+pub fn reflect(v: DVec3, n: DVec3) -> DVec3 {
+    v - 2.0 * v.dot(n) * n
+}
+
+/// Snell's law in vector form, with n facing the incoming direction d (both unit):
+/// η = n1/n2, c1 = −d·n, c2 = √(1 − η²(1 − c1²)), t = η·d + (η·c1 − c2)·n.
+/// `None` is total internal reflection (the square root's argument is negative: beyond the
+/// limiting angle sin θ = n2/n1).
+pub fn refract(d: DVec3, n: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
+    let eta = n1 / n2;
+    let c1 = -d.dot(n);
+    let k = 1.0 - eta * eta * (1.0 - c1 * c1);
+    if k < 0.0 {
+        return None;
+    }
+    Some((eta * d + (eta * c1 - k.sqrt()) * n).normalize())
+}
+
+/// Schlick's approximation of the Fresnel reflectance: R0 = ((n1 − n2)/(n1 + n2))²,
+/// R = R0 + (1 − R0)(1 − cos θ)^5 with θ the angle on the side of the lower index.
+pub fn schlick(cos_incident: f64, n1: f64, n2: f64) -> f64 {
+    let r0 = ((n1 - n2) / (n1 + n2)).powi(2);
+    let cos = if n1 <= n2 {
+        cos_incident
+    } else {
+        let sin2_t = (n1 / n2).powi(2) * (1.0 - cos_incident * cos_incident);
+        if sin2_t >= 1.0 {
+            return 1.0;
+        }
+        (1.0 - sin2_t).sqrt()
+    };
+    r0 + (1.0 - r0) * (1.0 - cos).powi(5)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn snell_holds_and_the_limiting_angle_separates_refraction_from_tir() {
+        let n = DVec3::Y;
+        // 30° in glass (1.5) towards air: sin θt = 1.5·0.5 = 0.75.
+        let d = DVec3::new(0.5, -(0.75f64).sqrt(), 0.0);
+        let t = refract(d, n, 1.0, 1.5).unwrap();
+        assert!((t.x - 0.5 / 1.5).abs() < 1e-15);
+        let out = refract(DVec3::new(0.5, (0.75f64).sqrt(), 0.0), -n, 1.5, 1.0).unwrap();
+        assert!((out.x - 0.75).abs() < 1e-15);
+        // Limiting angle asin(1/1.5) = 41.81°: just below refracts, just above reflects.
+        let crit = (1.0f64 / 1.5).asin();
+        for (angle, tir) in [(crit - 1e-6, false), (crit + 1e-6, true)] {
+            let d = DVec3::new(angle.sin(), angle.cos(), 0.0);
+            assert_eq!(refract(d, -n, 1.5, 1.0).is_none(), tir);
+        }
+    }
+
+    #[test]
+    fn schlick_is_r0_head_on_and_one_at_grazing() {
+        assert!((schlick(1.0, 1.0, 1.5) - 0.04).abs() < 1e-15);
+        assert!((schlick(0.0, 1.0, 1.5) - 1.0).abs() < 1e-15);
+        assert_eq!(schlick(0.2, 1.5, 1.0), 1.0);
+    }
+}

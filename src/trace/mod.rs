@@ -1,0 +1,11 @@
+//! Tracing: the recursive tracer, its recorders, the ray tree and statistics.
+
+pub mod recorder;
+mod stats;
+pub mod text;
+pub mod tracer;
+pub mod tree;
+
+pub use stats::Stats;
+pub use tracer::Tracer;
+pub use tree::{Inspection, RayKind, RayNode, Termination};

@@ -1,0 +1,87 @@
+//! Counters of the work a render did, and of the work it skipped.
+
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Stats {
+    pub primary_rays: u64,
+    pub shadow_rays: u64,
+    pub reflection_rays: u64,
+    pub refraction_rays: u64,
+    /// Shadow rays not cast because the light is behind the surface (n·l ≤ 0).
+    pub shadow_skipped_backfacing: u64,
+    /// Shadow rays not cast because the light has zero intensity.
+    pub shadow_skipped_dark: u64,
+    /// Secondary rays not cast because the path reached the maximum depth.
+    pub max_depth_cutoffs: u64,
+    /// Secondary rays not cast because their weight fell below the adaptive threshold.
+    pub adaptive_cutoffs: u64,
+    pub total_internal_reflections: u64,
+    /// CSG subtrees skipped (bounding box missed, or empty operand of ∩ / −).
+    pub csg_pruned: u64,
+    /// BVH nodes whose box was tested.
+    pub bvh_nodes_visited: u64,
+    /// Object (or primitive) intersection routines run.
+    pub primitives_tested: u64,
+}
+
+impl Stats {
+    pub fn rays(&self) -> u64 {
+        self.primary_rays + self.shadow_rays + self.reflection_rays + self.refraction_rays
+    }
+
+    pub fn add(&mut self, o: &Stats) {
+        self.primary_rays += o.primary_rays;
+        self.shadow_rays += o.shadow_rays;
+        self.reflection_rays += o.reflection_rays;
+        self.refraction_rays += o.refraction_rays;
+        self.shadow_skipped_backfacing += o.shadow_skipped_backfacing;
+        self.shadow_skipped_dark += o.shadow_skipped_dark;
+        self.max_depth_cutoffs += o.max_depth_cutoffs;
+        self.adaptive_cutoffs += o.adaptive_cutoffs;
+        self.total_internal_reflections += o.total_internal_reflections;
+        self.csg_pruned += o.csg_pruned;
+        self.bvh_nodes_visited += o.bvh_nodes_visited;
+        self.primitives_tested += o.primitives_tested;
+    }
+
+    /// A human-readable report, one counter per line.
+    pub fn report(&self) -> String {
+        let rays = self.rays().max(1) as f64;
+        let mut s = String::new();
+        let mut line = |k: &str, v: u64| s.push_str(&format!("{k:<40} {v:>14}\n"));
+        line("rays traced", self.rays());
+        line("  primary", self.primary_rays);
+        line("  shadow", self.shadow_rays);
+        line("  reflection", self.reflection_rays);
+        line("  refraction", self.refraction_rays);
+        line(
+            "skipped: shadow rays, light behind (n·l ≤ 0)",
+            self.shadow_skipped_backfacing,
+        );
+        line("skipped: shadow rays, dark light", self.shadow_skipped_dark);
+        line(
+            "skipped: secondary rays at max depth",
+            self.max_depth_cutoffs,
+        );
+        line(
+            "skipped: secondary rays, adaptive depth",
+            self.adaptive_cutoffs,
+        );
+        line(
+            "total internal reflections",
+            self.total_internal_reflections,
+        );
+        line("skipped: CSG subtrees pruned", self.csg_pruned);
+        line("BVH nodes visited", self.bvh_nodes_visited);
+        line("objects/primitives tested", self.primitives_tested);
+        s.push_str(&format!(
+            "{:<40} {:>14.2}\n{:<40} {:>14.2}\n",
+            "BVH nodes per ray",
+            self.bvh_nodes_visited as f64 / rays,
+            "primitives tested per ray",
+            self.primitives_tested as f64 / rays
+        ));
+        s
+    }
+}

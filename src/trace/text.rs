@@ -1,0 +1,261 @@
+//! Plain-text views of ray trees and CSG traces, for the terminal and for snapshots.
+
+use glam::DVec3;
+
+use super::tree::{LightTerm, RayKind, RayNode};
+use crate::geometry::csg::{CsgTrace, Pruned};
+use crate::geometry::Ray;
+use crate::scene::Scene;
+
+/// A number with at most six decimals, trailing zeros dropped ("0.4125", "13", "-0.6").
+pub fn num(x: f64) -> String {
+    if x.is_infinite() {
+        return if x > 0.0 {
+            "∞".into()
+        } else {
+            "−∞".into()
+        };
+    }
+    if x.is_nan() {
+        return "NaN".into();
+    }
+    let s = format!("{x:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".into()
+    } else {
+        s.into()
+    }
+}
+
+pub fn vec3(v: DVec3) -> String {
+    format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
+}
+
+/// A grey colour as one number, others as (r, g, b).
+pub fn color(c: DVec3) -> String {
+    if c.x == c.y && c.y == c.z {
+        num(c.x)
+    } else {
+        vec3(c)
+    }
+}
+
+/// One line naming a ray and its intensity.
+pub fn node_title(n: &RayNode) -> String {
+    let what = match (&n.hit, n.terminated) {
+        (_, Some(t)) if n.kind != RayKind::Shadow => match t {
+            super::Termination::Background => "background".to_string(),
+            super::Termination::MaxDepth => "not traced: max depth".to_string(),
+            super::Termination::Adaptive => "not traced: adaptive cut-off".to_string(),
+            super::Termination::TotalInternalReflection => "total internal reflection".to_string(),
+        },
+        (Some(h), _) if n.kind == RayKind::Shadow => format!("blocked by {}", h.object),
+        (None, _) if n.kind == RayKind::Shadow => "clear".to_string(),
+        (Some(h), _) => format!("hit {}", h.object),
+        (None, _) => "no hit".to_string(),
+    };
+    match n.kind {
+        RayKind::Shadow => format!(
+            "shadow → {}: {what}, s = {}",
+            n.light.as_deref().unwrap_or("?"),
+            num(n.shadow.unwrap_or(0.0))
+        ),
+        _ => format!(
+            "{} (depth {}): {what}, I = {}",
+            n.kind.name(),
+            n.depth,
+            color(n.color)
+        ),
+    }
+}
+
+/// The formula lines of one node: hit, then every term of the illumination model.
+pub fn node_details(n: &RayNode) -> Vec<String> {
+    let mut out = vec![format!("ray {} → {}", vec3(n.origin), vec3(n.direction))];
+    if n.kind != RayKind::Primary && n.kind != RayKind::Shadow {
+        out.push(format!(
+            "weight {} (coefficient {})",
+            num(n.weight),
+            num(n.coefficient)
+        ));
+    }
+    if let Some(i) = n.indices {
+        out.push(format!("n1 = {} → n2 = {}", num(i.n1), num(i.n2)));
+    }
+    if let Some(h) = &n.hit {
+        let mut leaf = String::new();
+        if h.leaf != h.object {
+            leaf = format!(" (leaf {} via {})", h.leaf, h.csg_path.join(" → "));
+        }
+        out.push(format!("hit {}{leaf}, material {}", h.object, h.material));
+        out.push(format!(
+            "t = {}  point {}  normal {}  {}",
+            num(h.t),
+            vec3(h.point),
+            vec3(h.normal),
+            if h.inside {
+                "inside (leaving)"
+            } else {
+                "outside (entering)"
+            }
+        ));
+        if let Some(b) = h.barycentric {
+            out.push(format!("barycentric (λ1, λ2, λ3) = {}", vec3(b)));
+        }
+    }
+    if let Some(local) = &n.local {
+        out.push(format!("ambient  ka·Ia·O = {}", color(local.ambient)));
+        for l in &local.lights {
+            out.extend(light_lines(l));
+        }
+        for c in n.secondary() {
+            let k = if c.kind == RayKind::Reflection {
+                "kr·I_r"
+            } else {
+                "kt·I_t"
+            };
+            out.push(format!(
+                "{k} = {} × {} = {}",
+                num(c.coefficient),
+                color(c.color),
+                color(c.coefficient * c.color)
+            ));
+        }
+        out.push(format!(
+            "I = local {} + secondary = {}",
+            color(local.total()),
+            color(n.color)
+        ));
+    }
+    out
+}
+
+fn light_lines(l: &LightTerm) -> Vec<String> {
+    let mut out = vec![format!(
+        "light {}: n·l = {}, s = {}, fatt = {}{}",
+        l.light,
+        num(l.n_dot_l),
+        num(l.shadow),
+        num(l.attenuation),
+        l.skipped
+            .as_ref()
+            .map_or(String::new(), |why| format!("  (no shadow ray: {why})"))
+    )];
+    out.push(format!(
+        "  diffuse  s·fatt·Iℓ·kd·O·(n·l) = {}",
+        color(l.diffuse)
+    ));
+    out.push(format!(
+        "  specular s·fatt·Iℓ·ks·(cos)^m = {}  (cos = {})",
+        color(l.specular),
+        num(l.highlight_cos)
+    ));
+    out
+}
+
+/// The whole tree, drawn with box characters, every node with its details.
+pub fn tree(root: &RayNode) -> String {
+    let mut out = String::new();
+    draw(root, "", "", &mut out);
+    out
+}
+
+fn draw(n: &RayNode, first: &str, rest: &str, out: &mut String) {
+    out.push_str(first);
+    out.push_str(&node_title(n));
+    out.push('\n');
+    let has_children = !n.children.is_empty();
+    if n.kind != RayKind::Shadow {
+        for line in node_details(n) {
+            out.push_str(rest);
+            out.push_str(if has_children { "│   " } else { "    " });
+            out.push_str(&line);
+            out.push('\n');
+        }
+    }
+    for (i, c) in n.children.iter().enumerate() {
+        let last = i + 1 == n.children.len();
+        let (f, r) = if last {
+            ("└── ", "    ")
+        } else {
+            ("├── ", "│   ")
+        };
+        draw(c, &format!("{rest}{f}"), &format!("{rest}{r}"), out);
+    }
+}
+
+/// A CSG trace drawn bottom-up readable: every node with its segment list.
+pub fn csg_trace(scene: &Scene, ray: &Ray, trace: &CsgTrace) -> String {
+    let mut out = String::new();
+    draw_csg(scene, ray, trace, "", "", &mut out);
+    out
+}
+
+pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String {
+    if segments.is_empty() {
+        return "(empty)".into();
+    }
+    segments
+        .iter()
+        .map(|s| {
+            let p = |t: f64| {
+                if t.is_finite() {
+                    vec3(ray.at(t))
+                } else {
+                    num(t)
+                }
+            };
+            format!(
+                "[{}, {}] {} → {}",
+                num(s.t_in),
+                num(s.t_out),
+                p(s.t_in),
+                p(s.t_out)
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("  ")
+}
+
+pub fn pruned_reason(p: Pruned) -> &'static str {
+    match p {
+        Pruned::Bounds => "ray misses its bounding box",
+        Pruned::EmptyIntersection => "an earlier operand of the intersection is empty",
+        Pruned::EmptyDifference => "the left operand of the difference is empty",
+    }
+}
+
+fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out: &mut String) {
+    let kind = match (t.op, t.leaf) {
+        (Some(op), _) => op.name().to_string(),
+        (None, Some(leaf)) => scene.leaves[leaf as usize].shape.kind().to_string(),
+        _ => "?".into(),
+    };
+    let label = if t.node == kind {
+        kind.clone()
+    } else {
+        format!("{kind} {}", t.node)
+    };
+    let body = match t.pruned {
+        Some(p) => format!("pruned: {}", pruned_reason(p)),
+        None => segment_list(ray, &t.segments),
+    };
+    out.push_str(&format!("{first}{label}: {body}\n"));
+    for (i, c) in t.children.iter().enumerate() {
+        let last = i + 1 == t.children.len();
+        let (f, r) = if last {
+            ("└── ", "    ")
+        } else {
+            ("├── ", "│   ")
+        };
+        draw_csg(
+            scene,
+            ray,
+            c,
+            &format!("{rest}{f}"),
+            &format!("{rest}{r}"),
+            out,
+        );
+    }
+}

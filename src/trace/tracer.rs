@@ -1,0 +1,466 @@
+//! The Whitted tracer: the lecture's recursion, written once and watched by a recorder.
+//!
+//! I = ka·Ia·O + Σ_ℓ s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m) + kr·I_r + kt·I_t
+//!
+//! A ray of depth k spawns shadow rays toward every light, and, if the path may still grow,
+//! a reflection ray (kr > 0) and a refraction ray (kt > 0) of depth k + 1. Intensities are
+//! collected from the leaves up as the recursion returns.
+
+use glam::DVec3;
+
+use super::recorder::{NoRecorder, RayStart, Recorder, TreeRecorder};
+use super::tree::{HitInfo, Indices, Inspection, LightTerm, Local, RayKind, RayNode, Termination};
+use super::Stats;
+use crate::geometry::{Ray, Shape};
+use crate::scene::{Interaction, Scene};
+use crate::shading::local::{ambient, light_terms};
+use crate::shading::optics::{reflect, refract, schlick};
+use crate::shading::Fresnel;
+
+/// The refractive media a ray is inside, innermost last (nested glass keeps n1/n2 right).
+#[derive(Clone, Copy, Debug)]
+pub struct Media {
+    entries: [(u32, f64); 8],
+    len: usize,
+}
+
+impl Default for Media {
+    fn default() -> Media {
+        Media {
+            entries: [(u32::MAX, 1.0); 8],
+            len: 0,
+        }
+    }
+}
+
+impl Media {
+    /// The index of refraction around the ray (1 for vacuum/air).
+    pub fn current(&self) -> f64 {
+        if self.len == 0 {
+            1.0
+        } else {
+            self.entries[self.len - 1].1
+        }
+    }
+
+    fn entering(&self, object: u32, ior: f64) -> Media {
+        let mut m = *self;
+        if m.len < m.entries.len() {
+            m.entries[m.len] = (object, ior);
+            m.len += 1;
+        }
+        m
+    }
+
+    fn leaving(&self, object: u32) -> Media {
+        let mut m = *self;
+        if let Some(i) = m.entries[..m.len].iter().rposition(|e| e.0 == object) {
+            m.entries.copy_within(i + 1..m.len, i);
+            m.len -= 1;
+        }
+        m
+    }
+}
+
+/// Options that change how one trace runs, beyond the scene's own settings.
+#[derive(Clone, Copy, Debug)]
+pub struct TraceOptions {
+    /// Rays per path, primary included: 1 traces primary rays only.
+    pub max_depth: u32,
+}
+
+pub struct Tracer<'s> {
+    pub scene: &'s Scene,
+    pub options: TraceOptions,
+}
+
+/// One ray to trace and its place in the tree.
+struct Task {
+    ray: Ray,
+    kind: RayKind,
+    depth: u32,
+    weight: f64,
+    coefficient: f64,
+    media: Media,
+    /// n1 → n2 for a refraction ray.
+    indices: Option<Indices>,
+}
+
+impl<'s> Tracer<'s> {
+    pub fn new(scene: &'s Scene) -> Tracer<'s> {
+        Tracer {
+            scene,
+            options: TraceOptions {
+                max_depth: scene.max_depth,
+            },
+        }
+    }
+
+    pub fn with_depth(scene: &'s Scene, max_depth: u32) -> Tracer<'s> {
+        Tracer {
+            scene,
+            options: TraceOptions { max_depth },
+        }
+    }
+
+    /// The intensity seen along a primary ray (the renderer's entry point).
+    pub fn radiance(&self, ray: &Ray, stats: &mut Stats) -> DVec3 {
+        self.primary(ray, &mut NoRecorder, stats)
+    }
+
+    /// The same computation, recording its ray tree.
+    pub fn inspect(&self, ray: &Ray, stats: &mut Stats) -> RayNode {
+        let mut rec = TreeRecorder::new();
+        self.primary(ray, &mut rec, stats);
+        rec.into_tree()
+    }
+
+    pub fn inspect_pixel(&self, x: u32, y: u32) -> Inspection {
+        let mut stats = Stats::default();
+        let tree = self.inspect(&self.scene.camera.pixel_ray(x, y), &mut stats);
+        Inspection {
+            pixel: Some([x, y]),
+            color: tree.color,
+            tree,
+        }
+    }
+
+    pub fn primary<R: Recorder>(&self, ray: &Ray, rec: &mut R, stats: &mut Stats) -> DVec3 {
+        let task = Task {
+            ray: *ray,
+            kind: RayKind::Primary,
+            depth: 0,
+            weight: 1.0,
+            coefficient: 1.0,
+            media: Media::default(),
+            indices: None,
+        };
+        self.trace(task, rec, stats).0
+    }
+
+    /// Traces one ray; returns its intensity and the distance to what it hit (∞ for none).
+    fn trace<R: Recorder>(&self, task: Task, rec: &mut R, stats: &mut Stats) -> (DVec3, f64) {
+        let scene = self.scene;
+        match task.kind {
+            RayKind::Primary => stats.primary_rays += 1,
+            RayKind::Reflection => stats.reflection_rays += 1,
+            RayKind::Refraction => stats.refraction_rays += 1,
+            RayKind::Shadow => stats.shadow_rays += 1,
+        }
+        rec.begin(RayStart {
+            kind: task.kind,
+            depth: task.depth,
+            origin: task.ray.origin,
+            direction: task.ray.dir,
+            weight: task.weight,
+            coefficient: task.coefficient,
+        });
+        if let Some(i) = task.indices {
+            rec.indices(i);
+        }
+        let Some(hit) = scene.intersect(&task.ray, 0.0, f64::INFINITY, stats) else {
+            rec.end(scene.background, Some(Termination::Background));
+            return (scene.background, f64::INFINITY);
+        };
+        let si = scene.interaction(&task.ray, &hit);
+        let m = scene.material(si.material);
+        if R::ACTIVE {
+            rec.hit(self.hit_info(&task.ray, hit.t, &si));
+        }
+
+        // Local illumination: the ambient term and every light's diffuse and specular terms.
+        let v = -task.ray.dir;
+        let mut color = ambient(m, scene.ambient);
+        let mut terms = Vec::new();
+        for light in &scene.lights {
+            let sample = light.sample(si.point);
+            let lit = light_terms(
+                m,
+                si.normal,
+                v,
+                sample.l,
+                sample.attenuation * light.intensity,
+            );
+            let skipped = if lit.n_dot_l <= 0.0 {
+                stats.shadow_skipped_backfacing += 1;
+                Some("light behind the surface (n·l ≤ 0)")
+            } else if light.is_dark() {
+                stats.shadow_skipped_dark += 1;
+                Some("light has zero intensity")
+            } else {
+                None
+            };
+            let s = match skipped {
+                Some(_) => 0.0,
+                None => self.shadow_factor(
+                    &si,
+                    task.depth,
+                    sample.l,
+                    sample.distance,
+                    &light.name,
+                    rec,
+                    stats,
+                ),
+            };
+            color += s * (lit.diffuse + lit.specular);
+            if R::ACTIVE {
+                terms.push(LightTerm {
+                    light: light.name.clone(),
+                    shadow: s,
+                    l: sample.l,
+                    n_dot_l: lit.n_dot_l,
+                    attenuation: sample.attenuation,
+                    highlight_cos: lit.highlight_cos,
+                    diffuse: s * lit.diffuse,
+                    specular: s * lit.specular,
+                    skipped: skipped.map(str::to_string),
+                });
+            }
+        }
+        if R::ACTIVE {
+            rec.local(Local {
+                ambient: ambient(m, scene.ambient),
+                lights: terms,
+            });
+        }
+
+        // Secondary rays: the mirror direction and Snell's law, weighted by kr and kt.
+        if m.kr > 0.0 || m.kt > 0.0 {
+            color += self.secondary(&task, &si, rec, stats);
+        }
+        rec.end(color, None);
+        (color, hit.t)
+    }
+
+    /// kr·I_r + kt·I_t at a surface.
+    fn secondary<R: Recorder>(
+        &self,
+        task: &Task,
+        si: &Interaction,
+        rec: &mut R,
+        stats: &mut Stats,
+    ) -> DVec3 {
+        let m = self.scene.material(si.material);
+        let d = task.ray.dir;
+        let n = si.normal;
+        // Which media the surface separates.
+        let (n1, n2, media_beyond) = if si.inside {
+            let outside = task.media.leaving(si.object);
+            (m.ior, outside.current(), outside)
+        } else {
+            (
+                task.media.current(),
+                m.ior,
+                task.media.entering(si.object, m.ior),
+            )
+        };
+        let transmitted = if m.kt > 0.0 {
+            refract(d, n, n1, n2)
+        } else {
+            None
+        };
+        let fresnel = match m.fresnel {
+            Fresnel::None => 1.0,
+            Fresnel::Schlick => schlick(-d.dot(n), n1, n2),
+        };
+        let (kr, kt) = match m.fresnel {
+            Fresnel::None => (m.kr, m.kt),
+            Fresnel::Schlick => (m.kr * fresnel, m.kt * (1.0 - fresnel)),
+        };
+        let mirror = reflect(d, n);
+        let mut sum = DVec3::ZERO;
+        if kr > 0.0 {
+            let child = Task {
+                ray: self.spawn(si, mirror, task),
+                kind: RayKind::Reflection,
+                depth: task.depth + 1,
+                weight: task.weight * kr,
+                coefficient: kr,
+                media: task.media,
+                indices: None,
+            };
+            sum += kr * self.child(child, rec, stats);
+        }
+        if kt > 0.0 {
+            match transmitted {
+                Some(dir) => {
+                    let child = Task {
+                        ray: self.spawn(si, dir, task),
+                        kind: RayKind::Refraction,
+                        depth: task.depth + 1,
+                        weight: task.weight * kt,
+                        coefficient: kt,
+                        media: media_beyond,
+                        indices: Some(Indices { n1, n2 }),
+                    };
+                    sum += kt * self.child(child, rec, stats);
+                }
+                None => {
+                    sum += kt
+                        * self.total_internal_reflection(task, si, mirror, kt, (n1, n2), rec, stats)
+                }
+            }
+        }
+        sum
+    }
+
+    /// Beyond the limiting angle no light is transmitted: the refraction ray becomes a
+    /// reflection ray that stays inside. The tree shows a refraction node that ends in
+    /// "total_internal_reflection" with that mirror ray as its child.
+    #[allow(clippy::too_many_arguments)]
+    fn total_internal_reflection<R: Recorder>(
+        &self,
+        task: &Task,
+        si: &Interaction,
+        mirror: glam::DVec3,
+        kt: f64,
+        (n1, n2): (f64, f64),
+        rec: &mut R,
+        stats: &mut Stats,
+    ) -> DVec3 {
+        stats.total_internal_reflections += 1;
+        rec.begin(RayStart {
+            kind: RayKind::Refraction,
+            depth: task.depth + 1,
+            origin: si.point,
+            direction: task.ray.dir,
+            weight: task.weight * kt,
+            coefficient: kt,
+        });
+        rec.indices(Indices { n1, n2 });
+        let child = Task {
+            ray: self.spawn(si, mirror, task),
+            kind: RayKind::Reflection,
+            depth: task.depth + 1,
+            weight: task.weight * kt,
+            coefficient: 1.0,
+            media: task.media,
+            indices: None,
+        };
+        let color = self.child(child, rec, stats);
+        rec.end(color, Some(Termination::TotalInternalReflection));
+        color
+    }
+
+    /// Traces a secondary ray unless the depth limit or the adaptive threshold stops it.
+    fn child<R: Recorder>(&self, task: Task, rec: &mut R, stats: &mut Stats) -> DVec3 {
+        let scene = self.scene;
+        let stop = if task.depth >= self.options.max_depth {
+            stats.max_depth_cutoffs += 1;
+            Some(Termination::MaxDepth)
+        } else if task.weight < scene.adaptive_threshold {
+            stats.adaptive_cutoffs += 1;
+            Some(Termination::Adaptive)
+        } else {
+            None
+        };
+        if let Some(why) = stop {
+            if R::ACTIVE {
+                rec.begin(RayStart {
+                    kind: task.kind,
+                    depth: task.depth,
+                    origin: task.ray.origin,
+                    direction: task.ray.dir,
+                    weight: task.weight,
+                    coefficient: task.coefficient,
+                });
+                if let Some(i) = task.indices {
+                    rec.indices(i);
+                }
+                rec.end(DVec3::ZERO, Some(why));
+            }
+            return DVec3::ZERO;
+        }
+        let (color, distance) = self.trace(task, rec, stats);
+        match scene.secondary_attenuation {
+            // Seed 004: a secondary intensity is attenuated by the distance it travelled.
+            Some([c0, c1, c2]) if distance.is_finite() => {
+                color / (c0 + c1 * distance + c2 * distance * distance)
+            }
+            _ => color,
+        }
+    }
+
+    /// s for one light: cast a shadow ray from the surface toward it. A point light is
+    /// blocked by a hit with 0 < t < distance, a directional one by any hit with t > 0.
+    #[allow(clippy::too_many_arguments)]
+    fn shadow_factor<R: Recorder>(
+        &self,
+        si: &Interaction,
+        depth: u32,
+        l: DVec3,
+        distance: f64,
+        light: &str,
+        rec: &mut R,
+        stats: &mut Stats,
+    ) -> f64 {
+        stats.shadow_rays += 1;
+        let origin = self.offset(si, l, si.point);
+        let t_max = if distance.is_finite() {
+            (distance - (origin - si.point).length()).max(0.0)
+        } else {
+            distance
+        };
+        let ray = Ray { origin, dir: l };
+        let blocker = self.scene.occluded(&ray, 0.0, t_max, stats);
+        let s = if blocker.is_some() { 0.0 } else { 1.0 };
+        if R::ACTIVE {
+            rec.begin(RayStart {
+                kind: RayKind::Shadow,
+                depth: depth + 1,
+                origin,
+                direction: l,
+                weight: 1.0,
+                coefficient: 1.0,
+            });
+            rec.shadow(light, t_max, s);
+            if let Some(h) = blocker {
+                let bsi = self.scene.interaction(&ray, &h);
+                rec.hit(self.hit_info(&ray, h.t, &bsi));
+            }
+            rec.end(DVec3::splat(s), None);
+        }
+        s
+    }
+
+    /// The one place secondary rays leave a surface: the origin moves off the surface, along
+    /// the normal, to the side the new ray travels into, so it cannot hit its own surface.
+    fn spawn(&self, si: &Interaction, dir: DVec3, parent: &Task) -> Ray {
+        Ray {
+            origin: self.offset(si, dir, parent.ray.origin),
+            dir,
+        }
+    }
+
+    fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> DVec3 {
+        let bias = self.scene.bias(from, si.point);
+        let side = if dir.dot(si.normal) >= 0.0 { 1.0 } else { -1.0 };
+        si.point + side * bias * si.normal
+    }
+
+    fn hit_info(&self, ray: &Ray, t: f64, si: &Interaction) -> HitInfo {
+        let scene = self.scene;
+        let leaf = &scene.leaves[si.leaf as usize];
+        let barycentric = match &leaf.shape {
+            Shape::Triangle(tri) => {
+                let p = leaf
+                    .transform
+                    .as_ref()
+                    .map_or(si.point, |tf| tf.to_local.transform_point3(si.point));
+                Some(tri.barycentric(p))
+            }
+            _ => None,
+        };
+        HitInfo {
+            object: scene.objects[si.object as usize].name.clone(),
+            leaf: leaf.name.clone(),
+            csg_path: leaf.path.clone(),
+            material: scene.material(si.material).name.clone(),
+            t,
+            point: ray.at(t),
+            normal: si.normal,
+            inside: si.inside,
+            barycentric,
+        }
+    }
+}

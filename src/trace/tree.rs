@@ -1,0 +1,178 @@
+//! The ray tree: every ray traced for one pixel, with the numbers that coloured it.
+//! Serialised as the `inspect --format json` contract.
+
+use glam::DVec3;
+use serde::Serialize;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RayKind {
+    Primary,
+    Shadow,
+    Reflection,
+    Refraction,
+}
+
+impl RayKind {
+    pub fn name(self) -> &'static str {
+        match self {
+            RayKind::Primary => "primary",
+            RayKind::Shadow => "shadow",
+            RayKind::Reflection => "reflection",
+            RayKind::Refraction => "refraction",
+        }
+    }
+}
+
+/// Why a ray produced no further rays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Termination {
+    /// It hit nothing: its colour is the background.
+    Background,
+    /// The path reached the maximum depth, so this ray was not traced.
+    MaxDepth,
+    /// Its weight fell below the adaptive threshold, so it was not traced.
+    Adaptive,
+    /// Refraction was impossible: the energy went into a mirror ray instead.
+    TotalInternalReflection,
+}
+
+impl Termination {
+    pub fn name(self) -> &'static str {
+        match self {
+            Termination::Background => "background",
+            Termination::MaxDepth => "max_depth",
+            Termination::Adaptive => "adaptive",
+            Termination::TotalInternalReflection => "total_internal_reflection",
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct HitInfo {
+    /// The object hit.
+    pub object: String,
+    /// The primitive hit: the object itself, or the CSG leaf.
+    pub leaf: String,
+    /// CSG operations from the object's root down to the leaf.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub csg_path: Vec<String>,
+    pub material: String,
+    pub t: f64,
+    pub point: DVec3,
+    /// Unit normal facing the incoming ray.
+    pub normal: DVec3,
+    /// True when the ray arrives from inside the solid.
+    pub inside: bool,
+    /// (λ1, λ2, λ3) for a triangle.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub barycentric: Option<DVec3>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightTerm {
+    pub light: String,
+    /// s: 1 lit, 0 in shadow.
+    pub shadow: f64,
+    /// Unit vector towards the light.
+    pub l: DVec3,
+    pub n_dot_l: f64,
+    /// fatt (1 for a directional light).
+    pub attenuation: f64,
+    /// h·n (Blinn) or r·v (Phong), clamped at 0.
+    pub highlight_cos: f64,
+    /// s·fatt·Iℓ·kd·O·(n·l)
+    pub diffuse: DVec3,
+    /// s·fatt·Iℓ·ks·(h·n)^m
+    pub specular: DVec3,
+    /// Why no shadow ray was cast, when none was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub skipped: Option<String>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Local {
+    /// ka·Ia·O
+    pub ambient: DVec3,
+    pub lights: Vec<LightTerm>,
+}
+
+impl Local {
+    pub fn total(&self) -> DVec3 {
+        self.ambient
+            + self
+                .lights
+                .iter()
+                .map(|l| l.diffuse + l.specular)
+                .sum::<DVec3>()
+    }
+}
+
+/// Media on each side of a refracting surface.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Indices {
+    pub n1: f64,
+    pub n2: f64,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RayNode {
+    pub kind: RayKind,
+    /// 0 for the primary ray; a child is one deeper than its parent.
+    pub depth: u32,
+    pub origin: DVec3,
+    pub direction: DVec3,
+    /// Product of the kr/kt coefficients from the primary ray down to this ray.
+    pub weight: f64,
+    /// The coefficient this ray's intensity is multiplied by in its parent (kr, kt, or with
+    /// Fresnel kr·R, kt·(1 − R)); 1 for the primary ray and shadow rays.
+    pub coefficient: f64,
+    /// n1 → n2 for a refraction ray.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub indices: Option<Indices>,
+    /// The shadow ray's light, and how far it looked (the distance to the light).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub light: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t_max: Option<f64>,
+    /// The shadow factor s found by a shadow ray.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shadow: Option<f64>,
+    pub hit: Option<HitInfo>,
+    pub local: Option<Local>,
+    /// This node's intensity: local + coefficient-weighted children (linear).
+    pub color: DVec3,
+    pub terminated: Option<Termination>,
+    pub children: Vec<RayNode>,
+}
+
+impl RayNode {
+    /// Follows a path of child kinds ("reflection/refraction") from this node.
+    pub fn find(&self, path: &str) -> Option<&RayNode> {
+        let mut node = self;
+        for step in path.split('/').filter(|s| !s.is_empty()) {
+            node = node.children.iter().find(|c| c.kind.name() == step)?;
+        }
+        Some(node)
+    }
+
+    /// Number of nodes in the tree.
+    pub fn size(&self) -> usize {
+        1 + self.children.iter().map(RayNode::size).sum::<usize>()
+    }
+
+    /// The reflection and refraction children (not shadow rays).
+    pub fn secondary(&self) -> impl Iterator<Item = &RayNode> {
+        self.children.iter().filter(|c| c.kind != RayKind::Shadow)
+    }
+}
+
+/// The `inspect --format json` document.
+#[derive(Clone, Debug, Serialize)]
+pub struct Inspection {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pixel: Option<[u32; 2]>,
+    pub color: DVec3,
+    pub tree: RayNode,
+}
