@@ -3,6 +3,7 @@
 pub mod accel;
 pub mod cli;
 pub mod geometry;
+pub mod lessons;
 pub mod render;
 pub mod scene;
 pub mod shading;

@@ -25,22 +25,6 @@ pub struct Args {
     format: Format,
 }
 
-/// Every object the ray's line meets (segments anywhere along it), with its trace.
-/// With `all`, every object, evaluated without bounding boxes.
-pub fn traces(scene: &Scene, ray: &Ray, all: bool) -> Vec<(String, CsgTrace)> {
-    (0..scene.objects.len() as u32)
-        .filter_map(|o| {
-            let (list, trace) = scene.object_trace(o, ray, !all);
-            let met = all || !list.is_empty() || has_segments(&trace);
-            met.then(|| (scene.objects[o as usize].name.clone(), trace))
-        })
-        .collect()
-}
-
-fn has_segments(t: &CsgTrace) -> bool {
-    !t.segments.is_empty() || t.children.iter().any(has_segments)
-}
-
 pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
     let op = match (t.op, t.leaf) {
         (Some(op), _) => op.name(),
@@ -75,7 +59,7 @@ pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let scene = a.scene.load()?;
     let ray = a.target.ray(&scene)?;
-    let objects = traces(&scene, &ray, a.all);
+    let objects = scene.csg_traces(&ray, a.all);
     match a.format {
         Format::Json => {
             let doc = json!({

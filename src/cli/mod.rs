@@ -1,8 +1,11 @@
 //! The command line: one module per subcommand; this one parses and dispatches.
 
 mod args;
-mod csg;
+mod check;
+pub mod csg;
+mod explore;
 mod inspect;
+mod lessons;
 mod preview;
 mod render;
 
@@ -28,6 +31,12 @@ enum Command {
     Csg(csg::Args),
     /// Print a half-block (colour) or ASCII preview of a scene to stdout.
     Preview(preview::Args),
+    /// The terminal explorer: pick a pixel, see its ray tree (no argument: the lesson list).
+    Explore(explore::Args),
+    /// List the lessons and their exercises.
+    Lessons(lessons::Args),
+    /// Check a homework answer against raytree's computation (exit 0 right, 1 wrong).
+    Check(check::Args),
 }
 
 /// An error for the user: printed as one line, exit status 2.
@@ -47,6 +56,9 @@ pub fn run() -> ExitCode {
         Command::Inspect(a) => inspect::run(a),
         Command::Csg(a) => csg::run(a),
         Command::Preview(a) => preview::run(a),
+        Command::Explore(a) => explore::run(a),
+        Command::Lessons(a) => lessons::run(a),
+        Command::Check(a) => check::run(a),
     };
     match result {
         Ok(code) => code,

@@ -301,6 +301,21 @@ impl Scene {
         }
     }
 
+    /// Every object the ray's line meets (segments anywhere along it) with its CSG trace; with
+    /// `all`, every object, evaluated without bounding boxes.
+    pub fn csg_traces(&self, ray: &Ray, all: bool) -> Vec<(String, CsgTrace)> {
+        fn has_segments(t: &CsgTrace) -> bool {
+            !t.segments.is_empty() || t.children.iter().any(has_segments)
+        }
+        (0..self.objects.len() as u32)
+            .filter_map(|o| {
+                let (list, trace) = self.object_trace(o, ray, !all);
+                let met = all || !list.is_empty() || has_segments(&trace);
+                met.then(|| (self.objects[o as usize].name.clone(), trace))
+            })
+            .collect()
+    }
+
     /// Nearest crossing of one object's surface with t_min < t < t_max.
     fn object_hit(
         &self,

@@ -67,6 +67,8 @@ impl Media {
 pub struct TraceOptions {
     /// Rays per path, primary included: 1 traces primary rays only.
     pub max_depth: u32,
+    /// Cast shadow rays (off only to show what the shadow term changes).
+    pub shadows: bool,
 }
 
 pub struct Tracer<'s> {
@@ -92,6 +94,7 @@ impl<'s> Tracer<'s> {
             scene,
             options: TraceOptions {
                 max_depth: scene.max_depth,
+                shadows: true,
             },
         }
     }
@@ -99,7 +102,10 @@ impl<'s> Tracer<'s> {
     pub fn with_depth(scene: &'s Scene, max_depth: u32) -> Tracer<'s> {
         Tracer {
             scene,
-            options: TraceOptions { max_depth },
+            options: TraceOptions {
+                max_depth,
+                shadows: true,
+            },
         }
     }
 
@@ -402,7 +408,11 @@ impl<'s> Tracer<'s> {
             distance
         };
         let ray = Ray { origin, dir: l };
-        let blocker = self.scene.occluded(&ray, 0.0, t_max, stats);
+        let blocker = if self.options.shadows {
+            self.scene.occluded(&ray, 0.0, t_max, stats)
+        } else {
+            None
+        };
         let s = if blocker.is_some() { 0.0 } else { 1.0 };
         if R::ACTIVE {
             rec.begin(RayStart {

@@ -1,0 +1,160 @@
+//! Answers: what a student types, and comparing it with what raytree computes.
+
+use glam::DVec3;
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum Answer {
+    Number(f64),
+    Vector(DVec3),
+    /// A segment list [(t_in, t_out), ...]; empty for a miss.
+    Segments(Vec<(f64, f64)>),
+    /// Total internal reflection: no refracted direction.
+    Tir,
+}
+
+impl Answer {
+    /// A colour: one number when grey.
+    pub fn color(c: DVec3) -> Answer {
+        if c.x == c.y && c.y == c.z {
+            Answer::Number(c.x)
+        } else {
+            Answer::Vector(c)
+        }
+    }
+
+    pub fn show(&self) -> String {
+        use crate::trace::text::num;
+        match self {
+            Answer::Number(x) => num(*x),
+            Answer::Vector(v) => format!("{}, {}, {}", num(v.x), num(v.y), num(v.z)),
+            Answer::Segments(s) if s.is_empty() => "none".into(),
+            Answer::Segments(s) => s
+                .iter()
+                .map(|(a, b)| format!("{}, {}", num(*a), num(*b)))
+                .collect::<Vec<_>>()
+                .join("; "),
+            Answer::Tir => "tir".into(),
+        }
+    }
+
+    /// Equal within `tol` per component. A single number matches a grey colour.
+    pub fn matches(&self, other: &Answer, tol: f64) -> bool {
+        let close = |a: f64, b: f64| (a - b).abs() <= tol || (a.is_infinite() && a == b);
+        match (self, other) {
+            (Answer::Number(a), Answer::Number(b)) => close(*a, *b),
+            (Answer::Vector(a), Answer::Vector(b)) => (0..3).all(|i| close(a[i], b[i])),
+            (Answer::Number(a), Answer::Vector(b)) | (Answer::Vector(b), Answer::Number(a)) => {
+                (0..3).all(|i| close(*a, b[i]))
+            }
+            (Answer::Segments(a), Answer::Segments(b)) => {
+                a.len() == b.len()
+                    && a.iter()
+                        .zip(b)
+                        .all(|(x, y)| close(x.0, y.0) && close(x.1, y.1))
+            }
+            (Answer::Tir, Answer::Tir) => true,
+            _ => false,
+        }
+    }
+}
+
+/// A number as a student writes it: `0.25`, `-3`, `1/3`, `inf`.
+fn number(s: &str) -> Result<f64, String> {
+    let s = s.trim();
+    let value = match s.split_once('/') {
+        Some((a, b)) => number(a)? / number(b)?,
+        None => match s {
+            "inf" | "∞" | "+inf" => f64::INFINITY,
+            "-inf" | "-∞" | "−∞" => f64::NEG_INFINITY,
+            _ => s
+                .replace('−', "-")
+                .parse::<f64>()
+                .map_err(|_| format!("`{s}` is not a number"))?,
+        },
+    };
+    if value.is_nan() {
+        return Err(format!("`{s}` is not a number"));
+    }
+    Ok(value)
+}
+
+/// Parses an answer: `tir`, `none`, a number, `x, y, z`, or a segment list `a, b; c, d`
+/// (brackets and parentheses are ignored).
+pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
+    let t = s.trim().to_ascii_lowercase();
+    if t == "tir" {
+        return Ok(Answer::Tir);
+    }
+    if segments && matches!(t.as_str(), "none" | "empty" | "[]" | "") {
+        return Ok(Answer::Segments(vec![]));
+    }
+    let cleaned: String = t
+        .chars()
+        .map(|c| if "()[]{}".contains(c) { ' ' } else { c })
+        .collect();
+    if segments {
+        let parts: Vec<f64> = cleaned
+            .split([',', ';', ' '])
+            .filter(|p| !p.trim().is_empty())
+            .map(number)
+            .collect::<Result<_, _>>()?;
+        if parts.len() % 2 != 0 {
+            return Err("a segment list needs pairs t_in, t_out (e.g. `13, 16; 22, 23`)".into());
+        }
+        return Ok(Answer::Segments(
+            parts.chunks(2).map(|p| (p[0], p[1])).collect(),
+        ));
+    }
+    let parts: Vec<f64> = cleaned
+        .split([',', ' ', ';'])
+        .filter(|p| !p.trim().is_empty())
+        .map(number)
+        .collect::<Result<_, _>>()?;
+    match parts.as_slice() {
+        [x] => Ok(Answer::Number(*x)),
+        [x, y, z] => Ok(Answer::Vector(DVec3::new(*x, *y, *z))),
+        _ => Err(format!(
+            "expected one number or three (x, y, z), got {} numbers",
+            parts.len()
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_what_students_write() {
+        assert_eq!(parse_answer(" 0.25 ", false).unwrap(), Answer::Number(0.25));
+        assert_eq!(
+            parse_answer("(0.6, -0.8, 0)", false).unwrap(),
+            Answer::Vector(DVec3::new(0.6, -0.8, 0.0))
+        );
+        assert_eq!(parse_answer("1/4", false).unwrap(), Answer::Number(0.25));
+        assert_eq!(parse_answer("TIR", false).unwrap(), Answer::Tir);
+        assert_eq!(
+            parse_answer("13, 16; 22, 23", true).unwrap(),
+            Answer::Segments(vec![(13.0, 16.0), (22.0, 23.0)])
+        );
+        assert_eq!(
+            parse_answer("[13, 16] [22, 23]", true).unwrap(),
+            Answer::Segments(vec![(13.0, 16.0), (22.0, 23.0)])
+        );
+        assert_eq!(
+            parse_answer("none", true).unwrap(),
+            Answer::Segments(vec![])
+        );
+        assert!(parse_answer("abc", false).is_err());
+        assert!(parse_answer("1, 2", false).is_err());
+        assert!(parse_answer("13, 16, 22", true).is_err());
+    }
+
+    #[test]
+    fn tolerance_is_per_component() {
+        let a = Answer::Vector(DVec3::new(1.0, 2.0, 3.0));
+        assert!(a.matches(&Answer::Vector(DVec3::new(1.0009, 2.0, 3.0)), 1e-3));
+        assert!(!a.matches(&Answer::Vector(DVec3::new(1.0011, 2.0, 3.0)), 1e-3));
+        assert!(Answer::Number(0.5).matches(&Answer::Vector(DVec3::splat(0.5)), 1e-9));
+    }
+}

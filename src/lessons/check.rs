@@ -1,0 +1,534 @@
+//! Checking an answer: raytree computes the expected value from the lesson's scene (never from
+//! a number typed into the exercise), compares, and explains.
+
+use glam::DVec3;
+
+use super::answer::{parse_answer, Answer};
+use super::exercise::{Ask, Exercise, Lesson};
+use crate::geometry::{Ray, Shape};
+use crate::render::Projection;
+use crate::scene::{Limits, Scene};
+use crate::shading::optics::{reflect, refract};
+use crate::shading::Highlight;
+use crate::trace::tracer::TraceOptions;
+use crate::trace::{text, RayKind, RayNode, Stats, Termination, Tracer};
+
+/// Everything the exercise is about, computed.
+pub struct Worked {
+    pub scene: Scene,
+    pub ray: Ray,
+    pub depth: u32,
+    pub tree: RayNode,
+    pub expected: Answer,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Verdict {
+    pub correct: bool,
+    pub given: Answer,
+    pub expected: Answer,
+    pub tolerance: f64,
+    /// A common mistake that explains a wrong answer.
+    pub hint: Option<String>,
+}
+
+impl Verdict {
+    pub fn message(&self) -> String {
+        if self.correct {
+            format!(
+                "right: {} (expected {}, tolerance {})",
+                self.given.show(),
+                self.expected.show(),
+                text::num(self.tolerance)
+            )
+        } else {
+            let mut s = format!(
+                "wrong: {} is not within {} of the expected answer",
+                self.given.show(),
+                text::num(self.tolerance)
+            );
+            if let Some(h) = &self.hint {
+                s.push_str(&format!("\nhint: {h}"));
+            }
+            s
+        }
+    }
+}
+
+fn load(lesson: &Lesson, ex: &Exercise) -> Result<Scene, String> {
+    crate::scene::load(&lesson.scene_path(ex), &Limits::default()).map_err(|e| e.to_string())
+}
+
+fn exercise_ray(scene: &Scene, ex: &Exercise) -> Result<Ray, String> {
+    match (&ex.pixel, &ex.ray) {
+        (Some([x, y]), _) => {
+            if *x >= scene.camera.width || *y >= scene.camera.height {
+                return Err(format!(
+                    "exercise `{}`: pixel {x},{y} is outside the image",
+                    ex.id
+                ));
+            }
+            Ok(scene.camera.pixel_ray(*x, *y))
+        }
+        (None, Some(r)) if r.direction != DVec3::ZERO => Ok(Ray::new(r.origin, r.direction)),
+        _ => Err(format!(
+            "exercise `{}` needs a pixel or a ray with a non-zero direction",
+            ex.id
+        )),
+    }
+}
+
+fn trace(scene: &Scene, ray: &Ray, options: TraceOptions) -> RayNode {
+    Tracer { scene, options }.inspect(ray, &mut Stats::default())
+}
+
+/// The tree node an exercise asks about.
+fn node<'t>(tree: &'t RayNode, ex: &Exercise) -> Result<&'t RayNode, String> {
+    tree.find(&ex.node).ok_or_else(|| {
+        format!(
+            "exercise `{}`: the ray tree has no node `{}`",
+            ex.id, ex.node
+        )
+    })
+}
+
+/// The value an exercise asks for, read off a traced tree.
+fn answer_from(scene: &Scene, ray: &Ray, tree: &RayNode, ex: &Exercise) -> Result<Answer, String> {
+    let n = node(tree, ex)?;
+    let need_hit = || {
+        n.hit
+            .as_ref()
+            .ok_or_else(|| format!("exercise `{}`: the ray hits nothing", ex.id))
+    };
+    let light = || {
+        let name = ex
+            .light
+            .as_deref()
+            .ok_or_else(|| format!("exercise `{}` needs `light`", ex.id))?;
+        n.local
+            .as_ref()
+            .and_then(|l| l.lights.iter().find(|t| t.light == name))
+            .ok_or_else(|| {
+                format!(
+                    "exercise `{}`: no term for light `{name}` at this node",
+                    ex.id
+                )
+            })
+    };
+    Ok(match ex.ask {
+        Ask::WindowPoint => {
+            let [x, y] = ex
+                .pixel
+                .ok_or_else(|| format!("exercise `{}`: window_point needs a pixel", ex.id))?;
+            Answer::Vector(scene.camera.image_point(x as f64 + 0.5, y as f64 + 0.5))
+        }
+        Ask::RayDirection => Answer::Vector(n.direction),
+        Ask::RayOrigin => Answer::Vector(n.origin),
+        Ask::Intensity => Answer::color(n.color),
+        Ask::Local => Answer::color(n.local.as_ref().map_or(DVec3::ZERO, |l| l.total())),
+        Ask::HitT => Answer::Number(need_hit()?.t),
+        Ask::HitPoint => Answer::Vector(need_hit()?.point),
+        Ask::Normal => Answer::Vector(need_hit()?.normal),
+        Ask::ReflectedDirection => Answer::Vector(reflect(n.direction, need_hit()?.normal)),
+        Ask::RefractedDirection => {
+            let hit = need_hit()?;
+            match n.children.iter().find(|c| c.kind == RayKind::Refraction) {
+                Some(c) if c.terminated == Some(Termination::TotalInternalReflection) => {
+                    Answer::Tir
+                }
+                Some(c) => Answer::Vector(c.direction),
+                None => {
+                    // Not traced (opaque, or depth): Snell's law from the material's index.
+                    let ior = scene
+                        .materials
+                        .iter()
+                        .find(|m| m.name == hit.material)
+                        .map_or(1.0, |m| m.ior);
+                    let (n1, n2) = if hit.inside { (ior, 1.0) } else { (1.0, ior) };
+                    refract(n.direction, hit.normal, n1, n2).map_or(Answer::Tir, Answer::Vector)
+                }
+            }
+        }
+        Ask::ShadowFactor => Answer::Number(light()?.shadow),
+        Ask::Diffuse => Answer::color(light()?.diffuse),
+        Ask::Specular => Answer::color(light()?.specular),
+        Ask::Barycentric => Answer::Vector(
+            need_hit()?
+                .barycentric
+                .ok_or_else(|| format!("exercise `{}`: the hit is not on a triangle", ex.id))?,
+        ),
+        Ask::Segments => {
+            let name = ex
+                .object
+                .as_deref()
+                .ok_or_else(|| format!("exercise `{}` needs `object`", ex.id))?;
+            let o = scene
+                .object_index(name)
+                .ok_or_else(|| format!("exercise `{}`: no object `{name}`", ex.id))?;
+            let (list, _) = scene.object_trace(o, ray, false);
+            Answer::Segments(
+                list.iter()
+                    .filter(|s| s.t_out >= 0.0)
+                    .map(|s| (s.t_in, s.t_out))
+                    .collect(),
+            )
+        }
+    })
+}
+
+/// Traces the exercise and computes its expected answer.
+pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
+    let scene = load(lesson, ex)?;
+    let ray = exercise_ray(&scene, ex)?;
+    let depth = ex.depth.unwrap_or(scene.max_depth).clamp(1, 64);
+    let tree = trace(
+        &scene,
+        &ray,
+        TraceOptions {
+            max_depth: depth,
+            shadows: true,
+        },
+    );
+    let expected = answer_from(&scene, &ray, &tree, ex)?;
+    Ok(Worked {
+        scene,
+        ray,
+        depth,
+        tree,
+        expected,
+    })
+}
+
+pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, String> {
+    let given = parse_answer(input, ex.ask == Ask::Segments)?;
+    let w = work(lesson, ex)?;
+    let correct = given.matches(&w.expected, ex.tolerance);
+    let hint = if correct { None } else { hint(&w, ex, &given) };
+    Ok(Verdict {
+        correct,
+        given,
+        expected: w.expected,
+        tolerance: ex.tolerance,
+        hint,
+    })
+}
+
+/// Recomputes the answer the way a common mistake would; if the student's answer matches one,
+/// that mistake is the hint.
+fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
+    let tol = ex.tolerance;
+    let full = TraceOptions {
+        max_depth: w.depth,
+        shadows: true,
+    };
+    let mut tries: Vec<(Answer, &str)> = Vec::new();
+    let retrace = |scene: &Scene, options: TraceOptions| {
+        answer_from(scene, &w.ray, &trace(scene, &w.ray, options), ex).ok()
+    };
+    match ex.ask {
+        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular => {
+            if let Some(a) = retrace(
+                &w.scene,
+                TraceOptions {
+                    shadows: false,
+                    ..full
+                },
+            ) {
+                tries.push((a, "you left out the shadow term: a shadow ray toward a light is blocked here, so s = 0 for it"));
+            }
+            let mut swapped = w.scene.clone();
+            for m in &mut swapped.materials {
+                m.highlight = if m.highlight == Highlight::Blinn {
+                    Highlight::Phong
+                } else {
+                    Highlight::Blinn
+                };
+            }
+            if let Some(a) = retrace(&swapped, full) {
+                tries.push((a, "you used the other highlight model: check whether the material uses Blinn (h·n)^m or Phong (r·v)^m"));
+            }
+            let mut dark = w.scene.clone();
+            dark.ambient = DVec3::ZERO;
+            if let Some(a) = retrace(&dark, full) {
+                tries.push((a, "you ignored the ambient term ka·Ia·O"));
+            }
+            let mut unattenuated = w.scene.clone();
+            for l in &mut unattenuated.lights {
+                if let crate::shading::LightKind::Point { attenuation, .. } = &mut l.kind {
+                    *attenuation = [1.0, 0.0, 0.0];
+                }
+            }
+            if let Some(a) = retrace(&unattenuated, full) {
+                tries.push((
+                    a,
+                    "you left out the distance attenuation fatt = 1/(c0 + c1·d + c2·d²)",
+                ));
+            }
+            if w.depth > 1 {
+                if let Some(a) = retrace(
+                    &w.scene,
+                    TraceOptions {
+                        max_depth: 1,
+                        ..full
+                    },
+                ) {
+                    tries.push((a, "you stopped at the local term: add kr·I_r and kt·I_t from the secondary rays"));
+                }
+            }
+        }
+        Ask::HitT | Ask::HitPoint => {
+            if let Some(h) = w.tree.find(&ex.node).and_then(|n| n.hit.as_ref()) {
+                let (o, d) = (
+                    w.tree.find(&ex.node).unwrap().origin,
+                    w.tree.find(&ex.node).unwrap().direction,
+                );
+                if let Some(o_idx) = w.scene.object_index(&h.object) {
+                    let ray = Ray { origin: o, dir: d };
+                    let list = w.scene.object_trace(o_idx, &ray, false).0;
+                    if let Some(s) = list.iter().find(|s| (s.t_in - h.t).abs() < 1e-9) {
+                        let far = if ex.ask == Ask::HitT {
+                            Answer::Number(s.t_out)
+                        } else {
+                            Answer::Vector(ray.at(s.t_out))
+                        };
+                        tries.push((
+                            far,
+                            "you took the far root: the nearest hit is the smaller positive t",
+                        ));
+                    }
+                }
+            }
+        }
+        Ask::RayDirection => {
+            if let Some([x, y]) = ex.pixel {
+                let p = w.scene.camera.image_point(x as f64 + 0.5, y as f64 + 0.5);
+                tries.push((Answer::Vector(p - w.scene.camera.eye()), "normalise the direction: raytree's directions are unit vectors, so t is a distance"));
+            }
+        }
+        Ask::ReflectedDirection => {
+            if let Answer::Vector(v) = &w.expected {
+                tries.push((Answer::Vector(-*v), "sign: with v pointing toward the surface, v' = v − 2(v·n)n points away from it"));
+            }
+        }
+        Ask::RefractedDirection => {
+            if let Some(n) = w.tree.find(&ex.node) {
+                if let Some(h) = &n.hit {
+                    let ior = w
+                        .scene
+                        .materials
+                        .iter()
+                        .find(|m| m.name == h.material)
+                        .map_or(1.0, |m| m.ior);
+                    let (n1, n2) = if h.inside { (1.0, ior) } else { (ior, 1.0) };
+                    if let Some(t) = refract(n.direction, h.normal, n1, n2) {
+                        tries.push((Answer::Vector(t), "n1 and n2 are swapped: η = n1/n2 with n1 the medium the ray comes from"));
+                    }
+                }
+            }
+        }
+        Ask::Normal => {
+            if let Answer::Vector(v) = &w.expected {
+                tries.push((Answer::Vector(-*v), "the normal used for shading faces the incoming ray (flip it when the ray is inside)"));
+            }
+        }
+        _ => {}
+    }
+    tries
+        .into_iter()
+        .find(|(a, _)| given.matches(a, tol) && !a.matches(&w.expected, tol))
+        .map(|(_, h)| h.to_string())
+}
+
+/// The worked derivation, step by step, with the numbers filled in.
+pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
+    let w = work(lesson, ex)?;
+    let mut out = vec![format!("{}: {}", ex.id, ex.question.trim())];
+    let n = node(&w.tree, ex)?;
+    match ex.ask {
+        Ask::WindowPoint | Ask::RayDirection if ex.pixel.is_some() && ex.node.is_empty() => {
+            let [x, y] = ex.pixel.unwrap();
+            let cam = &w.scene.camera;
+            match &cam.projection {
+                Projection::Window {
+                    eye,
+                    u,
+                    v,
+                    w: axis,
+                    f,
+                    window: [wl, wr, wt, wb],
+                } => {
+                    let (nc, nr) = (cam.width as f64, cam.height as f64);
+                    let du = if nc > 1.0 {
+                        (wr - wl) / (nc - 1.0)
+                    } else {
+                        0.0
+                    };
+                    let dv = if nr > 1.0 {
+                        (wb - wt) / (nr - 1.0)
+                    } else {
+                        0.0
+                    };
+                    out.push(format!(
+                        "Δu = (wr − wl)/(nc − 1) = ({} − {})/({} − 1) = {}",
+                        text::num(*wr),
+                        text::num(*wl),
+                        nc,
+                        text::num(du)
+                    ));
+                    out.push(format!(
+                        "Δv = (wb − wt)/(nr − 1) = ({} − {})/({} − 1) = {}",
+                        text::num(*wb),
+                        text::num(*wt),
+                        nr,
+                        text::num(dv)
+                    ));
+                    let pc = DVec3::new(wl + x as f64 * du, wt + y as f64 * dv, *f);
+                    out.push(format!(
+                        "p_C = (wl + i·Δu, wt + j·Δv, f) with i = {x}, j = {y}: {}",
+                        text::vec3(pc)
+                    ));
+                    let pw = *eye + pc.x * *u + pc.y * *v + pc.z * *axis;
+                    out.push(format!(
+                        "p_W = e + p_C.x·u + p_C.y·v + p_C.z·w = {}",
+                        text::vec3(pw)
+                    ));
+                    out.push(format!("d = p_W − e = {}", text::vec3(pw - *eye)));
+                    out.push(format!(
+                        "unit direction d/|d| = {}",
+                        text::vec3((pw - *eye).normalize())
+                    ));
+                }
+                Projection::LookAt {
+                    eye,
+                    forward,
+                    right,
+                    up,
+                    tan_half_fov,
+                } => {
+                    out.push(format!(
+                        "forward = {}, right = forward × up = {}, up' = {}",
+                        text::vec3(*forward),
+                        text::vec3(*right),
+                        text::vec3(*up)
+                    ));
+                    out.push(format!(
+                        "tan(fov/2) = {}, aspect = {}",
+                        text::num(*tan_half_fov),
+                        text::num(cam.width as f64 / cam.height as f64)
+                    ));
+                    let p = cam.image_point(x as f64 + 0.5, y as f64 + 0.5);
+                    out.push(format!(
+                        "pixel centre on the image plane: {}",
+                        text::vec3(p)
+                    ));
+                    out.push(format!(
+                        "unit direction = {}",
+                        text::vec3((p - *eye).normalize())
+                    ));
+                }
+            }
+        }
+        Ask::HitT | Ask::HitPoint | Ask::Normal => {
+            out.push(format!(
+                "ray o = {}, d = {} (unit)",
+                text::vec3(n.origin),
+                text::vec3(n.direction)
+            ));
+            if let Some(h) = &n.hit {
+                let leaf = w.scene.leaves.iter().find(|l| l.name == h.leaf);
+                if let Some(Shape::Sphere(s)) =
+                    leaf.filter(|l| l.transform.is_none()).map(|l| &l.shape)
+                {
+                    let oc = n.origin - s.center;
+                    let b = n.direction.dot(oc);
+                    let c = oc.length_squared() - s.radius * s.radius;
+                    out.push(format!(
+                        "sphere c = {}, r = {}: t² + 2(d·(o − c))t + |o − c|² − r² = 0",
+                        text::vec3(s.center),
+                        text::num(s.radius)
+                    ));
+                    out.push(format!(
+                        "b = d·(o − c) = {}, c' = |o − c|² − r² = {}",
+                        text::num(b),
+                        text::num(c)
+                    ));
+                    let disc = b * b - c;
+                    out.push(format!(
+                        "discriminant b² − c' = {}{}",
+                        text::num(disc),
+                        if disc.abs() < 1e-9 {
+                            " (zero: the ray is tangent, a double root)"
+                        } else {
+                            ""
+                        }
+                    ));
+                    out.push(format!(
+                        "t = −b ± √(b² − c') → nearest positive root t = {}",
+                        text::num(h.t)
+                    ));
+                } else {
+                    out.push(format!("nearest hit on {}: t = {}", h.leaf, text::num(h.t)));
+                }
+                out.push(format!("point p = o + t·d = {}", text::vec3(h.point)));
+                out.push(format!(
+                    "unit normal facing the ray n = {}",
+                    text::vec3(h.normal)
+                ));
+            } else {
+                out.push("the ray hits nothing".into());
+            }
+        }
+        Ask::Segments => {
+            let name = ex.object.as_deref().unwrap_or("");
+            if let Some(o) = w.scene.object_index(name) {
+                let (_, t) = w.scene.object_trace(o, &w.ray, false);
+                out.push(format!(
+                    "ray {} → {}",
+                    text::vec3(w.ray.origin),
+                    text::vec3(w.ray.dir)
+                ));
+                out.push("segment lists, combined bottom-up:".into());
+                out.extend(
+                    text::csg_trace(&w.scene, &w.ray, &t)
+                        .lines()
+                        .map(str::to_string),
+                );
+            }
+        }
+        _ => {
+            out.push("the ray tree, each node with its terms:".into());
+            out.extend(text::tree(n).lines().map(str::to_string));
+            out.push("collecting from the leaves up:".into());
+            collect_lines(n, &mut out);
+        }
+    }
+    out.push(format!("answer: {}", w.expected.show()));
+    Ok(out)
+}
+
+/// Post-order: every node's intensity from its local term and its children's.
+fn collect_lines(n: &RayNode, out: &mut Vec<String>) {
+    for c in n.secondary() {
+        collect_lines(c, out);
+    }
+    let label = format!("I({} depth {})", n.kind.name(), n.depth);
+    match (&n.local, n.terminated) {
+        (Some(local), _) => {
+            let mut terms = vec![text::color(local.total())];
+            for c in n.secondary() {
+                terms.push(format!(
+                    "{}·{}",
+                    text::num(c.coefficient),
+                    text::color(c.color)
+                ));
+            }
+            out.push(format!(
+                "{label} = {} = {}",
+                terms.join(" + "),
+                text::color(n.color)
+            ));
+        }
+        (None, Some(t)) => out.push(format!("{label} = {} ({})", text::color(n.color), t.name())),
+        _ => {}
+    }
+}
