@@ -1,0 +1,75 @@
+//! Every lesson's hand-worked answers (the README's `**Answer (ID):**` lines, worked out by
+//! hand) must equal what raytree computes from the lesson's scene, and `check` must accept them.
+
+use std::path::Path;
+
+use raytree::lessons::{all_lessons, check, explain, parse_answer, Ask, Lesson};
+
+fn lessons() -> Vec<Lesson> {
+    all_lessons(&Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons")).expect("lessons load")
+}
+
+#[test]
+fn every_lesson_has_a_readme_a_scene_and_at_least_two_exercises() {
+    let lessons = lessons();
+    assert!(lessons.len() >= 10, "found {} lessons", lessons.len());
+    for l in &lessons {
+        assert!(l.exercises.len() >= 2, "{} has {} exercises", l.id, l.exercises.len());
+        assert!(l.dir.join("scene.yaml").is_file(), "{} has no scene.yaml", l.id);
+        assert!(l.readme.len() > 500, "{} has a thin README", l.id);
+    }
+}
+
+#[test]
+fn hand_worked_answers_agree_with_raytree() {
+    let mut failures = vec![];
+    for lesson in lessons() {
+        let stated = lesson.stated_answers();
+        for ex in &lesson.exercises {
+            let Some((_, value)) = stated.iter().find(|(id, _)| *id == ex.id) else {
+                failures.push(format!("{}/{}: no **Answer ({}):** line in README", lesson.id, ex.id, ex.id));
+                continue;
+            };
+            match check(&lesson, ex, value) {
+                Ok(v) if v.correct => {}
+                Ok(v) => failures.push(format!(
+                    "{}/{}: README says {value}, raytree computes {}",
+                    lesson.id,
+                    ex.id,
+                    v.expected.show()
+                )),
+                Err(e) => failures.push(format!("{}/{}: {e}", lesson.id, ex.id)),
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn wrong_answers_are_rejected() {
+    for lesson in lessons() {
+        for (id, value) in lesson.stated_answers() {
+            let Ok(ex) = lesson.exercise(&id) else { continue };
+            let wrong = match parse_answer(&value, ex.ask == Ask::Segments) {
+                Ok(raytree::lessons::Answer::Number(x)) => format!("{}", x + 10.0 * ex.tolerance + 0.01),
+                Ok(raytree::lessons::Answer::Vector(v)) => format!("{},{},{}", v.x + 0.05, v.y, v.z),
+                Ok(raytree::lessons::Answer::Segments(s)) if !s.is_empty() => "1, 2".to_string(),
+                Ok(raytree::lessons::Answer::Segments(_)) => "1, 2".to_string(),
+                _ => "0.123456".to_string(),
+            };
+            let v = check(&lesson, ex, &wrong).unwrap();
+            assert!(!v.correct, "{}/{id}: {wrong} accepted", lesson.id);
+        }
+    }
+}
+
+#[test]
+fn every_exercise_can_be_explained() {
+    for lesson in lessons() {
+        for ex in &lesson.exercises {
+            let lines = explain(&lesson, ex).unwrap_or_else(|e| panic!("{}/{}: {e}", lesson.id, ex.id));
+            assert!(lines.len() >= 3, "{}/{} explanation too short", lesson.id, ex.id);
+            assert!(lines.last().unwrap().starts_with("answer: "));
+        }
+    }
+}
