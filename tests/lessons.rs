@@ -14,8 +14,17 @@ fn every_lesson_has_a_readme_a_scene_and_at_least_two_exercises() {
     let lessons = lessons();
     assert!(lessons.len() >= 10, "found {} lessons", lessons.len());
     for l in &lessons {
-        assert!(l.exercises.len() >= 2, "{} has {} exercises", l.id, l.exercises.len());
-        assert!(l.dir.join("scene.yaml").is_file(), "{} has no scene.yaml", l.id);
+        assert!(
+            l.exercises.len() >= 2,
+            "{} has {} exercises",
+            l.id,
+            l.exercises.len()
+        );
+        assert!(
+            l.dir.join("scene.yaml").is_file(),
+            "{} has no scene.yaml",
+            l.id
+        );
         assert!(l.readme.len() > 500, "{} has a thin README", l.id);
     }
 }
@@ -27,7 +36,10 @@ fn hand_worked_answers_agree_with_raytree() {
         let stated = lesson.stated_answers();
         for ex in &lesson.exercises {
             let Some((_, value)) = stated.iter().find(|(id, _)| *id == ex.id) else {
-                failures.push(format!("{}/{}: no **Answer ({}):** line in README", lesson.id, ex.id, ex.id));
+                failures.push(format!(
+                    "{}/{}: no **Answer ({}):** line in README",
+                    lesson.id, ex.id, ex.id
+                ));
                 continue;
             };
             match check(&lesson, ex, value) {
@@ -49,10 +61,16 @@ fn hand_worked_answers_agree_with_raytree() {
 fn wrong_answers_are_rejected() {
     for lesson in lessons() {
         for (id, value) in lesson.stated_answers() {
-            let Ok(ex) = lesson.exercise(&id) else { continue };
+            let Ok(ex) = lesson.exercise(&id) else {
+                continue;
+            };
             let wrong = match parse_answer(&value, ex.ask == Ask::Segments) {
-                Ok(raytree::lessons::Answer::Number(x)) => format!("{}", x + 10.0 * ex.tolerance + 0.01),
-                Ok(raytree::lessons::Answer::Vector(v)) => format!("{},{},{}", v.x + 0.05, v.y, v.z),
+                Ok(raytree::lessons::Answer::Number(x)) => {
+                    format!("{}", x + 10.0 * ex.tolerance + 0.01)
+                }
+                Ok(raytree::lessons::Answer::Vector(v)) => {
+                    format!("{},{},{}", v.x + 0.05, v.y, v.z)
+                }
                 Ok(raytree::lessons::Answer::Segments(s)) if !s.is_empty() => "1, 2".to_string(),
                 Ok(raytree::lessons::Answer::Segments(_)) => "1, 2".to_string(),
                 _ => "0.123456".to_string(),
@@ -67,8 +85,14 @@ fn wrong_answers_are_rejected() {
 fn every_exercise_can_be_explained() {
     for lesson in lessons() {
         for ex in &lesson.exercises {
-            let lines = explain(&lesson, ex).unwrap_or_else(|e| panic!("{}/{}: {e}", lesson.id, ex.id));
-            assert!(lines.len() >= 3, "{}/{} explanation too short", lesson.id, ex.id);
+            let lines =
+                explain(&lesson, ex).unwrap_or_else(|e| panic!("{}/{}: {e}", lesson.id, ex.id));
+            assert!(
+                lines.len() >= 3,
+                "{}/{} explanation too short",
+                lesson.id,
+                ex.id
+            );
             assert!(lines.last().unwrap().starts_with("answer: "));
         }
     }

@@ -48,7 +48,13 @@ fn seed_000_csg_segment_lists() {
     let s = scene(SEED_000_CSG);
     let ray = Ray::new(DVec3::new(0.0, 0.0, -10.0), DVec3::Z);
     let lists: Vec<Vec<(f64, f64)>> = (0..4)
-        .map(|o| s.object_trace(o, &ray, false).0.iter().map(|g| (g.t_in, g.t_out)).collect())
+        .map(|o| {
+            s.object_trace(o, &ray, false)
+                .0
+                .iter()
+                .map(|g| (g.t_in, g.t_out))
+                .collect()
+        })
         .collect();
     assert_eq!(lists[0], vec![(13.0, 23.0)]);
     assert_eq!(lists[1], vec![(13.0, 16.0), (22.0, 23.0)]);
@@ -70,7 +76,9 @@ fn seed_004_tangent_ray_is_a_double_root() {
         "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects: [ { name: circle, sphere: { center: [0, 0, 0], radius: 1 }, material: m } ]",
     );
     let ray = Ray::new(DVec3::new(-3.0, 1.0, 0.0), DVec3::new(0.8, -0.6, 0.0));
-    let hit = s.intersect(&ray, 0.0, f64::INFINITY, &mut Stats::default()).expect("tangent hit");
+    let hit = s
+        .intersect(&ray, 0.0, f64::INFINITY, &mut Stats::default())
+        .expect("tangent hit");
     assert!((hit.t - 3.0).abs() < 1e-12);
     let p = ray.at(hit.t);
     assert!((p - DVec3::new(-0.6, -0.8, 0.0)).length() < 1e-12);
@@ -103,14 +111,22 @@ fn inspected_root_equals_rendered_pixel_in_every_lesson() {
             }
             let mut s = raytree::scene::load(&path, &Limits::default()).unwrap();
             s.spp = 1;
-            let small = s.camera.resized(s.camera.width.min(40), s.camera.height.min(30));
+            let small = s
+                .camera
+                .resized(s.camera.width.min(40), s.camera.height.min(30));
             s.camera = small;
-            let (image, _) = raytree::render::render_simple(&s, raytree::render::RenderOptions::of(&s));
+            let (image, _) =
+                raytree::render::render_simple(&s, raytree::render::RenderOptions::of(&s));
             let tracer = Tracer::new(&s);
             for y in (0..s.camera.height).step_by(3) {
                 for x in (0..s.camera.width).step_by(3) {
                     let tree = tracer.inspect_pixel(x, y).tree;
-                    assert_eq!(tree.color, image.get(x, y), "{} pixel {x},{y}", path.display());
+                    assert_eq!(
+                        tree.color,
+                        image.get(x, y),
+                        "{} pixel {x},{y}",
+                        path.display()
+                    );
                     checked += 1;
                 }
             }

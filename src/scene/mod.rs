@@ -16,6 +16,7 @@ pub use error::SceneError;
 fn parse_options() -> serde_saphyr::Options {
     let mut options = serde_saphyr::Options::default();
     options.with_snippet = false;
+    options.non_finite_float_policy = serde_saphyr::NonFiniteFloatPolicy::Reject;
     options
 }
 
@@ -61,6 +62,14 @@ pub fn parse(
             message: "empty scene file".into(),
         });
     }
+    if let Some((line, column, token)) = non_finite_literal(text) {
+        return Err(SceneError {
+            file: file.into(),
+            line,
+            column,
+            message: format!("non-finite number `{token}`: every number in a scene must be finite"),
+        });
+    }
     let parsed: format::SceneFile = serde_saphyr::from_str_with_options(text, parse_options())
         .map_err(|e| {
             let (line, column) = e
@@ -81,6 +90,39 @@ pub fn parse(
     })
 }
 
+/// YAML's `.nan` and `.inf` literals (the parser hands them through as floats), outside
+/// comments and quotes. Overflowing literals such as `1e999` are rejected by the parser itself.
+fn non_finite_literal(text: &str) -> Option<(u64, u64, String)> {
+    const TOKENS: [&str; 9] = [
+        ".nan", ".NaN", ".NAN", ".inf", ".Inf", ".INF", "+.inf", "-.inf", "-.Inf",
+    ];
+    for (i, line) in text.lines().enumerate() {
+        let code = line.split(" #").next().unwrap_or(line);
+        let code = if code.trim_start().starts_with('#') {
+            ""
+        } else {
+            code
+        };
+        let bytes = code.as_bytes();
+        for (start, _) in code.char_indices() {
+            let before = if start == 0 { b' ' } else { bytes[start - 1] };
+            if !matches!(before, b' ' | b'[' | b',' | b':' | b'{' | b'\t') {
+                continue;
+            }
+            for t in TOKENS {
+                if code[start..].starts_with(t) {
+                    let after = bytes.get(start + t.len()).copied().unwrap_or(b' ');
+                    if matches!(after, b' ' | b']' | b',' | b'}' | b'\t') {
+                        let column = code[..start].chars().count() as u64 + 1;
+                        return Some((i as u64 + 1, column, t.to_string()));
+                    }
+                }
+            }
+        }
+    }
+    None
+}
+
 /// The parser's message on one line, without the position it repeats.
 fn parser_message(raw: &str) -> String {
     let first = raw.lines().next().unwrap_or(raw).trim();
@@ -89,6 +131,11 @@ fn parser_message(raw: &str) -> String {
     let stripped = match stripped.strip_prefix("line ") {
         Some(rest) => rest.split_once(": ").map_or(stripped, |(_, msg)| msg),
         None => stripped,
+    };
+    // "… at line 2, column 1": the position is reported separately.
+    let stripped = match stripped.rfind(" at line ") {
+        Some(i) if stripped[i..].contains(", column ") => &stripped[..i],
+        _ => stripped,
     };
     stripped.to_string()
 }
