@@ -1,0 +1,354 @@
+//! The command line as a user meets it: exit statuses, the JSON contracts, whole outputs.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn raytree(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("raytree-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+const LESSON_SCENE: &str = "lessons/05-reflection/scene.yaml";
+
+#[test]
+fn render_writes_a_png_identical_for_any_thread_count() {
+    let (a, b) = (temp("one.png"), temp("two.png"));
+    let o1 = raytree(&[
+        "render",
+        LESSON_SCENE,
+        "-o",
+        a.to_str().unwrap(),
+        "--threads",
+        "1",
+        "--stats",
+    ]);
+    assert!(o1.status.success(), "{}", stderr(&o1));
+    assert!(stderr(&o1).contains("rays traced"));
+    let o2 = raytree(&[
+        "render",
+        LESSON_SCENE,
+        "-o",
+        b.to_str().unwrap(),
+        "--threads",
+        "2",
+    ]);
+    assert!(o2.status.success());
+    let (ia, ib) = (std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    assert_eq!(ia, ib);
+    assert_eq!(&ia[1..4], b"PNG");
+}
+
+#[test]
+fn a_failed_write_leaves_no_file() {
+    let target = temp("no-such-dir").join("out.png");
+    let o = raytree(&["render", LESSON_SCENE, "-o", target.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!target.exists());
+    assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+}
+
+#[test]
+fn inspect_json_follows_the_contract() {
+    let o = raytree(&[
+        "inspect",
+        "lessons/08-pixel-intensity/scene.yaml",
+        "--pixel",
+        "30,30",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["pixel"], serde_json::json!([30, 30]));
+    let tree = &v["tree"];
+    assert_eq!(tree["kind"], "primary");
+    assert_eq!(tree["depth"], 0);
+    assert_eq!(v["color"], tree["color"]);
+    let d: Vec<f64> = serde_json::from_value(tree["direction"].clone()).unwrap();
+    assert!(((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt() - 1.0).abs() < 1e-12);
+    for key in [
+        "origin",
+        "weight",
+        "hit",
+        "local",
+        "color",
+        "terminated",
+        "children",
+    ] {
+        assert!(tree.get(key).is_some(), "missing {key}");
+    }
+    for key in ["object", "t", "point", "normal", "inside"] {
+        assert!(tree["hit"].get(key).is_some(), "missing hit.{key}");
+    }
+    let light = &tree["local"]["lights"][0];
+    for key in ["light", "shadow", "diffuse", "specular"] {
+        assert!(light.get(key).is_some(), "missing local.lights[0].{key}");
+    }
+    let kinds: Vec<&str> = tree["children"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds, ["shadow", "reflection", "refraction"]);
+    let shadow = &tree["children"][0];
+    assert_eq!(shadow["shadow"], 1.0);
+    assert!(shadow["hit"].is_null());
+    let c: f64 = serde_json::from_value(tree["color"][0].clone()).unwrap();
+    assert!((c - 0.870161).abs() < 1e-6, "the lecture's pixel p: {c}");
+}
+
+#[test]
+fn inspect_accepts_an_explicit_ray_and_a_depth() {
+    let o = raytree(&[
+        "inspect",
+        "lessons/08-pixel-intensity/scene.yaml",
+        "--ray",
+        "-2,3.4641016,0:0.5,-0.8660254,0",
+        "--depth",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("not traced: max depth"), "{text}");
+    assert!(
+        text.starts_with("primary (depth 0): hit a, I = 0.439904"),
+        "{text}"
+    );
+}
+
+#[test]
+fn csg_json_follows_the_contract() {
+    let o = raytree(&[
+        "csg",
+        "lessons/10-csg/scene.yaml",
+        "--ray",
+        "0,0,-10:0,0,1",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["ray"]["direction"], serde_json::json!([0.0, 0.0, 1.0]));
+    let objects = v["objects"].as_array().unwrap();
+    let diff = objects
+        .iter()
+        .find(|o| o["node"]["op"] == "difference")
+        .expect("a difference");
+    let segs = diff["node"]["segments"].as_array().unwrap();
+    assert!(!segs.is_empty());
+    for key in ["t_in", "t_out", "point_in", "point_out"] {
+        assert!(segs[0].get(key).is_some());
+    }
+    assert_eq!(diff["node"]["children"].as_array().unwrap().len(), 2);
+    assert_eq!(diff["node"]["pruned"], false);
+}
+
+#[test]
+fn check_exit_status_says_right_wrong_or_usage() {
+    let right = raytree(&[
+        "check",
+        "lessons/10-csg",
+        "--exercise",
+        "b-difference",
+        "--answer",
+        "13, 16; 22, 23",
+    ]);
+    assert_eq!(right.status.code(), Some(0), "{}", stdout(&right));
+    assert!(stdout(&right).starts_with("right"));
+    let wrong = raytree(&[
+        "check",
+        "lessons/10-csg",
+        "--exercise",
+        "b-difference",
+        "--answer",
+        "13, 23",
+    ]);
+    assert_eq!(wrong.status.code(), Some(1));
+    assert!(stdout(&wrong).starts_with("wrong"));
+    let usage = raytree(&[
+        "check",
+        "lessons/10-csg",
+        "--exercise",
+        "nope",
+        "--answer",
+        "1",
+    ]);
+    assert_eq!(usage.status.code(), Some(2));
+    let garbage = raytree(&[
+        "check",
+        "lessons/10-csg",
+        "--exercise",
+        "b-difference",
+        "--answer",
+        "abc",
+    ]);
+    assert_eq!(garbage.status.code(), Some(2));
+}
+
+#[test]
+fn check_hints_at_the_forgotten_shadow_term() {
+    // Lesson 04: at point p the sun is blocked. The answer a student gets by ignoring s is
+    // recomputed here with shadow rays switched off, and must draw the shadow hint.
+    let lesson = raytree::lessons::Lesson::load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/04-shadows"),
+    )
+    .unwrap();
+    let ex = lesson.exercise("local-p").unwrap();
+    let w = raytree::lessons::work(&lesson, ex).unwrap();
+    assert!(w
+        .tree
+        .local
+        .as_ref()
+        .unwrap()
+        .lights
+        .iter()
+        .any(|l| l.shadow == 0.0 && l.n_dot_l > 0.0));
+    let options = raytree::trace::tracer::TraceOptions {
+        max_depth: w.depth,
+        shadows: false,
+    };
+    let tracer = raytree::trace::Tracer {
+        scene: &w.scene,
+        options,
+    };
+    let unshadowed = tracer
+        .inspect(&w.ray, &mut raytree::trace::Stats::default())
+        .local
+        .unwrap()
+        .total()
+        .x;
+    let o = raytree(&[
+        "check",
+        "lessons/04-shadows",
+        "--exercise",
+        "local-p",
+        "--answer",
+        &format!("{unshadowed}"),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stdout(&o).contains("hint: you left out the shadow term"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
+fn explain_prints_the_derivation() {
+    let o = raytree(&[
+        "check",
+        "lessons/01-camera",
+        "--exercise",
+        "window-point-00",
+        "--explain",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("Δu = (wr − wl)/(nc − 1)"), "{text}");
+    assert!(text.contains("answer: -2, 1, 0"), "{text}");
+}
+
+#[test]
+fn bad_input_exits_2_with_one_line_and_no_panic() {
+    let bad = temp("bad.yaml");
+    std::fs::write(&bad, "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nobjects:\n  - { name: s, sphere: { center: [0, 0, 0], radius: 1 }, material: nope }\n").unwrap();
+    let cases: Vec<Vec<String>> = vec![
+        vec![
+            "inspect".into(),
+            bad.display().to_string(),
+            "--pixel".into(),
+            "0,0".into(),
+        ],
+        vec![
+            "render".into(),
+            "lessons".into(),
+            "-o".into(),
+            temp("x.png").display().to_string(),
+        ],
+        vec![
+            "render".into(),
+            "no/such/scene.yaml".into(),
+            "-o".into(),
+            temp("x.png").display().to_string(),
+        ],
+        vec![
+            "inspect".into(),
+            LESSON_SCENE.into(),
+            "--pixel".into(),
+            "100000,0".into(),
+        ],
+        vec![
+            "inspect".into(),
+            LESSON_SCENE.into(),
+            "--pixel".into(),
+            "a,b".into(),
+        ],
+        vec![
+            "inspect".into(),
+            LESSON_SCENE.into(),
+            "--ray".into(),
+            "0,0,0:0,0,0".into(),
+        ],
+        vec![
+            "render".into(),
+            LESSON_SCENE.into(),
+            "-o".into(),
+            temp("x.gif").display().to_string(),
+        ],
+        vec![
+            "render".into(),
+            LESSON_SCENE.into(),
+            "-o".into(),
+            temp("x.png").display().to_string(),
+            "--depth".into(),
+            "0".into(),
+        ],
+    ];
+    for args in cases {
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let o = raytree(&refs);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+        assert!(!err.trim().is_empty());
+    }
+    let o = raytree(&["inspect", bad.to_str().unwrap(), "--pixel", "0,0"]);
+    let err = stderr(&o);
+    assert!(
+        err.contains("bad.yaml:3:68: unknown material `nope`"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1);
+}
+
+#[test]
+fn preview_and_lessons_list() {
+    let o = raytree(&["preview", LESSON_SCENE, "--columns", "40", "--ascii"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    assert!(text.lines().all(|l| l.chars().count() == 40));
+    assert!(text.lines().count() >= 10);
+    let o = raytree(&["lessons"]);
+    assert!(o.status.success());
+    let text = stdout(&o);
+    assert!(text.contains("08-pixel-intensity") && text.contains("pixel-p"));
+}
