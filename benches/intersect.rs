@@ -13,24 +13,75 @@ fn rays(n: usize) -> Vec<Ray> {
         .map(|i| {
             let a = i as f64 * 0.618_033_988_75;
             let b = i as f64 * 0.414_213_562_37;
-            Ray::new(DVec3::new(a.fract() - 0.5, b.fract() - 0.5, -5.0), DVec3::new(0.1 * a.sin(), 0.1 * b.cos(), 1.0))
+            Ray::new(
+                DVec3::new(a.fract() - 0.5, b.fract() - 0.5, -5.0),
+                DVec3::new(0.1 * a.sin(), 0.1 * b.cos(), 1.0),
+            )
         })
         .collect()
 }
 
 fn shapes(c: &mut Criterion) {
     let rs = rays(1024);
-    let sphere = Sphere { center: DVec3::ZERO, radius: 0.5 };
-    let aabox = Aabox { min: DVec3::splat(-0.5), max: DVec3::splat(0.5) };
-    let cyl = Cylinder { base: DVec3::new(0.0, -0.5, 0.0), top: DVec3::new(0.0, 0.5, 0.0), radius: 0.4 };
-    let cone = Cone { apex: DVec3::new(0.0, 0.5, 0.0), base: DVec3::new(0.0, -0.5, 0.0), radius: 0.4 };
-    let tri = Triangle { a: DVec3::new(-0.5, -0.5, 0.0), b: DVec3::new(0.5, -0.5, 0.0), c: DVec3::new(0.0, 0.5, 0.0) };
+    let sphere = Sphere {
+        center: DVec3::ZERO,
+        radius: 0.5,
+    };
+    let aabox = Aabox {
+        min: DVec3::splat(-0.5),
+        max: DVec3::splat(0.5),
+    };
+    let cyl = Cylinder {
+        base: DVec3::new(0.0, -0.5, 0.0),
+        top: DVec3::new(0.0, 0.5, 0.0),
+        radius: 0.4,
+    };
+    let cone = Cone {
+        apex: DVec3::new(0.0, 0.5, 0.0),
+        base: DVec3::new(0.0, -0.5, 0.0),
+        radius: 0.4,
+    };
+    let tri = Triangle {
+        a: DVec3::new(-0.5, -0.5, 0.0),
+        b: DVec3::new(0.5, -0.5, 0.0),
+        c: DVec3::new(0.0, 0.5, 0.0),
+    };
     let mut g = c.benchmark_group("shape span, 1024 rays");
-    g.bench_function("sphere", |b| b.iter(|| rs.iter().filter(|r| sphere.span(black_box(r)).is_some()).count()));
-    g.bench_function("box", |b| b.iter(|| rs.iter().filter(|r| aabox.span(black_box(r)).is_some()).count()));
-    g.bench_function("cylinder", |b| b.iter(|| rs.iter().filter(|r| cyl.span(black_box(r)).is_some()).count()));
-    g.bench_function("cone", |b| b.iter(|| rs.iter().filter(|r| cone.span(black_box(r)).is_some()).count()));
-    g.bench_function("triangle", |b| b.iter(|| rs.iter().filter(|r| tri.intersect(black_box(r)).is_some()).count()));
+    g.bench_function("sphere", |b| {
+        b.iter(|| {
+            rs.iter()
+                .filter(|r| sphere.span(black_box(r)).is_some())
+                .count()
+        })
+    });
+    g.bench_function("box", |b| {
+        b.iter(|| {
+            rs.iter()
+                .filter(|r| aabox.span(black_box(r)).is_some())
+                .count()
+        })
+    });
+    g.bench_function("cylinder", |b| {
+        b.iter(|| {
+            rs.iter()
+                .filter(|r| cyl.span(black_box(r)).is_some())
+                .count()
+        })
+    });
+    g.bench_function("cone", |b| {
+        b.iter(|| {
+            rs.iter()
+                .filter(|r| cone.span(black_box(r)).is_some())
+                .count()
+        })
+    });
+    g.bench_function("triangle", |b| {
+        b.iter(|| {
+            rs.iter()
+                .filter(|r| tri.intersect(black_box(r)).is_some())
+                .count()
+        })
+    });
     g.finish();
 }
 
@@ -44,7 +95,10 @@ pub fn spheres(n: usize) -> Scene {
     for i in 0..n {
         let h = |k: f64| ((i as f64 + 1.0) * k).fract() - 0.5;
         let c = DVec3::new(h(0.754_877_666), h(0.569_840_291), h(0.671_123_1)) * side;
-        yaml.push_str(&format!("  - {{ sphere: {{ center: [{}, {}, {}], radius: {r} }}, material: m }}\n", c.x, c.y, c.z));
+        yaml.push_str(&format!(
+            "  - {{ sphere: {{ center: [{}, {}, {}], radius: {r} }}, material: m }}\n",
+            c.x, c.y, c.z
+        ));
     }
     parse(&yaml, "spheres", None, &Limits::default()).unwrap()
 }
@@ -54,14 +108,23 @@ fn bvh(c: &mut Criterion) {
     for n in [4usize, 8, 16, 64, 1000] {
         let mut scene = spheres(n);
         let cam = scene.camera.clone();
-        let rs: Vec<Ray> = (0..48).flat_map(|y| (0..64).map(move |x| (x, y))).map(|(x, y)| cam.pixel_ray(x, y)).collect();
+        let rs: Vec<Ray> = (0..48)
+            .flat_map(|y| (0..64).map(move |x| (x, y)))
+            .map(|(x, y)| cam.pixel_ray(x, y))
+            .collect();
         for accel in [Accel::None, Accel::Bvh] {
             scene.set_accel(accel);
-            let name = if accel == Accel::None { "brute force" } else { "bvh" };
+            let name = if accel == Accel::None {
+                "brute force"
+            } else {
+                "bvh"
+            };
             g.bench_with_input(BenchmarkId::new(name, n), &n, |b, _| {
                 b.iter(|| {
                     let mut stats = Stats::default();
-                    rs.iter().filter(|r| scene.intersect(r, 0.0, f64::INFINITY, &mut stats).is_some()).count()
+                    rs.iter()
+                        .filter(|r| scene.intersect(r, 0.0, f64::INFINITY, &mut stats).is_some())
+                        .count()
                 })
             });
         }
@@ -77,7 +140,9 @@ fn render(c: &mut Criterion) {
     .unwrap();
     let mut small = scene.clone();
     small.camera = scene.camera.resized(80, 60);
-    c.bench_function("render refraction lesson 80×60", |b| b.iter(|| render_simple(&small, RenderOptions::of(&small))));
+    c.bench_function("render refraction lesson 80×60", |b| {
+        b.iter(|| render_simple(&small, RenderOptions::of(&small)))
+    });
 }
 
 criterion_group! {

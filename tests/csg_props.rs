@@ -23,8 +23,16 @@ impl Solid {
         match self {
             Solid::Sphere(c, r) => format!("{{ sphere: {{ center: {}, radius: {r} }} }}", v(*c)),
             Solid::Box(a, b) => format!("{{ box: {{ min: {}, max: {} }} }}", v(*a), v(*b)),
-            Solid::Cylinder(a, b, r) => format!("{{ cylinder: {{ base: {}, top: {}, radius: {r} }} }}", v(*a), v(*b)),
-            Solid::Cone(a, b, r) => format!("{{ cone: {{ apex: {}, base: {}, radius: {r} }} }}", v(*a), v(*b)),
+            Solid::Cylinder(a, b, r) => format!(
+                "{{ cylinder: {{ base: {}, top: {}, radius: {r} }} }}",
+                v(*a),
+                v(*b)
+            ),
+            Solid::Cone(a, b, r) => format!(
+                "{{ cone: {{ apex: {}, base: {}, radius: {r} }} }}",
+                v(*a),
+                v(*b)
+            ),
             Solid::Op(op, children) => {
                 let inner: Vec<String> = children.iter().map(Solid::yaml).collect();
                 format!("{{ {op}: [{}] }}", inner.join(", "))
@@ -50,7 +58,8 @@ impl Solid {
                 let h = (*base - *apex).length();
                 let y = (p - *apex).dot(axis);
                 let radius_here = r * y / h;
-                let radial = (radius_here - (p - *apex - y * axis).length()) * h / (h * h + r * r).sqrt();
+                let radial =
+                    (radius_here - (p - *apex - y * axis).length()) * h / (h * h + r * r).sqrt();
                 radial.min(y).min(h - y)
             }
             Solid::Op(op, children) => {
@@ -85,13 +94,18 @@ fn leaf() -> impl Strategy<Value = Solid> {
 
 fn solid() -> impl Strategy<Value = Solid> {
     leaf().prop_recursive(3, 12, 3, |inner| {
-        (prop_oneof![Just("union"), Just("intersection"), Just("difference")], prop::collection::vec(inner, 2..4))
+        (
+            prop_oneof![Just("union"), Just("intersection"), Just("difference")],
+            prop::collection::vec(inner, 2..4),
+        )
             .prop_map(|(op, children)| Solid::Op(op, children))
     })
 }
 
 fn ray() -> impl Strategy<Value = Ray> {
-    (vec3(6.0), vec3(1.0)).prop_filter("direction", |(_, d)| d.length() > 0.1).prop_map(|(o, d)| Ray::new(o, d))
+    (vec3(6.0), vec3(1.0))
+        .prop_filter("direction", |(_, d)| d.length() > 0.1)
+        .prop_map(|(o, d)| Ray::new(o, d))
 }
 
 proptest! {

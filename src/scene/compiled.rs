@@ -408,12 +408,14 @@ impl Scene {
         }
     }
 
-    /// Offset of secondary-ray origins from a surface at distance `t` along a ray from `origin`.
-    /// The automatic bias grows with the magnitude of the coordinates, because that is what
-    /// limits the precision of a computed hit point.
+    /// Offset of secondary-ray origins off a surface hit from `origin`. The automatic bias is
+    /// relative: a computed hit point is off by a few ulps of the coordinates involved
+    /// (|o| + |p|), so 1e−10 of them clears it by a factor of ~10⁶ while staying far below the
+    /// size of any feature a scene at that scale can have (tests/robustness.rs sweeps scales
+    /// 1e−4…1e6 and offsets to 1e6).
     pub fn bias(&self, origin: DVec3, point: DVec3) -> f64 {
         self.shadow_bias.unwrap_or_else(|| {
-            1e-9 * (1.0 + origin.abs().max_element() + point.abs().max_element())
+            (1e-10 * (origin.abs().max_element() + point.abs().max_element())).max(1e-300)
         })
     }
 }
