@@ -406,7 +406,7 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                     tan_half_fov,
                 } => {
                     out.push(format!(
-                        "forward = {}, right = forward × up = {}, up' = {}",
+                        "forward = {}, right = up × forward = {}, up' = forward × right = {}",
                         text::vec3(*forward),
                         text::vec3(*right),
                         text::vec3(*up)

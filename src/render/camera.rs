@@ -6,8 +6,9 @@ use crate::geometry::Ray;
 
 #[derive(Clone, Debug, PartialEq)]
 pub enum Projection {
-    /// Right-handed look-at: right = forward × up, so with the eye looking down +z and up +y,
-    /// +x appears on the left of the image.
+    /// Look-at camera. right = up × forward, so looking down +z with up +y puts +x on the
+    /// right of the image: the same frame as the lecture's window model (u = +x, w = +z) and
+    /// as POV-Ray, so scenes translate between them unchanged.
     LookAt {
         eye: DVec3,
         forward: DVec3,
@@ -44,8 +45,8 @@ impl Camera {
         height: u32,
     ) -> Camera {
         let forward = (target - eye).normalize();
-        let right = forward.cross(up).normalize();
-        let up = right.cross(forward);
+        let right = up.cross(forward).normalize();
+        let up = forward.cross(right);
         let tan_half_fov = (fov_degrees.to_radians() / 2.0).tan();
         Camera {
             projection: Projection::LookAt {
@@ -153,7 +154,11 @@ mod tests {
         let r = cam.ray(1.0, 1.0);
         assert!((r.dir - DVec3::NEG_Z).length() < 1e-15);
         let tl = cam.pixel_ray(0, 0).dir;
-        // Looking down −z, right is +x: the top-left pixel looks up and to −x.
+        // Looking down −z with up +y, right = up × forward = −x: the top-left pixel looks up
+        // and to +x. (Looking down +z, the top-left pixel looks to −x, as in the window model.)
+        assert!(tl.x > 0.0 && tl.y > 0.0);
+        let cam = Camera::look_at(DVec3::ZERO, DVec3::Z, DVec3::Y, 90.0, 2, 2);
+        let tl = cam.pixel_ray(0, 0).dir;
         assert!(tl.x < 0.0 && tl.y > 0.0);
     }
 }
