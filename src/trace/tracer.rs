@@ -324,6 +324,23 @@ impl<'s> Tracer<'s> {
         rec: &mut R,
         stats: &mut Stats,
     ) -> DVec3 {
+        let depth = task.depth + 1;
+        if depth >= self.options.max_depth || task.weight * kt < self.scene.adaptive_threshold {
+            // The refraction ray would not be traced anyway: record it as cut off.
+            let cut = Task {
+                ray: Ray {
+                    origin: si.point,
+                    dir: task.ray.dir,
+                },
+                kind: RayKind::Refraction,
+                depth,
+                weight: task.weight * kt,
+                coefficient: kt,
+                media: task.media,
+                indices: Some(Indices { n1, n2 }),
+            };
+            return self.child(cut, rec, stats);
+        }
         stats.total_internal_reflections += 1;
         rec.begin(RayStart {
             kind: RayKind::Refraction,
