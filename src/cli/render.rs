@@ -39,6 +39,9 @@ pub struct Args {
     /// Seed for Monte Carlo sampling. Whitted scenes use no randomness, so it changes nothing there.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Turn off CSG bounding boxes and pruning (to measure what they save).
+    #[arg(long)]
+    no_csg_pruning: bool,
     /// Print ray counts and the work skipped.
     #[arg(long)]
     stats: bool,
@@ -49,7 +52,7 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let mut scene = a.scene.load()?;
-    let _ = a.seed;
+    scene.csg_pruning = !a.no_csg_pruning;
     let (w, h) = (
         a.width.unwrap_or(scene.camera.width),
         a.height.unwrap_or(scene.camera.height),

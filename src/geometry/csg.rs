@@ -104,6 +104,8 @@ pub struct CsgRay<'a> {
     pub t_max: f64,
     /// Skip subtrees whose bounding box the ray misses (off to show the notes' own pruning).
     pub use_bounds: bool,
+    /// Skip operands the notes' rules make irrelevant (off only to measure what they save).
+    pub prune: bool,
 }
 
 impl CsgNode {
@@ -167,6 +169,7 @@ impl CsgNode {
                 }
                 for child in &children[1..] {
                     let prune = match op {
+                        _ if !r.prune => None,
                         CsgOp::Intersection if acc.is_empty() => Some(Pruned::EmptyIntersection),
                         CsgOp::Difference if acc.is_empty() => Some(Pruned::EmptyDifference),
                         _ => None,
@@ -249,8 +252,8 @@ fn events(list: &[Segment]) -> impl Iterator<Item = Event> + '_ {
 /// same t are applied together before the result is compared with its state before, so
 /// touching segments merge and zero-thickness results never appear.
 pub fn combine(op: CsgOp, a: &[Segment], b: &[Segment]) -> SegmentList {
-    let ea: Vec<Event> = events(a).collect();
-    let eb: Vec<Event> = events(b).collect();
+    let ea: smallvec::SmallVec<[Event; 8]> = events(a).collect();
+    let eb: smallvec::SmallVec<[Event; 8]> = events(b).collect();
     let (mut i, mut j) = (0, 0);
     let (mut in_a, mut in_b) = (false, false);
     let mut out = SegmentList::new();

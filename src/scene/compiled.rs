@@ -132,6 +132,8 @@ pub struct Scene {
     pub leaves: Vec<Leaf>,
     pub objects: Vec<Object>,
     pub features: Features,
+    /// CSG bounding boxes and pruning (on; off only to measure what they save).
+    pub csg_pruning: bool,
     accel: Accel,
     bvh: Bvh,
     /// Objects the BVH indexes (bounded ones), by BVH item number.
@@ -196,6 +198,7 @@ impl Scene {
             leaves,
             objects,
             features,
+            csg_pruning: true,
             accel: Accel::Bvh,
             bvh: Bvh::default(),
             bounded: vec![],
@@ -258,7 +261,8 @@ impl Scene {
                     inv_dir: ray.dir.recip(),
                     t_min,
                     t_max,
-                    use_bounds: true,
+                    use_bounds: self.csg_pruning,
+                    prune: self.csg_pruning,
                 };
                 let mut work = CsgWork::default();
                 let list = root.segments(self, &r, &mut work);
@@ -296,6 +300,7 @@ impl Scene {
                     t_min: f64::NEG_INFINITY,
                     t_max: f64::INFINITY,
                     use_bounds,
+                    prune: true,
                 };
                 root.trace(self, &r, &mut CsgWork::default())
             }
