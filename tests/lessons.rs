@@ -97,3 +97,17 @@ fn every_exercise_can_be_explained() {
         }
     }
 }
+
+/// The worked derivation of every exercise, pinned per lesson. Each was read against the
+/// lesson's hand-worked README before it was accepted.
+#[test]
+fn explanations_are_pinned() {
+    for lesson in lessons() {
+        let mut all = String::new();
+        for ex in &lesson.exercises {
+            all.push_str(&explain(&lesson, ex).unwrap().join("\n"));
+            all.push_str("\n\n");
+        }
+        insta::assert_snapshot!(format!("explain_{}", lesson.id), all);
+    }
+}

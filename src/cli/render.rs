@@ -39,6 +39,9 @@ pub struct Args {
     /// Seed for Monte Carlo sampling. Whitted scenes use no randomness, so it changes nothing there.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Render depths 1, 2, …, N side by side into one strip image (the recursion lesson).
+    #[arg(long, value_name = "N")]
+    depth_strip: Option<u32>,
     /// Turn off CSG bounding boxes and pruning (to measure what they save).
     #[arg(long)]
     no_csg_pruning: bool,
@@ -48,6 +51,23 @@ pub struct Args {
     /// Encoding of the output: sRGB, or the lecture's raw linear values.
     #[arg(long, value_enum, default_value_t = Gamma::Srgb)]
     gamma: Gamma,
+}
+
+/// Images side by side, separated by a white gap of 4 pixels.
+fn strip(frames: &[crate::render::Image]) -> crate::render::Image {
+    const GAP: u32 = 4;
+    let (w, h) = (frames[0].width, frames[0].height);
+    let n = frames.len() as u32;
+    let mut out = crate::render::Image::new(n * w + (n - 1) * GAP, h);
+    out.pixels.iter_mut().for_each(|p| *p = glam::DVec3::ONE);
+    for (k, f) in frames.iter().enumerate() {
+        for y in 0..h {
+            for x in 0..w {
+                out.pixels[(y * out.width + k as u32 * (w + GAP) + x) as usize] = f.get(x, y);
+            }
+        }
+    }
+    out
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
@@ -99,9 +119,35 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             b.inc(1)
         }
     };
-    let (image, stats) = pool
-        .install(|| render(&scene, options, &on_row, &AtomicBool::new(false)))
-        .expect("not cancelled");
+    let (image, stats) = match a.depth_strip {
+        None => pool
+            .install(|| render(&scene, options, &on_row, &AtomicBool::new(false)))
+            .expect("not cancelled"),
+        Some(n) => {
+            if !(1..=64).contains(&n) {
+                return Err(Failure(format!(
+                    "--depth-strip must be between 1 and 64, got {n}"
+                )));
+            }
+            let mut frames = Vec::new();
+            let mut total = crate::trace::Stats::default();
+            for depth in 1..=n {
+                let o = RenderOptions {
+                    max_depth: depth,
+                    ..options
+                };
+                let (img, st) = pool
+                    .install(|| render(&scene, o, &|_| {}, &AtomicBool::new(false)))
+                    .expect("not cancelled");
+                total.add(&st);
+                frames.push(img);
+                if let Some(b) = &bar {
+                    b.set_position(depth as u64 * h as u64 / n as u64);
+                }
+            }
+            (strip(&frames), total)
+        }
+    };
     let elapsed = start.elapsed();
     if let Some(b) = bar {
         b.finish_and_clear();

@@ -49,6 +49,22 @@ impl Sphere {
         Some(Span::new(t0, 0, t1, 0))
     }
 
+    /// The nearest crossing with t_min < t < t_max: the same arithmetic as `span`, but a ray
+    /// that starts outside and moves away is rejected before any division or square root.
+    #[inline]
+    pub fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        let oc = ray.origin - self.center;
+        let b = ray.dir.dot(oc);
+        let r2 = self.radius * self.radius;
+        let c = oc.length_squared() - r2;
+        if c > 0.0 && b > 0.0 {
+            return None;
+        }
+        let s = self.span(ray)?;
+        let t = if s.t_in > t_min { s.t_in } else { s.t_out };
+        (t > t_min && t < t_max).then_some(t)
+    }
+
     pub fn normal(&self, p: DVec3) -> DVec3 {
         (p - self.center) / self.radius
     }

@@ -371,14 +371,14 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                     out.push(format!(
                         "Δu = (wr − wl)/(nc − 1) = ({} − {})/({} − 1) = {}",
                         text::num(*wr),
-                        text::num(*wl),
+                        signed(*wl),
                         nc,
                         text::num(du)
                     ));
                     out.push(format!(
                         "Δv = (wb − wt)/(nr − 1) = ({} − {})/({} − 1) = {}",
                         text::num(*wb),
-                        text::num(*wt),
+                        signed(*wt),
                         nr,
                         text::num(dv)
                     ));
@@ -478,6 +478,195 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                 out.push("the ray hits nothing".into());
             }
         }
+        Ask::ReflectedDirection | Ask::RefractedDirection if n.hit.is_some() => {
+            let h = n.hit.as_ref().unwrap();
+            let (d, nn) = (n.direction, h.normal);
+            out.push(format!(
+                "incoming v = {} (unit), normal n = {} (facing v)",
+                text::vec3(d),
+                text::vec3(nn)
+            ));
+            let vn = d.dot(nn);
+            if ex.ask == Ask::ReflectedDirection {
+                out.push(format!("v·n = {}", text::num(vn)));
+                out.push(format!(
+                    "v' = v − 2(v·n)n = {} − 2·{}·{}",
+                    text::vec3(d),
+                    signed(vn),
+                    text::vec3(nn)
+                ));
+                out.push(format!("   = {}", text::vec3(reflect(d, nn))));
+            } else {
+                let (n1, n2) = match n
+                    .children
+                    .iter()
+                    .find(|c| c.kind == RayKind::Refraction)
+                    .and_then(|c| c.indices)
+                {
+                    Some(i) => (i.n1, i.n2),
+                    None => {
+                        let ior = w
+                            .scene
+                            .materials
+                            .iter()
+                            .find(|m| m.name == h.material)
+                            .map_or(1.0, |m| m.ior);
+                        if h.inside {
+                            (ior, 1.0)
+                        } else {
+                            (1.0, ior)
+                        }
+                    }
+                };
+                let eta = n1 / n2;
+                let c1 = -vn;
+                let k = 1.0 - eta * eta * (1.0 - c1 * c1);
+                out.push(format!(
+                    "{}: n1 = {}, n2 = {}, η = n1/n2 = {}",
+                    if h.inside {
+                        "leaving the solid"
+                    } else {
+                        "entering the solid"
+                    },
+                    text::num(n1),
+                    text::num(n2),
+                    text::num(eta)
+                ));
+                out.push(format!(
+                    "c1 = cos θ1 = −v·n = {}  (θ1 = {}°)",
+                    text::num(c1),
+                    text::num(c1.clamp(-1.0, 1.0).acos().to_degrees())
+                ));
+                out.push(format!("1 − η²(1 − c1²) = {}", text::num(k)));
+                if n1 > n2 {
+                    out.push(format!(
+                        "limiting angle: sin θc = n2/n1 → θc = {}°",
+                        text::num((n2 / n1).asin().to_degrees())
+                    ));
+                }
+                if k < 0.0 {
+                    out.push("negative: no refracted ray — total internal reflection (the energy goes into the mirror ray)".into());
+                } else {
+                    let c2 = k.sqrt();
+                    out.push(format!(
+                        "c2 = cos θ2 = √{} = {}  (θ2 = {}°)",
+                        text::num(k),
+                        text::num(c2),
+                        text::num(c2.acos().to_degrees())
+                    ));
+                    out.push(format!(
+                        "t = η·v + (η·c1 − c2)·n = {}·{} + {}·{}",
+                        text::num(eta),
+                        text::vec3(d),
+                        signed(eta * c1 - c2),
+                        text::vec3(nn)
+                    ));
+                    out.push(format!(
+                        "  = {}",
+                        text::vec3(eta * d + (eta * c1 - c2) * nn)
+                    ));
+                }
+            }
+        }
+        Ask::ShadowFactor | Ask::Diffuse | Ask::Specular
+            if n.local.is_some() && ex.light.is_some() =>
+        {
+            let name = ex.light.as_deref().unwrap();
+            let h = n.hit.as_ref().unwrap();
+            out.push(format!(
+                "hit {} at p = {}, n = {}",
+                h.object,
+                text::vec3(h.point),
+                text::vec3(h.normal)
+            ));
+            let m = w.scene.materials.iter().find(|m| m.name == h.material);
+            let light = w.scene.lights.iter().find(|l| l.name == name);
+            if let (Some(t), Some(m), Some(light)) = (
+                n.local
+                    .as_ref()
+                    .unwrap()
+                    .lights
+                    .iter()
+                    .find(|t| t.light == name),
+                m,
+                light,
+            ) {
+                out.push(format!(
+                    "toward {name}: l = {}, n·l = {}",
+                    text::vec3(t.l),
+                    text::num(t.n_dot_l)
+                ));
+                match &light.kind {
+                    crate::shading::LightKind::Point {
+                        position,
+                        attenuation: [c0, c1, c2],
+                    } => {
+                        let dist = (*position - h.point).length();
+                        out.push(format!("point light at {}: distance d = {}; a shadow ray is blocked by a hit with 0 < t < d", text::vec3(*position), text::num(dist)));
+                        out.push(format!(
+                            "fatt = 1/(c0 + c1·d + c2·d²) = 1/({} + {}·{} + {}·{}²) = {}",
+                            text::num(*c0),
+                            text::num(*c1),
+                            text::num(dist),
+                            text::num(*c2),
+                            text::num(dist),
+                            text::num(t.attenuation)
+                        ));
+                    }
+                    crate::shading::LightKind::Directional { .. } => {
+                        out.push("directional light: a shadow ray is blocked by any hit with t > 0; fatt = 1".into());
+                    }
+                }
+                match (
+                    &t.skipped,
+                    n.children.iter().find(|c| c.light.as_deref() == Some(name)),
+                ) {
+                    (Some(why), _) => out.push(format!(
+                        "no shadow ray: {why}, so the light adds nothing (s = 0)"
+                    )),
+                    (None, Some(sh)) => match &sh.hit {
+                        Some(b) => out.push(format!(
+                            "shadow ray from {} toward l: blocked by {} at t = {} → s = 0",
+                            text::vec3(sh.origin),
+                            b.object,
+                            text::num(b.t)
+                        )),
+                        None => out.push(format!(
+                            "shadow ray from {} toward l: reaches the light → s = 1",
+                            text::vec3(sh.origin)
+                        )),
+                    },
+                    _ => {}
+                }
+                let il = light.intensity;
+                let raw_d = t.attenuation * il * m.kd * m.color * t.n_dot_l.max(0.0);
+                out.push(format!(
+                    "diffuse = s·fatt·Iℓ·kd·O·(n·l) = {}·{}·{}·{}·{}·{} = {}",
+                    text::num(t.shadow),
+                    text::num(t.attenuation),
+                    text::color(il),
+                    text::num(m.kd),
+                    text::color(m.color),
+                    text::num(t.n_dot_l.max(0.0)),
+                    text::color(t.shadow * raw_d)
+                ));
+                let model = if m.highlight == crate::shading::Highlight::Blinn {
+                    "h·n, h = (l + v)/|l + v|"
+                } else {
+                    "r·v, r = 2(n·l)n − l"
+                };
+                out.push(format!(
+                    "specular = s·fatt·Iℓ·ks·({model})^m = {}·{}·{}·{}·{}^{} = {}",
+                    text::num(t.shadow),
+                    text::num(t.attenuation),
+                    text::color(il),
+                    text::num(m.ks),
+                    text::num(t.highlight_cos),
+                    text::num(m.shininess),
+                    text::color(t.specular)
+                ));
+            }
+        }
         Ask::Segments => {
             let name = ex.object.as_deref().unwrap_or("");
             if let Some(o) = w.scene.object_index(name) {
@@ -504,6 +693,15 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
     }
     out.push(format!("answer: {}", w.expected.show()));
     Ok(out)
+}
+
+/// A number ready to follow a minus sign: negative values in parentheses.
+fn signed(x: f64) -> String {
+    if x < 0.0 {
+        format!("({})", text::num(x))
+    } else {
+        text::num(x)
+    }
 }
 
 /// Post-order: every node's intensity from its local term and its children's.

@@ -334,7 +334,16 @@ impl Scene {
         stats.primitives_tested += 1;
         let (t, surface) = match &self.objects[object as usize].geometry {
             Geometry::Leaf(leaf) => {
-                let s = self.leaves[*leaf as usize].span(ray)?;
+                let l = &self.leaves[*leaf as usize];
+                if let (Shape::Sphere(sphere), None) = (&l.shape, &l.transform) {
+                    let t = sphere.hit(ray, t_min, t_max)?;
+                    return Some(Hit {
+                        t,
+                        object,
+                        surface: Surface::new(*leaf, 0),
+                    });
+                }
+                let s = l.span(ray)?;
                 if s.t_in > t_min {
                     (s.t_in, Surface::new(*leaf, s.face_in))
                 } else {
