@@ -12,14 +12,15 @@ pub struct Surface {
     /// Index of the primitive ("leaf") in the compiled scene.
     pub leaf: u32,
     /// Face of the primitive (a box has six, a cylinder three, ...).
-    pub face: u8,
+    /// Face of a primitive, or triangle of a mesh.
+    pub face: u32,
     /// True when the surface is seen from its inside as the boundary of the result, e.g. the
     /// carved-out wall of a difference: its outward normal must be reversed.
     pub flip: bool,
 }
 
 impl Surface {
-    pub fn new(leaf: u32, face: u8) -> Surface {
+    pub fn new(leaf: u32, face: u32) -> Surface {
         Surface {
             leaf,
             face,

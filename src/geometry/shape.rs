@@ -2,7 +2,9 @@
 
 use glam::DVec3;
 
-use super::{Aabox, Cone, Cylinder, Plane, Ray, Sphere, Triangle};
+use std::sync::Arc;
+
+use super::{Aabox, Cone, Cylinder, Mesh, Plane, Ray, Sphere, Triangle};
 use crate::accel::Aabb;
 
 /// Where a ray is inside a convex primitive: one interval with the faces it enters and leaves
@@ -34,6 +36,7 @@ pub enum Shape {
     Cylinder(Cylinder),
     Cone(Cone),
     Triangle(Triangle),
+    Mesh(Arc<Mesh>),
 }
 
 impl Shape {
@@ -46,18 +49,22 @@ impl Shape {
             Shape::Cylinder(s) => s.span(ray),
             Shape::Cone(s) => s.span(ray),
             Shape::Triangle(s) => s.span(ray),
+            // A mesh is not convex, so it has no single span: the scene asks it for its
+            // nearest hit (`Mesh::hit`) or all its crossings (`Mesh::crossings`) instead.
+            Shape::Mesh(_) => None,
         }
     }
 
     /// The outward unit normal (object space) at a point on `face`.
-    pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {
+    pub fn normal(&self, p: DVec3, face: u32) -> DVec3 {
         match self {
             Shape::Sphere(s) => s.normal(p),
             Shape::Plane(s) => s.normal,
-            Shape::Box(s) => s.normal(face),
-            Shape::Cylinder(s) => s.normal(p, face),
-            Shape::Cone(s) => s.normal(p, face),
+            Shape::Box(s) => s.normal(face as u8),
+            Shape::Cylinder(s) => s.normal(p, face as u8),
+            Shape::Cone(s) => s.normal(p, face as u8),
             Shape::Triangle(s) => s.normal(),
+            Shape::Mesh(m) => m.normal(p, face),
         }
     }
 
@@ -71,12 +78,19 @@ impl Shape {
                 .union(&Aabb::around_disc(s.top, s.axis(), s.radius)),
             Shape::Cone(s) => Aabb::around_disc(s.base, s.axis(), s.radius).grow(s.apex),
             Shape::Triangle(s) => Aabb::point(s.a).grow(s.b).grow(s.c),
+            Shape::Mesh(m) => m.bounds(),
         }
     }
 
-    /// A closed solid has an inside, so it can take part in CSG and carry a refractive medium.
+    /// A solid has an inside: a ray can be in it, and it can carry a refractive medium.
+    /// (A closed mesh counts; a single triangle does not.)
     pub fn is_solid(&self) -> bool {
         !matches!(self, Shape::Triangle(_))
+    }
+
+    /// Shapes whose segment list along any ray is one interval can take part in CSG.
+    pub fn is_convex_solid(&self) -> bool {
+        !matches!(self, Shape::Triangle(_) | Shape::Mesh(_))
     }
 
     pub fn kind(&self) -> &'static str {
@@ -87,6 +101,7 @@ impl Shape {
             Shape::Cylinder(_) => "cylinder",
             Shape::Cone(_) => "cone",
             Shape::Triangle(_) => "triangle",
+            Shape::Mesh(_) => "mesh",
         }
     }
 }

@@ -141,10 +141,16 @@ pub fn compile(
         materials.push(material(name, &m.value, pos(m))?);
     }
 
+    let base = source
+        .as_ref()
+        .and_then(|p| p.parent())
+        .map(|p| p.to_path_buf())
+        .unwrap_or_default();
     let mut builder = Builder {
         materials: &material_index,
         leaves: Vec::new(),
         limits,
+        base: &base,
     };
     let mut objects = Vec::new();
     let mut names = HashSet::new();
@@ -419,6 +425,8 @@ struct Builder<'a> {
     materials: &'a BTreeMap<String, u32>,
     leaves: Vec<Leaf>,
     limits: &'a Limits,
+    /// Folder of the scene file: mesh files are found relative to it.
+    base: &'a std::path::Path,
 }
 
 /// Where in an object's CSG tree the builder is.
@@ -479,6 +487,8 @@ impl Builder<'_> {
             spec.cylinder.is_some(),
             spec.cone.is_some(),
             spec.triangle.is_some(),
+            spec.mesh.is_some(),
+            spec.icosphere.is_some(),
             spec.union.is_some(),
             spec.intersection.is_some(),
             spec.difference.is_some(),
@@ -486,7 +496,7 @@ impl Builder<'_> {
         ];
         match shapes.iter().filter(|&&b| b).count() {
             1 => {}
-            0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, union, intersection, difference, complement"),
+            0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, mesh, icosphere, union, intersection, difference, complement"),
             _ => return invalid(p, "more than one shape key in one object: nest them in a union, or write two objects"),
         }
         let csg = [
@@ -519,11 +529,11 @@ impl Builder<'_> {
                 ctx,
             );
         }
-        let shape = shape(spec, p)?;
-        if !top && !shape.is_solid() {
+        let shape = shape(spec, p, self.base)?;
+        if !top && !shape.is_convex_solid() {
             return invalid(
                 p,
-                "a triangle has no inside, so it cannot take part in CSG (use closed solids)",
+                format!("a {} cannot take part in CSG: its segment list is not one interval (use spheres, boxes, cylinders, cones)", shape.kind()),
             );
         }
         ctx.leaf_count += 1;
@@ -605,7 +615,7 @@ fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
     Ok(Transform::new(m))
 }
 
-fn shape(spec: &ObjectSpec, p: Pos) -> Result<Shape, Invalid> {
+fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Invalid> {
     let positive = |r: &Spanned<f64>, what: &str| -> Result<f64, Invalid> {
         if r.value > 0.0 {
             Ok(r.value)
@@ -673,6 +683,26 @@ fn shape(spec: &ObjectSpec, p: Pos) -> Result<Shape, Invalid> {
             );
         }
         return Ok(Shape::Triangle(tri));
+    }
+    if let Some(m) = &spec.mesh {
+        let path = base.join(&m.file.value);
+        let (mesh, _) = crate::geometry::Mesh::load_obj(&path, m.smooth.unwrap_or(true))
+            .or_else(|e| invalid(pos(&m.file), e))?;
+        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+    }
+    if let Some(i) = &spec.icosphere {
+        let k = i.subdivisions.value;
+        if !(0..=8).contains(&k) {
+            return invalid(
+                pos(&i.subdivisions),
+                format!("icosphere subdivisions must be between 0 and 8, got {k}"),
+            );
+        }
+        let mut mesh = crate::geometry::Mesh::icosphere(k as u32);
+        if i.smooth == Some(false) {
+            mesh = crate::geometry::Mesh::new(mesh.positions, vec![], mesh.triangles).0;
+        }
+        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
     }
     invalid(p, "no shape")
 }

@@ -39,19 +39,36 @@ impl Leaf {
     /// The leaf's segment list; its surfaces are named by `id`, its index in the scene.
     pub fn segments(&self, id: u32, ray: &Ray) -> SegmentList {
         let mut list = SegmentList::new();
+        if let Shape::Mesh(mesh) = &self.shape {
+            // Every crossing of a mesh's surface, as a zero-length segment.
+            let local = self
+                .transform
+                .as_ref()
+                .map_or(*ray, |tf| tf.ray_to_local(ray));
+            for (t, face) in mesh.crossings(&local) {
+                let s = Surface::new(id, face);
+                list.push(Segment {
+                    t_in: t,
+                    t_out: t,
+                    enter: s,
+                    exit: s,
+                });
+            }
+            return list;
+        }
         if let Some(s) = self.span(ray) {
             list.push(Segment {
                 t_in: s.t_in,
                 t_out: s.t_out,
-                enter: Surface::new(id, s.face_in),
-                exit: Surface::new(id, s.face_out),
+                enter: Surface::new(id, s.face_in as u32),
+                exit: Surface::new(id, s.face_out as u32),
             });
         }
         list
     }
 
     /// The outward unit normal in world space at a world point on `face`.
-    pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {
+    pub fn normal(&self, p: DVec3, face: u32) -> DVec3 {
         match &self.transform {
             Some(tf) => {
                 tf.normal_to_world(self.shape.normal(tf.to_local.transform_point3(p), face))
@@ -92,6 +109,8 @@ pub struct Interaction {
     /// True when the ray arrives from inside the solid (it is leaving it).
     pub inside: bool,
     pub leaf: u32,
+    /// The leaf's face (a mesh's triangle).
+    pub face: u32,
     pub object: u32,
     pub material: u32,
 }
@@ -335,6 +354,18 @@ impl Scene {
         let (t, surface) = match &self.objects[object as usize].geometry {
             Geometry::Leaf(leaf) => {
                 let l = &self.leaves[*leaf as usize];
+                if let Shape::Mesh(mesh) = &l.shape {
+                    let local = l.transform.as_ref().map_or(*ray, |tf| tf.ray_to_local(ray));
+                    let (hit, visits) = mesh.hit(&local, t_min, t_max);
+                    stats.bvh_nodes_visited += visits.nodes;
+                    stats.primitives_tested += visits.items;
+                    let (t, face) = hit?;
+                    return Some(Hit {
+                        t,
+                        object,
+                        surface: Surface::new(*leaf, face),
+                    });
+                }
                 if let (Shape::Sphere(sphere), None) = (&l.shape, &l.transform) {
                     let t = sphere.hit(ray, t_min, t_max)?;
                     return Some(Hit {
@@ -345,9 +376,9 @@ impl Scene {
                 }
                 let s = l.span(ray)?;
                 if s.t_in > t_min {
-                    (s.t_in, Surface::new(*leaf, s.face_in))
+                    (s.t_in, Surface::new(*leaf, s.face_in as u32))
                 } else {
-                    (s.t_out, Surface::new(*leaf, s.face_out))
+                    (s.t_out, Surface::new(*leaf, s.face_out as u32))
                 }
             }
             Geometry::Csg(_) => first_crossing(
@@ -417,6 +448,7 @@ impl Scene {
             normal,
             inside,
             leaf: hit.surface.leaf,
+            face: hit.surface.face,
             object: hit.object,
             material: leaf.material,
         }

@@ -182,6 +182,24 @@ pub struct ConeSpec {
     pub radius: Spanned<f64>,
 }
 
+/// A triangle mesh from a Wavefront OBJ file (relative to the scene file).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    pub file: Spanned<String>,
+    /// Interpolate the file's vertex normals (default true).
+    pub smooth: Option<bool>,
+}
+
+/// A generated unit sphere mesh: an icosahedron subdivided `subdivisions` times.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IcosphereSpec {
+    pub subdivisions: Spanned<i64>,
+    /// Interpolated vertex normals (default true) or flat facets.
+    pub smooth: Option<bool>,
+}
+
 #[derive(Clone, Debug, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum TransformStep {
@@ -208,6 +226,8 @@ pub struct ObjectSpec {
     pub cylinder: Option<CylinderSpec>,
     pub cone: Option<ConeSpec>,
     pub triangle: Option<Spanned<[DVec3; 3]>>,
+    pub mesh: Option<MeshSpec>,
+    pub icosphere: Option<IcosphereSpec>,
     pub union: Option<Vec<Spanned<ObjectSpec>>>,
     pub intersection: Option<Vec<Spanned<ObjectSpec>>>,
     pub difference: Option<Vec<Spanned<ObjectSpec>>>,

@@ -468,14 +468,14 @@ impl<'s> Tracer<'s> {
     fn hit_info(&self, ray: &Ray, t: f64, si: &Interaction) -> HitInfo {
         let scene = self.scene;
         let leaf = &scene.leaves[si.leaf as usize];
+        let local = || {
+            leaf.transform
+                .as_ref()
+                .map_or(si.point, |tf| tf.to_local.transform_point3(si.point))
+        };
         let barycentric = match &leaf.shape {
-            Shape::Triangle(tri) => {
-                let p = leaf
-                    .transform
-                    .as_ref()
-                    .map_or(si.point, |tf| tf.to_local.transform_point3(si.point));
-                Some(tri.barycentric(p))
-            }
+            Shape::Triangle(tri) => Some(tri.barycentric(local())),
+            Shape::Mesh(mesh) => Some(mesh.triangle(si.face).barycentric(local())),
             _ => None,
         };
         HitInfo {
