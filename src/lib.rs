@@ -1,6 +1,7 @@
 //! raytree: a step-by-step Whitted ray tracer whose every pixel can be inspected as a ray tree.
 
 pub mod accel;
+pub mod bench;
 pub mod cli;
 pub mod geometry;
 pub mod lessons;

@@ -1,6 +1,7 @@
 //! The command line: one module per subcommand; this one parses and dispatches.
 
 mod args;
+mod bench;
 mod check;
 pub mod csg;
 mod explore;
@@ -33,6 +34,8 @@ enum Command {
     Preview(preview::Args),
     /// The terminal explorer: pick a pixel, see its ray tree (no argument: the lesson list).
     Explore(explore::Args),
+    /// Measured sweeps: time per ray against scene size, with and without the BVH.
+    Bench(bench::Args),
     /// List the lessons and their exercises.
     Lessons(lessons::Args),
     /// Check a homework answer against raytree's computation (exit 0 right, 1 wrong).
@@ -57,6 +60,7 @@ pub fn run() -> ExitCode {
         Command::Csg(a) => csg::run(a),
         Command::Preview(a) => preview::run(a),
         Command::Explore(a) => explore::run(a),
+        Command::Bench(a) => bench::run(a),
         Command::Lessons(a) => lessons::run(a),
         Command::Check(a) => check::run(a),
     };

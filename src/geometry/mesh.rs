@@ -102,6 +102,25 @@ impl Mesh {
         (best, visits)
     }
 
+    /// The same as `hit`, testing every triangle (to measure what the BVH saves).
+    pub fn hit_brute(&self, ray: &Ray, t_min: f64, t_max: f64) -> (Option<(f64, u32)>, Visits) {
+        let mut best: Option<(f64, u32)> = None;
+        for i in 0..self.triangles.len() as u32 {
+            if let Some(h) = self.triangle(i).intersect(ray) {
+                if h.t > t_min && h.t < best.map_or(t_max, |b| b.0) {
+                    best = Some((h.t, i));
+                }
+            }
+        }
+        (
+            best,
+            Visits {
+                nodes: 0,
+                items: self.triangles.len() as u64,
+            },
+        )
+    }
+
     /// Every crossing of the ray's line with the surface, in order (for segment-list views).
     pub fn crossings(&self, ray: &Ray) -> Vec<(f64, u32)> {
         let mut all = vec![];

@@ -356,7 +356,10 @@ impl Scene {
                 let l = &self.leaves[*leaf as usize];
                 if let Shape::Mesh(mesh) = &l.shape {
                     let local = l.transform.as_ref().map_or(*ray, |tf| tf.ray_to_local(ray));
-                    let (hit, visits) = mesh.hit(&local, t_min, t_max);
+                    let (hit, visits) = match self.accel {
+                        Accel::Bvh => mesh.hit(&local, t_min, t_max),
+                        Accel::None => mesh.hit_brute(&local, t_min, t_max),
+                    };
                     stats.bvh_nodes_visited += visits.nodes;
                     stats.primitives_tested += visits.items;
                     let (t, face) = hit?;

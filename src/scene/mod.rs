@@ -17,6 +17,13 @@ fn parse_options() -> serde_saphyr::Options {
     let mut options = serde_saphyr::Options::default();
     options.with_snippet = false;
     options.non_finite_float_policy = serde_saphyr::NonFiniteFloatPolicy::Reject;
+    // Scenes with 100 000 objects are legitimate (the BVH scaling sweep); the default budget
+    // stops at 250 000 YAML nodes. Alias bombs and nesting stay bounded by the other limits
+    // (50 000 aliases, depth 64, 256 MiB of input).
+    let mut budget = serde_saphyr::Budget::default();
+    budget.max_nodes = 20_000_000;
+    budget.max_events = 50_000_000;
+    options.budget = Some(budget);
     options
 }
 

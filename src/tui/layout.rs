@@ -1,0 +1,154 @@
+//! Where every pane goes, as a function of the terminal size and what is open. Drawing and
+//! the model (preview resolution, mouse picking) both ask this module, so they always agree.
+
+use ratatui::layout::{Margin, Rect};
+
+/// Terminals at least this wide show the lesson panel as a column of its own.
+pub const WIDE: u16 = 120;
+
+/// The panes of the scene screen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Panes {
+    /// The preview's block (border included).
+    pub preview: Rect,
+    /// The cells the image covers (two pixels per cell, stacked).
+    pub image: Rect,
+    /// The preview image's size in pixels.
+    pub image_px: (u32, u32),
+    pub tree: Rect,
+    /// Node details or the CSG panel (absent when a narrow screen gives it to the lesson).
+    pub lower: Option<Rect>,
+    pub lesson: Option<Rect>,
+    pub status: Rect,
+    pub message: Rect,
+}
+
+/// The largest image of this aspect (width / height) that fits `cols` × 2·`rows` pixels.
+pub fn fit(cols: u16, rows: u16, aspect: f64) -> (u32, u32) {
+    let (max_w, max_h) = (cols as f64, 2.0 * rows as f64);
+    if max_w < 1.0 || max_h < 1.0 || !aspect.is_finite() || aspect <= 0.0 {
+        return (0, 0);
+    }
+    let (mut w, mut h) = (max_w, (max_w / aspect).round());
+    if h > max_h {
+        h = max_h;
+        w = (h * aspect).round().min(max_w);
+    }
+    (w.max(1.0) as u32, h.max(1.0) as u32)
+}
+
+/// The status and message lines at the bottom, and the area above them.
+pub fn bottom_lines(area: Rect) -> (Rect, Rect, Rect) {
+    let main_h = area.height.saturating_sub(2);
+    let main = Rect::new(area.x, area.y, area.width, main_h);
+    let status = Rect::new(area.x, area.y + main_h, area.width, area.height.min(1));
+    let message = Rect::new(
+        area.x,
+        area.y + main_h + 1,
+        area.width,
+        area.height.saturating_sub(1).min(1),
+    );
+    (main, status, message)
+}
+
+/// The scene screen: preview and tree on top, details (or CSG) below, the lesson beside or
+/// below, status and message lines at the bottom.
+pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool) -> Panes {
+    let (main, status, message) = bottom_lines(area);
+    let wide = area.width >= WIDE;
+    let (left, side) = if lesson_open && wide {
+        let lw = (area.width * 2 / 5).max(40);
+        let left = Rect::new(main.x, main.y, main.width - lw, main.height);
+        let side = Rect::new(main.x + left.width, main.y, lw, main.height);
+        (left, Some(side))
+    } else {
+        (main, None)
+    };
+    let top_h = left.height.div_ceil(2);
+    let top = Rect::new(left.x, left.y, left.width, top_h);
+    let bottom = Rect::new(left.x, left.y + top_h, left.width, left.height - top_h);
+    let inner_h = top_h.saturating_sub(2);
+    let wanted = ((2.0 * inner_h as f64 * aspect).round() as u16).saturating_add(2);
+    let pw = wanted.min(left.width * 3 / 5).max(left.width.min(6));
+    let preview = Rect::new(top.x, top.y, pw, top_h);
+    let tree = Rect::new(top.x + pw, top.y, top.width - pw, top_h);
+    let inner = preview.inner(Margin::new(1, 1));
+    let (iw, ih) = fit(inner.width, inner.height, aspect);
+    let cells_h = ih.div_ceil(2) as u16;
+    let image = Rect::new(
+        inner.x + (inner.width - iw as u16) / 2,
+        inner.y + (inner.height - cells_h) / 2,
+        iw as u16,
+        cells_h,
+    );
+    let (lower, lesson) = match (lesson_open, side) {
+        (true, None) => (None, Some(bottom)),
+        (_, side) => (Some(bottom), side),
+    };
+    Panes {
+        preview,
+        image,
+        image_px: (iw, ih),
+        tree,
+        lower,
+        lesson,
+        status,
+        message,
+    }
+}
+
+/// The lesson list screen: the list on the left, the selected lesson's summary on the right.
+pub fn list_panes(area: Rect) -> (Rect, Rect, Rect, Rect) {
+    let (main, status, message) = bottom_lines(area);
+    let lw = (main.width / 2).max(main.width.min(36));
+    let list = Rect::new(main.x, main.y, lw, main.height);
+    let info = Rect::new(main.x + lw, main.y, main.width - lw, main.height);
+    (list, info, status, message)
+}
+
+/// The cell of the image that shows pixel (x, y) of a `w` × `h` scene.
+pub fn pixel_cell(panes: &Panes, (w, h): (u32, u32), (x, y): (u32, u32)) -> Option<(u16, u16)> {
+    let (pw, ph) = panes.image_px;
+    if pw == 0 || ph == 0 || w == 0 || h == 0 {
+        return None;
+    }
+    let px = (x as u64 * pw as u64 / w as u64) as u16;
+    let py = (y as u64 * ph as u64 / h as u64) as u16;
+    Some((panes.image.x + px, panes.image.y + py / 2))
+}
+
+/// The scene pixel under a cell of the image (the centre of the cell's two pixels).
+pub fn cell_pixel(panes: &Panes, (w, h): (u32, u32), col: u16, row: u16) -> Option<(u32, u32)> {
+    let r = panes.image;
+    let (pw, ph) = panes.image_px;
+    if pw == 0 || ph == 0 || col < r.x || row < r.y || col >= r.right() || row >= r.bottom() {
+        return None;
+    }
+    let px = (col - r.x) as f64 + 0.5;
+    let py = (2.0 * (row - r.y) as f64 + 1.0).min(ph as f64 - 0.5);
+    let x = ((px * w as f64 / pw as f64) as u32).min(w - 1);
+    let y = ((py * h as f64 / ph as f64) as u32).min(h - 1);
+    Some((x, y))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_keeps_the_aspect() {
+        assert_eq!(fit(40, 10, 1.0), (20, 20));
+        assert_eq!(fit(40, 30, 4.0 / 3.0), (40, 30));
+        assert_eq!(fit(0, 10, 1.0), (0, 0));
+    }
+
+    #[test]
+    fn picking_a_cell_and_marking_a_pixel_agree() {
+        let p = scene_panes(Rect::new(0, 0, 80, 24), 161.0 / 121.0, false);
+        for (x, y) in [(0, 0), (80, 60), (160, 120), (13, 77)] {
+            let (c, r) = pixel_cell(&p, (161, 121), (x, y)).unwrap();
+            let (x2, y2) = cell_pixel(&p, (161, 121), c, r).unwrap();
+            assert_eq!(pixel_cell(&p, (161, 121), (x2, y2)), Some((c, r)));
+        }
+    }
+}
