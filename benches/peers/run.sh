@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Renders each peer scene with POV-Ray 3.7 and with raytree at equal work (800×600, 16 samples
+# per pixel, depth 5, 2 threads), alternating runs, and prints median wall times and ratios.
+# Usage: benches/peers/run.sh [runs]   (default 5 runs each, after one warm-up)
+set -euo pipefail
+cd "$(dirname "$0")"
+runs=${1:-5}
+peers=../../../shared/peers
+if ! command -v povray >/dev/null 2>&1; then
+    echo "povray not found: install it with 'apt-get install -y povray' to compare (skipping)"
+    exit 0
+fi
+cargo build --release --quiet --manifest-path ../../Cargo.toml
+raytree=../../target/release/raytree
+[ -f many.yaml ] || python3 make_many.py many.yaml
+out=$(mktemp -d)
+wall() { /usr/bin/time -f %e "$@" 2>&1 >/dev/null | tail -1; }
+median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+printf "%-8s %12s %12s %8s\n" scene "POV-Ray s" "raytree s" ratio
+for scene in whitted csg many; do
+    pov=(povray -D -V "+I$peers/$scene.pov" "+O$out/$scene-pov.png" +FN +W800 +H600 +A0.0 +AM1 +R4 -J +WT2)
+    ray=("$raytree" render "$scene.yaml" -o "$out/$scene-raytree.png" --spp 16 --threads 2)
+    wall "${pov[@]}" >/dev/null; wall "${ray[@]}" >/dev/null   # warm-up
+    : > "$out/p"; : > "$out/r"
+    for _ in $(seq "$runs"); do
+        wall "${pov[@]}" >> "$out/p"
+        wall "${ray[@]}" >> "$out/r"
+    done
+    p=$(median < "$out/p"); r=$(median < "$out/r")
+    printf "%-8s %12s %12s %8s\n" "$scene" "$p" "$r" "$(awk "BEGIN {printf \"%.2f\", $r / $p}")"
+done
+echo "images in $out"

@@ -1,0 +1,197 @@
+//! The preview renderer: a thread that renders a draft (a quarter of the resolution) and then
+//! the full preview, so keys never wait for it. A newer job cancels the one running.
+
+use std::sync::atomic::{AtomicBool, AtomicU32, AtomicU64, Ordering};
+use std::sync::mpsc::{channel, Receiver, Sender};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+use crate::render::{render, Image, RenderOptions};
+use crate::scene::Scene;
+use crate::trace::Stats;
+
+/// One preview to render.
+#[derive(Clone)]
+pub struct Job {
+    /// Results of older generations are ignored.
+    pub generation: u64,
+    pub scene: Arc<Scene>,
+    pub depth: u32,
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+}
+
+impl std::fmt::Debug for Job {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Job")
+            .field("generation", &self.generation)
+            .field("depth", &self.depth)
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("spp", &self.spp)
+            .finish()
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pass {
+    /// A quarter of the resolution, one sample per pixel: something to look at at once.
+    Draft,
+    Final,
+}
+
+/// A finished pass.
+#[derive(Clone, Debug)]
+pub struct Done {
+    pub generation: u64,
+    pub pass: Pass,
+    pub image: Image,
+    pub stats: Stats,
+    pub elapsed: Duration,
+}
+
+/// Whether a job is worth a draft pass first.
+pub fn wants_draft(job: &Job) -> bool {
+    job.width as u64 * job.height as u64 >= 2048
+}
+
+/// Renders one pass of a job; None when cancelled.
+pub fn render_pass(
+    job: &Job,
+    pass: Pass,
+    cancel: &AtomicBool,
+    on_row: &(dyn Fn(u32) + Sync),
+) -> Option<Done> {
+    let start = Instant::now();
+    let (w, h, spp) = match pass {
+        Pass::Draft => ((job.width / 4).max(1), (job.height / 4).max(1), 1),
+        Pass::Final => (job.width.max(1), job.height.max(1), job.spp.max(1)),
+    };
+    let mut small = (*job.scene).clone();
+    small.camera = job.scene.camera.resized(w, h);
+    let options = RenderOptions {
+        max_depth: job.depth,
+        spp,
+    };
+    let (image, stats) = render(&small, options, on_row, cancel)?;
+    Some(Done {
+        generation: job.generation,
+        pass,
+        image,
+        stats,
+        elapsed: start.elapsed(),
+    })
+}
+
+/// How far the running job is.
+#[derive(Default)]
+struct Progress {
+    generation: AtomicU64,
+    rows: AtomicU32,
+    total: AtomicU32,
+}
+
+pub struct Worker {
+    jobs: Option<Sender<(Job, Arc<AtomicBool>)>>,
+    results: Receiver<Done>,
+    cancel: Arc<AtomicBool>,
+    progress: Arc<Progress>,
+    handle: Option<JoinHandle<()>>,
+}
+
+impl Worker {
+    pub fn spawn() -> Worker {
+        let (job_tx, job_rx) = channel::<(Job, Arc<AtomicBool>)>();
+        let (done_tx, done_rx) = channel();
+        let progress = Arc::new(Progress::default());
+        let p = Arc::clone(&progress);
+        let handle = std::thread::Builder::new()
+            .name("preview".into())
+            .spawn(move || work(job_rx, done_tx, p))
+            .expect("spawn the preview thread");
+        Worker {
+            jobs: Some(job_tx),
+            results: done_rx,
+            cancel: Arc::new(AtomicBool::new(false)),
+            progress,
+            handle: Some(handle),
+        }
+    }
+
+    /// Starts a job, cancelling the one running.
+    pub fn submit(&mut self, job: Job) {
+        self.cancel.store(true, Ordering::Relaxed);
+        self.cancel = Arc::new(AtomicBool::new(false));
+        if let Some(tx) = &self.jobs {
+            let _ = tx.send((job, Arc::clone(&self.cancel)));
+        }
+    }
+
+    pub fn try_recv(&self) -> Option<Done> {
+        self.results.try_recv().ok()
+    }
+
+    /// Waits for the next finished pass (tests and measurements).
+    pub fn recv_timeout(&self, timeout: Duration) -> Option<Done> {
+        self.results.recv_timeout(timeout).ok()
+    }
+
+    /// (generation, rows done, rows in the pass running).
+    pub fn progress(&self) -> (u64, u32, u32) {
+        (
+            self.progress.generation.load(Ordering::Relaxed),
+            self.progress.rows.load(Ordering::Relaxed),
+            self.progress.total.load(Ordering::Relaxed),
+        )
+    }
+}
+
+impl Drop for Worker {
+    fn drop(&mut self) {
+        self.cancel.store(true, Ordering::Relaxed);
+        self.jobs = None;
+        if let Some(h) = self.handle.take() {
+            let _ = h.join();
+        }
+    }
+}
+
+fn work(jobs: Receiver<(Job, Arc<AtomicBool>)>, done: Sender<Done>, progress: Arc<Progress>) {
+    while let Ok(mut next) = jobs.recv() {
+        // Only the newest job matters.
+        while let Ok(newer) = jobs.try_recv() {
+            next = newer;
+        }
+        let (job, cancel) = next;
+        let passes: &[Pass] = if wants_draft(&job) {
+            &[Pass::Draft, Pass::Final]
+        } else {
+            &[Pass::Final]
+        };
+        for &pass in passes {
+            if cancel.load(Ordering::Relaxed) {
+                break;
+            }
+            let rows = match pass {
+                Pass::Draft => (job.height / 4).max(1),
+                Pass::Final => job.height.max(1),
+            };
+            progress.rows.store(0, Ordering::Relaxed);
+            progress.total.store(rows, Ordering::Relaxed);
+            progress.generation.store(job.generation, Ordering::Relaxed);
+            let on_row = |_| {
+                progress.rows.fetch_add(1, Ordering::Relaxed);
+            };
+            match render_pass(&job, pass, &cancel, &on_row) {
+                Some(d) => {
+                    if done.send(d).is_err() {
+                        return;
+                    }
+                }
+                None => break,
+            }
+        }
+    }
+}
