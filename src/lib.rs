@@ -9,3 +9,4 @@ pub mod render;
 pub mod scene;
 pub mod shading;
 pub mod trace;
+pub mod tui;

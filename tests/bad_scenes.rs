@@ -51,13 +51,29 @@ fn raytree<S: AsRef<OsStr>>(args: &[S]) -> Result<Run, String> {
             String::from_utf8_lossy(&bytes).into_owned()
         })
     };
-    let out = drain(child.stdout.take().map(|p| Box::new(p) as Box<dyn Read + Send>));
-    let err = drain(child.stderr.take().map(|p| Box::new(p) as Box<dyn Read + Send>));
+    let out = drain(
+        child
+            .stdout
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
+    let err = drain(
+        child
+            .stderr
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
     let status_file = format!("/proc/{}/status", child.id());
     let mut peak_kb = 0;
     let status = loop {
-        if let Some(kb) = peak_memory_kb(&status_file) {
-            peak_kb = peak_kb.max(kb);
+        if let Some((resident, peak)) = memory_kb(&status_file) {
+            peak_kb = peak_kb.max(peak);
+            // A blow-up is stopped here rather than left to the machine's OOM killer.
+            if resident > MEMORY_LIMIT_KB {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(format!("memory blow-up: killed at {resident} KiB resident"));
+            }
         }
         match child.try_wait() {
             Ok(Some(status)) => break status,
@@ -79,10 +95,14 @@ fn raytree<S: AsRef<OsStr>>(args: &[S]) -> Result<Run, String> {
     })
 }
 
-fn peak_memory_kb(status_file: &str) -> Option<u64> {
+/// (VmRSS, VmHWM) of a running process, in KiB (Linux only).
+fn memory_kb(status_file: &str) -> Option<(u64, u64)> {
     let status = std::fs::read_to_string(status_file).ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    line.split_whitespace().nth(1)?.parse().ok()
+    let field = |name: &str| -> Option<u64> {
+        let line = status.lines().find(|l| l.starts_with(name))?;
+        line.split_whitespace().nth(1)?.parse().ok()
+    };
+    Some((field("VmRSS:")?, field("VmHWM:")?))
 }
 
 /// What a case expects: where raytree points, and what the message says (and must not say).
@@ -150,7 +170,13 @@ fn message_problems(message: &str) -> Vec<String> {
     if message.trim().is_empty() {
         problems.push("empty message".to_string());
     }
-    for internal in ["DuplicateKeyPolicy", "Options", "from_str", "serde", "saphyr"] {
+    for internal in [
+        "DuplicateKeyPolicy",
+        "Options",
+        "from_str",
+        "serde",
+        "saphyr",
+    ] {
         if message.contains(internal) {
             problems.push(format!(
                 "message mentions the parser's API (`{internal}`), which the user cannot change"
@@ -162,7 +188,9 @@ fn message_problems(message: &str) -> Vec<String> {
     }
     for (open, close) in [('(', ')'), ('[', ']'), ('{', '}')] {
         if message.matches(open).count() != message.matches(close).count() {
-            problems.push(format!("unbalanced `{open}{close}`: the message was cut short"));
+            problems.push(format!(
+                "unbalanced `{open}{close}`: the message was cut short"
+            ));
         }
     }
     problems
@@ -231,7 +259,7 @@ fn corpus() -> Vec<PathBuf> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("tests/bad_scenes exists")
         .map(|e| e.expect("readable directory").path())
-        .filter(|p| p.extension() != Some(OsStr::new("expect")))
+        .filter(|p| p.is_file() && p.extension() != Some(OsStr::new("expect")))
         .collect();
     files.sort();
     files
@@ -240,7 +268,7 @@ fn corpus() -> Vec<PathBuf> {
 #[test]
 fn every_bad_scene_is_refused_with_one_line_naming_line_and_column() {
     let files = corpus();
-    assert!(files.len() >= 80, "only {} cases", files.len());
+    assert!(files.len() >= 90, "only {} cases", files.len());
     let mut failures = vec![];
     for file in &files {
         let name = file.file_name().unwrap().to_string_lossy().into_owned();
@@ -255,7 +283,9 @@ fn every_bad_scene_is_refused_with_one_line_naming_line_and_column() {
         let run = raytree(&["inspect", shown.as_str(), "--pixel", "0,0"]);
         let problems = judge(&shown, &run, &expect);
         if !problems.is_empty() {
-            let got = run.as_ref().map_or_else(|e| e.clone(), |r| excerpt(&r.stderr));
+            let got = run
+                .as_ref()
+                .map_or_else(|e| e.clone(), |r| excerpt(&r.stderr));
             failures.push(format!(
                 "{name}:\n    want {}:{}: {}\n    got  {got}\n    - {}",
                 expect.line,
@@ -381,7 +411,9 @@ fn csg_nested_thousands_deep_is_refused() {
                 }
             };
             if !problems.is_empty() {
-                let got = run.as_ref().map_or_else(|e| e.clone(), |r| excerpt(&r.stderr));
+                let got = run
+                    .as_ref()
+                    .map_or_else(|e| e.clone(), |r| excerpt(&r.stderr));
                 problems.insert(0, format!("{op} {style}: got {got}"));
                 failures.push(problems.join("\n    - "));
             }

@@ -117,7 +117,7 @@ impl CsgNode {
 
     /// The segment list of this subtree along the ray.
     pub fn segments(&self, env: &impl LeafSegments, r: &CsgRay, work: &mut CsgWork) -> SegmentList {
-        self.evaluate::<false>(env, r, work).0
+        self.evaluate::<false>(env, r, work, &mut Vec::new())
     }
 
     /// The segment list, and what happened at every node on the way.
@@ -127,43 +127,48 @@ impl CsgNode {
         r: &CsgRay,
         work: &mut CsgWork,
     ) -> (SegmentList, CsgTrace) {
-        let (list, trace) = self.evaluate::<true>(env, r, work);
-        (list, trace.expect("tracing records every node"))
+        let mut out = Vec::with_capacity(1);
+        let list = self.evaluate::<true>(env, r, work, &mut out);
+        (list, out.pop().expect("tracing records every node"))
     }
 
+    /// The segment list of this subtree; with TRACE, the node's trace is pushed onto `out`
+    /// (the render path passes an empty Vec that is never touched, so it costs nothing).
     fn evaluate<const TRACE: bool>(
         &self,
         env: &impl LeafSegments,
         r: &CsgRay,
         work: &mut CsgWork,
-    ) -> (SegmentList, Option<CsgTrace>) {
+        out: &mut Vec<CsgTrace>,
+    ) -> SegmentList {
         if r.use_bounds && !self.bounds().hit(r.ray, r.inv_dir, r.t_min, r.t_max) {
             work.pruned += 1;
-            return (
-                SegmentList::new(),
-                TRACE.then(|| self.skipped(env, Pruned::Bounds)),
-            );
+            if TRACE {
+                out.push(self.skipped(env, Pruned::Bounds));
+            }
+            return SegmentList::new();
         }
         match self {
             CsgNode::Leaf { leaf, .. } => {
                 work.leaves_tested += 1;
                 let list = env.leaf_segments(*leaf, r.ray);
-                let trace = TRACE.then(|| CsgTrace {
-                    node: env.leaf_name(*leaf),
-                    op: None,
-                    leaf: Some(*leaf),
-                    segments: list.clone(),
-                    pruned: None,
-                    children: vec![],
-                });
-                (list, trace)
+                if TRACE {
+                    out.push(CsgTrace {
+                        node: env.leaf_name(*leaf),
+                        op: None,
+                        leaf: Some(*leaf),
+                        segments: list.clone(),
+                        pruned: None,
+                        children: vec![],
+                    });
+                }
+                list
             }
             CsgNode::Op {
                 op, name, children, ..
             } => {
                 let mut traces = Vec::new();
-                let (mut acc, first) = children[0].evaluate::<TRACE>(env, r, work);
-                traces.extend(first);
+                let mut acc = children[0].evaluate::<TRACE>(env, r, work, &mut traces);
                 if *op == CsgOp::Complement {
                     acc = complement(&acc);
                 }
@@ -181,19 +186,20 @@ impl CsgNode {
                         }
                         continue;
                     }
-                    let (list, trace) = child.evaluate::<TRACE>(env, r, work);
-                    traces.extend(trace);
+                    let list = child.evaluate::<TRACE>(env, r, work, &mut traces);
                     acc = combine(*op, &acc, &list);
                 }
-                let trace = TRACE.then(|| CsgTrace {
-                    node: name.clone(),
-                    op: Some(*op),
-                    leaf: None,
-                    segments: acc.clone(),
-                    pruned: None,
-                    children: traces,
-                });
-                (acc, trace)
+                if TRACE {
+                    out.push(CsgTrace {
+                        node: name.clone(),
+                        op: Some(*op),
+                        leaf: None,
+                        segments: acc.clone(),
+                        pruned: None,
+                        children: traces,
+                    });
+                }
+                acc
             }
         }
     }
@@ -231,20 +237,22 @@ struct Event {
     surface: Surface,
 }
 
-fn events(list: &[Segment]) -> impl Iterator<Item = Event> + '_ {
-    list.iter().flat_map(|s| {
-        [
-            Event {
-                t: s.t_in,
-                entering: true,
-                surface: s.enter,
-            },
-            Event {
-                t: s.t_out,
-                entering: false,
-                surface: s.exit,
-            },
-        ]
+/// Boundary k of a list: segment k/2's entry (k even) or exit (k odd).
+#[inline]
+fn event(list: &[Segment], k: usize) -> Option<Event> {
+    let s = list.get(k / 2)?;
+    Some(if k % 2 == 0 {
+        Event {
+            t: s.t_in,
+            entering: true,
+            surface: s.enter,
+        }
+    } else {
+        Event {
+            t: s.t_out,
+            entering: false,
+            surface: s.exit,
+        }
     })
 }
 
@@ -252,37 +260,32 @@ fn events(list: &[Segment]) -> impl Iterator<Item = Event> + '_ {
 /// same t are applied together before the result is compared with its state before, so
 /// touching segments merge and zero-thickness results never appear.
 pub fn combine(op: CsgOp, a: &[Segment], b: &[Segment]) -> SegmentList {
-    let ea: smallvec::SmallVec<[Event; 8]> = events(a).collect();
-    let eb: smallvec::SmallVec<[Event; 8]> = events(b).collect();
     let (mut i, mut j) = (0, 0);
     let (mut in_a, mut in_b) = (false, false);
     let mut out = SegmentList::new();
     let mut open: Option<(f64, Surface)> = None;
-    while i < ea.len() || j < eb.len() {
-        let t = match (ea.get(i), eb.get(j)) {
+    loop {
+        let (ea, eb) = (event(a, i), event(b, j));
+        let t = match (ea, eb) {
             (Some(x), Some(y)) => x.t.min(y.t),
             (Some(x), None) => x.t,
             (None, Some(y)) => y.t,
-            (None, None) => unreachable!(),
+            (None, None) => break,
         };
         let before = op.keeps(in_a, in_b);
         // The surface the result crosses here, preferring A's boundary, then B's. B's surfaces
         // bound a difference from the other side: flip them.
         let mut candidates: smallvec::SmallVec<[(bool, Surface); 4]> = smallvec::SmallVec::new();
-        while i < ea.len() && ea[i].t == t {
-            in_a = ea[i].entering;
-            candidates.push((ea[i].entering, ea[i].surface));
+        while let Some(e) = event(a, i).filter(|e| e.t == t) {
+            in_a = e.entering;
+            candidates.push((e.entering, e.surface));
             i += 1;
         }
-        while j < eb.len() && eb[j].t == t {
-            in_b = eb[j].entering;
+        while let Some(e) = event(b, j).filter(|e| e.t == t) {
+            in_b = e.entering;
             let flip = op == CsgOp::Difference;
-            let s = if flip {
-                eb[j].surface.flipped()
-            } else {
-                eb[j].surface
-            };
-            candidates.push((eb[j].entering != flip, s));
+            let s = if flip { e.surface.flipped() } else { e.surface };
+            candidates.push((e.entering != flip, s));
             j += 1;
         }
         let after = op.keeps(in_a, in_b);

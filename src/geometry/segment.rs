@@ -44,8 +44,9 @@ pub struct Segment {
     pub exit: Surface,
 }
 
-/// Ordered, non-overlapping segments along a ray. Most lists hold one or two segments.
-pub type SegmentList = SmallVec<[Segment; 4]>;
+/// Ordered, non-overlapping segments along a ray. Most lists hold one or two segments, so two
+/// live inline (larger inline lists cost more in copies than they save in allocations).
+pub type SegmentList = SmallVec<[Segment; 2]>;
 
 /// The nearest surface crossing strictly after `t_min`: the first segment end past it.
 pub fn first_crossing(list: &[Segment], t_min: f64) -> Option<(f64, Surface)> {

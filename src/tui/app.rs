@@ -349,7 +349,7 @@ impl App {
     }
 
     /// Opens the lesson list of a given lessons folder.
-    pub fn open_list(root: &Path, color: ColorMode) -> App {
+    pub fn open_lessons(root: &Path, color: ColorMode) -> App {
         let mut app = App::empty(color);
         app.screen = Screen::Lessons;
         app.list = Some(LessonList::load(root));
@@ -507,10 +507,7 @@ impl App {
             let k = k.clamp(1, self.depth);
             self.level = Some(k);
             self.partials = (1..=self.depth)
-                .map(|d| {
-                    Tracer::with_depth(&scene, d)
-                        .radiance(&ray, &mut Stats::default())
-                })
+                .map(|d| Tracer::with_depth(&scene, d).radiance(&ray, &mut Stats::default()))
                 .collect();
             self.level_tree =
                 Some(Tracer::with_depth(&scene, k).inspect(&ray, &mut Stats::default()));
@@ -519,15 +516,19 @@ impl App {
             self.level_tree = None;
         }
         let shown = self.shown_tree().expect("a tree was just traced");
-        self.open = if self.level.is_some() {
+        let open = if self.level.is_some() {
             tree::all_parents(shown)
         } else {
             tree::default_open(shown)
         };
-        self.selected = tree::valid_prefix(shown, &self.selected);
+        let selected = tree::valid_prefix(shown, &self.selected);
+        self.open = open;
+        self.selected = selected;
         // A selected node inside a closed parent is shown through its parent.
         while !self.selected.is_empty()
-            && !self.open.contains(&self.selected[..self.selected.len() - 1].to_vec())
+            && !self
+                .open
+                .contains(&self.selected[..self.selected.len() - 1])
         {
             self.selected.pop();
         }
@@ -561,7 +562,11 @@ impl App {
             lines.push(CsgLine {
                 node: path.clone(),
                 header: true,
-                text: format!("{name} {} → {}", text::vec3(ray.origin), text::vec3(ray.dir)),
+                text: format!(
+                    "{name} {} → {}",
+                    text::vec3(ray.origin),
+                    text::vec3(ray.dir)
+                ),
             });
             let traces = scene.csg_traces(&ray, false);
             if traces.is_empty() {
@@ -674,7 +679,11 @@ impl App {
         let f = self.focusable();
         let i = f.iter().position(|&x| x == self.focus).unwrap_or(0);
         let n = f.len();
-        self.focus = f[if forward { (i + 1) % n } else { (i + n - 1) % n }];
+        self.focus = f[if forward {
+            (i + 1) % n
+        } else {
+            (i + n - 1) % n
+        }];
     }
 
     fn tree_step(&mut self, delta: i64) {
@@ -782,10 +791,7 @@ impl App {
         if let Some(s) = &ex.scene {
             note.push_str(&format!(" (scene {s})"));
         }
-        self.message = Some((
-            format!("{note} · Enter: answer · Esc: back"),
-            Tone::Info,
-        ));
+        self.message = Some((format!("{note} · Enter: answer · Esc: back"), Tone::Info));
     }
 
     fn answer(&mut self, exercise: usize, given: String) {
@@ -983,7 +989,11 @@ impl App {
 
     fn level_message(&mut self) {
         let Some(k) = self.level else { return };
-        let i = self.partials.get(k as usize - 1).copied().unwrap_or_default();
+        let i = self
+            .partials
+            .get(k as usize - 1)
+            .copied()
+            .unwrap_or_default();
         let mut s = format!("level {k} of {}: I = {}", self.depth, text::color(i));
         if k > 1 {
             let before = self.partials[k as usize - 2];
@@ -1031,12 +1041,12 @@ pub fn update(app: &mut App, msg: Msg) {
         }
         Msg::ToggleHelp => app.show_help = !app.show_help,
         Msg::Input(c) => match &mut app.prompt {
-            Some(Prompt::Goto(s)) | Some(Prompt::Answer { text: s, .. }) => {
-                if s.chars().count() < 200 {
-                    s.push(c);
-                }
+            Some(Prompt::Goto(s)) | Some(Prompt::Answer { text: s, .. })
+                if s.chars().count() < 200 =>
+            {
+                s.push(c)
             }
-            None => {}
+            _ => {}
         },
         Msg::Backspace => match &mut app.prompt {
             Some(Prompt::Goto(s)) | Some(Prompt::Answer { text: s, .. }) => {
@@ -1122,7 +1132,7 @@ pub fn update(app: &mut App, msg: Msg) {
                 };
                 let sel = app.selected.clone();
                 let mut keep = sel.clone();
-                while !keep.is_empty() && !app.open.contains(&keep[..keep.len() - 1].to_vec()) {
+                while !keep.is_empty() && !app.open.contains(&keep[..keep.len() - 1]) {
                     keep.pop();
                 }
                 app.select(keep);

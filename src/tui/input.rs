@@ -61,7 +61,9 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
     if app.screen == Screen::Lessons {
         return match k.code {
             KeyCode::Char('q') => Some(Msg::Quit),
-            KeyCode::Esc => Some(Msg::Cancel).filter(|_| app.scene.is_some()).or(Some(Msg::Quit)),
+            KeyCode::Esc => Some(Msg::Cancel)
+                .filter(|_| app.scene.is_some())
+                .or(Some(Msg::Quit)),
             KeyCode::Char('?') => Some(Msg::ToggleHelp),
             KeyCode::Up | KeyCode::Char('k') => Some(Msg::Up),
             KeyCode::Down | KeyCode::Char('j') => Some(Msg::Down),
@@ -77,9 +79,10 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
         KeyCode::Char('q') => return Some(Msg::Quit),
         KeyCode::Esc => {
             let in_exercises = app.focus == Focus::Lesson
-                && app.lesson.as_ref().is_some_and(|l| {
-                    l.open && l.view == super::app::LessonView::Exercises
-                });
+                && app
+                    .lesson
+                    .as_ref()
+                    .is_some_and(|l| l.open && l.view == super::app::LessonView::Exercises);
             return Some(if in_exercises { Msg::Cancel } else { Msg::Quit });
         }
         KeyCode::Char('?') => return Some(Msg::ToggleHelp),

@@ -1,0 +1,124 @@
+//! The terminal explorer (`raytree explore`): pick a pixel of the preview, see its ray tree,
+//! every term of every intensity, the CSG segment lists, depth by depth, beside a lesson.
+//!
+//! Headless core: one `App` model, a `Msg` enum and `update` (app.rs); keys to messages
+//! (input.rs); drawing as pure functions of `&App`, one per pane (ui/); the preview renderer on
+//! its own thread (worker.rs); terminal setup and restore (terminal.rs). Everything but the
+//! last two runs without a terminal, which is how tests/explorer.rs drives it.
+
+pub mod app;
+pub mod input;
+pub mod layout;
+pub mod terminal;
+pub mod tree;
+pub mod ui;
+pub mod worker;
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+pub use app::{update, App, Msg};
+
+use crate::render::preview::ColorMode;
+
+/// How the explorer starts.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// A scene file or a lesson folder; None opens the lesson list.
+    pub target: Option<PathBuf>,
+    /// Force the ASCII preview.
+    pub ascii: bool,
+    pub pixel: Option<[u32; 2]>,
+    pub depth: Option<u32>,
+}
+
+/// Runs the explorer until the user quits.
+pub fn run(options: Options) -> Result<(), String> {
+    if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
+        return Err(
+            "explore needs a terminal (use `raytree inspect` or `raytree preview` in scripts)"
+                .into(),
+        );
+    }
+    let color = if options.ascii {
+        ColorMode::Ascii
+    } else {
+        ColorMode::detect()
+    };
+    let mut app = App::open(options.target.as_deref(), color)?;
+    if let Some(d) = options.depth {
+        if !(1..=app::MAX_DEPTH).contains(&d) {
+            return Err(format!(
+                "--depth must be between 1 and {}, got {d}",
+                app::MAX_DEPTH
+            ));
+        }
+        app = app.with_depth(d);
+    }
+    if let Some([x, y]) = options.pixel {
+        let (w, h) = app.image_size();
+        if x >= w || y >= h {
+            return Err(format!("pixel {x},{y} is outside the {w} × {h} image"));
+        }
+        update(&mut app, Msg::Pick(x, y));
+    }
+    let mut guard = terminal::setup().map_err(|e| format!("cannot set up the terminal: {e}"))?;
+    let result = event_loop(&mut guard.term, &mut app);
+    drop(guard);
+    result.map_err(|e| format!("terminal error: {e}"))
+}
+
+fn event_loop(term: &mut terminal::Term, app: &mut App) -> std::io::Result<()> {
+    use crossterm::event;
+    let mut worker = worker::Worker::spawn();
+    let size = term.size()?;
+    update(app, Msg::Resize(size.width, size.height));
+    let mut last_tick = Instant::now();
+    let mut last_progress = (0, 0, 0);
+    let mut dirty = true;
+    while !app.quit {
+        if let Some(job) = app.take_job() {
+            worker.submit(job);
+        }
+        if dirty {
+            term.draw(|f| ui::draw(f, app))?;
+            dirty = false;
+        }
+        let timeout = app::WATCH_INTERVAL
+            .saturating_sub(last_tick.elapsed())
+            .min(Duration::from_millis(40));
+        if event::poll(timeout)? {
+            // Handle everything queued before drawing again (key repeat, mouse drags).
+            loop {
+                let ev = event::read()?;
+                if let Some(msg) = input::event(app, &ev) {
+                    update(app, msg);
+                }
+                dirty = true;
+                if app.quit || !event::poll(Duration::ZERO)? {
+                    break;
+                }
+            }
+        }
+        while let Some(done) = worker.try_recv() {
+            update(app, Msg::Rendered(done));
+            dirty = true;
+        }
+        let progress = worker.progress();
+        if progress != last_progress {
+            last_progress = progress;
+            update(app, Msg::Progress(progress.0, progress.1, progress.2));
+            dirty = true;
+        }
+        if last_tick.elapsed() >= app::WATCH_INTERVAL {
+            last_tick = Instant::now();
+            let before = (app.error.clone(), app.preview.generation);
+            update(app, Msg::Tick);
+            if before != (app.error.clone(), app.preview.generation) {
+                dirty = true;
+            }
+        }
+    }
+    Ok(())
+}

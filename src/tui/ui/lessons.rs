@@ -1,0 +1,101 @@
+//! The lesson list (`raytree explore` without an argument).
+
+use ratatui::layout::{Margin, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::Line;
+use ratatui::widgets::{Block, Paragraph};
+use ratatui::Frame;
+
+use super::{themed, wrap};
+use crate::tui::app::{list_offset, App};
+use crate::tui::layout::list_panes;
+
+pub fn draw(f: &mut Frame, app: &App, area: Rect) {
+    let (list_area, info_area, status, message) = list_panes(area);
+    let Some(list) = &app.list else { return };
+    let inner = list_area.inner(Margin::new(1, 1));
+    let off = list_offset(list.selected, inner.height as usize);
+    let mut lines = Vec::new();
+    for (i, e) in list
+        .entries
+        .iter()
+        .enumerate()
+        .skip(off)
+        .take(inner.height as usize)
+    {
+        let name = e
+            .dir
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+        let title = match &e.lesson {
+            Ok(l) => l.title.clone(),
+            Err(_) => "(does not load)".into(),
+        };
+        let sel = i == list.selected;
+        let style = if sel {
+            Style::new().bg(Color::Blue).add_modifier(Modifier::BOLD)
+        } else {
+            Style::new()
+        };
+        lines.push(Line::styled(
+            format!("{} {name:<22} {title}", if sel { "▶" } else { " " }),
+            themed(app, style),
+        ));
+    }
+    let block = Block::bordered()
+        .title(format!(" lessons in {} ", list.root.display()))
+        .border_style(themed(app, Style::new().fg(Color::Cyan)));
+    f.render_widget(Paragraph::new(lines).block(block), list_area);
+
+    let w = info_area.width.saturating_sub(2) as usize;
+    let mut info: Vec<Line> = Vec::new();
+    if let Some(e) = list.entries.get(list.selected) {
+        match &e.lesson {
+            Ok(l) => {
+                info.push(Line::styled(
+                    l.title.clone(),
+                    themed(
+                        app,
+                        Style::new().add_modifier(Modifier::BOLD).fg(Color::Yellow),
+                    ),
+                ));
+                info.push(Line::from(""));
+                for p in wrap(&l.summary, w) {
+                    info.push(Line::from(p));
+                }
+                info.push(Line::from(""));
+                info.push(Line::from(format!("{} exercises:", l.exercises.len())));
+                for ex in &l.exercises {
+                    info.push(Line::from(format!("  {}", ex.id)));
+                }
+            }
+            Err(err) => {
+                for p in wrap(err, w) {
+                    info.push(Line::styled(p, themed(app, Style::new().fg(Color::Red))));
+                }
+            }
+        }
+    }
+    f.render_widget(
+        Paragraph::new(info).block(Block::bordered().title(" lesson ")),
+        info_area,
+    );
+    let hint = "↑↓/jk choose · Enter open · ? help · q quit";
+    f.buffer_mut().set_string(
+        status.x,
+        status.y,
+        format!(" raytree explore · {} lessons", list.entries.len()),
+        themed(app, Style::new().add_modifier(Modifier::REVERSED)),
+    );
+    let (text, style) = match &list.error {
+        Some(e) => (e.as_str(), Style::new().fg(Color::Red)),
+        None => (hint, Style::new().fg(Color::DarkGray)),
+    };
+    f.buffer_mut().set_stringn(
+        message.x,
+        message.y,
+        text,
+        message.width as usize,
+        themed(app, style),
+    );
+}

@@ -1,0 +1,94 @@
+//! The preview pane: the scene in half-block cells (upper pixel as foreground of ▀, lower as
+//! background), 256 colours, or an ASCII ramp; the picked pixel marked.
+
+use ratatui::layout::Alignment;
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::Line;
+use ratatui::Frame;
+
+use super::{pane, themed};
+use crate::render::preview::{ramp_char, ColorMode};
+use crate::tui::app::{App, Focus};
+use crate::tui::layout::{pixel_cell, Panes};
+use crate::tui::worker::Pass;
+
+pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
+    let (w, h) = app.image_size();
+    let title = format!(" preview {}×{} ", p.image_px.0, p.image_px.1);
+    let note = if app.preview.running || app.preview.pass == Some(Pass::Draft) {
+        " rendering… "
+    } else {
+        ""
+    };
+    let block = pane(app, title, Some(Focus::Preview))
+        .title_bottom(Line::from(note).alignment(Alignment::Right));
+    f.render_widget(block, p.preview);
+    let buf = f.buffer_mut();
+    let r = p.image;
+    let (pw, ph) = p.image_px;
+    let Some(img) = &app.preview.image else {
+        let msg = "rendering…";
+        if r.width as usize >= msg.len() && r.height > 0 {
+            buf.set_string(
+                r.x + (r.width - msg.len() as u16) / 2,
+                r.y + r.height / 2,
+                msg,
+                Style::new(),
+            );
+        }
+        return;
+    };
+    if pw == 0 || ph == 0 || img.width == 0 || img.height == 0 {
+        return;
+    }
+    // The image may be a draft or from before a resize: sample it at the pane's resolution.
+    let sample = |px: u32, py: u32| {
+        let ix = (px as u64 * img.width as u64 / pw as u64) as u32;
+        let iy = (py as u64 * img.height as u64 / ph as u64) as u32;
+        img.get(ix.min(img.width - 1), iy.min(img.height - 1))
+    };
+    for cy in 0..r.height {
+        for cx in 0..r.width {
+            let (px, py) = (cx as u32, 2 * cy as u32);
+            let top = sample(px, py);
+            let bottom = (py + 1 < ph).then(|| sample(px, py + 1));
+            let cell = &mut buf[(r.x + cx, r.y + cy)];
+            match app.color {
+                ColorMode::Ascii => {
+                    let c = bottom.map_or(top, |b| 0.5 * (top + b));
+                    cell.set_char(ramp_char(c));
+                }
+                _ => {
+                    cell.set_char('▀');
+                    cell.set_fg(super::term_color(app, top).unwrap_or(Color::Reset));
+                    cell.set_bg(
+                        bottom
+                            .and_then(|b| super::term_color(app, b))
+                            .unwrap_or(Color::Reset),
+                    );
+                }
+            }
+        }
+    }
+    if w > 0 && h > 0 {
+        if let Some((cx, cy)) = pixel_cell(p, (w, h), app.cursor) {
+            if r.contains(ratatui::layout::Position::new(cx, cy)) {
+                let cell = &mut buf[(cx, cy)];
+                let style = themed(
+                    app,
+                    Style::new()
+                        .fg(Color::Black)
+                        .bg(Color::Yellow)
+                        .add_modifier(Modifier::BOLD),
+                );
+                if app.color == ColorMode::Ascii {
+                    cell.set_char('X');
+                    cell.set_style(style.add_modifier(Modifier::REVERSED));
+                } else {
+                    cell.set_char('+');
+                    cell.set_style(style);
+                }
+            }
+        }
+    }
+}

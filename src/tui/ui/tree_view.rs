@@ -1,0 +1,92 @@
+//! The ray tree pane: one line per ray, with its kind, what it hit (or why it stopped), its
+//! intensity and a swatch of that intensity.
+
+use ratatui::layout::{Alignment, Rect};
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::Paragraph;
+use ratatui::Frame;
+
+use super::{pane, position_note, swatch, themed};
+use crate::trace::RayKind;
+use crate::tui::app::{App, Focus};
+use crate::tui::tree::{self, label, short_color};
+
+pub fn draw(f: &mut Frame, app: &App, area: Rect) {
+    let (x, y) = app.cursor;
+    let title = match app.level {
+        Some(k) => format!(" ray tree · pixel {x},{y} · level {k} of {} ", app.depth),
+        None => format!(" ray tree · pixel {x},{y} · depth {} ", app.depth),
+    };
+    let Some(root) = app.shown_tree() else {
+        f.render_widget(
+            Paragraph::new("no scene").block(pane(app, title, Some(Focus::Tree))),
+            area,
+        );
+        return;
+    };
+    let rows = app.rows();
+    let body = app.tree_body_height();
+    let start = app.tree_offset.min(rows.len());
+    let shown = &rows[start..(start + body).min(rows.len())];
+    let mut block = pane(app, title, Some(Focus::Tree));
+    if let Some(note) = position_note(start, shown.len(), rows.len()) {
+        block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
+    }
+    let mut lines: Vec<Line> = Vec::new();
+    if let Some(k) = app.level {
+        let mut spans = vec![Span::styled(
+            "levels:",
+            themed(app, Style::new().fg(Color::Yellow)),
+        )];
+        for (i, c) in app.partials.iter().enumerate().take(k as usize) {
+            spans.push(Span::raw(format!(" {}: {}", i + 1, short_color(*c))));
+            if i + 1 < k as usize {
+                spans.push(Span::raw(" →"));
+            }
+        }
+        lines.push(Line::from(spans));
+    }
+    for row in shown {
+        let n = tree::node_at(root, &row.path).expect("row of this tree");
+        let selected = row.path == app.selected;
+        let icon = match (row.has_children, row.open) {
+            (true, true) => "▾ ",
+            (true, false) => "▸ ",
+            _ => "· ",
+        };
+        let mut spans = vec![
+            Span::raw(if selected { "▶" } else { " " }),
+            Span::styled(
+                row.guides.clone(),
+                themed(app, Style::new().fg(Color::DarkGray)),
+            ),
+            Span::raw(icon),
+        ];
+        let kind_color = match n.kind {
+            RayKind::Primary => Color::White,
+            RayKind::Shadow => Color::DarkGray,
+            RayKind::Reflection => Color::Cyan,
+            RayKind::Refraction => Color::Magenta,
+        };
+        spans.push(Span::styled(
+            label(n),
+            themed(app, Style::new().fg(kind_color)),
+        ));
+        if n.kind != RayKind::Shadow {
+            spans.push(Span::raw(format!("  I = {} ", short_color(n.color))));
+            spans.push(swatch(app, n.color));
+        }
+        let mut line = Line::from(spans);
+        if selected {
+            let style = if app.focus == Focus::Tree {
+                Style::new().bg(Color::Blue).add_modifier(Modifier::BOLD)
+            } else {
+                Style::new().add_modifier(Modifier::BOLD)
+            };
+            line = line.style(themed(app, style));
+        }
+        lines.push(line);
+    }
+    f.render_widget(Paragraph::new(lines).block(block), area);
+}
