@@ -132,6 +132,9 @@ impl Mesh {
                 None
             });
         all.sort_by(|a, b| a.0.total_cmp(&b.0));
+        // A ray through a shared edge or vertex may be reported by every triangle that meets
+        // there (the watertight test never misses, but can answer twice): one crossing.
+        all.dedup_by(|b, a| (b.0 - a.0).abs() <= 1e-12 * a.0.abs().max(1.0));
         all
     }
 

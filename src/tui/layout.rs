@@ -69,7 +69,12 @@ pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool) -> Panes {
     let bottom = Rect::new(left.x, left.y + top_h, left.width, left.height - top_h);
     let inner_h = top_h.saturating_sub(2);
     let wanted = ((2.0 * inner_h as f64 * aspect).round() as u16).saturating_add(2);
-    let pw = wanted.min(left.width * 3 / 5).max(left.width.min(6));
+    let cap = if side.is_some() {
+        left.width / 2
+    } else {
+        left.width * 3 / 5
+    };
+    let pw = wanted.min(cap).max(left.width.min(6));
     let preview = Rect::new(top.x, top.y, pw, top_h);
     let tree = Rect::new(top.x + pw, top.y, top.width - pw, top_h);
     let inner = preview.inner(Margin::new(1, 1));

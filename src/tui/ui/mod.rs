@@ -133,14 +133,21 @@ pub(crate) fn width(s: &str) -> usize {
 /// Word-wraps a line to `max` cells; continuation lines keep the line's indentation (plus
 /// two cells), so wrapped formulas stay readable.
 pub fn wrap(line: &str, max: usize) -> Vec<String> {
+    let indent_len = line.len() - line.trim_start().len();
+    let hang = " ".repeat((indent_len + 2).min(max / 2));
+    wrap_hang(line, max, &hang)
+}
+
+/// Word-wraps a line to `max` cells, starting continuation lines with `hang`.
+pub fn wrap_hang(line: &str, max: usize, hang: &str) -> Vec<String> {
     if max == 0 {
         return vec![];
     }
     if width(line) <= max {
         return vec![line.to_string()];
     }
+    let hang = if width(hang) > max / 2 { "" } else { hang };
     let indent_len = line.len() - line.trim_start().len();
-    let hang = " ".repeat((indent_len + 2).min(max / 2));
     let mut out = Vec::new();
     let mut cur = line[..indent_len].to_string();
     let mut cur_w = width(&cur);
@@ -150,7 +157,7 @@ pub fn wrap(line: &str, max: usize) -> Vec<String> {
         let sep = if at_start { 0 } else { 1 };
         if !at_start && cur_w + sep + ww > max {
             out.push(std::mem::take(&mut cur));
-            cur = hang.clone();
+            cur = hang.to_string();
             cur_w = width(&cur);
             at_start = true;
         }
@@ -169,7 +176,7 @@ pub fn wrap(line: &str, max: usize) -> Vec<String> {
             let cw = width(ch.encode_utf8(&mut [0; 4]));
             if cur_w + cw > max {
                 out.push(std::mem::take(&mut cur));
-                cur = hang.clone();
+                cur = hang.to_string();
                 cur_w = width(&cur);
             }
             cur.push(ch);

@@ -1,0 +1,710 @@
+//! In-process fuzzing of the scene parser and, for what it accepts, the renderer (cargo-fuzz
+//! is not available offline, so proptest generates the inputs).
+//!
+//! Three generators: random bytes, a soup of YAML and scene tokens, and mutations of the
+//! lesson and example scenes (byte flips, deletions, insertions, duplicated / deleted / swapped
+//! lines, numbers replaced by extreme values). For every input:
+//! * `scene::parse` must not panic;
+//! * an error is one line, with line ≥ 1 and column ≥ 1, inside the text;
+//! * an accepted scene renders at 8 × 6 without a panic and without a NaN pixel.
+//!
+//! The seed is fixed, so a run is deterministic. `PROPTEST_CASES=N` sets the number of inputs
+//! per generator (default below, sized to stay well under 20 s in the test profile). Every
+//! distinct finding is collected, minimised by deleting lines, and reported together.
+
+use std::collections::BTreeMap;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Mutex, Once};
+use std::time::{Duration, Instant};
+
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+use raytree::render::{render_simple, RenderOptions};
+use raytree::scene::{parse, Limits};
+
+const DEFAULT_CASES: u32 = 4000;
+const SEED: [u8; 32] = *b"raytree fuzz_parse seed, fixed.!";
+/// A single input taking longer than this to parse and render is a finding.
+const SLOW: Duration = Duration::from_secs(3);
+
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(DEFAULT_CASES)
+}
+
+fn runner() -> TestRunner {
+    let config = Config {
+        cases: cases(),
+        failure_persistence: None,
+        ..Config::default()
+    };
+    TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &SEED))
+}
+
+// ---------------------------------------------------------------------------------------
+// Catching panics quietly, with their location, also from rayon's worker threads.
+
+static LAST_PANIC: Mutex<Option<String>> = Mutex::new(None);
+/// Set while an input is checked: only those panics are caught quietly.
+static CAPTURING: AtomicBool = AtomicBool::new(false);
+/// The panic hook is process-wide: the fuzz tests take turns.
+static EXCLUSIVE: Mutex<()> = Mutex::new(());
+
+fn quiet_panics() {
+    static HOOK: Once = Once::new();
+    HOOK.call_once(|| {
+        let default = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !CAPTURING.load(Ordering::SeqCst) {
+                return default(info);
+            }
+            let message = info
+                .payload()
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| info.payload().downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "(non-string payload)".into());
+            let at = info
+                .location()
+                .map_or_else(String::new, |l| format!("{}:{}", l.file(), l.line()));
+            let mut last = LAST_PANIC.lock().unwrap_or_else(|e| e.into_inner());
+            *last = Some(format!("panic at {at}: {message}"));
+        }));
+    });
+}
+
+fn take_panic() -> String {
+    LAST_PANIC
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .take()
+        .unwrap_or_else(|| "panic".into())
+}
+
+// ---------------------------------------------------------------------------------------
+// The property.
+
+/// What went wrong with one input: a signature that groups equal findings, and a detail.
+#[derive(Debug)]
+struct Finding {
+    signature: String,
+    detail: String,
+}
+
+fn finding(signature: impl Into<String>, detail: impl Into<String>) -> Finding {
+    Finding {
+        signature: signature.into(),
+        detail: detail.into(),
+    }
+}
+
+/// Digits vary between otherwise equal findings.
+fn generalise(s: &str) -> String {
+    let mut out = String::new();
+    for c in s.chars().take(160) {
+        if c.is_ascii_digit() {
+            if !out.ends_with('#') {
+                out.push('#');
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// The lines of `text` as YAML counts them (`\r\n`, `\n` and a lone `\r` end a line), in bytes.
+fn line_lengths(text: &str) -> Vec<usize> {
+    let mut lengths = vec![0];
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\r' if bytes.get(i + 1) == Some(&b'\n') => {
+                lengths.push(0);
+                i += 1;
+            }
+            b'\n' | b'\r' => lengths.push(0),
+            _ => *lengths.last_mut().unwrap() += 1,
+        }
+        i += 1;
+    }
+    lengths
+}
+
+#[derive(Default)]
+struct Outcome {
+    accepted: bool,
+    infinite_pixels: bool,
+}
+
+fn check(text: &str) -> Result<Outcome, Finding> {
+    CAPTURING.store(true, Ordering::SeqCst);
+    let result = check_quietly(text);
+    CAPTURING.store(false, Ordering::SeqCst);
+    result
+}
+
+fn check_quietly(text: &str) -> Result<Outcome, Finding> {
+    let start = Instant::now();
+    let result = catch_unwind(AssertUnwindSafe(|| {
+        parse(text, "fuzz.yaml", None, &Limits::default())
+    }));
+    let parsed = match result {
+        Ok(parsed) => parsed,
+        Err(_) => {
+            let p = take_panic();
+            return Err(finding(format!("parse: {}", generalise(&p)), p));
+        }
+    };
+    let mut outcome = Outcome::default();
+    match parsed {
+        Err(e) => {
+            let shown = e.to_string();
+            if shown.contains('\n') || shown.contains('\r') {
+                return Err(finding("error message spans several lines", shown));
+            }
+            if e.line < 1 || e.column < 1 {
+                return Err(finding("error position below 1:1", shown));
+            }
+            if e.message.trim().is_empty() {
+                return Err(finding("empty error message", shown));
+            }
+            let lines = line_lengths(text);
+            let line_ok = e.line as usize <= lines.len();
+            // One past the end of a line (or of the text) is where a missing token goes.
+            let column_ok = !line_ok || e.column as usize <= lines[e.line as usize - 1] + 2;
+            if !line_ok || !column_ok {
+                return Err(finding(
+                    format!(
+                        "error position outside the text: {}",
+                        generalise(&e.message)
+                    ),
+                    format!("{shown} (text has {} lines)", lines.len()),
+                ));
+            }
+        }
+        Ok(scene) => {
+            outcome.accepted = true;
+            let rendered = catch_unwind(AssertUnwindSafe(|| {
+                let mut s = scene;
+                s.camera = s.camera.resized(8, 6);
+                let options = RenderOptions {
+                    max_depth: s.max_depth.min(4),
+                    spp: 1,
+                };
+                render_simple(&s, options).0
+            }));
+            let image = match rendered {
+                Ok(image) => image,
+                Err(_) => {
+                    let p = take_panic();
+                    return Err(finding(format!("render: {}", generalise(&p)), p));
+                }
+            };
+            for y in 0..6 {
+                for x in 0..8 {
+                    let c = image.get(x, y);
+                    if c.is_nan() {
+                        return Err(finding(
+                            "NaN pixel in an accepted scene",
+                            format!("pixel {x},{y} = {c}"),
+                        ));
+                    }
+                    outcome.infinite_pixels |= !c.is_finite();
+                }
+            }
+        }
+    }
+    if start.elapsed() > SLOW {
+        return Err(finding("slow input", format!("took {:?}", start.elapsed())));
+    }
+    Ok(outcome)
+}
+
+/// Deletes lines (then single characters of short texts) while the same finding remains.
+fn minimise(text: &str, signature: &str) -> String {
+    let same = |t: &str| matches!(check(t), Err(f) if f.signature == signature);
+    let mut lines: Vec<&str> = text.split_inclusive('\n').collect();
+    let mut i = 0;
+    while i < lines.len() && lines.len() > 1 {
+        let mut fewer = lines.clone();
+        fewer.remove(i);
+        if same(&fewer.concat()) {
+            lines = fewer;
+        } else {
+            i += 1;
+        }
+    }
+    let mut text: Vec<char> = lines.concat().chars().collect();
+    if text.len() <= 400 {
+        let mut i = 0;
+        while i < text.len() {
+            let mut fewer = text.clone();
+            fewer.remove(i);
+            if same(&fewer.iter().collect::<String>()) {
+                text = fewer;
+            } else {
+                i += 1;
+            }
+        }
+    }
+    text.into_iter().collect()
+}
+
+#[derive(Default)]
+struct Report {
+    executions: u64,
+    accepted: u64,
+    refused: u64,
+    infinite: u64,
+    /// signature → (count, first detail, minimised input)
+    findings: BTreeMap<String, (u64, String, String)>,
+}
+
+/// Runs the generator `cases()` times, collecting every distinct finding.
+fn fuzz<S: Strategy>(name: &str, strategy: S, text_of: impl Fn(&S::Value) -> String) {
+    let _turn = EXCLUSIVE.lock().unwrap_or_else(|e| e.into_inner());
+    quiet_panics();
+    let start = Instant::now();
+    let mut runner = runner();
+    let mut report = Report::default();
+    for _ in 0..runner.config().cases {
+        let value = strategy
+            .new_tree(&mut runner)
+            .expect("strategy generates")
+            .current();
+        let text = text_of(&value);
+        report.executions += 1;
+        match check(&text) {
+            Ok(o) => {
+                if o.accepted {
+                    report.accepted += 1;
+                } else {
+                    report.refused += 1;
+                }
+                report.infinite += o.infinite_pixels as u64;
+            }
+            Err(f) => {
+                let entry = report.findings.entry(f.signature.clone());
+                let e =
+                    entry.or_insert_with(|| (0, f.detail.clone(), minimise(&text, &f.signature)));
+                e.0 += 1;
+            }
+        }
+    }
+    let total: u64 = report.findings.values().map(|f| f.0).sum();
+    println!(
+        "{name}: {} executions in {:.1?}: {} accepted (rendered, {} with infinite pixels), \
+         {} refused, {} findings in {} kinds",
+        report.executions,
+        start.elapsed(),
+        report.accepted,
+        report.infinite,
+        report.refused,
+        total,
+        report.findings.len()
+    );
+    let mut listing = String::new();
+    for (signature, (count, detail, input)) in &report.findings {
+        listing.push_str(&format!(
+            "\n[{count}×] {signature}\n    first: {detail}\n    minimised input: {input:?}\n"
+        ));
+    }
+    assert!(
+        report.findings.is_empty(),
+        "{name}: {total} of {} inputs broke the contract:{listing}",
+        report.executions
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Generators.
+
+/// Tokens of scene files, so the soup reaches past the YAML parser into compilation.
+const TOKENS: &[&str] = &[
+    "camera:",
+    "eye:",
+    "look_at:",
+    "up:",
+    "fov:",
+    "width:",
+    "height:",
+    "window:",
+    "u:",
+    "v:",
+    "w:",
+    "f:",
+    "background:",
+    "ambient:",
+    "max_depth:",
+    "spp:",
+    "shadow_bias:",
+    "lights:",
+    "materials:",
+    "objects:",
+    "name:",
+    "point:",
+    "direction:",
+    "intensity:",
+    "attenuation:",
+    "material:",
+    "sphere:",
+    "plane:",
+    "box:",
+    "cylinder:",
+    "cone:",
+    "triangle:",
+    "union:",
+    "intersection:",
+    "difference:",
+    "complement:",
+    "transform:",
+    "center:",
+    "radius:",
+    "normal:",
+    "min:",
+    "max:",
+    "base:",
+    "top:",
+    "apex:",
+    "translate:",
+    "rotate_y:",
+    "scale:",
+    "kd:",
+    "ka:",
+    "ks:",
+    "kr:",
+    "kt:",
+    "ior:",
+    "shininess:",
+    "m",
+    "m:",
+    "s",
+    " ",
+    " ",
+    " ",
+    "\n",
+    "\n",
+    "\n  ",
+    "\n    ",
+    "\n  - ",
+    "- ",
+    "{",
+    "}",
+    "[",
+    "]",
+    ",",
+    ", ",
+    ":",
+    "#",
+    "\t",
+    "&a ",
+    "*a",
+    "&b ",
+    "*b",
+    "!!float ",
+    "!!str ",
+    "'",
+    "\"",
+    "---",
+    "...",
+    "|",
+    ">",
+    "? ",
+    "0",
+    "1",
+    "-1",
+    "2",
+    "0.5",
+    "40",
+    "180",
+    "1e308",
+    "-1e308",
+    "1e-308",
+    "-0",
+    "1e999",
+    "65536",
+    "9223372036854775808",
+    ".nan",
+    ".inf",
+    "-.INF",
+    "\".nan\"",
+    "[0, 0, 0]",
+    "[0, 1, 0]",
+    "[1, 1, 1]",
+    "[0, 0, -5]",
+    "auto",
+    "blinn",
+    "schlick",
+    "null",
+    "~",
+    "true",
+    "<<: *a",
+];
+
+fn token_soup() -> impl Strategy<Value = Vec<&'static str>> {
+    prop::collection::vec(prop::sample::select(TOKENS), 0..160)
+}
+
+/// Numbers a mutation puts in place of a number of a lesson scene.
+const EXTREMES: &[&str] = &[
+    "-0",
+    "0",
+    "1e308",
+    "-1e308",
+    "1e-308",
+    "-1e-308",
+    "4.9e-324",
+    "1.7976931348623157e308",
+    "1e999",
+    "-1",
+    "1e-12",
+    "1e12",
+    "64",
+    "65",
+    "180",
+    "65536",
+    "1000000",
+    "9223372036854775807",
+    "9223372036854775808",
+    ".nan",
+    "-.inf",
+    "-.INF",
+    "\".nan\"",
+];
+
+/// A position in whatever the mutation applies to, whatever its length.
+#[derive(Clone, Copy, Debug)]
+struct Index(usize);
+
+impl Index {
+    fn index(self, len: usize) -> usize {
+        self.0 % len
+    }
+}
+
+impl Arbitrary for Index {
+    type Parameters = ();
+    type Strategy = prop::strategy::Map<prop::num::usize::Any, fn(usize) -> Index>;
+    fn arbitrary_with(_: ()) -> Self::Strategy {
+        any::<usize>().prop_map(Index)
+    }
+}
+
+#[derive(Clone, Debug)]
+enum Mutation {
+    FlipByte(Index, u8),
+    Delete(Index, usize),
+    Insert(Index, u8),
+    DuplicateLine(Index),
+    DeleteLine(Index),
+    SwapLines(Index, Index),
+    Number(Index, &'static str),
+    /// Copies a chunk of the text to another place.
+    Splice(Index, Index, usize),
+}
+
+fn mutation() -> impl Strategy<Value = Mutation> {
+    let interesting = prop::sample::select(b"\t\n\r :{}[],-#&*!'\"|>0.e~".to_vec());
+    // Number replacements mostly keep the YAML valid and so reach compilation and rendering.
+    prop_oneof![
+        1 => (any::<Index>(), any::<u8>()).prop_map(|(i, b)| Mutation::FlipByte(i, b)),
+        1 => (any::<Index>(), 1..24usize).prop_map(|(i, n)| Mutation::Delete(i, n)),
+        1 => (any::<Index>(), prop_oneof![interesting, any::<u8>()])
+            .prop_map(|(i, b)| Mutation::Insert(i, b)),
+        2 => any::<Index>().prop_map(Mutation::DuplicateLine),
+        2 => any::<Index>().prop_map(Mutation::DeleteLine),
+        1 => (any::<Index>(), any::<Index>()).prop_map(|(a, b)| Mutation::SwapLines(a, b)),
+        8 => (any::<Index>(), prop::sample::select(EXTREMES)).prop_map(|(i, v)| Mutation::Number(i, v)),
+        1 => (any::<Index>(), any::<Index>(), 1..80usize)
+            .prop_map(|(a, b, n)| Mutation::Splice(a, b, n)),
+    ]
+}
+
+/// Byte ranges of the numbers in a text.
+fn numbers(text: &[u8]) -> Vec<(usize, usize)> {
+    let mut found = vec![];
+    let mut i = 0;
+    while i < text.len() {
+        let starts = text[i].is_ascii_digit()
+            || (text[i] == b'-' && text.get(i + 1).is_some_and(u8::is_ascii_digit));
+        let inside_word = i > 0 && (text[i - 1].is_ascii_alphanumeric() || text[i - 1] == b'_');
+        if starts && !inside_word {
+            let mut j = i + 1;
+            while j < text.len()
+                && (text[j].is_ascii_digit() || matches!(text[j], b'.' | b'e' | b'E' | b'+' | b'-'))
+            {
+                j += 1;
+            }
+            found.push((i, j));
+            i = j;
+        } else {
+            i += 1;
+        }
+    }
+    found
+}
+
+fn apply(text: &mut Vec<u8>, m: &Mutation) {
+    let line_spans = |t: &[u8]| -> Vec<(usize, usize)> {
+        let mut spans = vec![];
+        let mut start = 0;
+        for (i, &b) in t.iter().enumerate() {
+            if b == b'\n' {
+                spans.push((start, i + 1));
+                start = i + 1;
+            }
+        }
+        if start < t.len() {
+            spans.push((start, t.len()));
+        }
+        spans
+    };
+    match m {
+        _ if text.is_empty() => {}
+        Mutation::FlipByte(i, b) => {
+            let i = i.index(text.len());
+            text[i] ^= (*b).max(1);
+        }
+        Mutation::Delete(i, n) => {
+            let i = i.index(text.len());
+            let end = (i + n).min(text.len());
+            text.drain(i..end);
+        }
+        Mutation::Insert(i, b) => {
+            let i = i.index(text.len() + 1);
+            text.insert(i, *b);
+        }
+        Mutation::DuplicateLine(i) => {
+            let spans = line_spans(text);
+            let (a, b) = spans[i.index(spans.len())];
+            let line = text[a..b].to_vec();
+            text.splice(b..b, line);
+        }
+        Mutation::DeleteLine(i) => {
+            let spans = line_spans(text);
+            let (a, b) = spans[i.index(spans.len())];
+            text.drain(a..b);
+        }
+        Mutation::SwapLines(i, j) => {
+            let spans = line_spans(text);
+            let (x, y) = (spans[i.index(spans.len())], spans[j.index(spans.len())]);
+            let (first, second) = if x.0 <= y.0 { (x, y) } else { (y, x) };
+            if first == second {
+                return;
+            }
+            let mut out = text[..first.0].to_vec();
+            out.extend_from_slice(&text[second.0..second.1]);
+            out.extend_from_slice(&text[first.1..second.0]);
+            out.extend_from_slice(&text[first.0..first.1]);
+            out.extend_from_slice(&text[second.1..]);
+            *text = out;
+        }
+        Mutation::Number(i, value) => {
+            let found = numbers(text);
+            if !found.is_empty() {
+                let (a, b) = found[i.index(found.len())];
+                text.splice(a..b, value.bytes());
+            }
+        }
+        Mutation::Splice(from, to, n) => {
+            let a = from.index(text.len());
+            let chunk = text[a..(a + n).min(text.len())].to_vec();
+            let at = to.index(text.len() + 1);
+            text.splice(at..at, chunk);
+        }
+    }
+}
+
+/// The lesson scenes and the example scenes: the seeds of the mutations.
+fn seeds() -> Vec<String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    let mut files = vec![];
+    for entry in std::fs::read_dir(&root).expect("lessons/") {
+        let dir = entry.unwrap().path();
+        let scene = dir.join("scene.yaml");
+        if scene.is_file() {
+            files.push(scene);
+        }
+    }
+    for entry in std::fs::read_dir(root.join("examples"))
+        .into_iter()
+        .flatten()
+    {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "yaml") {
+            files.push(path);
+        }
+    }
+    files.sort();
+    assert!(files.len() >= 10, "only {} seed scenes", files.len());
+    files
+        .iter()
+        .map(|f| std::fs::read_to_string(f).unwrap())
+        .collect()
+}
+
+// ---------------------------------------------------------------------------------------
+// The tests.
+
+#[test]
+fn the_seed_scenes_themselves_pass() {
+    let _turn = EXCLUSIVE.lock().unwrap_or_else(|e| e.into_inner());
+    quiet_panics();
+    for (i, text) in seeds().iter().enumerate() {
+        match check(text) {
+            Ok(o) => assert!(o.accepted, "seed {i} refused"),
+            Err(f) => panic!("seed {i}: {}: {}", f.signature, f.detail),
+        }
+    }
+}
+
+#[test]
+fn random_bytes_never_break_the_parser() {
+    fuzz(
+        "random bytes",
+        prop::collection::vec(any::<u8>(), 0..400),
+        |bytes| String::from_utf8_lossy(bytes).into_owned(),
+    );
+}
+
+#[test]
+fn token_soup_never_breaks_the_parser() {
+    fuzz("token soup", token_soup(), |tokens| tokens.concat());
+}
+
+#[test]
+fn mutated_lesson_scenes_never_break_parser_or_renderer() {
+    let seeds = seeds();
+    fuzz(
+        "mutated lesson scenes",
+        (any::<Index>(), prop::collection::vec(mutation(), 1..5)),
+        |(which, mutations)| {
+            let mut text = seeds[which.index(seeds.len())].clone().into_bytes();
+            for m in mutations {
+                apply(&mut text, m);
+            }
+            String::from_utf8_lossy(&text).into_owned()
+        },
+    );
+}
+
+#[test]
+fn mutations_do_what_they_say() {
+    let mut t = b"a: 1\nb: [2, -3.5e2]\nc: x1\n".to_vec();
+    assert_eq!(numbers(&t), vec![(3, 4), (9, 10), (12, 18)]);
+    apply(&mut t, &Mutation::Number(Index(2), "1e308"));
+    assert_eq!(t, b"a: 1\nb: [2, 1e308]\nc: x1\n");
+    apply(&mut t, &Mutation::SwapLines(Index(0), Index(2)));
+    assert_eq!(t, b"c: x1\nb: [2, 1e308]\na: 1\n");
+    apply(&mut t, &Mutation::DeleteLine(Index(1)));
+    assert_eq!(t, b"c: x1\na: 1\n");
+    apply(&mut t, &Mutation::DuplicateLine(Index(0)));
+    assert_eq!(t, b"c: x1\nc: x1\na: 1\n");
+}
