@@ -72,6 +72,13 @@ fn strip(frames: &[crate::render::Image]) -> crate::render::Image {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let mut scene = a.scene.load()?;
+    let same = |p: &std::path::Path| p.canonicalize().ok();
+    if a.output.exists() && same(&a.output) == same(&a.scene.scene) {
+        return Err(Failure(format!(
+            "{}: refusing to write the image over the scene file itself",
+            a.output.display()
+        )));
+    }
     scene.csg_pruning = !a.no_csg_pruning;
     let (w, h) = (
         a.width.unwrap_or(scene.camera.width),

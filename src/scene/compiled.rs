@@ -151,6 +151,9 @@ pub struct Scene {
     pub leaves: Vec<Leaf>,
     pub objects: Vec<Object>,
     pub features: Features,
+    /// Objects with a transparent material (kt > 0) and their index of refraction: the media a
+    /// refracted ray can be in.
+    pub transparent_objects: Vec<(u32, f64)>,
     /// CSG bounding boxes and pruning (on; off only to measure what they save).
     pub csg_pruning: bool,
     accel: Accel,
@@ -217,14 +220,38 @@ impl Scene {
             leaves,
             objects,
             features,
+            transparent_objects: vec![],
             csg_pruning: true,
             accel: Accel::Bvh,
             bvh: Bvh::default(),
             bounded: vec![],
             unbounded: vec![],
         };
+        scene.transparent_objects = scene
+            .leaves
+            .iter()
+            .filter(|l| l.shape.is_solid() && scene.materials[l.material as usize].transparent())
+            .map(|l| (l.object, scene.materials[l.material as usize].ior))
+            .fold(Vec::new(), |mut v, e| {
+                if !v.iter().any(|x: &(u32, f64)| x.0 == e.0) {
+                    v.push(e);
+                }
+                v
+            });
         scene.set_accel(Accel::Bvh);
         scene
+    }
+
+    /// Is the probe ray's origin inside the object? (Inside a segment of its list; for a mesh,
+    /// an odd number of crossings ahead.)
+    pub fn contains(&self, object: u32, probe: &Ray, stats: &mut Stats) -> bool {
+        let list = self.object_segments(object, probe, f64::NEG_INFINITY, f64::INFINITY, stats);
+        match &self.objects[object as usize].geometry {
+            Geometry::Leaf(l) if matches!(self.leaves[*l as usize].shape, Shape::Mesh(_)) => {
+                list.iter().filter(|s| s.t_in > 0.0).count() % 2 == 1
+            }
+            _ => list.iter().any(|s| s.t_in <= 0.0 && 0.0 <= s.t_out),
+        }
     }
 
     /// Chooses the acceleration structure (rebuilding the BVH if needed).

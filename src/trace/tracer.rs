@@ -52,13 +52,8 @@ impl Media {
         m
     }
 
-    fn leaving(&self, object: u32) -> Media {
-        let mut m = *self;
-        if let Some(i) = m.entries[..m.len].iter().rposition(|e| e.0 == object) {
-            m.entries.copy_within(i + 1..m.len, i);
-            m.len -= 1;
-        }
-        m
+    fn contains(&self, object: u32) -> bool {
+        self.entries[..self.len].iter().any(|e| e.0 == object)
     }
 }
 
@@ -249,16 +244,22 @@ impl<'s> Tracer<'s> {
         let m = self.scene.material(si.material);
         let d = task.ray.dir;
         let n = si.normal;
-        // Which media the surface separates.
-        let (n1, n2, media_beyond) = if si.inside {
-            let outside = task.media.leaving(si.object);
-            (m.ior, outside.current(), outside)
+        // Which media the surface separates: the transparent solids containing a point just
+        // before and just beyond it. Asking the geometry (rather than only pushing and popping
+        // a stack) keeps n1/n2 right where two glasses touch in a shared face.
+        let step = 2.0 * self.scene.bias(task.ray.origin, si.point);
+        let near = self.media_at(si.point + step * n, d, &task.media, stats);
+        let media_beyond = self.media_at(
+            si.point - step * n,
+            d,
+            &task.media.entering(si.object, m.ior),
+            stats,
+        );
+        let (n1, n2) = if self.scene.leaves[si.leaf as usize].shape.is_solid() {
+            (near.current(), media_beyond.current())
         } else {
-            (
-                task.media.current(),
-                m.ior,
-                task.media.entering(si.object, m.ior),
-            )
+            // A lone triangle is a sheet with no inside: nothing changes across it.
+            (near.current(), near.current())
         };
         let transmitted = if m.kt > 0.0 {
             refract(d, n, n1, n2)
@@ -448,6 +449,25 @@ impl<'s> Tracer<'s> {
             rec.end(DVec3::splat(s), None);
         }
         s
+    }
+
+    /// The transparent solids that contain q, innermost last: those already on the ray's
+    /// stack keep their order, others follow in scene order.
+    fn media_at(&self, q: DVec3, d: DVec3, stack: &Media, stats: &mut Stats) -> Media {
+        let scene = self.scene;
+        let probe = Ray { origin: q, dir: d };
+        let mut out = Media::default();
+        for &(o, ior) in &stack.entries[..stack.len] {
+            if scene.contains(o, &probe, stats) {
+                out = out.entering(o, ior);
+            }
+        }
+        for &(o, ior) in &scene.transparent_objects {
+            if !stack.contains(o) && scene.contains(o, &probe, stats) {
+                out = out.entering(o, ior);
+            }
+        }
+        out
     }
 
     /// The one place secondary rays leave a surface: the origin moves off the surface, along

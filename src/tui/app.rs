@@ -435,7 +435,32 @@ impl App {
             Rect::new(0, 0, self.size.0, self.size.1),
             aspect,
             self.lesson_open(),
+            self.message_rows(),
         )
+    }
+
+    /// The message line, as text: a scene error wins over other messages.
+    pub fn message_text(&self) -> Option<(String, Tone)> {
+        match (&self.error, &self.message) {
+            (Some(e), _) => Some((format!("✗ {e} (the last good scene stays)"), Tone::Bad)),
+            (None, Some(m)) => Some(m.clone()),
+            (None, None) => None,
+        }
+    }
+
+    /// Message lines at the bottom: two when a scene error does not fit on one.
+    pub fn message_rows(&self) -> u16 {
+        match (&self.error, &self.prompt) {
+            (Some(_), None) => {
+                let len = self.message_text().map_or(0, |(t, _)| t.chars().count());
+                if len > self.size.0 as usize {
+                    2
+                } else {
+                    1
+                }
+            }
+            _ => 1,
+        }
     }
 
     /// The tree the panel shows: the level being stepped, or the whole tree.

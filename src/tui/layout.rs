@@ -37,24 +37,24 @@ pub fn fit(cols: u16, rows: u16, aspect: f64) -> (u32, u32) {
     (w.max(1.0) as u32, h.max(1.0) as u32)
 }
 
-/// The status and message lines at the bottom, and the area above them.
-pub fn bottom_lines(area: Rect) -> (Rect, Rect, Rect) {
-    let main_h = area.height.saturating_sub(2);
+/// The status line and `message_rows` message lines at the bottom, and the area above them.
+pub fn bottom_lines(area: Rect, message_rows: u16) -> (Rect, Rect, Rect) {
+    let main_h = area.height.saturating_sub(1 + message_rows);
     let main = Rect::new(area.x, area.y, area.width, main_h);
     let status = Rect::new(area.x, area.y + main_h, area.width, area.height.min(1));
     let message = Rect::new(
         area.x,
         area.y + main_h + 1,
         area.width,
-        area.height.saturating_sub(1).min(1),
+        area.height.saturating_sub(main_h + 1).min(message_rows),
     );
     (main, status, message)
 }
 
 /// The scene screen: preview and tree on top, details (or CSG) below, the lesson beside or
 /// below, status and message lines at the bottom.
-pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool) -> Panes {
-    let (main, status, message) = bottom_lines(area);
+pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool, message_rows: u16) -> Panes {
+    let (main, status, message) = bottom_lines(area, message_rows);
     let wide = area.width >= WIDE;
     let (left, side) = if lesson_open && wide {
         let lw = (area.width * 2 / 5).max(40);
@@ -104,7 +104,7 @@ pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool) -> Panes {
 
 /// The lesson list screen: the list on the left, the selected lesson's summary on the right.
 pub fn list_panes(area: Rect) -> (Rect, Rect, Rect, Rect) {
-    let (main, status, message) = bottom_lines(area);
+    let (main, status, message) = bottom_lines(area, 1);
     let lw = (main.width / 2).max(main.width.min(36));
     let list = Rect::new(main.x, main.y, lw, main.height);
     let info = Rect::new(main.x + lw, main.y, main.width - lw, main.height);
@@ -149,7 +149,7 @@ mod tests {
 
     #[test]
     fn picking_a_cell_and_marking_a_pixel_agree() {
-        let p = scene_panes(Rect::new(0, 0, 80, 24), 161.0 / 121.0, false);
+        let p = scene_panes(Rect::new(0, 0, 80, 24), 161.0 / 121.0, false, 1);
         for (x, y) in [(0, 0), (80, 60), (160, 120), (13, 77)] {
             let (c, r) = pixel_cell(&p, (161, 121), (x, y)).unwrap();
             let (x2, y2) = cell_pixel(&p, (161, 121), c, r).unwrap();

@@ -157,12 +157,21 @@ pub fn short(x: f64) -> String {
     }
 }
 
-/// A colour for tree lines: one number when grey.
+/// A colour for tree lines: one number when grey (four decimals), else three decimals each.
 pub fn short_color(c: glam::DVec3) -> String {
     if c.x == c.y && c.y == c.z {
         short(c.x)
     } else {
-        format!("({}, {}, {})", short(c.x), short(c.y), short(c.z))
+        let s3 = |x: f64| {
+            let s = format!("{x:.3}");
+            let s = s.trim_end_matches('0').trim_end_matches('.');
+            if s == "-0" {
+                "0".to_string()
+            } else {
+                s.to_string()
+            }
+        };
+        format!("({}, {}, {})", s3(c.x), s3(c.y), s3(c.z))
     }
 }
 

@@ -84,7 +84,11 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     f.buffer_mut().set_string(
         status.x,
         status.y,
-        format!(" raytree explore · {} lessons", list.entries.len()),
+        format!(
+            " raytree explore · {} lesson{}",
+            list.entries.len(),
+            if list.entries.len() == 1 { "" } else { "s" }
+        ),
         themed(app, Style::new().add_modifier(Modifier::REVERSED)),
     );
     let (text, style) = match &list.error {

@@ -22,48 +22,64 @@ pub fn grouped(n: u64) -> String {
     out
 }
 
+/// The status line: as much as fits, the least useful parts dropped first.
 pub fn status_text(app: &App) -> String {
     let (w, h) = app.image_size();
     let (x, y) = app.cursor;
-    let mut parts = vec![
-        format!("{w}×{h}"),
-        format!("pixel {x},{y}"),
-        match app.level {
-            Some(k) => format!("depth {} (level {k})", app.depth),
-            None => format!("depth {}", app.depth),
-        },
-    ];
+    let depth = match app.level {
+        Some(k) => format!("depth {} (level {k})", app.depth),
+        None => format!("depth {}", app.depth),
+    };
     let p = &app.preview;
-    parts.push(if p.running {
+    let progress = if p.running {
         let (done, total) = p.rows;
-        let pct = (100 * done).checked_div(total).unwrap_or(0);
-        format!("rendering {pct}%")
+        format!(
+            "rendering {}%",
+            (100 * done).checked_div(total).unwrap_or(0)
+        )
     } else if p.image.is_some() {
         "preview 100%".into()
     } else {
         "preview —".into()
-    });
-    if let Some(s) = &p.stats {
-        parts.push(format!("{} rays", grouped(s.rays())));
-    }
-    parts.push(format!("tree {} rays", grouped(app.tree_stats.rays())));
-    let rest = parts.join(" │ ");
-    let name = app.name();
-    let room = (app.size.0 as usize).saturating_sub(rest.chars().count() + 4);
-    let name = if name.chars().count() > room {
-        let keep: String = name
-            .chars()
-            .rev()
-            .take(room.saturating_sub(1))
-            .collect::<Vec<_>>()
-            .into_iter()
-            .rev()
-            .collect();
-        format!("…{keep}")
-    } else {
-        name
     };
-    format!(" {name} │ {rest}")
+    let rays = p
+        .stats
+        .map(|s| format!("{} rays", grouped(s.rays())))
+        .unwrap_or_default();
+    let tree = format!("tree {} rays", grouped(app.tree_stats.rays()));
+    let path = app.name();
+    let file = app
+        .path
+        .as_ref()
+        .and_then(|p| p.file_name())
+        .map_or(String::new(), |f| f.to_string_lossy().into_owned());
+    let core = [
+        format!("{w}×{h}"),
+        format!("pixel {x},{y}"),
+        depth,
+        progress,
+    ];
+    let room = app.size.0 as usize;
+    // From the most to the least complete.
+    let candidates = [
+        (path.clone(), vec![rays.clone(), tree.clone()]),
+        (path.clone(), vec![rays.clone()]),
+        (file.clone(), vec![rays.clone(), tree]),
+        (file.clone(), vec![rays]),
+        (path, vec![]),
+        (file, vec![]),
+    ];
+    let mut last = String::new();
+    for (name, extra) in candidates {
+        let mut parts = vec![name];
+        parts.extend(core.iter().cloned());
+        parts.extend(extra.into_iter().filter(|e| !e.is_empty()));
+        last = format!(" {}", parts.join(" │ "));
+        if last.chars().count() <= room {
+            break;
+        }
+    }
+    last
 }
 
 pub fn draw(f: &mut Frame, app: &App, status: Rect, message: Rect) {
@@ -112,24 +128,28 @@ pub fn draw(f: &mut Frame, app: &App, status: Rect, message: Rect) {
                 ),
             ])
         }
-        None => match (&app.error, &app.message) {
-            (Some(e), _) => Line::styled(
-                format!("✗ {e} (showing the last good scene)"),
-                themed(
-                    app,
-                    Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
-                ),
-            ),
-            (None, Some((m, tone))) => {
-                let c = match tone {
-                    Tone::Info => Color::Gray,
-                    Tone::Good => Color::Green,
-                    Tone::Bad => Color::Red,
-                };
-                Line::styled(m.clone(), themed(app, Style::new().fg(c)))
+        None => {
+            let Some((text, tone)) = app.message_text() else {
+                return;
+            };
+            let style = match tone {
+                Tone::Info => Style::new().fg(Color::Gray),
+                Tone::Good => Style::new().fg(Color::Green),
+                Tone::Bad => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
+            };
+            let style = themed(app, style);
+            let lines = super::wrap_hang(&text, message.width as usize, "  ");
+            for (i, l) in lines.iter().take(message.height as usize).enumerate() {
+                buf.set_stringn(
+                    message.x,
+                    message.y + i as u16,
+                    l,
+                    message.width as usize,
+                    style,
+                );
             }
-            (None, None) => Line::from(""),
-        },
+            return;
+        }
     };
     buf.set_line(message.x, message.y, &line, message.width);
 }

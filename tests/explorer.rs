@@ -1,0 +1,769 @@
+//! The terminal explorer, driven without a terminal: keys become messages, `update` changes
+//! the model, and screens are drawn into ratatui's TestBackend and snapshotted as plain text
+//! (no colours, so the snapshots are stable). One test runs the real binary inside tmux.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use raytree::render::preview::ColorMode;
+use raytree::render::{render_simple, RenderOptions};
+use raytree::trace::{RayKind, Stats, Tracer};
+use raytree::tui::app::{Focus, Screen};
+use raytree::tui::{input, ui, update, App, Msg};
+
+const MIRROR: &str = "tests/scenes/explorer-mirror.yaml";
+const CSG: &str = "tests/scenes/explorer-csg.yaml";
+
+/// An explorer on `target` in a `w` × `h` terminal, its preview rendered.
+fn open(target: &str, color: ColorMode, (w, h): (u16, u16)) -> App {
+    let mut app = App::open(Some(Path::new(target)), color).expect("opens");
+    update(&mut app, Msg::Resize(w, h));
+    app.render_now();
+    app
+}
+
+fn key_event(code: KeyCode) -> KeyEvent {
+    let shift = matches!(code, KeyCode::Char(c) if c.is_ascii_uppercase());
+    KeyEvent::new(
+        code,
+        if shift {
+            KeyModifiers::SHIFT
+        } else {
+            KeyModifiers::NONE
+        },
+    )
+}
+
+/// Presses a key as the event loop would: key → message → update; then renders the preview
+/// synchronously so screens are deterministic.
+fn press(app: &mut App, code: KeyCode) {
+    if let Some(msg) = input::key(app, &key_event(code)) {
+        update(app, msg);
+    }
+    app.render_now();
+}
+
+fn press_shift(app: &mut App, code: KeyCode) {
+    if let Some(msg) = input::key(app, &KeyEvent::new(code, KeyModifiers::SHIFT)) {
+        update(app, msg);
+    }
+    app.render_now();
+}
+
+fn keys(app: &mut App, s: &str) {
+    for c in s.chars() {
+        press(app, KeyCode::Char(c));
+    }
+}
+
+fn screen(app: &App) -> String {
+    ui::screen_text(app, app.size.0, app.size.1)
+}
+
+/// A folder of its own for a test's files, below target/ (relative, so screens that show
+/// the path are the same on every machine).
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new("target/explorer-tests").join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn root_color(app: &App) -> glam::DVec3 {
+    app.full_tree.as_ref().unwrap().color
+}
+
+fn traced_color(app: &App, depth: u32) -> glam::DVec3 {
+    let scene = app.scene.as_ref().unwrap();
+    let ray = scene.camera.pixel_ray(app.cursor.0, app.cursor.1);
+    Tracer::with_depth(scene, depth)
+        .inspect(&ray, &mut Stats::default())
+        .color
+}
+
+// ---------------------------------------------------------------------------------------
+// Snapshots
+
+#[test]
+fn preview_and_tree_at_80x24() {
+    // ASCII mode: the preview's ramp characters show the image in the snapshot.
+    let mut app = open(MIRROR, ColorMode::Ascii, (80, 24));
+    update(&mut app, Msg::Pick(20, 15));
+    insta::assert_snapshot!("preview_tree_80x24", screen(&app));
+}
+
+#[test]
+fn preview_and_tree_at_160x48() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(20, 15));
+    insta::assert_snapshot!("preview_tree_160x48", screen(&app));
+}
+
+#[test]
+fn details_of_a_reflection_node() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(20, 15));
+    press(&mut app, KeyCode::Tab);
+    assert_eq!(app.focus, Focus::Tree);
+    // primary → its shadow ray → its reflection.
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Down);
+    let n = app.selected_node().unwrap();
+    assert_eq!(n.kind, RayKind::Reflection);
+    assert_eq!(n.hit.as_ref().unwrap().object, "glass");
+    let text = screen(&app);
+    assert!(text.contains("details · reflection"));
+    assert!(text.contains("kr·I_r"));
+    assert!(text.contains("kt·I_t"));
+    insta::assert_snapshot!("reflection_details_160x48", text);
+    // The same at 80 × 24: the details scroll.
+    update(&mut app, Msg::Resize(80, 24));
+    app.render_now();
+    insta::assert_snapshot!("reflection_details_80x24", screen(&app));
+}
+
+#[test]
+fn csg_panel() {
+    let mut app = open(CSG, ColorMode::TrueColor, (80, 24));
+    update(&mut app, Msg::Pick(20, 15));
+    press(&mut app, KeyCode::Char('c'));
+    assert!(app.show_csg);
+    let text = screen(&app);
+    assert!(text.contains("object lens"));
+    assert!(text.contains("intersection lens: [8.334689, 11.638107]"));
+    insta::assert_snapshot!("csg_80x24", text);
+
+    // A ray that misses one sphere's bounding box: that node is pruned, and marked so.
+    let mut app = open(CSG, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(10, 8));
+    press(&mut app, KeyCode::Char('c'));
+    let text = screen(&app);
+    assert!(text.contains("object pair"));
+    assert!(text.contains("sphere bottom: pruned: ray misses its bounding box"));
+    insta::assert_snapshot!("csg_160x48", text);
+    press(&mut app, KeyCode::Char('c'));
+    assert!(!app.show_csg);
+    assert!(screen(&app).contains("details · primary ray"));
+}
+
+#[test]
+fn help_screen() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    press(&mut app, KeyCode::Char('?'));
+    assert!(app.show_help);
+    let text = screen(&app);
+    for (k, what) in ui::KEYS {
+        assert!(
+            text.contains(what) || text.contains(&what.to_uppercase()),
+            "{k}: {what}"
+        );
+    }
+    insta::assert_snapshot!("help_80x24", text);
+    press(&mut app, KeyCode::Char('x'));
+    assert!(!app.show_help, "any key closes the help");
+    assert!(!app.quit);
+}
+
+/// A lesson of our own (the real ones are still being written), with a pixel exercise.
+fn demo_lesson(name: &str) -> PathBuf {
+    let root = scratch(name);
+    let dir = root.join("01-demo");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(MIRROR, dir.join("scene.yaml")).unwrap();
+    std::fs::write(
+        dir.join("README.md"),
+        "# 01 — A demo lesson\n\nPick the pixel (20, 15): the ray hits the mirror ball, and the \
+         mirror sends a ray on to the glass ball, which both reflects and refracts.\n\n\
+         ## What to do\n\n1. Find the primary ray's intensity.\n2. Find the reflection \
+         node's intensity.\n\n```\np ──► mirror ──► glass\n```\n\n**Answer (root):** see \
+         the tree.\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("exercises.yaml"),
+        "title: A demo lesson\nsummary: One pixel, a mirror and a glass ball.\nexercises:\n  \
+         - id: root\n    question: What is the intensity of pixel (20, 15)?\n    ask: intensity\n    \
+         pixel: [20, 15]\n  - id: mirror-t\n    question: How far from the eye is the mirror ball \
+         along that ray?\n    ask: hit_t\n    pixel: [20, 15]\n",
+    )
+    .unwrap();
+    root
+}
+
+#[test]
+fn lesson_panel_with_a_checked_answer() {
+    let root = demo_lesson("lesson-panel");
+    let dir = root.join("01-demo");
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    assert!(app.lesson_open());
+    let text = screen(&app);
+    assert!(text.contains("A demo lesson"));
+    assert!(text.contains("What to do"));
+    insta::assert_snapshot!("lesson_readme_160x48", text);
+
+    press(&mut app, KeyCode::Char('a'));
+    assert_eq!(app.focus, Focus::Lesson);
+    assert_eq!(app.cursor, (20, 15), "the exercise's pixel is picked");
+    // The right answer to `root`, as raytree computes it.
+    let lesson = &app.lesson.as_ref().unwrap().lesson;
+    let ex = lesson.exercise("root").unwrap();
+    let expected = raytree::lessons::work(lesson, ex).unwrap().expected.show();
+    press(&mut app, KeyCode::Enter);
+    keys(&mut app, &expected);
+    press(&mut app, KeyCode::Enter);
+    let answered = app.lesson.as_ref().unwrap().answers[0].as_ref().unwrap();
+    assert!(answered.result.as_ref().unwrap().correct);
+    // A wrong answer to the second exercise.
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Enter);
+    keys(&mut app, "1.5");
+    press(&mut app, KeyCode::Enter);
+    let answered = app.lesson.as_ref().unwrap().answers[1].as_ref().unwrap();
+    assert!(!answered.result.as_ref().unwrap().correct);
+    press(&mut app, KeyCode::Up);
+    let text = screen(&app);
+    assert!(text.contains("right:"));
+    insta::assert_snapshot!("lesson_answer_160x48", text);
+    // Esc leaves the exercises without quitting; q would quit.
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit);
+    assert_eq!(app.focus, Focus::Preview);
+}
+
+#[test]
+fn a_real_lesson_opens_and_checks_answers() {
+    let dir = Path::new("lessons/08-pixel-intensity");
+    if !dir.join("exercises.yaml").is_file() {
+        println!("skipping: {} is not there", dir.display());
+        return;
+    }
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (80, 24));
+    press(&mut app, KeyCode::Char('a'));
+    let lesson = &app.lesson.as_ref().unwrap().lesson;
+    let ex = &lesson.exercises[0];
+    let expected = raytree::lessons::work(lesson, ex).unwrap().expected.show();
+    press(&mut app, KeyCode::Enter);
+    keys(&mut app, &expected);
+    press(&mut app, KeyCode::Enter);
+    let text = screen(&app);
+    assert!(text.contains("right:"), "{text}");
+}
+
+#[test]
+fn lesson_list() {
+    let root = demo_lesson("lesson-list");
+    let mut app = App::open_lessons(&root, ColorMode::TrueColor);
+    update(&mut app, Msg::Resize(80, 24));
+    assert_eq!(app.screen, Screen::Lessons);
+    let text = screen(&app);
+    assert!(text.contains("01-demo"));
+    insta::assert_snapshot!("lesson_list_80x24", text);
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.screen, Screen::Scene);
+    assert!(app.lesson_open());
+    assert!(app.scene.is_some());
+}
+
+#[test]
+fn live_reload_keeps_the_last_good_scene_and_shows_the_error() {
+    let dir = scratch("live-reload");
+    let path = dir.join("scene.yaml");
+    let good = std::fs::read_to_string(MIRROR).unwrap();
+    std::fs::write(&path, &good).unwrap();
+    let mut app = open(path.to_str().unwrap(), ColorMode::TrueColor, (80, 24));
+    update(&mut app, Msg::Pick(40, 30));
+    let before = root_color(&app);
+
+    // A typo: the file no longer parses.
+    std::fs::write(&path, good.replace("radius: 1 }", "radius: [1 }")).unwrap();
+    update(&mut app, Msg::Tick);
+    let err = app.error.clone().expect("the broken file is reported");
+    assert!(
+        err.starts_with("target/explorer-tests/live-reload/scene.yaml:"),
+        "{err}"
+    );
+    assert!(app.scene.is_some(), "the last good scene stays");
+    assert_eq!(root_color(&app), before);
+    let text = screen(&app);
+    assert!(text.contains("✗ target/explorer-tests/live-reload/scene.yaml:"));
+    insta::assert_snapshot!("reload_error_80x24", text);
+
+    // Fixed, and smaller: the picked pixel is kept inside the image.
+    let smaller = good
+        .replace("width: 48, height: 36", "width: 24, height: 18")
+        .replace("background: [0.2, 0.3, 0.5]", "background: [0.5, 0.3, 0.2]");
+    std::fs::write(&path, smaller).unwrap();
+    update(&mut app, Msg::Tick);
+    assert!(app.error.is_none());
+    assert_eq!(app.image_size(), (24, 18));
+    assert_eq!(app.cursor, (23, 17));
+    assert!(app.preview.job.is_some(), "the preview renders again");
+    // Nothing changed: nothing happens.
+    let generation = app.preview.generation;
+    update(&mut app, Msg::Tick);
+    assert_eq!(app.preview.generation, generation);
+}
+
+// ---------------------------------------------------------------------------------------
+// Keys and state
+
+#[test]
+fn cursor_moves_and_clamps_at_the_edges() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    assert_eq!(app.cursor, (24, 18), "starts at the centre");
+    press(&mut app, KeyCode::Right);
+    press(&mut app, KeyCode::Char('l'));
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Char('j'));
+    press(&mut app, KeyCode::Char('k'));
+    assert_eq!(app.cursor, (26, 19));
+    press(&mut app, KeyCode::Char('h'));
+    press(&mut app, KeyCode::Left);
+    press(&mut app, KeyCode::Up);
+    assert_eq!(app.cursor, (24, 18));
+    // Big steps: H J K L and shift + arrows move 10 pixels.
+    press(&mut app, KeyCode::Char('L'));
+    assert_eq!(app.cursor, (34, 18));
+    press_shift(&mut app, KeyCode::Down);
+    assert_eq!(app.cursor, (34, 28));
+    press(&mut app, KeyCode::Char('J'));
+    assert_eq!(app.cursor, (34, 35), "clamped at the bottom edge");
+    press(&mut app, KeyCode::Char('L'));
+    assert_eq!(app.cursor, (44, 35));
+    press(&mut app, KeyCode::Char('L'));
+    assert_eq!(app.cursor, (47, 35), "clamped at the right edge");
+    for _ in 0..6 {
+        press(&mut app, KeyCode::Char('H'));
+        press_shift(&mut app, KeyCode::Up);
+    }
+    assert_eq!(app.cursor, (0, 0));
+    press(&mut app, KeyCode::Left);
+    press(&mut app, KeyCode::Up);
+    assert_eq!(app.cursor, (0, 0));
+    // The tree follows the pixel.
+    let scene = app.scene.clone().unwrap();
+    let ray = scene.camera.pixel_ray(0, 0);
+    assert_eq!(app.full_tree.as_ref().unwrap().direction, ray.dir);
+}
+
+#[test]
+fn goto_typed_coordinates() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "3,4");
+    assert!(screen(&app).contains("go to pixel x,y: 3,4"));
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.cursor, (3, 4));
+    assert!(app.prompt.is_none());
+    // Outside the image: refused, said so.
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "48, 2");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.cursor, (3, 4));
+    assert!(screen(&app).contains("pixel 48,2 is outside the 48 × 36 image"));
+    // Typing is typing: q in a prompt is a letter; Backspace and Esc work.
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "q1");
+    press(&mut app, KeyCode::Backspace);
+    press(&mut app, KeyCode::Backspace);
+    keys(&mut app, "47 35");
+    assert!(!app.quit);
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.cursor, (47, 35));
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "1,1");
+    press(&mut app, KeyCode::Esc);
+    assert_eq!(app.cursor, (47, 35));
+    assert!(!app.quit);
+}
+
+#[test]
+fn depth_keys_retrace_at_that_depth() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    update(&mut app, Msg::Pick(20, 15));
+    assert_eq!(app.depth, 4);
+    let full = root_color(&app);
+    assert_eq!(full, traced_color(&app, 4));
+    press(&mut app, KeyCode::Char('-'));
+    assert_eq!(app.depth, 3);
+    assert_eq!(root_color(&app), traced_color(&app, 3));
+    press(&mut app, KeyCode::Char('['));
+    press(&mut app, KeyCode::Char('-'));
+    assert_eq!(app.depth, 1);
+    // Depth 1: the primary ray only (local light), its reflection not traced.
+    let tree = app.full_tree.as_ref().unwrap();
+    let local = tree.local.as_ref().unwrap().total();
+    assert_eq!(tree.color, local);
+    assert!(tree.color != full);
+    assert!(tree
+        .children
+        .iter()
+        .any(|c| c.terminated == Some(raytree::trace::Termination::MaxDepth)));
+    press(&mut app, KeyCode::Char('-'));
+    assert_eq!(app.depth, 1, "no lower than 1");
+    press(&mut app, KeyCode::Char('+'));
+    press(&mut app, KeyCode::Char(']'));
+    press(&mut app, KeyCode::Char('='));
+    assert_eq!(app.depth, 4);
+    assert_eq!(root_color(&app), full);
+    // The preview is rendered at the depth too.
+    press(&mut app, KeyCode::Char('-'));
+    assert_eq!(app.preview.stats.unwrap().reflection_rays > 0, true);
+    let status = screen(&app);
+    assert!(status.contains("depth 3"));
+}
+
+#[test]
+fn level_stepping_collects_intensity_level_by_level() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(20, 15));
+    let full = root_color(&app);
+    press(&mut app, KeyCode::Char('n'));
+    assert_eq!(app.level, Some(1));
+    let shown = app.shown_tree().unwrap();
+    assert_eq!(shown.color, traced_color(&app, 1));
+    assert!(shown.secondary().all(|c| c.terminated.is_some()));
+    let text = screen(&app);
+    assert!(text.contains("level 1 of 4"));
+    press(&mut app, KeyCode::Char('n'));
+    press(&mut app, KeyCode::Char('n'));
+    assert_eq!(app.level, Some(3));
+    assert_eq!(app.shown_tree().unwrap().color, traced_color(&app, 3));
+    assert_eq!(app.partials.len(), 4);
+    for (k, p) in app.partials.iter().enumerate() {
+        assert_eq!(*p, traced_color(&app, k as u32 + 1));
+    }
+    insta::assert_snapshot!("levels_160x48", screen(&app));
+    press(&mut app, KeyCode::Char('p'));
+    assert_eq!(app.level, Some(2));
+    press(&mut app, KeyCode::Char('n'));
+    press(&mut app, KeyCode::Char('n'));
+    assert_eq!(app.level, Some(4));
+    assert_eq!(app.shown_tree().unwrap().color, full);
+    press(&mut app, KeyCode::Char('n'));
+    assert_eq!(app.level, None, "past the last level: the whole tree again");
+    assert!(screen(&app).contains("all 4 levels collected"));
+    // Moving the pixel while stepping keeps the level.
+    press(&mut app, KeyCode::Char('p'));
+    assert_eq!(app.level, Some(3));
+    press(&mut app, KeyCode::Right);
+    assert_eq!(app.level, Some(3));
+    assert_eq!(app.shown_tree().unwrap().color, traced_color(&app, 3));
+}
+
+#[test]
+fn tree_expands_and_collapses() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(20, 15));
+    let all = app.rows().len();
+    assert_eq!(
+        all,
+        app.full_tree.as_ref().unwrap().size(),
+        "small trees open fully"
+    );
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Left);
+    assert_eq!(app.rows().len(), 1, "the root closed");
+    assert!(screen(&app).contains("▶▸ primary: hit mirror"));
+    press(&mut app, KeyCode::Right);
+    assert_eq!(app.rows().len(), all);
+    // Down to the reflection, close it, and Left again goes to the parent.
+    press(&mut app, KeyCode::Char('j'));
+    press(&mut app, KeyCode::Char('j'));
+    assert_eq!(app.selected, vec![1]);
+    press(&mut app, KeyCode::Enter);
+    let closed = app.rows().len();
+    assert!(closed < all);
+    press(&mut app, KeyCode::Char(' '));
+    assert_eq!(app.rows().len(), all);
+    // Left closes an open ray, and on a closed one goes to the parent.
+    press(&mut app, KeyCode::Char('h'));
+    assert_eq!(app.rows().len(), closed);
+    press(&mut app, KeyCode::Char('h'));
+    assert_eq!(app.selected, Vec::<usize>::new());
+    // e: everything open, then everything closed but the root.
+    press(&mut app, KeyCode::Char('e'));
+    assert_eq!(app.rows().len(), all);
+    press(&mut app, KeyCode::Char('e'));
+    assert_eq!(
+        app.rows().len(),
+        1 + app.full_tree.as_ref().unwrap().children.len()
+    );
+    // A click on a tree line selects it.
+    let p = app.panes();
+    update(&mut app, Msg::Click(p.tree.x + 5, p.tree.y + 2));
+    assert_eq!(app.selected, vec![0]);
+    assert_eq!(app.focus, Focus::Tree);
+}
+
+#[test]
+fn a_click_on_the_preview_picks_that_pixel() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    let p = app.panes();
+    let cell =
+        |app: &App| raytree::tui::layout::pixel_cell(&p, app.image_size(), app.cursor).unwrap();
+    // A cell covers a few pixels of the scene: a click picks the one in its middle, and the
+    // marker lands on the cell clicked.
+    for (col, row) in [
+        (p.image.x, p.image.y),
+        (p.image.right() - 1, p.image.bottom() - 1),
+        (p.image.x + 7, p.image.y + 3),
+    ] {
+        update(&mut app, Msg::Click(col, row));
+        assert_eq!(cell(&app), (col, row));
+        let line = screen(&app).lines().nth(row as usize).unwrap().to_string();
+        assert_eq!(line.chars().nth(col as usize), Some('+'), "{line}");
+    }
+    update(&mut app, Msg::Click(p.image.x, p.image.y));
+    assert!(app.cursor.0 < 48 / p.image_px.0 + 1 && app.cursor.1 < 2 * 36 / p.image_px.1 + 1);
+    // A click outside the preview picks nothing.
+    let before = app.cursor;
+    update(&mut app, Msg::Click(p.tree.x + 3, p.tree.bottom() - 2));
+    assert_eq!(app.cursor, before);
+}
+
+#[test]
+fn quitting() {
+    for k in [KeyCode::Char('q'), KeyCode::Esc] {
+        let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+        press(&mut app, k);
+        assert!(app.quit);
+    }
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    press(&mut app, KeyCode::Char('?'));
+    press(&mut app, KeyCode::Char('q'));
+    assert!(app.quit, "q quits from the help too");
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    let ctrl_c = KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
+    let msg = input::key(&app, &ctrl_c).unwrap();
+    update(&mut app, msg);
+    assert!(app.quit);
+}
+
+#[test]
+fn the_tree_root_is_the_rendered_pixel() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    let scene = app.scene.clone().unwrap();
+    for depth in [4, 2] {
+        if app.depth != depth {
+            app = app.with_depth(depth);
+        }
+        let (image, _) = render_simple(
+            &scene,
+            RenderOptions {
+                max_depth: depth,
+                spp: 1,
+            },
+        );
+        for (x, y) in [(20, 15), (32, 14), (0, 0), (24, 30), (47, 35)] {
+            update(&mut app, Msg::Pick(x, y));
+            assert_eq!(
+                root_color(&app),
+                image.get(x, y),
+                "pixel {x},{y} depth {depth}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_preview_follows_the_terminal_size() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    let small = app.preview.size;
+    let img = app.preview.image.as_ref().unwrap();
+    assert_eq!((img.width, img.height), small);
+    // 4:3 scene, kept.
+    assert!((small.0 as f64 / small.1 as f64 - 48.0 / 36.0).abs() < 0.1);
+    update(&mut app, Msg::Resize(160, 48));
+    assert!(app.preview.job.is_some(), "a resize asks for a new preview");
+    assert!(app.preview.size.0 > small.0);
+    app.render_now();
+    let img = app.preview.image.as_ref().unwrap();
+    assert_eq!((img.width, img.height), app.preview.size);
+    // The picked pixel is the scene's, whatever the terminal.
+    assert_eq!(app.image_size(), (48, 36));
+    // A render of an older generation is ignored.
+    let generation = app.preview.generation;
+    update(&mut app, Msg::Resize(100, 30));
+    assert!(app.preview.generation > generation);
+}
+
+#[test]
+fn the_worker_renders_a_draft_then_the_full_preview() {
+    use raytree::tui::worker::{Pass, Worker};
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    update(&mut app, Msg::Resize(160, 48));
+    let job = app.take_job().unwrap();
+    let mut worker = Worker::spawn();
+    worker.submit(job);
+    let draft = worker.recv_timeout(Duration::from_secs(20)).unwrap();
+    assert_eq!(draft.pass, Pass::Draft);
+    let full = worker.recv_timeout(Duration::from_secs(20)).unwrap();
+    assert_eq!(full.pass, Pass::Final);
+    assert_eq!((full.image.width, full.image.height), app.preview.size);
+    update(&mut app, Msg::Rendered(draft));
+    assert!(app.preview.running);
+    update(&mut app, Msg::Rendered(full));
+    assert!(!app.preview.running);
+}
+
+/// Prints how long a pick takes (key → model → drawn screen) and a full preview render.
+#[test]
+fn timings() {
+    let dir = if Path::new("lessons/08-pixel-intensity/scene.yaml").is_file() {
+        "lessons/08-pixel-intensity"
+    } else {
+        MIRROR
+    };
+    let mut app = open(dir, ColorMode::TrueColor, (160, 48));
+    let mut term = ratatui::Terminal::new(ratatui::backend::TestBackend::new(160, 48)).unwrap();
+    term.draw(|f| ui::draw(f, &app)).unwrap();
+    let n = 50;
+    let start = Instant::now();
+    for i in 0..n {
+        let k = if i % 2 == 0 {
+            KeyCode::Right
+        } else {
+            KeyCode::Left
+        };
+        let msg = input::key(&app, &key_event(k)).unwrap();
+        update(&mut app, msg);
+        term.draw(|f| ui::draw(f, &app)).unwrap();
+    }
+    let pick = start.elapsed() / n;
+    let job = app.take_job();
+    assert!(job.is_none(), "picking does not re-render the preview");
+    update(&mut app, Msg::Resize(100, 30));
+    update(&mut app, Msg::Resize(160, 48));
+    let job = app.take_job().unwrap();
+    let (w, h) = (job.width, job.height);
+    let start = Instant::now();
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    raytree::tui::worker::render_pass(&job, raytree::tui::worker::Pass::Final, &cancel, &|_| {})
+        .unwrap();
+    let render = start.elapsed();
+    println!(
+        "explorer timings ({dir}): key → redrawn tree {pick:?}; full preview {w}×{h} px at 160×48: {render:?}"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// The real binary in a real terminal (tmux)
+
+struct Tmux {
+    socket: String,
+}
+
+impl Tmux {
+    fn run(&self, args: &[&str]) -> String {
+        let out = Command::new("tmux")
+            .arg("-L")
+            .arg(&self.socket)
+            .args(args)
+            .output()
+            .expect("tmux runs");
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    }
+
+    fn capture(&self) -> String {
+        self.run(&["capture-pane", "-p", "-t", "explore"])
+    }
+
+    fn wait_for(&self, what: &str) -> String {
+        let start = Instant::now();
+        loop {
+            let screen = self.capture();
+            if screen.contains(what) {
+                return screen;
+            }
+            if start.elapsed() > Duration::from_secs(20) {
+                panic!("`{what}` never appeared; the screen:\n{screen}");
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+}
+
+impl Drop for Tmux {
+    fn drop(&mut self) {
+        self.run(&["kill-server"]);
+    }
+}
+
+#[test]
+fn in_tmux() {
+    if Command::new("tmux").arg("-V").output().is_err() {
+        println!("skipping: tmux is not on PATH");
+        return;
+    }
+    let bin = env!("CARGO_BIN_EXE_raytree");
+    let dir = scratch("tmux");
+    let status = dir.join("status");
+    let stty = dir.join("stty");
+    let tmux = Tmux {
+        socket: format!("raytree-explorer-test-{}", std::process::id()),
+    };
+    // After the explorer exits, the shell records its status and the terminal's modes.
+    let script = format!(
+        "'{bin}' explore {MIRROR}; echo \"exit $?\" > '{}'; stty -a > '{}'; echo DONE; sleep 60",
+        status.display(),
+        stty.display()
+    );
+    tmux.run(&[
+        "new-session",
+        "-d",
+        "-s",
+        "explore",
+        "-x",
+        "100",
+        "-y",
+        "30",
+        "-c",
+        env!("CARGO_MANIFEST_DIR"),
+        "sh",
+        "-c",
+        &script,
+    ]);
+    let first = tmux.wait_for("pixel 24,18");
+    assert!(first.contains("ray tree · pixel 24,18"), "{first}");
+    assert!(first.contains("preview"), "{first}");
+    tmux.wait_for("preview 100%");
+    tmux.run(&["send-keys", "-t", "explore", "Right", "Right", "j"]);
+    let moved = tmux.wait_for("pixel 26,19");
+    assert!(moved.contains("primary: hit"), "{moved}");
+    assert_eq!(
+        tmux.run(&["display", "-p", "-t", "explore", "#{alternate_on}"])
+            .trim(),
+        "1"
+    );
+    tmux.run(&["send-keys", "-t", "explore", "?"]);
+    let help = tmux.wait_for("keys (any key closes");
+    assert!(help.contains("move the picked pixel"), "{help}");
+    tmux.run(&["send-keys", "-t", "explore", "q"]);
+    let after = tmux.wait_for("DONE");
+    let code = std::fs::read_to_string(&status).unwrap();
+    assert_eq!(code.trim(), "exit 0", "{after}");
+    // The terminal is restored: cooked mode with echo, main screen, no mouse reporting.
+    let modes = std::fs::read_to_string(&stty).unwrap();
+    let words: Vec<&str> = modes.split_whitespace().collect();
+    assert!(
+        words.contains(&"icanon") && words.contains(&"echo"),
+        "{modes}"
+    );
+    assert_eq!(
+        tmux.run(&["display", "-p", "-t", "explore", "#{alternate_on}"])
+            .trim(),
+        "0"
+    );
+    assert_eq!(
+        tmux.run(&["display", "-p", "-t", "explore", "#{mouse_any_flag}"])
+            .trim(),
+        "0"
+    );
+    assert!(
+        !after.contains("ray tree ·"),
+        "the explorer's screen is gone:\n{after}"
+    );
+}

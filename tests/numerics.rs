@@ -1,0 +1,207 @@
+//! Numerical stress: grazing and tangent rays, rays through edges and vertices, rays starting
+//! on a surface, refraction up to and beyond the critical angle, nested dielectrics, Fresnel
+//! energy, and coincident CSG faces at every scale.
+
+use glam::DVec3;
+use proptest::prelude::*;
+use raytree::geometry::{Aabox, Ray, Shape, Sphere};
+use raytree::scene::{parse, Limits, Scene};
+use raytree::shading::optics::{refract, schlick};
+use raytree::trace::{RayKind, Stats, Tracer};
+
+fn scene(yaml: &str) -> Scene {
+    parse(yaml, "n.yaml", None, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]
+
+    /// A ray tangent to a sphere touches it at the tangent point or (within rounding) misses;
+    /// never a NaN, never a far-off hit.
+    #[test]
+    fn tangent_rays_touch_the_sphere_where_they_should(theta in 0.0..6.28f64, phi in 0.1..3.04f64, r in 1e-3..1e3f64, s in -5.0..5.0f64) {
+        let sphere = Sphere { center: DVec3::new(1.0, -2.0, 3.0) * r, radius: r };
+        let n = DVec3::new(phi.sin() * theta.cos(), phi.cos(), phi.sin() * theta.sin());
+        let p = sphere.center + r * n;
+        let tangent = n.any_orthonormal_vector();
+        let ray = Ray::new(p - (5.0 + s) * r * tangent, tangent);
+        if let Some(span) = sphere.span(&ray) {
+            prop_assert!(span.t_in.is_finite() && span.t_out.is_finite());
+            let mid = ray.at(0.5 * (span.t_in + span.t_out));
+            prop_assert!((mid - p).length() < 1e-5 * r, "touches at {mid}, tangent point {p}");
+        }
+    }
+
+    /// Rays starting exactly on a sphere: outward they leave it, inward they cross to the far
+    /// side at the chord length 2r·cos θ.
+    #[test]
+    fn rays_starting_on_the_surface(theta in 0.0..6.28f64, phi in 0.1..3.04f64, a in 0.05..1.5f64) {
+        let s = scene("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects: [ { name: s, sphere: { center: [0, 0, 0], radius: 2 }, material: m } ]");
+        let n = DVec3::new(phi.sin() * theta.cos(), phi.cos(), phi.sin() * theta.sin());
+        let p = 2.0 * n;
+        let t = n.any_orthonormal_vector();
+        let inward = Ray::new(p, -(a.cos() * n) + a.sin() * t);
+        let bias = s.bias(p, p);
+        let hit = s.intersect(&inward, bias, f64::INFINITY, &mut Stats::default()).expect("crosses to the far side");
+        prop_assert!((hit.t - 4.0 * a.cos()).abs() < 1e-9, "{} vs {}", hit.t, 4.0 * a.cos());
+        let outward = Ray::new(p, a.cos() * n + a.sin() * t);
+        prop_assert!(s.intersect(&outward, bias, f64::INFINITY, &mut Stats::default()).is_none());
+    }
+
+    /// Snell's law holds to rounding for every angle below the critical angle, the direction
+    /// changes continuously, and beyond it there is total internal reflection.
+    #[test]
+    fn refraction_is_continuous_up_to_the_critical_angle(n1 in 1.0..2.5f64, n2 in 1.0..2.5f64, x in 0.0..1.0f64) {
+        let normal = DVec3::Y;
+        let critical = if n1 > n2 { (n2 / n1).asin() } else { std::f64::consts::FRAC_PI_2 };
+        let theta = x * std::f64::consts::FRAC_PI_2 * 0.999;
+        let d = DVec3::new(theta.sin(), -theta.cos(), 0.0);
+        match refract(d, normal, n1, n2) {
+            Some(t) => {
+                prop_assert!(theta <= critical + 1e-12);
+                prop_assert!((t.length() - 1.0).abs() < 1e-12);
+                prop_assert!((n1 * theta.sin() - n2 * t.x).abs() < 1e-12, "n1 sin θ1 = n2 sin θ2");
+                prop_assert!(t.y < 0.0, "goes on through the surface");
+                let d2 = DVec3::new((theta + 1e-7).sin(), -(theta + 1e-7).cos(), 0.0);
+                if let Some(t2) = refract(d2, normal, n1, n2) {
+                    // A 1e−7 turn of the incoming ray turns the refracted one by a bounded amount
+                    // (the derivative n1 cos θ1 / (n2 cos θ2) is finite below the critical angle).
+                    let bound = 1e-7 * n1 * theta.cos() / (n2 * (-t.y)).max(1e-3) * 1.01 + 1e-12;
+                    prop_assert!((t2 - t).length() <= bound);
+                }
+            }
+            None => prop_assert!(theta >= critical - 1e-12, "TIR only beyond {}", critical),
+        }
+    }
+
+    /// Fresnel weights never create energy: 0 ≤ R ≤ 1, so kr·R + kt·(1 − R) ≤ max(kr, kt).
+    #[test]
+    fn schlick_weights_stay_between_zero_and_one(c in 0.0..1.0f64, n1 in 1.0..3.0f64, n2 in 1.0..3.0f64) {
+        let r = schlick(c, n1, n2);
+        prop_assert!((0.0..=1.0).contains(&r), "{r}");
+    }
+}
+
+#[test]
+fn rays_through_box_edges_and_vertices() {
+    let b = Shape::Box(Aabox {
+        min: DVec3::splat(-1.0),
+        max: DVec3::splat(1.0),
+    });
+    // Through two opposite vertices: enters at (−1,−1,−1), leaves at (1,1,1).
+    let r = Ray::new(DVec3::splat(-3.0), DVec3::ONE);
+    let s = b.span(&r).unwrap();
+    assert!(
+        (s.t_in - 2.0 * 3f64.sqrt()).abs() < 1e-12 && (s.t_out - 4.0 * 3f64.sqrt()).abs() < 1e-12
+    );
+    // Along an edge (x = 1, y = 1): the closed box contains its edges.
+    let s = b
+        .span(&Ray::new(DVec3::new(1.0, 1.0, -5.0), DVec3::Z))
+        .unwrap();
+    assert_eq!((s.t_in, s.t_out), (4.0, 6.0));
+    // Touching only a vertex: a zero-length span exactly there.
+    let s = b
+        .span(&Ray::new(
+            DVec3::new(-1.0, 3.0, -1.0),
+            DVec3::new(0.0, -1.0, -1.0),
+        ))
+        .map(|s| (s.t_in, s.t_out));
+    if let Some((a, b2)) = s {
+        assert!((a - b2).abs() < 1e-12);
+    }
+    // Just outside an edge: a miss.
+    assert!(b
+        .span(&Ray::new(DVec3::new(1.0 + 1e-12, 1.0, -5.0), DVec3::Z))
+        .is_none());
+}
+
+#[test]
+fn nested_dielectrics_keep_the_right_indices() {
+    // A glass ball (1.5) holding a water ball (1.33): through the centre the ray meets
+    // 1 → 1.5, 1.5 → 1.33, 1.33 → 1.5, 1.5 → 1.
+    let s = scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmax_depth: 8\nmaterials:\n  glass: { kt: 1, ior: 1.5 }\n  water: { kt: 1, ior: 1.33 }\nobjects:\n  - { name: glass, sphere: { center: [0, 0, 0], radius: 3 }, material: glass }\n  - { name: water, sphere: { center: [0, 0, 0], radius: 1 }, material: water }\n",
+    );
+    let tree = Tracer::new(&s).inspect(
+        &Ray::new(DVec3::new(0.0, 0.0, -10.0), DVec3::Z),
+        &mut Stats::default(),
+    );
+    let mut indices = vec![];
+    let mut node = &tree;
+    while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
+        if let Some(i) = next.indices {
+            indices.push((i.n1, i.n2));
+        }
+        node = next;
+    }
+    assert_eq!(
+        indices,
+        vec![(1.0, 1.5), (1.5, 1.33), (1.33, 1.5), (1.5, 1.0)]
+    );
+}
+
+#[test]
+fn touching_slabs_refract_as_one_stack() {
+    // Two slabs of different glass share the face z = 1. Across parallel layers n·sin θ is
+    // conserved, so the ray leaves the stack parallel to how it entered.
+    let s = scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmax_depth: 8\nmaterials:\n  a: { kt: 1, ior: 1.5 }\n  b: { kt: 1, ior: 1.2 }\nobjects:\n  - { name: A, box: { min: [-50, -50, 0], max: [50, 50, 1] }, material: a }\n  - { name: B, box: { min: [-50, -50, 1], max: [50, 50, 2] }, material: b }\n",
+    );
+    let d = DVec3::new(0.3, 0.1, 1.0).normalize();
+    let tree = Tracer::new(&s).inspect(
+        &Ray::new(DVec3::new(0.0, 0.0, -5.0), d),
+        &mut Stats::default(),
+    );
+    let mut node = &tree;
+    while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
+        node = next;
+    }
+    assert!(
+        (node.direction - d).length() < 1e-9,
+        "{} vs {d}",
+        node.direction
+    );
+    assert!(node.origin.z > 2.0 - 1e-6, "left the stack at its far face");
+}
+
+#[test]
+fn coincident_csg_faces_give_the_documented_result_at_every_scale() {
+    for scale in [1e-4, 1e-2, 1.0, 1e2, 1e4, 1e6] {
+        let v =
+            |x: f64, y: f64, z: f64| format!("[{:e}, {:e}, {:e}]", x * scale, y * scale, z * scale);
+        let yaml = format!(
+            "camera: {{ eye: {}, look_at: [0, 0, 0] }}\nmaterials: {{ m: {{ kd: 1 }} }}\nobjects:\n\
+             \x20 - {{ name: face, intersection: [ {{ box: {{ min: {}, max: {} }} }}, {{ box: {{ min: {}, max: {} }} }} ], material: m }}\n\
+             \x20 - {{ name: merged, union: [ {{ box: {{ min: {}, max: {} }} }}, {{ box: {{ min: {}, max: {} }} }} ], material: m }}\n\
+             \x20 - {{ name: flush, difference: [ {{ box: {{ min: {}, max: {} }} }}, {{ box: {{ min: {}, max: {} }} }} ], material: m }}\n",
+            v(0.0, 0.0, -10.0),
+            v(-1.0, -1.0, 0.0), v(1.0, 1.0, 1.0), v(-1.0, -1.0, 1.0), v(1.0, 1.0, 2.0),
+            v(-1.0, -1.0, 0.0), v(1.0, 1.0, 1.0), v(-1.0, -1.0, 1.0), v(1.0, 1.0, 2.0),
+            v(-1.0, -1.0, 0.0), v(1.0, 1.0, 2.0), v(-1.0, -1.0, 1.0), v(1.0, 1.0, 2.0),
+        );
+        let s = scene(&yaml);
+        let ray = Ray::new(DVec3::new(0.3, 0.2, -10.0) * scale, DVec3::Z);
+        let lists: Vec<Vec<(f64, f64)>> = (0..3)
+            .map(|o| {
+                s.object_trace(o, &ray, true)
+                    .0
+                    .iter()
+                    .map(|g| (g.t_in / scale, g.t_out / scale))
+                    .collect()
+            })
+            .collect();
+        assert!(
+            lists[0].is_empty(),
+            "scale {scale}: a shared face has no volume: {:?}",
+            lists[0]
+        );
+        assert_eq!(lists[1].len(), 1, "scale {scale}: touching boxes merge");
+        assert!((lists[1][0].0 - 10.0).abs() < 1e-9 && (lists[1][0].1 - 12.0).abs() < 1e-9);
+        assert_eq!(
+            lists[2].len(),
+            1,
+            "scale {scale}: a flush cut leaves one box"
+        );
+        assert!((lists[2][0].0 - 10.0).abs() < 1e-9 && (lists[2][0].1 - 11.0).abs() < 1e-9);
+    }
+}
