@@ -19,7 +19,7 @@ proptest! {
     /// A ray tangent to a sphere touches it at the tangent point or (within rounding) misses;
     /// never a NaN, never a far-off hit.
     #[test]
-    fn tangent_rays_touch_the_sphere_where_they_should(theta in 0.0..6.28f64, phi in 0.1..3.04f64, r in 1e-3..1e3f64, s in -5.0..5.0f64) {
+    fn tangent_rays_touch_the_sphere_where_they_should(theta in 0.0..std::f64::consts::TAU, phi in 0.1..3.04f64, r in 1e-3..1e3f64, s in -5.0..5.0f64) {
         let sphere = Sphere { center: DVec3::new(1.0, -2.0, 3.0) * r, radius: r };
         let n = DVec3::new(phi.sin() * theta.cos(), phi.cos(), phi.sin() * theta.sin());
         let p = sphere.center + r * n;
@@ -35,7 +35,7 @@ proptest! {
     /// Rays starting exactly on a sphere: outward they leave it, inward they cross to the far
     /// side at the chord length 2r·cos θ.
     #[test]
-    fn rays_starting_on_the_surface(theta in 0.0..6.28f64, phi in 0.1..3.04f64, a in 0.05..1.5f64) {
+    fn rays_starting_on_the_surface(theta in 0.0..std::f64::consts::TAU, phi in 0.1..3.04f64, a in 0.05..1.5f64) {
         let s = scene("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects: [ { name: s, sphere: { center: [0, 0, 0], radius: 2 }, material: m } ]");
         let n = DVec3::new(phi.sin() * theta.cos(), phi.cos(), phi.sin() * theta.sin());
         let p = 2.0 * n;

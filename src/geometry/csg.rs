@@ -241,7 +241,7 @@ struct Event {
 #[inline]
 fn event(list: &[Segment], k: usize) -> Option<Event> {
     let s = list.get(k / 2)?;
-    Some(if k % 2 == 0 {
+    Some(if k.is_multiple_of(2) {
         Event {
             t: s.t_in,
             entering: true,

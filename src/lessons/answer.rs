@@ -98,7 +98,7 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
             .filter(|p| !p.trim().is_empty())
             .map(number)
             .collect::<Result<_, _>>()?;
-        if parts.len() % 2 != 0 {
+        if !parts.len().is_multiple_of(2) {
             return Err("a segment list needs pairs t_in, t_out (e.g. `13, 16; 22, 23`)".into());
         }
         return Ok(Answer::Segments(

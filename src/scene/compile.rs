@@ -226,7 +226,7 @@ fn nonzero(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {
 fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
     let size = |s: &Option<Spanned<i64>>, default: i64, what: &str| -> Result<u32, Invalid> {
         let (v, at) = s.as_ref().map_or((default, p), |s| (s.value, pos(s)));
-        if v < 1 || v > 1_000_000 {
+        if !(1..=1_000_000).contains(&v) {
             return invalid(
                 at,
                 format!("camera {what} must be between 1 and 1000000 pixels, got {v}"),
