@@ -1,5 +1,6 @@
-//! Triangle, intersected with the watertight test of Woop, Benthin and Wald (2013): rays
-//! through a shared edge hit exactly one of the two triangles, never neither.
+//! Triangle, intersected with the watertight test of Woop, Benthin and Wald (2013): a ray
+//! through an edge shared by two triangles hits at least one of them, never neither (exactly
+//! on the edge, both may report the same t).
 
 use glam::DVec3;
 

@@ -667,6 +667,56 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                 ));
             }
         }
+        Ask::Barycentric if n.hit.as_ref().is_some_and(|h| h.barycentric.is_some()) => {
+            let h = n.hit.as_ref().unwrap();
+            out.push(format!(
+                "ray o = {}, d = {} hits {} at t = {}, p = {}",
+                text::vec3(n.origin),
+                text::vec3(n.direction),
+                h.leaf,
+                text::num(h.t),
+                text::vec3(h.point)
+            ));
+            if let Some(Shape::Triangle(tri)) = w
+                .scene
+                .leaves
+                .iter()
+                .find(|l| l.name == h.leaf && l.transform.is_none())
+                .map(|l| &l.shape)
+            {
+                let area = |a: DVec3, b: DVec3, c: DVec3| 0.5 * (b - a).cross(c - a).length();
+                let whole = area(tri.a, tri.b, tri.c);
+                out.push(format!(
+                    "a = {}, b = {}, c = {}; area(a, b, c) = {}",
+                    text::vec3(tri.a),
+                    text::vec3(tri.b),
+                    text::vec3(tri.c),
+                    text::num(whole)
+                ));
+                out.push(format!(
+                    "λ1 = area(p, b, c)/area(a, b, c) = {}/{} = {}",
+                    text::num(area(h.point, tri.b, tri.c)),
+                    text::num(whole),
+                    text::num(area(h.point, tri.b, tri.c) / whole)
+                ));
+                out.push(format!(
+                    "λ2 = area(a, p, c)/area(a, b, c) = {}/{} = {}",
+                    text::num(area(tri.a, h.point, tri.c)),
+                    text::num(whole),
+                    text::num(area(tri.a, h.point, tri.c) / whole)
+                ));
+                out.push(format!(
+                    "λ3 = area(a, b, p)/area(a, b, c) = {}/{} = {}",
+                    text::num(area(tri.a, tri.b, h.point)),
+                    text::num(whole),
+                    text::num(area(tri.a, tri.b, h.point) / whole)
+                ));
+                out.push("check: λ1 + λ2 + λ3 = 1 and p = λ1·a + λ2·b + λ3·c".into());
+            } else {
+                let b = h.barycentric.unwrap();
+                out.push(format!("on a mesh triangle (a, b, c in the file's order): (λ1, λ2, λ3) = {}, p = λ1·a + λ2·b + λ3·c", text::vec3(b)));
+            }
+        }
         Ask::Segments => {
             let name = ex.object.as_deref().unwrap_or("");
             if let Some(o) = w.scene.object_index(name) {
