@@ -205,3 +205,41 @@ fn coincident_csg_faces_give_the_documented_result_at_every_scale() {
         assert!((lists[2][0].0 - 10.0).abs() < 1e-9 && (lists[2][0].1 - 11.0).abs() < 1e-9);
     }
 }
+
+#[test]
+fn a_hollow_glass_sphere_is_entered_and_left_twice() {
+    // A CSG shell: glass between radius 1 and 2. Through the centre: air → glass → air (the
+    // cavity, bounded by the carved surface with its normal flipped) → glass → air.
+    let s = scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmax_depth: 8\nmaterials:\n  glass: { kt: 1, ior: 1.5 }\nobjects:\n  - name: shell\n    difference:\n      - { name: outer, sphere: { center: [0, 0, 0], radius: 2 } }\n      - { name: cavity, sphere: { center: [0, 0, 0], radius: 1 } }\n    material: glass\n",
+    );
+    let tree = Tracer::new(&s).inspect(
+        &Ray::new(DVec3::new(0.0, 0.0, -10.0), DVec3::Z),
+        &mut Stats::default(),
+    );
+    let mut steps = vec![];
+    let mut node = &tree;
+    while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
+        let h = node.hit.as_ref().unwrap();
+        steps.push((
+            h.leaf.clone(),
+            h.inside,
+            h.t,
+            next.indices.map(|i| (i.n1, i.n2)),
+        ));
+        node = next;
+    }
+    let expected = [
+        ("outer", false, 8.0, (1.0, 1.5)),
+        ("cavity", true, 1.0, (1.5, 1.0)),
+        ("cavity", false, 2.0, (1.0, 1.5)),
+        ("outer", true, 1.0, (1.5, 1.0)),
+    ];
+    assert_eq!(steps.len(), 4, "{steps:?}");
+    for (got, want) in steps.iter().zip(expected) {
+        assert_eq!(got.0, want.0);
+        assert_eq!(got.1, want.1, "inside flag at {}", want.0);
+        assert!((got.2 - want.2).abs() < 1e-6, "t {} vs {}", got.2, want.2);
+        assert_eq!(got.3, Some(want.3));
+    }
+}
