@@ -616,6 +616,12 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                     crate::shading::LightKind::Directional { .. } => {
                         out.push("directional light: a shadow ray is blocked by any hit with t > 0; fatt = 1".into());
                     }
+                    crate::shading::LightKind::Rect { samples, .. } => {
+                        out.push(format!(
+                            "area light: l points to its centre; s = the fraction of {} shadow rays (to the centres of a {samples} × {samples} grid on it) that reach it",
+                            samples * samples
+                        ));
+                    }
                 }
                 match (
                     &t.skipped,

@@ -334,39 +334,69 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
     if intensity.min_element() < 0.0 {
         return invalid(p, format!("light `{name}` has a negative intensity"));
     }
-    let kind = match (l.point, &l.direction) {
-        (Some(position), None) => {
-            let attenuation = match &l.attenuation {
-                Some(a) => attenuation(a)?,
-                None => [1.0, 0.0, 0.0],
-            };
-            LightKind::Point {
-                position,
-                attenuation,
-            }
+    let given = [l.point.is_some(), l.direction.is_some(), l.rect.is_some()]
+        .iter()
+        .filter(|&&b| b)
+        .count();
+    if given != 1 {
+        return invalid(
+            p,
+            format!("light `{name}` needs exactly one of `point`, `direction` or `rect`"),
+        );
+    }
+    if l.samples.is_some() && l.rect.is_none() {
+        return invalid(
+            p,
+            format!("light `{name}`: `samples` is for area (`rect`) lights"),
+        );
+    }
+    let kind = if let Some(position) = l.point {
+        let attenuation = match &l.attenuation {
+            Some(a) => attenuation(a)?,
+            None => [1.0, 0.0, 0.0],
+        };
+        LightKind::Point {
+            position,
+            attenuation,
         }
-        (None, Some(d)) => {
-            if l.attenuation.is_some() {
+    } else if l.attenuation.is_some() {
+        return invalid(
+            p,
+            format!("light `{name}`: only point lights have distance attenuation"),
+        );
+    } else if let Some(d) = &l.direction {
+        LightKind::Directional {
+            direction: nonzero(d.value, pos(d), "light direction")?,
+        }
+    } else {
+        let r = l.rect.as_ref().expect("counted above");
+        let (corner, u, v) = (r.value.corner, r.value.u, r.value.v);
+        if u.cross(v).length() < 1e-12 {
+            return invalid(
+                pos(r),
+                format!(
+                    "light `{name}`: the rectangle's edges u and v must not be parallel or zero"
+                ),
+            );
+        }
+        let samples = match &l.samples {
+            None => 3,
+            Some(s) if !(1..=64).contains(&s.value) => {
                 return invalid(
-                    p,
-                    format!("light `{name}`: a directional light has no distance attenuation"),
-                );
+                    pos(s),
+                    format!(
+                        "light `{name}`: samples must be between 1 and 64, got {}",
+                        s.value
+                    ),
+                )
             }
-            LightKind::Directional {
-                direction: nonzero(d.value, pos(d), "light direction")?,
-            }
-        }
-        (Some(_), Some(_)) => {
-            return invalid(
-                p,
-                format!("light `{name}` has both `point` and `direction`: give one"),
-            )
-        }
-        (None, None) => {
-            return invalid(
-                p,
-                format!("light `{name}` needs `point` (a position) or `direction`"),
-            )
+            Some(s) => s.value as u32,
+        };
+        LightKind::Rect {
+            corner,
+            u,
+            v,
+            samples,
         }
     };
     Ok(Light {

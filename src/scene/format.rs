@@ -125,8 +125,20 @@ pub struct LightSpec {
     pub name: Option<String>,
     pub point: Option<DVec3>,
     pub direction: Option<Spanned<DVec3>>,
+    pub rect: Option<Spanned<RectSpec>>,
+    /// Area lights: n × n shadow rays per shaded point (default 3).
+    pub samples: Option<Spanned<i64>>,
     pub intensity: Option<Triple>,
     pub attenuation: Option<Spanned<[f64; 3]>>,
+}
+
+/// A rectangular area light: `corner + a·u + b·v`, emitting on the side of u × v.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RectSpec {
+    pub corner: DVec3,
+    pub u: DVec3,
+    pub v: DVec3,
 }
 
 #[derive(Clone, Debug, Deserialize)]

@@ -11,6 +11,16 @@ pub enum LightKind {
     },
     /// Parallel light travelling along `direction` (unit), from infinitely far away.
     Directional { direction: DVec3 },
+    /// A rectangle `corner + a·u + b·v` (0 ≤ a, b ≤ 1) emitting from the side of u × v.
+    /// Whitted shading treats it as a point light at its centre whose shadow factor is the
+    /// fraction of `samples × samples` points on it that are visible (soft shadows); the path
+    /// tracer samples it as an area emitter of radiance `intensity`.
+    Rect {
+        corner: DVec3,
+        u: DVec3,
+        v: DVec3,
+        samples: u32,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -53,6 +63,50 @@ impl Light {
                 distance: f64::INFINITY,
                 attenuation: 1.0,
             },
+            LightKind::Rect { corner, u, v, .. } => {
+                let to_light = *corner + 0.5 * (*u + *v) - p;
+                let d = to_light.length();
+                LightSample {
+                    l: to_light / d,
+                    distance: d,
+                    attenuation: 1.0,
+                }
+            }
+        }
+    }
+
+    /// Points on an area light for its shadow rays: the centres of an n × n grid of strata
+    /// (deterministic, so soft shadows need no random numbers). Other lights have none.
+    pub fn shadow_points(&self) -> Vec<DVec3> {
+        match &self.kind {
+            LightKind::Rect {
+                corner,
+                u,
+                v,
+                samples,
+            } => {
+                let n = (*samples).max(1);
+                let step = 1.0 / n as f64;
+                (0..n * n)
+                    .map(|k| {
+                        *corner
+                            + ((k % n) as f64 + 0.5) * step * *u
+                            + ((k / n) as f64 + 0.5) * step * *v
+                    })
+                    .collect()
+            }
+            _ => vec![],
+        }
+    }
+
+    /// The rectangle of an area light: (corner, u, v, unit normal, area).
+    pub fn rect(&self) -> Option<(DVec3, DVec3, DVec3, DVec3, f64)> {
+        match &self.kind {
+            LightKind::Rect { corner, u, v, .. } => {
+                let n = u.cross(*v);
+                Some((*corner, *u, *v, n.normalize(), n.length()))
+            }
+            _ => None,
         }
     }
 

@@ -15,7 +15,7 @@ use crate::geometry::{Ray, Shape};
 use crate::scene::{Interaction, Scene};
 use crate::shading::local::{ambient, light_terms};
 use crate::shading::optics::{reflect, refract, schlick};
-use crate::shading::Fresnel;
+use crate::shading::{Fresnel, Light};
 
 /// The refractive media a ray is inside, innermost last (nested glass keeps n1/n2 right).
 #[derive(Clone, Copy, Debug)]
@@ -198,7 +198,7 @@ impl<'s> Tracer<'s> {
                     task.depth,
                     sample.l,
                     sample.distance,
-                    &light.name,
+                    light,
                     rec,
                     stats,
                 ),
@@ -406,7 +406,8 @@ impl<'s> Tracer<'s> {
     }
 
     /// s for one light: cast a shadow ray from the surface toward it. A point light is
-    /// blocked by a hit with 0 < t < distance, a directional one by any hit with t > 0.
+    /// blocked by a hit with 0 < t < distance, a directional one by any hit with t > 0. An area
+    /// light gets one shadow ray per point of its grid; s is the fraction that get through.
     #[allow(clippy::too_many_arguments)]
     fn shadow_factor<R: Recorder>(
         &self,
@@ -414,24 +415,46 @@ impl<'s> Tracer<'s> {
         depth: u32,
         l: DVec3,
         distance: f64,
-        light: &str,
+        light: &Light,
         rec: &mut R,
         stats: &mut Stats,
     ) -> f64 {
-        stats.shadow_rays += 1;
+        let points = light.shadow_points();
+        let targets: Vec<(DVec3, f64)> = if points.is_empty() {
+            vec![(l, distance)]
+        } else {
+            points
+                .iter()
+                .map(|q| {
+                    let to = *q - si.point;
+                    (to.normalize(), to.length())
+                })
+                .collect()
+        };
+        let mut visible = 0usize;
+        let mut first_blocker = None;
         let origin = self.offset(si, l, si.point);
-        let t_max = if distance.is_finite() {
-            (distance - (origin - si.point).length()).max(0.0)
-        } else {
-            distance
-        };
-        let ray = Ray { origin, dir: l };
-        let blocker = if self.options.shadows {
-            self.scene.occluded(&ray, 0.0, t_max, stats)
-        } else {
-            None
-        };
-        let s = if blocker.is_some() { 0.0 } else { 1.0 };
+        for &(dir, dist) in &targets {
+            stats.shadow_rays += 1;
+            let from = self.offset(si, dir, si.point);
+            let t_max = if dist.is_finite() {
+                (dist - (from - si.point).length()).max(0.0)
+            } else {
+                dist
+            };
+            let ray = Ray { origin: from, dir };
+            let blocker = if self.options.shadows {
+                self.scene.occluded(&ray, 0.0, t_max, stats)
+            } else {
+                None
+            };
+            match blocker {
+                None => visible += 1,
+                Some(h) if first_blocker.is_none() => first_blocker = Some((ray, h)),
+                Some(_) => {}
+            }
+        }
+        let s = visible as f64 / targets.len() as f64;
         if R::ACTIVE {
             rec.begin(RayStart {
                 kind: RayKind::Shadow,
@@ -441,8 +464,13 @@ impl<'s> Tracer<'s> {
                 weight: 1.0,
                 coefficient: 1.0,
             });
-            rec.shadow(light, t_max, s);
-            if let Some(h) = blocker {
+            let t_max = if distance.is_finite() {
+                (distance - (origin - si.point).length()).max(0.0)
+            } else {
+                distance
+            };
+            rec.shadow(&light.name, t_max, s);
+            if let Some((ray, h)) = first_blocker {
                 let bsi = self.scene.interaction(&ray, &h);
                 rec.hit(self.hit_info(&ray, h.t, &bsi));
             }

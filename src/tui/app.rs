@@ -27,6 +27,8 @@ use crate::trace::{text, RayNode, Stats, Termination, Tracer};
 pub const MAX_DEPTH: u32 = 16;
 /// Pixels moved by shift + arrow (or H J K L).
 pub const BIG_STEP: i32 = 10;
+/// The CSG panel lists the segment lists of at most this many rays of a tree.
+pub const CSG_MAX_RAYS: usize = 64;
 /// How often the scene file is checked for changes.
 pub const WATCH_INTERVAL: Duration = Duration::from_millis(300);
 
@@ -85,12 +87,14 @@ pub struct LessonPanel {
     pub exercise: usize,
     /// The last answer to each exercise.
     pub answers: Vec<Option<Answered>>,
+    signature: [Option<FileSig>; 2],
 }
 
 impl LessonPanel {
     fn new(lesson: Lesson) -> LessonPanel {
         let n = lesson.exercises.len();
         LessonPanel {
+            signature: lesson_signature(&lesson.dir),
             lesson,
             open: true,
             view: LessonView::Readme,
@@ -187,6 +191,13 @@ type FileSig = (Option<SystemTime>, u64);
 fn signature(path: &Path) -> Option<FileSig> {
     let m = std::fs::metadata(path).ok()?;
     Some((m.modified().ok(), m.len()))
+}
+
+fn lesson_signature(dir: &Path) -> [Option<FileSig>; 2] {
+    [
+        signature(&dir.join("README.md")),
+        signature(&dir.join("exercises.yaml")),
+    ]
 }
 
 /// A path relative to the working directory when it lies below it (shorter, and stable).
@@ -385,13 +396,17 @@ impl App {
         self.depth_from_user = false;
         self.selected = vec![];
         self.focus = Focus::Preview;
+        self.show_csg = false;
+        self.preview.image = None;
+        self.preview.stats = None;
         self.cursor = (scene.camera.width / 2, scene.camera.height / 2);
         self.set_scene(scene);
-        self.message = Some((
-            "arrows/hjkl pick a pixel · Tab: tree · +/-: depth · n/p: levels · ?: all keys · q: quit"
-                .into(),
-            Tone::Info,
-        ));
+        let hint = if self.lesson.is_some() {
+            "←↑↓→ pick · Tab tree · +/- depth · n/p levels · r README · a answer · ? keys"
+        } else {
+            "←↑↓→ pick a pixel · Tab tree · +/- depth · n/p levels · c CSG · ? keys · q quit"
+        };
+        self.message = Some((hint.into(), Tone::Info));
         Ok(())
     }
 
@@ -429,14 +444,14 @@ impl App {
 
     /// The panes of the scene screen at the current size.
     pub fn panes(&self) -> Panes {
+        self.panes_in(Rect::new(0, 0, self.size.0, self.size.1))
+    }
+
+    /// The panes of the scene screen in an area.
+    pub fn panes_in(&self, area: Rect) -> Panes {
         let (w, h) = self.image_size();
         let aspect = if h == 0 { 1.0 } else { w as f64 / h as f64 };
-        layout::scene_panes(
-            Rect::new(0, 0, self.size.0, self.size.1),
-            aspect,
-            self.lesson_open(),
-            self.message_rows(),
-        )
+        layout::scene_panes(area, aspect, self.lesson_open(), self.message_rows())
     }
 
     /// The message line, as text: a scene error wins over other messages.
@@ -569,7 +584,9 @@ impl App {
             return;
         };
         let mut lines = Vec::new();
-        for path in tree::ray_paths(root) {
+        let paths = tree::ray_paths(root);
+        let more = paths.len().saturating_sub(CSG_MAX_RAYS);
+        for path in paths.into_iter().take(CSG_MAX_RAYS) {
             let n = tree::node_at(root, &path).expect("path from the tree");
             if matches!(
                 n.terminated,
@@ -616,22 +633,21 @@ impl App {
                 }
             }
         }
+        if more > 0 {
+            lines.push(CsgLine {
+                node: vec![usize::MAX],
+                header: false,
+                text: format!("… and {more} more rays (raytree csg --ray shows any of them)"),
+            });
+        }
         self.csg = lines;
         self.scroll_csg_to_selection();
     }
 
+    /// Scrolls the CSG panel to the selected ray's section.
     fn scroll_csg_to_selection(&mut self) {
-        // The section of the selected ray (or of the ray a shadow ray leaves from).
-        let mut path = self.selected.clone();
-        loop {
-            if let Some(i) = self.csg.iter().position(|l| l.header && l.node == path) {
-                self.csg_scroll = i as u16;
-                return;
-            }
-            if path.pop().is_none() {
-                return;
-            }
-        }
+        let row = super::ui::csg_section_row(self).unwrap_or(0) as u16;
+        self.csg_scroll = row.min(super::ui::max_scroll(self).0);
     }
 
     fn select(&mut self, path: NodePath) {
@@ -761,17 +777,19 @@ impl App {
     }
 
     fn scroll_lower(&mut self, delta: i32) {
+        let max = super::ui::max_scroll(self).0 as i32;
         let s = if self.show_csg {
             &mut self.csg_scroll
         } else {
             &mut self.details_scroll
         };
-        *s = (*s as i32 + delta).max(0) as u16;
+        *s = (*s as i32 + delta).clamp(0, max) as u16;
     }
 
     fn scroll_lesson(&mut self, delta: i32) {
+        let max = super::ui::max_scroll(self).1 as i32;
         if let Some(l) = &mut self.lesson {
-            l.scroll = (l.scroll as i32 + delta).max(0) as u16;
+            l.scroll = (l.scroll as i32 + delta).clamp(0, max) as u16;
         }
     }
 
@@ -861,15 +879,7 @@ impl App {
         };
         let dir = entry.dir.clone();
         match self.open_target(&dir) {
-            Ok(()) => {
-                self.show_csg = false;
-                self.depth_from_user = false;
-                if let Some(s) = self.scene.clone() {
-                    self.depth = s.max_depth.clamp(1, MAX_DEPTH);
-                    self.retrace();
-                    self.request_render();
-                }
-            }
+            Ok(()) => {}
             Err(e) => {
                 if let Some(list) = &mut self.list {
                     list.error = Some(e);
@@ -880,6 +890,7 @@ impl App {
 
     /// Reloads the scene file if it changed on disk.
     fn poll_file(&mut self) {
+        self.poll_lesson();
         let Some(path) = self.path.clone() else {
             return;
         };
@@ -902,6 +913,36 @@ impl App {
                 ));
             }
             Err(e) => self.error = Some(e.to_string()),
+        }
+    }
+
+    /// Reloads the lesson's README and exercises if either changed (answers are kept for the
+    /// exercises that are still there).
+    fn poll_lesson(&mut self) {
+        let Some(l) = &mut self.lesson else { return };
+        let sig = lesson_signature(&l.lesson.dir);
+        if sig == l.signature {
+            return;
+        }
+        l.signature = sig;
+        match Lesson::load(&l.lesson.dir) {
+            Ok(lesson) => {
+                let answers = lesson
+                    .exercises
+                    .iter()
+                    .map(|ex| {
+                        l.lesson
+                            .exercises
+                            .iter()
+                            .position(|old| old.id == ex.id)
+                            .and_then(|i| l.answers[i].clone())
+                    })
+                    .collect();
+                l.exercise = l.exercise.min(lesson.exercises.len().saturating_sub(1));
+                l.answers = answers;
+                l.lesson = lesson;
+            }
+            Err(e) => self.message = Some((e, Tone::Bad)),
         }
     }
 

@@ -70,7 +70,7 @@ pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool, message_rows: u16
     let inner_h = top_h.saturating_sub(2);
     let wanted = ((2.0 * inner_h as f64 * aspect).round() as u16).saturating_add(2);
     let cap = if side.is_some() {
-        left.width / 2
+        left.width * 2 / 5
     } else {
         left.width * 3 / 5
     };
@@ -105,7 +105,7 @@ pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool, message_rows: u16
 /// The lesson list screen: the list on the left, the selected lesson's summary on the right.
 pub fn list_panes(area: Rect) -> (Rect, Rect, Rect, Rect) {
     let (main, status, message) = bottom_lines(area, 1);
-    let lw = (main.width / 2).max(main.width.min(36));
+    let lw = (main.width * 3 / 5).max(main.width.min(36));
     let list = Rect::new(main.x, main.y, lw, main.height);
     let info = Rect::new(main.x + lw, main.y, main.width - lw, main.height);
     (list, info, status, message)

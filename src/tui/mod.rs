@@ -35,12 +35,6 @@ pub struct Options {
 
 /// Runs the explorer until the user quits.
 pub fn run(options: Options) -> Result<(), String> {
-    if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
-        return Err(
-            "explore needs a terminal (use `raytree inspect` or `raytree preview` in scripts)"
-                .into(),
-        );
-    }
     let color = if options.ascii {
         ColorMode::Ascii
     } else {
@@ -63,6 +57,13 @@ pub fn run(options: Options) -> Result<(), String> {
         }
         update(&mut app, Msg::Pick(x, y));
     }
+    // After loading, so a bad scene is reported the same way everywhere.
+    if !std::io::stdout().is_terminal() || !std::io::stdin().is_terminal() {
+        return Err(
+            "explore needs a terminal (use `raytree inspect` or `raytree preview` in scripts)"
+                .into(),
+        );
+    }
     let mut guard = terminal::setup().map_err(|e| format!("cannot set up the terminal: {e}"))?;
     let result = event_loop(&mut guard.term, &mut app);
     drop(guard);
@@ -82,8 +83,19 @@ fn event_loop(term: &mut terminal::Term, app: &mut App) -> std::io::Result<()> {
             worker.submit(job);
         }
         if dirty {
+            let size = term.size()?;
+            if (size.width, size.height) != app.size {
+                update(app, Msg::Resize(size.width, size.height));
+                if let Some(job) = app.take_job() {
+                    worker.submit(job);
+                }
+            }
             term.draw(|f| ui::draw(f, app))?;
             dirty = false;
+            if std::env::var_os("RAYTREE_EXPLORE_TEST_PANIC").is_some() {
+                // tests/explorer.rs checks that a panic leaves a usable terminal behind.
+                panic!("RAYTREE_EXPLORE_TEST_PANIC is set: a deliberate panic");
+            }
         }
         let timeout = app::WATCH_INTERVAL
             .saturating_sub(last_tick.elapsed())

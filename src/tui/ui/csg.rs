@@ -10,16 +10,26 @@ use ratatui::Frame;
 use super::{inner, pane, position_note, scroll_window, themed, wrap};
 use crate::tui::app::{App, Focus};
 
-pub fn draw(f: &mut Frame, app: &App, area: Rect) {
-    let width = inner(area).width as usize;
-    // The section of the selected ray, or of the ray a shadow ray leaves from.
+/// The section of the CSG panel that belongs to the selected ray (or to the ray a shadow ray
+/// leaves from).
+fn section(app: &App) -> Vec<usize> {
     let mut section = app.selected.clone();
     while !section.is_empty() && !app.csg.iter().any(|l| l.header && l.node == section) {
         section.pop();
     }
+    section
+}
+
+/// The CSG pane's lines at a width, and the row where the selected ray's section starts.
+pub fn lines(app: &App, width: usize) -> (Vec<Line<'static>>, Option<usize>) {
+    let section = section(app);
     let mut lines: Vec<Line> = Vec::new();
+    let mut start = None;
     for l in &app.csg {
         let mine = l.node == section;
+        if l.header && mine && start.is_none() {
+            start = Some(lines.len());
+        }
         let style = if l.header {
             Style::new().add_modifier(Modifier::BOLD).fg(Color::Yellow)
         } else if l.text.contains("pruned:") {
@@ -47,6 +57,11 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     if lines.is_empty() {
         lines.push(Line::from("  no rays"));
     }
+    (lines, start)
+}
+
+pub fn draw(f: &mut Frame, app: &App, area: Rect) {
+    let (lines, _) = lines(app, inner(area).width as usize);
     let total = lines.len();
     let (shown, start) = scroll_window(&lines, app.csg_scroll, inner(area).height);
     let mut block = pane(

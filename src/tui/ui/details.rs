@@ -105,19 +105,11 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
     out
 }
 
-pub fn draw(f: &mut Frame, app: &App, area: Rect) {
+/// The details pane's lines at a width (wrapped, styled).
+pub fn lines(app: &App, width: usize) -> Vec<Line<'static>> {
     let Some(n) = app.selected_node() else {
-        f.render_widget(pane(app, " details ", Some(Focus::Lower)), area);
-        return;
+        return vec![];
     };
-    let root = app.shown_tree().expect("a selected node has a tree");
-    let at = tree::kinds_of_path(root, &app.selected);
-    let title = if at.is_empty() {
-        " details · primary ray ".to_string()
-    } else {
-        format!(" details · {at} ")
-    };
-    let width = inner(area).width as usize;
     let mut lines: Vec<Line> = Vec::new();
     for (i, (s, sw)) in details_lines(n, app.depth).into_iter().enumerate() {
         let style = if i == 0 {
@@ -142,6 +134,21 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             lines.push(Line::from(spans));
         }
     }
+    lines
+}
+
+pub fn draw(f: &mut Frame, app: &App, area: Rect) {
+    let Some(root) = app.shown_tree() else {
+        f.render_widget(pane(app, " details ", Some(Focus::Lower)), area);
+        return;
+    };
+    let at = tree::kinds_of_path(root, &app.selected);
+    let title = if at.is_empty() {
+        " details · primary ray ".to_string()
+    } else {
+        format!(" details · {at} ")
+    };
+    let lines = lines(app, inner(area).width as usize);
     let h = inner(area).height;
     let total = lines.len();
     let (shown, start) = scroll_window(&lines, app.details_scroll, h);

@@ -8,6 +8,7 @@ use ratatui::widgets::Paragraph;
 use ratatui::Frame;
 
 use super::{inner, pane, position_note, scroll_window, themed, wrap, wrap_hang};
+use crate::lessons::Ask;
 use crate::tui::app::{list_offset, App, Focus, LessonPanel, LessonView};
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
@@ -206,7 +207,8 @@ fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
         themed(app, Style::new().fg(Color::DarkGray)),
     ));
     if let Some(ex) = exs.get(l.exercise) {
-        for part in wrap(&format!("{}: {}", ex.id, ex.question.trim()), width) {
+        let question = ex.question.split_whitespace().collect::<Vec<_>>().join(" ");
+        for part in wrap_hang(&format!("{}: {question}", ex.id), width, "") {
             lines.push(Line::from(part));
         }
         let mut about = format!("ask: {:?}", ex.ask).to_lowercase();
@@ -218,6 +220,19 @@ fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
         }
         if let Some(s) = &ex.scene {
             about.push_str(&format!(" · scene {s}"));
+        }
+        if let Some(r) = &ex.ray {
+            about.push_str(&format!(
+                " · ray {} → {}",
+                crate::trace::text::vec3(r.origin),
+                crate::trace::text::vec3(r.direction)
+            ));
+        }
+        if let Some(light) = &ex.light {
+            about.push_str(&format!(" · light {light}"));
+        }
+        if let Some(object) = &ex.object {
+            about.push_str(&format!(" · object {object}"));
         }
         about.push_str(&format!(
             " · tolerance {}",
@@ -249,10 +264,13 @@ fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
             }
         } else {
             lines.push(Line::from(""));
-            lines.push(Line::styled(
-                "Enter: type your answer (a number, x, y, z, or t_in, t_out; …)",
-                themed(app, Style::new().fg(Color::DarkGray)),
-            ));
+            let how = format!("Enter: answer as {}", answer_format(ex.ask));
+            for part in wrap_hang(&how, width, "") {
+                lines.push(Line::styled(
+                    part,
+                    themed(app, Style::new().fg(Color::DarkGray)),
+                ));
+            }
         }
     }
     let title = format!(
@@ -284,4 +302,23 @@ fn first_words(s: &str, max: usize) -> String {
     }
     out.push('…');
     out
+}
+
+/// How an answer to this kind of question is typed.
+pub fn answer_format(ask: Ask) -> &'static str {
+    match ask {
+        Ask::Segments => "t_in, t_out; t_in, t_out … (or none)",
+        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular => {
+            "a number (or r, g, b for a colour)"
+        }
+        Ask::HitT | Ask::ShadowFactor => "a number",
+        Ask::RefractedDirection => "x, y, z (or tir for total internal reflection)",
+        Ask::WindowPoint
+        | Ask::RayDirection
+        | Ask::RayOrigin
+        | Ask::HitPoint
+        | Ask::Normal
+        | Ask::ReflectedDirection => "x, y, z",
+        Ask::Barycentric => "λ1, λ2, λ3",
+    }
 }

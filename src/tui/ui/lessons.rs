@@ -6,7 +6,7 @@ use ratatui::text::Line;
 use ratatui::widgets::{Block, Paragraph};
 use ratatui::Frame;
 
-use super::{themed, wrap};
+use super::{themed, wrap, wrap_hang};
 use crate::tui::app::{list_offset, App};
 use crate::tui::layout::list_panes;
 
@@ -60,7 +60,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
                     ),
                 ));
                 info.push(Line::from(""));
-                for p in wrap(&l.summary, w) {
+                for p in wrap_hang(&l.summary, w, "") {
                     info.push(Line::from(p));
                 }
                 info.push(Line::from(""));

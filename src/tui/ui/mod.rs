@@ -35,7 +35,8 @@ pub fn draw(f: &mut Frame, app: &App) {
     match app.screen {
         Screen::Lessons => lessons::draw(f, app, area),
         Screen::Scene => {
-            let p = app.panes();
+            // The frame's own size: right even before a resize reaches the model.
+            let p = app.panes_in(area);
             preview::draw(f, app, &p);
             tree_view::draw(f, app, p.tree);
             if let Some(r) = p.lower {
@@ -54,6 +55,39 @@ pub fn draw(f: &mut Frame, app: &App) {
     if app.show_help {
         help::draw(f, app, area);
     }
+}
+
+/// How far the lower pane (details or CSG) and the lesson pane can scroll, in rows.
+pub fn max_scroll(app: &App) -> (u16, u16) {
+    let p = app.panes();
+    let lower = p.lower.map_or(0, |r| {
+        let i = inner(r);
+        let n = if app.show_csg {
+            csg::lines(app, i.width as usize).0.len()
+        } else {
+            details::lines(app, i.width as usize).len()
+        };
+        n.saturating_sub(i.height as usize)
+    });
+    let lesson = match (p.lesson, &app.lesson) {
+        (Some(r), Some(l)) => {
+            let i = inner(r);
+            lesson::markdown(&l.lesson.readme, (i.width as usize).max(10))
+                .len()
+                .saturating_sub(i.height as usize)
+        }
+        _ => 0,
+    };
+    (
+        lower.min(u16::MAX as usize) as u16,
+        lesson.min(u16::MAX as usize) as u16,
+    )
+}
+
+/// The row of the CSG pane where the selected ray's section starts.
+pub fn csg_section_row(app: &App) -> Option<usize> {
+    let r = app.panes().lower?;
+    csg::lines(app, inner(r).width as usize).1
 }
 
 /// The screen as plain text (no colours), one line per row, trailing spaces trimmed.

@@ -52,7 +52,9 @@ pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
             let (px, py) = (cx as u32, 2 * cy as u32);
             let top = sample(px, py);
             let bottom = (py + 1 < ph).then(|| sample(px, py + 1));
-            let cell = &mut buf[(r.x + cx, r.y + cy)];
+            let Some(cell) = buf.cell_mut((r.x + cx, r.y + cy)) else {
+                continue;
+            };
             match app.color {
                 ColorMode::Ascii => {
                     let c = bottom.map_or(top, |b| 0.5 * (top + b));
@@ -72,8 +74,10 @@ pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
     }
     if w > 0 && h > 0 {
         if let Some((cx, cy)) = pixel_cell(p, (w, h), app.cursor) {
-            if r.contains(ratatui::layout::Position::new(cx, cy)) {
-                let cell = &mut buf[(cx, cy)];
+            if let (true, Some(cell)) = (
+                r.contains(ratatui::layout::Position::new(cx, cy)),
+                buf.cell_mut((cx, cy)),
+            ) {
                 let style = themed(
                     app,
                     Style::new()
