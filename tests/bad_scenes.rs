@@ -491,3 +491,71 @@ fn valid_scenes_that_look_odd_are_accepted() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Scenes whose numbers are all finite but so large or small that squares and products
+/// overflow: raytree may refuse them (exit 2, one line) or render them, but must neither hang
+/// nor produce NaN pixels. Found by tests/fuzz_parse.rs.
+#[test]
+fn extreme_finite_scenes_are_refused_or_render_cleanly() {
+    const HEAD: &str = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }\n\
+                        materials: { m: { kd: 1, ks: 0.5, kr: 0.5 } }\n";
+    let cases = [
+        (
+            "a huge sphere in a CSG union",
+            "lights: [ { point: [0, 5, -5] } ]\nobjects:\n  - name: u\n    material: m\n    union:\n      - { sphere: { center: [0, 0, 0], radius: 1 } }\n      - { sphere: { center: [0, 0, 1e308], radius: 1e308 } }\n",
+        ),
+        (
+            "a point light at 1e200",
+            "lights: [ { point: [0, 1e200, -5] } ]\nobjects:\n  - { name: p, plane: { point: [0, 0, 0], normal: [0, 0, -1] }, material: m }\n",
+        ),
+        (
+            "a point light at the largest f64",
+            "lights: [ { point: [0, 1.7976931348623157e308, -5] } ]\nobjects:\n  - { name: p, plane: { point: [0, 0, 0], normal: [0, 0, -1] }, material: m }\n",
+        ),
+        (
+            "a sphere of radius 1e308",
+            "lights: [ { point: [0, 5, -5] } ]\nobjects:\n  - { name: s, sphere: { center: [0, 0, 0], radius: 1e308 }, material: m }\n",
+        ),
+        (
+            "a sphere of radius 1e-308",
+            "lights: [ { point: [0, 5, -5] } ]\nobjects:\n  - { name: s, sphere: { center: [0, 0, 0], radius: 1e-308 }, material: m }\n",
+        ),
+        (
+            "a box from -1e308 to 1e308",
+            "lights: [ { direction: [0, -1, 1] } ]\nobjects:\n  - { name: b, box: { min: [-1e308, -1e308, 1], max: [1e308, 1e308, 1e308] }, material: m }\n",
+        ),
+        (
+            "a transform scaling by 1e300 twice",
+            "lights: [ { point: [0, 5, -5] } ]\nobjects:\n  - { name: s, sphere: { center: [0, 0, 0], radius: 1 }, material: m, transform: [ { scale: 1e300 }, { scale: 1e300 } ] }\n",
+        ),
+    ];
+    let mut failures = vec![];
+    for (i, (what, body)) in cases.iter().enumerate() {
+        let scene = scratch(&format!("extreme-{i}.yaml"));
+        let image = scratch(&format!("extreme-{i}.png"));
+        std::fs::write(&scene, format!("{HEAD}{body}")).unwrap();
+        let run = raytree(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            image.as_os_str(),
+        ]);
+        let problem = match &run {
+            Err(e) => Some(e.clone()),
+            Ok(r) if r.stderr.contains("panicked") => Some("panic".into()),
+            Ok(r) if r.code == Some(2) && r.stderr.lines().count() == 1 => None,
+            Ok(r) if r.code == Some(0) && r.stderr.contains("not finite") => {
+                Some("rendered with NaN or infinite pixels".into())
+            }
+            Ok(r) if r.code == Some(0) => None,
+            Ok(r) => Some(format!("exit status {:?}", r.code)),
+        };
+        if let Some(p) = problem {
+            let got = run
+                .as_ref()
+                .map_or_else(|e| e.clone(), |r| excerpt(&r.stderr));
+            failures.push(format!("{what}: {p}\n    stderr: {got}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -181,12 +181,22 @@ fn demo_lesson(name: &str) -> PathBuf {
          the tree.\n",
     )
     .unwrap();
+    // A ray exercise whose ray happens to be pixel (10, 12)'s primary ray.
+    let scene = raytree::scene::load(Path::new(MIRROR), &Default::default()).unwrap();
+    let ray = scene.camera.pixel_ray(10, 12);
+    let v = |v: glam::DVec3| format!("[{:?}, {:?}, {:?}]", v.x, v.y, v.z);
     std::fs::write(
         dir.join("exercises.yaml"),
-        "title: A demo lesson\nsummary: One pixel, a mirror and a glass ball.\nexercises:\n  \
-         - id: root\n    question: What is the intensity of pixel (20, 15)?\n    ask: intensity\n    \
-         pixel: [20, 15]\n  - id: mirror-t\n    question: How far from the eye is the mirror ball \
-         along that ray?\n    ask: hit_t\n    pixel: [20, 15]\n",
+        format!(
+            "title: A demo lesson\nsummary: One pixel, a mirror and a glass ball.\nexercises:\n  \
+             - id: root\n    question: What is the intensity of pixel (20, 15)?\n    \
+             ask: intensity\n    pixel: [20, 15]\n  - id: mirror-t\n    question: How far \
+             from the eye is the mirror ball along that ray?\n    ask: hit_t\n    \
+             pixel: [20, 15]\n  - id: ray-t\n    question: Where does this ray hit?\n    \
+             ask: hit_t\n    ray: {{ origin: {}, direction: {} }}\n",
+            v(ray.origin),
+            v(ray.dir)
+        ),
     )
     .unwrap();
     root
@@ -222,10 +232,22 @@ fn lesson_panel_with_a_checked_answer() {
     press(&mut app, KeyCode::Enter);
     let answered = app.lesson.as_ref().unwrap().answers[1].as_ref().unwrap();
     assert!(!answered.result.as_ref().unwrap().correct);
+    // The ray exercise picks the pixel whose primary ray it is.
+    press(&mut app, KeyCode::Down);
+    assert_eq!(app.cursor, (10, 12));
+    assert!(screen(&app).contains("the primary ray of pixel 10,12"));
     press(&mut app, KeyCode::Up);
+    press(&mut app, KeyCode::Up);
+    assert_eq!(app.cursor, (20, 15));
     let text = screen(&app);
     assert!(text.contains("right:"));
     insta::assert_snapshot!("lesson_answer_160x48", text);
+    // w: the worked solution, below the verdict.
+    press(&mut app, KeyCode::Char('w'));
+    let text = screen(&app);
+    assert!(text.contains("worked solution (w hides):"), "{text}");
+    press(&mut app, KeyCode::Char('w'));
+    assert!(!screen(&app).contains("worked solution (w hides):"));
     // Esc leaves the exercises without quitting; q would quit.
     press(&mut app, KeyCode::Esc);
     assert!(!app.quit);
@@ -410,7 +432,7 @@ fn depth_keys_retrace_at_that_depth() {
     assert_eq!(root_color(&app), full);
     // The preview is rendered at the depth too.
     press(&mut app, KeyCode::Char('-'));
-    assert_eq!(app.preview.stats.unwrap().reflection_rays > 0, true);
+    assert!(app.preview.stats.unwrap().reflection_rays > 0);
     let status = screen(&app);
     assert!(status.contains("depth 3"));
 }
@@ -555,6 +577,7 @@ fn the_tree_root_is_the_rendered_pixel() {
             RenderOptions {
                 max_depth: depth,
                 spp: 1,
+                ..RenderOptions::of(&scene)
             },
         );
         for (x, y) in [(20, 15), (32, 14), (0, 0), (24, 30), (47, 35)] {
@@ -609,9 +632,23 @@ fn the_worker_renders_a_draft_then_the_full_preview() {
     assert!(!app.preview.running);
 }
 
-/// Prints how long a pick takes (key → model → drawn screen) and a full preview render.
+/// The median of `n` runs of `f`.
+fn median(n: usize, mut f: impl FnMut()) -> Duration {
+    let mut times: Vec<Duration> = (0..n)
+        .map(|_| {
+            let start = Instant::now();
+            f();
+            start.elapsed()
+        })
+        .collect();
+    times.sort();
+    times[n / 2]
+}
+
+/// Prints how long a pick takes (key → model → redrawn screen) and full preview renders.
 #[test]
 fn timings() {
+    use raytree::tui::worker::{render_pass, Job, Pass};
     let dir = if Path::new("lessons/08-pixel-intensity/scene.yaml").is_file() {
         "lessons/08-pixel-intensity"
     } else {
@@ -620,32 +657,50 @@ fn timings() {
     let mut app = open(dir, ColorMode::TrueColor, (160, 48));
     let mut term = ratatui::Terminal::new(ratatui::backend::TestBackend::new(160, 48)).unwrap();
     term.draw(|f| ui::draw(f, &app)).unwrap();
-    let n = 50;
-    let start = Instant::now();
-    for i in 0..n {
-        let k = if i % 2 == 0 {
-            KeyCode::Right
-        } else {
-            KeyCode::Left
-        };
+    let mut right = true;
+    let pick = median(21, || {
+        let k = if right { KeyCode::Right } else { KeyCode::Left };
+        right = !right;
         let msg = input::key(&app, &key_event(k)).unwrap();
         update(&mut app, msg);
         term.draw(|f| ui::draw(f, &app)).unwrap();
-    }
-    let pick = start.elapsed() / n;
-    let job = app.take_job();
-    assert!(job.is_none(), "picking does not re-render the preview");
+    });
+    assert!(
+        app.take_job().is_none(),
+        "picking does not re-render the preview"
+    );
     update(&mut app, Msg::Resize(100, 30));
     update(&mut app, Msg::Resize(160, 48));
     let job = app.take_job().unwrap();
-    let (w, h) = (job.width, job.height);
-    let start = Instant::now();
     let cancel = std::sync::atomic::AtomicBool::new(false);
-    raytree::tui::worker::render_pass(&job, raytree::tui::worker::Pass::Final, &cancel, &|_| {})
-        .unwrap();
-    let render = start.elapsed();
+    let render = |job: &Job| median(5, || drop(render_pass(job, Pass::Final, &cancel, &|_| {})));
+    let pane = render(&job);
+    // And if the preview had the whole 160 × 48 terminal.
+    let (w, h) = app.image_size();
+    let (fw, fh) = raytree::tui::layout::fit(160, 48, w as f64 / h as f64);
+    let whole = Job {
+        width: fw,
+        height: fh,
+        ..job.clone()
+    };
+    let full = render(&whole);
     println!(
-        "explorer timings ({dir}): key → redrawn tree {pick:?}; full preview {w}×{h} px at 160×48: {render:?}"
+        "explorer timings ({dir}, 160×48 terminal): key → redrawn tree {pick:?}; \
+         preview pane {}×{} px {pane:?}; whole-terminal preview {fw}×{fh} px {full:?}",
+        job.width, job.height
+    );
+    // The worst case the depth keys allow: glass at the maximum depth.
+    let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48)).with_depth(16);
+    update(&mut app, Msg::Pick(31, 14));
+    let mut right = true;
+    let deep = median(21, || {
+        update(&mut app, Msg::Move(if right { 1 } else { -1 }, 0));
+        right = !right;
+        term.draw(|f| ui::draw(f, &app)).unwrap();
+    });
+    println!(
+        "explorer timings: pick at depth 16 through glass ({} rays in the tree): {deep:?}",
+        app.full_tree.as_ref().unwrap().size(),
     );
 }
 
@@ -692,22 +747,27 @@ impl Drop for Tmux {
     }
 }
 
-#[test]
-fn in_tmux() {
-    if Command::new("tmux").arg("-V").output().is_err() {
+fn have_tmux() -> bool {
+    let ok = Command::new("tmux").arg("-V").output().is_ok();
+    if !ok {
         println!("skipping: tmux is not on PATH");
-        return;
     }
+    ok
+}
+
+/// Starts `raytree explore MIRROR` (with `env` before it) in a detached 100 × 30 tmux session
+/// on a server of its own; after the explorer exits, the shell records its exit status and the
+/// terminal's modes (stty -a), then prints DONE.
+fn start_in_tmux(name: &str, env: &str) -> (Tmux, PathBuf, PathBuf) {
     let bin = env!("CARGO_BIN_EXE_raytree");
-    let dir = scratch("tmux");
+    let dir = scratch(name);
     let status = dir.join("status");
     let stty = dir.join("stty");
     let tmux = Tmux {
-        socket: format!("raytree-explorer-test-{}", std::process::id()),
+        socket: format!("raytree-{name}-{}", std::process::id()),
     };
-    // After the explorer exits, the shell records its status and the terminal's modes.
     let script = format!(
-        "'{bin}' explore {MIRROR}; echo \"exit $?\" > '{}'; stty -a > '{}'; echo DONE; sleep 60",
+        "{env} '{bin}' explore {MIRROR}; echo \"exit $?\" > '{}'; stty -a > '{}'; echo DONE; sleep 60",
         status.display(),
         stty.display()
     );
@@ -726,18 +786,44 @@ fn in_tmux() {
         "-c",
         &script,
     ]);
+    (tmux, status, stty)
+}
+
+fn flag(tmux: &Tmux, f: &str) -> String {
+    tmux.run(&["display", "-p", "-t", "explore", f])
+        .trim()
+        .to_string()
+}
+
+/// The terminal is back to normal: cooked mode with echo, main screen, no mouse reporting,
+/// cursor shown.
+fn assert_restored(tmux: &Tmux, stty: &Path) {
+    let modes = std::fs::read_to_string(stty).unwrap();
+    let words: Vec<&str> = modes.split_whitespace().collect();
+    assert!(
+        words.contains(&"icanon") && words.contains(&"echo"),
+        "{modes}"
+    );
+    assert_eq!(flag(tmux, "#{alternate_on}"), "0");
+    assert_eq!(flag(tmux, "#{mouse_any_flag}"), "0");
+    assert_eq!(flag(tmux, "#{cursor_flag}"), "1", "the cursor is shown");
+}
+
+#[test]
+fn in_tmux() {
+    if !have_tmux() {
+        return;
+    }
+    let (tmux, status, stty) = start_in_tmux("tmux", "");
     let first = tmux.wait_for("pixel 24,18");
     assert!(first.contains("ray tree · pixel 24,18"), "{first}");
     assert!(first.contains("preview"), "{first}");
     tmux.wait_for("preview 100%");
+    assert_eq!(flag(&tmux, "#{alternate_on}"), "1");
+    assert_eq!(flag(&tmux, "#{mouse_any_flag}"), "1");
     tmux.run(&["send-keys", "-t", "explore", "Right", "Right", "j"]);
     let moved = tmux.wait_for("pixel 26,19");
     assert!(moved.contains("primary: hit"), "{moved}");
-    assert_eq!(
-        tmux.run(&["display", "-p", "-t", "explore", "#{alternate_on}"])
-            .trim(),
-        "1"
-    );
     tmux.run(&["send-keys", "-t", "explore", "?"]);
     let help = tmux.wait_for("keys (any key closes");
     assert!(help.contains("move the picked pixel"), "{help}");
@@ -745,25 +831,100 @@ fn in_tmux() {
     let after = tmux.wait_for("DONE");
     let code = std::fs::read_to_string(&status).unwrap();
     assert_eq!(code.trim(), "exit 0", "{after}");
-    // The terminal is restored: cooked mode with echo, main screen, no mouse reporting.
-    let modes = std::fs::read_to_string(&stty).unwrap();
-    let words: Vec<&str> = modes.split_whitespace().collect();
-    assert!(
-        words.contains(&"icanon") && words.contains(&"echo"),
-        "{modes}"
-    );
-    assert_eq!(
-        tmux.run(&["display", "-p", "-t", "explore", "#{alternate_on}"])
-            .trim(),
-        "0"
-    );
-    assert_eq!(
-        tmux.run(&["display", "-p", "-t", "explore", "#{mouse_any_flag}"])
-            .trim(),
-        "0"
-    );
+    assert_restored(&tmux, &stty);
     assert!(
         !after.contains("ray tree ·"),
         "the explorer's screen is gone:\n{after}"
     );
+}
+
+#[test]
+fn in_tmux_a_panic_restores_the_terminal() {
+    if !have_tmux() {
+        return;
+    }
+    let (tmux, status, stty) = start_in_tmux("tmux-panic", "RAYTREE_EXPLORE_TEST_PANIC=1");
+    let after = tmux.wait_for("DONE");
+    // The panic message is printed on the restored main screen, readable.
+    assert!(after.contains("a deliberate panic"), "{after}");
+    let code = std::fs::read_to_string(&status).unwrap();
+    assert_eq!(code.trim(), "exit 101", "{after}");
+    assert_restored(&tmux, &stty);
+}
+
+// ---------------------------------------------------------------------------------------
+// The command line around it
+
+fn explore_cli(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .arg("explore")
+        .args(args)
+        .stdin(std::process::Stdio::null())
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn explore_without_a_terminal_or_with_a_bad_scene_says_why() {
+    let (code, err) = explore_cli(&[MIRROR]);
+    assert_eq!(code, 2);
+    assert!(err.contains("explore needs a terminal"), "{err}");
+    // A scene error is reported first, with file, line and column.
+    let dir = scratch("cli-bad-scene");
+    let bad = dir.join("scene.yaml");
+    std::fs::write(
+        &bad,
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: oops }\n",
+    )
+    .unwrap();
+    let (code, err) = explore_cli(&[bad.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        err.starts_with("raytree: target/explorer-tests/cli-bad-scene/scene.yaml:1:"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let (code, err) = explore_cli(&[MIRROR, "--pixel", "48,0"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("outside the 48 × 36 image"), "{err}");
+    let (code, err) = explore_cli(&["tests/scenes"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("not a lesson folder"), "{err}");
+}
+
+#[test]
+fn panels_scroll_within_their_content() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    update(&mut app, Msg::Pick(20, 15));
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    assert_eq!(app.focus, Focus::Lower);
+    for _ in 0..5 {
+        press(&mut app, KeyCode::PageDown);
+    }
+    let (max, _) = ui::max_scroll(&app);
+    assert!(max > 0);
+    assert_eq!(app.details_scroll, max, "no further than the last line");
+    assert!(screen(&app).contains("sum  I ="));
+    press(&mut app, KeyCode::Up);
+    assert_eq!(app.details_scroll, max - 1);
+    for _ in 0..3 {
+        press(&mut app, KeyCode::PageUp);
+    }
+    assert_eq!(app.details_scroll, 0);
+    // The CSG panel scrolls to the selected ray's section.
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    update(&mut app, Msg::Pick(20, 15));
+    press(&mut app, KeyCode::Char('c'));
+    assert_eq!(app.csg_scroll, 0);
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Down);
+    assert!(app.csg_scroll > 0);
+    let text = screen(&app);
+    assert!(text.contains("▶ reflection ray"), "{text}");
 }

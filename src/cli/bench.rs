@@ -13,6 +13,34 @@ pub struct Args {
 
 #[derive(clap::Subcommand, Debug)]
 enum Sweep {
+    /// Run time against error: renders SCENE at each value of one knob, compares every image
+    /// with a reference (an EXR/PNG file, or the scene at a much higher setting) and prints
+    /// seconds, rays, RMSE, relative MSE, max error, PSNR and efficiency 1/(seconds·MSE).
+    Sweep {
+        scene: std::path::PathBuf,
+        #[arg(long, value_enum)]
+        knob: crate::bench::Knob,
+        /// Comma-separated values, e.g. 1,4,16,64.
+        #[arg(long, value_delimiter = ',', required = true)]
+        values: Vec<f64>,
+        /// Reference image (linear EXR, or PNG decoded from sRGB).
+        #[arg(long)]
+        reference: Option<std::path::PathBuf>,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        #[arg(long)]
+        threads: Option<usize>,
+        /// Write the table as CSV.
+        #[arg(long)]
+        csv: Option<std::path::PathBuf>,
+        /// Draw error against time (log-log) as a PNG.
+        #[arg(long)]
+        plot: Option<std::path::PathBuf>,
+        /// Compare display values (clamped to [0, 1]) instead of raw radiance, so the few
+        /// pixels of a bright emitter do not dominate the error.
+        #[arg(long)]
+        clamp: bool,
+    },
     /// Time per ray against the number of spheres (10 … 100 000) and mesh triangles
     /// (≈10³ … 10⁶), with and without the BVH, on one thread.
     Scaling {
@@ -25,8 +53,78 @@ enum Sweep {
     },
 }
 
+/// A reference image as linear intensities: EXR as stored, PNG/others decoded from sRGB.
+fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<crate::render::Image, Failure> {
+    let img = image::open(path)
+        .map_err(|e| Failure(format!("{}: {e}", path.display())))?
+        .into_rgb32f();
+    if img.width() != w || img.height() != h {
+        return Err(Failure(format!(
+            "{}: reference is {}×{}, the scene renders {w}×{h}",
+            path.display(),
+            img.width(),
+            img.height()
+        )));
+    }
+    let exr = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
+    let decode = |c: f32| {
+        let c = c as f64;
+        if exr {
+            c
+        } else if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let pixels = img
+        .pixels()
+        .map(|p| glam::DVec3::new(decode(p[0]), decode(p[1]), decode(p[2])))
+        .collect();
+    Ok(crate::render::Image {
+        width: w,
+        height: h,
+        pixels,
+    })
+}
+
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.sweep {
+        Sweep::Sweep {
+            scene,
+            knob,
+            values,
+            reference,
+            seed,
+            threads,
+            csv,
+            plot,
+            clamp,
+        } => {
+            let scene = super::args::load_scene(&scene, false, super::args::AccelArg::Bvh)?;
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads.unwrap_or(0))
+                .build()?;
+            let (w, h) = (scene.camera.width, scene.camera.height);
+            let reference = match reference {
+                Some(path) => load_reference(&path, w, h)?,
+                None => pool.install(|| crate::bench::reference_for(&scene, knob, &values, seed)),
+            };
+            let rows = pool
+                .install(|| crate::bench::sweep(&scene, knob, &values, &reference, seed, clamp));
+            print!("{}", crate::bench::sweep_table(knob, &rows));
+            if let Some(path) = csv {
+                crate::render::write_atomically(
+                    &path,
+                    crate::bench::sweep_csv(knob, &rows).as_bytes(),
+                )?;
+            }
+            if let Some(path) = plot {
+                crate::bench::sweep_plot(&rows).save(&path, crate::render::Encoding::Srgb)?;
+            }
+        }
         Sweep::Scaling {
             max_brute,
             max_subdivisions,

@@ -36,7 +36,7 @@ pub struct Args {
     /// Worker threads (default: all cores). The image is identical for any count.
     #[arg(long)]
     threads: Option<usize>,
-    /// Seed for Monte Carlo sampling. Whitted scenes use no randomness, so it changes nothing there.
+    /// Seed of the path tracer's random numbers (Whitted rendering uses none).
     #[arg(long, default_value_t = 0)]
     seed: u64,
     /// Render depths 1, 2, …, N side by side into one strip image (the recursion lesson).
@@ -104,6 +104,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let options = RenderOptions {
         max_depth: depth(&scene, a.depth)?,
         spp,
+        seed: a.seed,
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.threads.unwrap_or(0))

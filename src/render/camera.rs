@@ -47,6 +47,34 @@ impl Camera {
         let forward = (target - eye).normalize();
         let right = up.cross(forward).normalize();
         let up = forward.cross(right);
+        Camera::frame(eye, forward, right, up, fov_degrees, width, height)
+    }
+
+    /// The same, in a right-handed frame (right = forward × up, as Mitsuba and OpenGL): the
+    /// image is the mirror image of `look_at`'s.
+    pub fn look_at_right_handed(
+        eye: DVec3,
+        target: DVec3,
+        up: DVec3,
+        fov_degrees: f64,
+        width: u32,
+        height: u32,
+    ) -> Camera {
+        let forward = (target - eye).normalize();
+        let right = forward.cross(up).normalize();
+        let up = right.cross(forward);
+        Camera::frame(eye, forward, right, up, fov_degrees, width, height)
+    }
+
+    fn frame(
+        eye: DVec3,
+        forward: DVec3,
+        right: DVec3,
+        up: DVec3,
+        fov_degrees: f64,
+        width: u32,
+        height: u32,
+    ) -> Camera {
         let tan_half_fov = (fov_degrees.to_radians() / 2.0).tan();
         Camera {
             projection: Projection::LookAt {

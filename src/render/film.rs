@@ -7,13 +7,17 @@ use glam::DVec2;
 use rayon::prelude::*;
 
 use super::Image;
-use crate::scene::Scene;
+use crate::scene::{Integrator, Scene};
+use crate::trace::path::PathTracer;
+use crate::trace::sampling::Rng;
 use crate::trace::{Stats, Tracer};
 
 #[derive(Clone, Copy, Debug)]
 pub struct RenderOptions {
     pub max_depth: u32,
     pub spp: u32,
+    /// Seed of the Monte Carlo integrators' random numbers.
+    pub seed: u64,
 }
 
 impl RenderOptions {
@@ -21,6 +25,7 @@ impl RenderOptions {
         RenderOptions {
             max_depth: scene.max_depth,
             spp: scene.spp,
+            seed: 0,
         }
     }
 }
@@ -54,6 +59,8 @@ pub fn render(
 ) -> Option<(Image, Stats)> {
     let cam = &scene.camera;
     let tracer = Tracer::with_depth(scene, options.max_depth);
+    let path =
+        (scene.integrator == Integrator::Path).then(|| PathTracer::new(scene, options.max_depth));
     let offsets = sample_offsets(options.spp.max(1));
     let mut image = Image::new(cam.width, cam.height);
     let done = AtomicU32::new(0);
@@ -68,9 +75,24 @@ pub fn render(
             }
             for (x, px) in row.iter_mut().enumerate() {
                 let mut sum = glam::DVec3::ZERO;
-                for o in &offsets {
-                    let ray = cam.ray(x as f64 + o.x, y as f64 + o.y);
-                    sum += tracer.radiance(&ray, &mut stats);
+                match &path {
+                    None => {
+                        for o in &offsets {
+                            let ray = cam.ray(x as f64 + o.x, y as f64 + o.y);
+                            sum += tracer.radiance(&ray, &mut stats);
+                        }
+                    }
+                    Some(pt) => {
+                        // Monte Carlo: each sample jittered inside its stratum of the grid.
+                        let mut rng = Rng::for_pixel(options.seed, x as u32, y as u32);
+                        let cell = 1.0 / (offsets.len() as f64).sqrt().ceil();
+                        for o in &offsets {
+                            let jx = (o.x + (rng.uniform() - 0.5) * cell).clamp(0.0, 0.999_999);
+                            let jy = (o.y + (rng.uniform() - 0.5) * cell).clamp(0.0, 0.999_999);
+                            let ray = cam.ray(x as f64 + jx, y as f64 + jy);
+                            sum += pt.radiance(&ray, &mut rng, &mut stats);
+                        }
+                    }
                 }
                 *px = sum / offsets.len() as f64;
             }

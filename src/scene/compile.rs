@@ -199,7 +199,8 @@ pub fn compile(
         });
     }
 
-    Ok(Scene::assemble(
+    let integrator = file.integrator.unwrap_or_default();
+    let mut scene = Scene::assemble(
         source,
         camera,
         file.background.map_or(DVec3::ZERO, |t| t.0),
@@ -213,7 +214,9 @@ pub fn compile(
         materials,
         builder.leaves,
         objects,
-    ))
+    );
+    scene.integrator = integrator;
+    Ok(scene)
 }
 
 fn nonzero(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {
@@ -314,7 +317,12 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
         }
         Some(f) => f.value,
     };
-    Ok(Camera::look_at(eye, target, up, fov, width, height))
+    Ok(match c.handedness.unwrap_or_default() {
+        super::format::Handedness::Left => Camera::look_at(eye, target, up, fov, width, height),
+        super::format::Handedness::Right => {
+            Camera::look_at_right_handed(eye, target, up, fov, width, height)
+        }
+    })
 }
 
 fn attenuation(a: &Spanned<[f64; 3]>) -> Result<[f64; 3], Invalid> {

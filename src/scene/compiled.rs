@@ -144,6 +144,7 @@ pub struct Scene {
     /// Offset of secondary-ray origins; None = automatic, scaled to the hit point.
     pub shadow_bias: Option<f64>,
     pub spp: u32,
+    pub integrator: super::format::Integrator,
     /// I_r and I_t divided by c0 + c1·d + c2·d² (d = length of the child ray), when set.
     pub secondary_attenuation: Option<[f64; 3]>,
     pub lights: Vec<Light>,
@@ -214,6 +215,7 @@ impl Scene {
             adaptive_threshold,
             shadow_bias,
             spp,
+            integrator: Default::default(),
             secondary_attenuation,
             lights,
             materials,

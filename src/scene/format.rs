@@ -11,6 +11,23 @@ use serde_saphyr::Spanned;
 
 use crate::shading::{Fresnel, Highlight};
 
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Handedness {
+    #[default]
+    Left,
+    Right,
+}
+
+/// How pixels are computed: the lecture's Whitted recursion or a path tracer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Integrator {
+    #[default]
+    Whitted,
+    Path,
+}
+
 /// A colour or vector that may be written as one number (grey / uniform) or as `[x, y, z]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triple(pub DVec3);
@@ -94,6 +111,7 @@ pub struct SceneFile {
     pub adaptive_threshold: Option<Spanned<f64>>,
     pub shadow_bias: Option<Spanned<Bias>>,
     pub spp: Option<Spanned<i64>>,
+    pub integrator: Option<Integrator>,
     pub secondary_attenuation: Option<Spanned<[f64; 3]>>,
     #[serde(default)]
     pub lights: Vec<Spanned<LightSpec>>,
@@ -110,6 +128,9 @@ pub struct CameraSpec {
     pub look_at: Option<DVec3>,
     pub up: Option<Spanned<DVec3>>,
     pub fov: Option<Spanned<f64>>,
+    /// `left` (default: +x on the right looking down +z, as the lecture's window model and
+    /// POV-Ray) or `right` (+x on the right looking down −z, as Mitsuba).
+    pub handedness: Option<Handedness>,
     pub u: Option<DVec3>,
     pub v: Option<DVec3>,
     pub w: Option<DVec3>,

@@ -6,6 +6,8 @@ mod compiled;
 mod error;
 pub mod format;
 
+pub use format::Integrator;
+
 use std::path::Path;
 
 pub use compile::Limits;

@@ -1,6 +1,8 @@
 //! Tracing: the recursive tracer, its recorders, the ray tree and statistics.
 
+pub mod path;
 pub mod recorder;
+pub mod sampling;
 mod stats;
 pub mod text;
 pub mod tracer;

@@ -87,6 +87,10 @@ pub struct LessonPanel {
     pub exercise: usize,
     /// The last answer to each exercise.
     pub answers: Vec<Option<Answered>>,
+    /// The worked solution of the selected exercise, when asked for (`w`).
+    pub work: Option<Result<Vec<String>, String>>,
+    /// Scroll of the selected exercise's text in the exercises view.
+    pub exercise_scroll: u16,
     signature: [Option<FileSig>; 2],
 }
 
@@ -101,6 +105,8 @@ impl LessonPanel {
             scroll: 0,
             exercise: 0,
             answers: vec![None; n],
+            work: None,
+            exercise_scroll: 0,
         }
     }
 }
@@ -247,6 +253,8 @@ pub enum Msg {
     ToggleHelp,
     /// Opens the exercises (`a`).
     Exercises,
+    /// Shows or hides the selected exercise's worked solution (`w`).
+    Work,
     /// Starts typing pixel coordinates (`g`).
     Goto,
     /// Back to the lesson list (`o`).
@@ -799,11 +807,33 @@ impl App {
             return;
         }
         let i = i.min(l.lesson.exercises.len() - 1);
+        if l.exercise != i {
+            l.work = None;
+            l.exercise_scroll = 0;
+        }
         l.exercise = i;
         let ex = l.lesson.exercises[i].clone();
         let same_scene = ex.scene.as_deref().is_none_or(|s| s == "scene.yaml");
         let mut note = format!("exercise {}", ex.id);
-        if let (Some([x, y]), true) = (ex.pixel, same_scene) {
+        // A ray exercise whose ray is a primary ray of the scene is that pixel's.
+        let pixel = match (ex.pixel, &ex.ray, &self.scene) {
+            (Some(p), ..) => Some(p),
+            (None, Some(r), Some(scene)) if same_scene => {
+                pixel_of_ray(scene, &Ray::new(r.origin, r.direction)).map(|(x, y)| [x, y])
+            }
+            _ => None,
+        };
+        if let (Some(r), None) = (&ex.ray, ex.pixel) {
+            note.push_str(&format!(
+                ": ray {} → {}",
+                text::vec3(r.origin),
+                text::vec3(r.direction)
+            ));
+            if pixel.is_some() {
+                note.push_str(", the primary ray of");
+            }
+        }
+        if let (Some([x, y]), true) = (pixel, same_scene) {
             let (w, h) = self.image_size();
             if x < w && y < h {
                 self.cursor = (x, y);
@@ -819,22 +849,53 @@ impl App {
                 {
                     self.select(p);
                 }
-                note.push_str(&format!(": pixel {x},{y}"));
+                let sep = if ex.pixel.is_some() { ":" } else { "" };
+                note.push_str(&format!("{sep} pixel {x},{y}"));
                 if !ex.node.is_empty() {
                     note.push_str(&format!(", node {}", ex.node));
                 }
             }
-        } else if let Some(r) = &ex.ray {
-            note.push_str(&format!(
-                ": ray {} → {}",
-                text::vec3(r.origin),
-                text::vec3(r.direction)
-            ));
         }
         if let Some(s) = &ex.scene {
             note.push_str(&format!(" (scene {s})"));
         }
-        self.message = Some((format!("{note} · Enter: answer · Esc: back"), Tone::Info));
+        self.message = Some((
+            format!("{note} · Enter: answer · w: worked solution · Esc: back"),
+            Tone::Info,
+        ));
+    }
+
+    /// Shows (or hides) the worked solution of the selected exercise.
+    fn toggle_work(&mut self) {
+        let Some(l) = &mut self.lesson else {
+            self.message = Some((
+                "no lesson here: open a lesson folder, or press o for the list".into(),
+                Tone::Bad,
+            ));
+            return;
+        };
+        if !(l.open && l.view == LessonView::Exercises) {
+            self.message = Some((
+                "w shows a worked solution in the exercises (press a)".into(),
+                Tone::Bad,
+            ));
+            return;
+        }
+        if l.work.take().is_some() {
+            return;
+        }
+        if let Some(ex) = l.lesson.exercises.get(l.exercise) {
+            // The panel shows the question already.
+            let question = format!("{}: ", ex.id);
+            l.work = Some(lessons::explain(&l.lesson, ex).map(|lines| {
+                lines
+                    .into_iter()
+                    .enumerate()
+                    .filter(|(i, line)| *i > 0 || !line.starts_with(&question))
+                    .map(|(_, line)| line)
+                    .collect()
+            }));
+        }
     }
 
     fn answer(&mut self, exercise: usize, given: String) {
@@ -1074,6 +1135,24 @@ impl App {
     }
 }
 
+/// The pixel whose primary ray (through its centre) is this ray, if there is one.
+pub fn pixel_of_ray(scene: &Scene, ray: &Ray) -> Option<(u32, u32)> {
+    let cam = &scene.camera;
+    if (ray.origin - cam.eye()).length() > 1e-9 || cam.width as u64 * cam.height as u64 > 1 << 20 {
+        return None;
+    }
+    let mut best = (f64::NEG_INFINITY, 0, 0);
+    for y in 0..cam.height {
+        for x in 0..cam.width {
+            let d = cam.pixel_ray(x, y).dir.dot(ray.dir);
+            if d > best.0 {
+                best = (d, x, y);
+            }
+        }
+    }
+    (best.0 > 1.0 - 1e-12).then_some((best.1, best.2))
+}
+
 /// The first row shown of a list of which `selected` must be visible in `height` rows.
 pub fn list_offset(selected: usize, height: usize) -> usize {
     if height == 0 {
@@ -1209,6 +1288,12 @@ pub fn update(app: &mut App, msg: Msg) {
             match app.focus {
                 Focus::Tree => app.tree_step(page as i64),
                 Focus::Lower => app.scroll_lower(page),
+                Focus::Lesson if app.exercises_active() => {
+                    let max = super::ui::max_scroll(app).1 as i32;
+                    if let Some(l) = &mut app.lesson {
+                        l.exercise_scroll = (l.exercise_scroll as i32 + page).clamp(0, max) as u16;
+                    }
+                }
                 Focus::Lesson => app.scroll_lesson(page),
                 Focus::Preview => {
                     if app.panes().lesson.is_some() {
@@ -1317,6 +1402,7 @@ pub fn update(app: &mut App, msg: Msg) {
             }
         },
         Msg::Goto => app.prompt = Some(Prompt::Goto(String::new())),
+        Msg::Work => app.toggle_work(),
     }
     app.settle();
 }

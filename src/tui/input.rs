@@ -94,6 +94,7 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
         KeyCode::Char('c') => return Some(Msg::ToggleCsg),
         KeyCode::Char('r') => return Some(Msg::ToggleReadme),
         KeyCode::Char('a') => return Some(Msg::Exercises),
+        KeyCode::Char('w') => return Some(Msg::Work),
         KeyCode::Char('o') => return Some(Msg::LessonList),
         KeyCode::Char('e') => return Some(Msg::ExpandAll),
         KeyCode::Tab => return Some(Msg::FocusNext),

@@ -74,6 +74,7 @@ pub fn render_pass(
     let options = RenderOptions {
         max_depth: job.depth,
         spp,
+        ..RenderOptions::of(&small)
     };
     let (image, stats) = render(&small, options, on_row, cancel)?;
     Some(Done {

@@ -28,6 +28,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("c", "CSG segment lists of the picked pixel's rays"),
     ("r", "lesson README"),
     ("a", "lesson exercises: ↑↓ choose, Enter answer"),
+    ("w", "the selected exercise's worked solution"),
     ("PgUp PgDn", "scroll the panel"),
     ("o", "lesson list"),
     ("? q Esc", "this help · quit"),

@@ -171,8 +171,13 @@ fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
     f.render_widget(Paragraph::new(shown).block(block), area);
 }
 
-fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
-    let body = inner(area);
+/// The exercises view's lines in a `body` area: the list (fixed) and the selected
+/// exercise's text (scrolled).
+pub fn exercise_lines(
+    app: &App,
+    l: &LessonPanel,
+    body: Rect,
+) -> (Vec<Line<'static>>, Vec<Line<'static>>) {
     let width = body.width as usize;
     let exs = &l.lesson.exercises;
     let list_h = exs.len().min((body.height as usize / 3).max(3));
@@ -206,6 +211,8 @@ fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
         "─".repeat(width),
         themed(app, Style::new().fg(Color::DarkGray)),
     ));
+    // The list stays; the selected exercise's text below it scrolls.
+    let head = std::mem::take(&mut lines);
     if let Some(ex) = exs.get(l.exercise) {
         let question = ex.question.split_whitespace().collect::<Vec<_>>().join(" ");
         for part in wrap_hang(&format!("{}: {question}", ex.id), width, "") {
@@ -273,15 +280,42 @@ fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
             }
         }
     }
-    let title = format!(
-        " {} · exercises (↑↓ choose · Enter answer · Esc back) ",
-        l.lesson.id
-    );
-    let (shown, _) = scroll_window(&lines, 0, body.height);
-    f.render_widget(
-        Paragraph::new(shown).block(pane(app, title, Some(Focus::Lesson))),
-        area,
-    );
+    match &l.work {
+        Some(Ok(work)) => {
+            lines.push(Line::from(""));
+            lines.push(Line::styled(
+                "worked solution (w hides):",
+                themed(app, Style::new().add_modifier(Modifier::BOLD)),
+            ));
+            for t in work {
+                for part in wrap(t, width) {
+                    lines.push(Line::from(part));
+                }
+            }
+        }
+        Some(Err(e)) => {
+            for part in wrap(e, width) {
+                lines.push(Line::styled(part, themed(app, Style::new().fg(Color::Red))));
+            }
+        }
+        None => {}
+    }
+    (head, lines)
+}
+
+fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
+    let body = inner(area);
+    let (head, lines) = exercise_lines(app, l, body);
+    let title = format!(" {} · exercises (Enter answer · w worked) ", l.lesson.id);
+    let room = body.height.saturating_sub(head.len() as u16);
+    let total = lines.len();
+    let (rest, start) = scroll_window(&lines, l.exercise_scroll, room);
+    let mut block = pane(app, title, Some(Focus::Lesson));
+    if let Some(note) = position_note(start, rest.len(), total) {
+        block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
+    }
+    let shown: Vec<Line> = head.into_iter().chain(rest).collect();
+    f.render_widget(Paragraph::new(shown).block(block), area);
 }
 
 /// The start of a text, cut at a word boundary to fit `max` cells.

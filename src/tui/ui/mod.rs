@@ -18,7 +18,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType};
 use ratatui::{Frame, Terminal};
 
-use super::app::{App, Focus, Screen};
+use super::app::{App, Focus, LessonView, Screen};
 use crate::render::preview::{ansi256, ramp_char, rgb8, ColorMode};
 
 pub use details::details_lines;
@@ -70,6 +70,11 @@ pub fn max_scroll(app: &App) -> (u16, u16) {
         n.saturating_sub(i.height as usize)
     });
     let lesson = match (p.lesson, &app.lesson) {
+        (Some(r), Some(l)) if l.view == LessonView::Exercises => {
+            let (head, body) = lesson::exercise_lines(app, l, inner(r));
+            body.len()
+                .saturating_sub((inner(r).height as usize).saturating_sub(head.len()))
+        }
         (Some(r), Some(l)) => {
             let i = inner(r);
             lesson::markdown(&l.lesson.readme, (i.width as usize).max(10))
