@@ -30,9 +30,17 @@ const DEFAULT_CASES: u32 = 4000;
 const SEED: [u8; 32] = *b"raytree fuzz_parse seed, fixed.!";
 /// A single input taking longer than this to parse and render is a finding.
 const SLOW: Duration = Duration::from_secs(3);
-/// An input still running after this has hung (the thread cannot be killed and keeps a core
-/// busy until the test binary exits; see `max_hangs`).
-const HANG: Duration = Duration::from_secs(10);
+/// An input still running after this long (`FUZZ_HANG_SECS`, default 5) has hung.
+fn hang_limit() -> Duration {
+    let secs = std::env::var("FUZZ_HANG_SECS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(5);
+    Duration::from_secs(secs)
+}
+
+/// The environment variable that makes `fuzz_child` check one input.
+const CHILD_INPUT: &str = "RAYTREE_FUZZ_CHILD_INPUT";
 
 fn cases() -> u32 {
     std::env::var("PROPTEST_CASES")
@@ -41,8 +49,9 @@ fn cases() -> u32 {
         .unwrap_or(DEFAULT_CASES)
 }
 
-/// Each hang leaves a thread spinning until the test binary exits, so fuzzing a generator stops
-/// after this many (`FUZZ_MAX_HANGS`, default 1).
+/// Fuzzing a generator stops after this many hangs (`FUZZ_MAX_HANGS`, default 1). A hang
+/// in-process leaves a thread spinning until the test binary exits, so after the first one
+/// every accepted scene is rendered in a child process that can be killed.
 fn max_hangs() -> u64 {
     std::env::var("FUZZ_MAX_HANGS")
         .ok()
@@ -157,8 +166,8 @@ struct Outcome {
     infinite_pixels: bool,
 }
 
-/// Parses `text` and renders what is accepted; call it on a `QUIET` thread.
-fn check(text: &str) -> Result<Outcome, Finding> {
+/// Parses `text` and, with `render`, renders what is accepted; call it on a `QUIET` thread.
+fn check(text: &str, render: bool) -> Result<Outcome, Finding> {
     let start = Instant::now();
     let result = catch_unwind(AssertUnwindSafe(|| {
         parse(text, "fuzz.yaml", None, &Limits::default())
@@ -197,6 +206,7 @@ fn check(text: &str) -> Result<Outcome, Finding> {
                 ));
             }
         }
+        Ok(_) if !render => outcome.accepted = true,
         Ok(scene) => {
             outcome.accepted = true;
             // A pool of its own: a render that hangs keeps only its own worker.
@@ -240,27 +250,98 @@ fn check(text: &str) -> Result<Outcome, Finding> {
     Ok(outcome)
 }
 
-/// `check` on its own thread, giving up after `HANG`.
-fn check_or_hang(text: &str) -> Result<Outcome, Finding> {
+fn hang(limit: Duration) -> Finding {
+    finding(
+        "hang: parse + render of an 8 × 6 image did not finish",
+        format!("still running after {limit:?}"),
+    )
+}
+
+/// `check` on its own thread, giving up after `hang_limit()`.
+fn check_or_hang(text: &str, render: bool) -> Result<Outcome, Finding> {
     let (send, receive) = std::sync::mpsc::channel();
     let owned = text.to_string();
     std::thread::Builder::new()
         .name(format!("{QUIET}check"))
         .spawn(move || {
-            let _ = send.send(check(&owned));
+            let _ = send.send(check(&owned, render));
         })
         .expect("a thread");
-    receive.recv_timeout(HANG).unwrap_or_else(|_| {
-        Err(finding(
-            "hang: parse + render of an 8 × 6 image did not finish",
-            format!("still running after {HANG:?}"),
-        ))
-    })
+    let limit = hang_limit();
+    receive
+        .recv_timeout(limit)
+        .unwrap_or_else(|_| Err(hang(limit)))
+}
+
+/// `check` in a child process (this test binary running `fuzz_child`), killed if it hangs;
+/// a crash (abort, stack overflow) is a finding too.
+fn check_in_child(text: &str) -> Result<Outcome, Finding> {
+    use std::process::{Command, Stdio};
+    let input = std::env::temp_dir().join(format!("raytree-fuzz-{}.yaml", std::process::id()));
+    std::fs::write(&input, text).expect("a temporary file");
+    let mut child = Command::new(std::env::current_exe().expect("the test binary"))
+        .args(["fuzz_child", "--exact", "--ignored", "--nocapture"])
+        .env(CHILD_INPUT, &input)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("a child process");
+    // The child gives up on its own after `hang_limit()`; this is for a child that cannot.
+    let deadline = Instant::now() + hang_limit() + Duration::from_secs(5);
+    let status = loop {
+        match child.try_wait().expect("waits") {
+            Some(status) => break status,
+            None if Instant::now() > deadline => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(hang(hang_limit()));
+            }
+            None => std::thread::sleep(Duration::from_millis(2)),
+        }
+    };
+    let mut stdout = String::new();
+    if let Some(mut pipe) = child.stdout.take() {
+        let _ = std::io::Read::read_to_string(&mut pipe, &mut stdout);
+    }
+    let Some(line) = stdout.lines().find_map(|l| l.strip_prefix("FUZZ-RESULT\t")) else {
+        return Err(finding(
+            format!("crash: the process died ({status})"),
+            stdout.chars().take(300).collect::<String>(),
+        ));
+    };
+    let fields: Vec<&str> = line.split('\t').collect();
+    match fields.as_slice() {
+        ["ok", accepted, infinite] => Ok(Outcome {
+            accepted: *accepted == "1",
+            infinite_pixels: *infinite == "1",
+        }),
+        ["finding", signature, detail] => Err(finding(*signature, *detail)),
+        _ => panic!("unreadable child result {line:?}"),
+    }
+}
+
+/// Where inputs are checked: in this process, or (accepted scenes) in a child process.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Mode {
+    InProcess,
+    Isolated,
+}
+
+fn run_check(text: &str, mode: Mode) -> Result<Outcome, Finding> {
+    match mode {
+        Mode::InProcess => check_or_hang(text, true),
+        // Parsing has its own budgets; rendering is what may hang.
+        Mode::Isolated => match check_or_hang(text, false) {
+            Ok(o) if o.accepted => check_in_child(text),
+            other => other,
+        },
+    }
 }
 
 /// Deletes lines (then single characters of short texts) while the same finding remains.
-fn minimise(text: &str, signature: &str) -> String {
-    let same = |t: &str| matches!(check_or_hang(t), Err(f) if f.signature == signature);
+fn minimise(text: &str, signature: &str, mode: Mode) -> String {
+    let same = |t: &str| matches!(run_check(t, mode), Err(f) if f.signature == signature);
     let mut lines: Vec<&str> = text.split_inclusive('\n').collect();
     let mut i = 0;
     while i < lines.len() && lines.len() > 1 {
@@ -305,6 +386,11 @@ fn fuzz<S: Strategy>(name: &str, strategy: S, text_of: impl Fn(&S::Value) -> Str
     let start = Instant::now();
     let mut runner = runner();
     let mut report = Report::default();
+    let mut mode = if std::env::var_os("FUZZ_ISOLATE").is_some() {
+        Mode::Isolated
+    } else {
+        Mode::InProcess
+    };
     for _ in 0..runner.config().cases {
         let value = strategy
             .new_tree(&mut runner)
@@ -312,7 +398,7 @@ fn fuzz<S: Strategy>(name: &str, strategy: S, text_of: impl Fn(&S::Value) -> Str
             .current();
         let text = text_of(&value);
         report.executions += 1;
-        match check_or_hang(&text) {
+        match run_check(&text, mode) {
             Ok(o) => {
                 if o.accepted {
                     report.accepted += 1;
@@ -331,11 +417,12 @@ fn fuzz<S: Strategy>(name: &str, strategy: S, text_of: impl Fn(&S::Value) -> Str
                 if e.0 >= max_hangs() {
                     break;
                 }
+                mode = Mode::Isolated;
             }
             Err(f) => {
                 let entry = report.findings.entry(f.signature.clone());
-                let e =
-                    entry.or_insert_with(|| (0, f.detail.clone(), minimise(&text, &f.signature)));
+                let e = entry
+                    .or_insert_with(|| (0, f.detail.clone(), minimise(&text, &f.signature, mode)));
                 e.0 += 1;
             }
         }
@@ -766,4 +853,30 @@ fn mutations_do_what_they_say() {
     assert_eq!(t, b"c: x1\na: 1\n");
     apply(&mut t, &Mutation::DuplicateLine(Index(0)));
     assert_eq!(t, b"c: x1\nc: x1\na: 1\n");
+}
+
+/// Checks the input named by `RAYTREE_FUZZ_CHILD_INPUT`, for `check_in_child`; does nothing
+/// otherwise.
+#[test]
+#[ignore = "run by the fuzz tests in a child process"]
+fn fuzz_child() {
+    let Some(input) = std::env::var_os(CHILD_INPUT) else {
+        return;
+    };
+    quiet_panics();
+    let text = std::fs::read_to_string(input).expect("the input");
+    let clean = |s: &str| s.replace(['\t', '\n', '\r'], " ");
+    match check_or_hang(&text, true) {
+        Ok(o) => println!(
+            "FUZZ-RESULT\tok\t{}\t{}",
+            o.accepted as u8, o.infinite_pixels as u8
+        ),
+        Err(f) => println!(
+            "FUZZ-RESULT\tfinding\t{}\t{}",
+            clean(&f.signature),
+            clean(&f.detail)
+        ),
+    }
+    // A hung render thread must not keep the child alive.
+    std::process::exit(0);
 }

@@ -1,0 +1,163 @@
+//! The path tracer against closed-form answers (furnace tests), its own reference (convergence
+//! at the 1/√N rate, next-event estimation unbiased) and thread counts (determinism).
+
+use std::path::Path;
+
+use glam::DVec3;
+use raytree::render::{render_simple, Image, RenderOptions};
+use raytree::scene::{load, parse, Limits, Scene};
+use raytree::trace::path::PathTracer;
+use raytree::trace::sampling::Rng;
+use raytree::trace::Stats;
+
+fn scene(yaml: &str) -> Scene {
+    parse(yaml, "mc.yaml", None, &Limits::default()).unwrap()
+}
+
+fn mean(img: &Image) -> DVec3 {
+    img.pixels.iter().sum::<DVec3>() / img.pixels.len() as f64
+}
+
+/// Average radiance over the image with the given integrator switches.
+fn estimate(s: &Scene, spp: u32, next_event: bool, roulette: bool, seed: u64) -> Image {
+    let tracer = PathTracer {
+        scene: s,
+        max_depth: s.max_depth,
+        next_event,
+        roulette,
+    };
+    let cam = &s.camera;
+    let mut img = Image::new(cam.width, cam.height);
+    for y in 0..cam.height {
+        for x in 0..cam.width {
+            let mut rng = Rng::for_pixel(seed, x, y);
+            let mut sum = DVec3::ZERO;
+            for _ in 0..spp {
+                let ray = cam.ray(x as f64 + rng.uniform(), y as f64 + rng.uniform());
+                sum += tracer.radiance(&ray, &mut rng, &mut Stats::default());
+            }
+            img.pixels[(y * cam.width + x) as usize] = sum / spp as f64;
+        }
+    }
+    img
+}
+
+#[test]
+fn furnace_a_diffuse_sphere_under_uniform_light_shows_its_albedo() {
+    // Every path off a convex diffuse sphere escapes after one bounce: exactly ρ·1.
+    let s = scene(
+        "integrator: path\ncamera: { eye: [0, 0, -4], look_at: [0, 0, 0], fov: 30, width: 16, height: 16 }\nbackground: 1\nmax_depth: 8\nmaterials: { m: { color: 1, kd: 0.6 } }\nobjects: [ { name: s, sphere: { center: [0, 0, 0], radius: 1 }, material: m } ]\n",
+    );
+    for (nee, rr) in [(true, true), (false, false)] {
+        let img = estimate(&s, 4, nee, rr, 1);
+        let center = img.get(8, 8);
+        assert!(
+            (center - DVec3::splat(0.6)).abs().max_element() < 1e-12,
+            "{center}"
+        );
+        assert!((img.get(0, 0) - DVec3::ONE).abs().max_element() < 1e-12);
+    }
+}
+
+#[test]
+fn furnace_a_glowing_enclosure_converges_to_e_over_one_minus_rho() {
+    // Inside a closed diffuse sphere of albedo ρ = 0.5 emitting E = 0.25 everywhere, every
+    // bounce adds E: L = E(1 + ρ + ρ² + …) = E/(1 − ρ) = 0.5.
+    let s = scene(
+        "integrator: path\ncamera: { eye: [0, 0, 0], look_at: [0, 0, 1], fov: 60, width: 8, height: 8 }\nmax_depth: 64\nmaterials: { m: { color: 1, kd: 0.5, emission: 0.25 } }\nobjects: [ { name: room, sphere: { center: [0, 0, 0], radius: 5 }, material: m } ]\n",
+    );
+    for (nee, rr) in [(true, true), (false, true), (true, false)] {
+        let m = mean(&estimate(&s, 256, nee, rr, 7));
+        assert!((m.x - 0.5).abs() < 0.01, "nee {nee} rr {rr}: {m}");
+    }
+}
+
+fn small_cornell() -> Scene {
+    let mut s = load(
+        &Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/examples/cornell.yaml"),
+        &Limits::default(),
+    )
+    .unwrap();
+    s.camera = s.camera.resized(24, 24);
+    s.max_depth = 5;
+    s
+}
+
+fn rmse(a: &Image, b: &Image) -> f64 {
+    let se: f64 = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(x, y)| (*x - *y).length_squared())
+        .sum();
+    (se / (3 * a.pixels.len()) as f64).sqrt()
+}
+
+#[test]
+fn error_falls_as_one_over_root_n_and_next_event_estimation_is_unbiased() {
+    let s = small_cornell();
+    let reference = estimate(&s, 4096, true, true, 99);
+    let spps = [16u32, 64, 256];
+    // One RMSE is noisy (paths to a small bright light are heavy-tailed): pool three seeds.
+    let errors: Vec<f64> = spps
+        .iter()
+        .map(|&n| {
+            let mse: f64 = [5u64, 6, 7]
+                .iter()
+                .map(|&seed| rmse(&estimate(&s, n, true, true, seed), &reference).powi(2))
+                .sum();
+            (mse / 3.0).sqrt()
+        })
+        .collect();
+    // Least-squares slope of log RMSE against log N.
+    let xs: Vec<f64> = spps.iter().map(|&n| (n as f64).ln()).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let (mx, my) = (xs.iter().sum::<f64>() / 3.0, ys.iter().sum::<f64>() / 3.0);
+    let slope = xs
+        .iter()
+        .zip(&ys)
+        .map(|(x, y)| (x - mx) * (y - my))
+        .sum::<f64>()
+        / xs.iter().map(|x| (x - mx).powi(2)).sum::<f64>();
+    assert!(
+        (-0.65..=-0.35).contains(&slope),
+        "slope {slope}, errors {errors:?}"
+    );
+    // BSDF sampling alone converges to the same image: compare means within their noise.
+    let without = mean(&estimate(&s, 512, false, true, 3));
+    let with = mean(&reference);
+    assert!(
+        ((without - with).abs() / with).max_element() < 0.03,
+        "{without} vs {with}"
+    );
+}
+
+#[test]
+fn path_traced_images_are_identical_for_one_and_two_threads() {
+    let s = small_cornell();
+    let options = RenderOptions {
+        max_depth: 5,
+        spp: 8,
+        seed: 42,
+    };
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(|| render_simple(&s, options).0);
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap()
+        .install(|| render_simple(&s, options).0);
+    assert_eq!(one, two);
+    let other_seed = render_simple(
+        &s,
+        RenderOptions {
+            seed: 43,
+            ..options
+        },
+    )
+    .0;
+    assert_ne!(one, other_seed);
+}
