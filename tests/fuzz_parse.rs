@@ -1,18 +1,25 @@
-//! In-process fuzzing of the scene parser and, for what it accepts, the renderer (cargo-fuzz
-//! is not available offline, so proptest generates the inputs).
+//! In-process fuzzing of the scene parser and, for what it accepts, the renderer, on stable
+//! Rust in the ordinary test run (the cargo-fuzz targets in tests/fuzz need nightly); proptest
+//! generates the inputs.
 //!
 //! Three generators: random bytes, a soup of YAML and scene tokens, and mutations of the
 //! lesson and example scenes (byte flips, deletions, insertions, duplicated / deleted / swapped
 //! lines, numbers replaced by extreme values). For every input:
 //! * `scene::parse` must not panic;
 //! * an error is one line, with line ≥ 1 and column ≥ 1, inside the text;
-//! * an accepted scene renders at 8 × 6 without a panic and without a NaN pixel.
+//! * an accepted scene renders at 8 × 6 without a panic, a hang or a NaN pixel.
 //!
 //! The seed is fixed, so a run is deterministic. `PROPTEST_CASES=N` sets the number of inputs
 //! per generator (default below, sized to stay well under 20 s in the test profile). Every
 //! distinct finding is collected, minimised by deleting lines and characters, and reported
-//! together. An input that runs longer than `HANG` is reported as a hang; after
-//! `FUZZ_MAX_HANGS` hangs (default 1) a generator stops, as hung threads cannot be killed.
+//! together. An input still running after `FUZZ_HANG_SECS` (default 5) is a hang; a generator
+//! stops after `FUZZ_MAX_HANGS` of them (default 1). With `FUZZ_ISOLATE=1`, or after the first
+//! hang, accepted scenes are rendered in a child process that can be killed. A long survey:
+//!
+//! ```text
+//! PROPTEST_CASES=20000 FUZZ_MAX_HANGS=100000 FUZZ_HANG_SECS=3 \
+//!     cargo test --test fuzz_parse -- --nocapture
+//! ```
 
 use std::collections::BTreeMap;
 use std::panic::{catch_unwind, AssertUnwindSafe};
