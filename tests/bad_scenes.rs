@@ -479,8 +479,8 @@ fn valid_scenes_that_look_odd_are_accepted() {
             "camera: {\teye: [0,\t0, -5],\tlook_at: [0, 0, 0] }\n".to_string(),
         ),
         (
-            "numbers at the edge of f64",
-            format!("{SCENE}objects:\n  - {{ name: s, sphere: {{ center: [-0, 1e-308, 0], radius: 1.7976931348623157e308 }}, material: m }}\n"),
+            "tiny numbers and negative zero",
+            format!("{SCENE}objects:\n  - {{ name: s, sphere: {{ center: [-0, 1e-308, 0], radius: 1e-300 }}, material: m }}\n"),
         ),
     ];
     let mut failures = vec![];

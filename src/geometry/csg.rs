@@ -288,6 +288,10 @@ pub fn combine(op: CsgOp, a: &[Segment], b: &[Segment]) -> SegmentList {
             candidates.push((e.entering != flip, s));
             j += 1;
         }
+        if candidates.is_empty() {
+            // Only a NaN boundary is left (no t equals it): nothing more can be combined.
+            break;
+        }
         let after = op.keeps(in_a, in_b);
         if before == after {
             continue;

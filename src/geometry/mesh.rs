@@ -223,6 +223,22 @@ impl Mesh {
     /// Loads a Wavefront OBJ file (all its objects, triangulated); `smooth` keeps its vertex
     /// normals.
     pub fn load_obj(path: &Path, smooth: bool) -> Result<(Mesh, usize), String> {
+        // Only regular files of sane size: `/dev/zero` or a pipe must not eat memory or hang.
+        const MAX_BYTES: u64 = 512 << 20;
+        let meta =
+            std::fs::metadata(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        if meta.is_dir() {
+            return Err(format!(
+                "{}: is a directory, not a mesh file",
+                path.display()
+            ));
+        }
+        if !meta.is_file() {
+            return Err(format!("{}: not a regular file", path.display()));
+        }
+        if meta.len() > MAX_BYTES {
+            return Err(format!("{}: larger than 512 MiB", path.display()));
+        }
         let options = tobj::LoadOptions {
             triangulate: true,
             single_index: true,

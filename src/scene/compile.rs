@@ -53,7 +53,21 @@ pub fn compile(
 ) -> Result<Scene, Invalid> {
     let camera =
         match &file.camera {
-            Some(c) => camera(&c.value, pos(c), limits)?,
+            Some(Spanned {
+                value: None,
+                referenced,
+                ..
+            }) => {
+                return invalid(
+                    Pos::of(referenced),
+                    "`camera` is empty: give eye and look_at, or the window model",
+                )
+            }
+            Some(
+                c @ Spanned {
+                    value: Some(spec), ..
+                },
+            ) => camera(spec, pos(c), limits)?,
             None => return invalid(
                 TOP,
                 "missing `camera`: a scene needs a camera (eye and look_at, or the window model)",
@@ -87,7 +101,7 @@ pub fn compile(
     };
     let adaptive_threshold = match &file.adaptive_threshold {
         None => 0.0,
-        Some(a) if !(0.0..=1.0).contains(&a.value) => {
+        Some(a) if !(0.0..=1.0).contains(&a.value.0) => {
             return invalid(
                 pos(a),
                 format!(
@@ -96,7 +110,7 @@ pub fn compile(
                 ),
             )
         }
-        Some(a) => a.value,
+        Some(a) => a.value.0,
     };
     let shadow_bias = match &file.shadow_bias {
         None
@@ -248,22 +262,27 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
             ),
         );
     }
-    let Some(eye) = c.eye else {
+    let Some(eye) = c.eye.map(|v| v.0) else {
         return invalid(p, "camera needs an `eye`");
     };
     if let Some(window) = &c.window {
         let need = |v: Option<DVec3>, k: &str| {
             v.map_or_else(|| invalid(p, format!("window camera needs `{k}`")), Ok)
         };
-        let (u, v, w) = (need(c.u, "u")?, need(c.v, "v")?, need(c.w, "w")?);
-        let f = c.f.map_or_else(
+        let (u, v, w) = (
+            need(c.u.as_ref().map(|x| x.value.0), "u")?,
+            need(c.v.as_ref().map(|x| x.value.0), "v")?,
+            need(c.w.as_ref().map(|x| x.value.0), "w")?,
+        );
+        let f = c.f.map(|n| n.0).map_or_else(
             || invalid(p, "window camera needs the focal distance `f`"),
             Ok,
         )?;
-        for (axis, k) in [(u, "u"), (v, "v"), (w, "w")] {
-            nonzero(axis, p, &format!("camera axis {k}"))?;
+        for (axis, k) in [(&c.u, "u"), (&c.v, "v"), (&c.w, "w")] {
+            let axis = axis.as_ref().expect("checked above");
+            nonzero(axis.value.0, pos(axis), &format!("camera axis {k}"))?;
         }
-        let [wl, wr, wt, wb] = window.value;
+        let [wl, wr, wt, wb] = window.value.map(|n| n.0);
         if wl == wr || wt == wb {
             return invalid(
                 pos(window),
@@ -283,20 +302,20 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
                 v,
                 w,
                 f,
-                window: window.value,
+                window: window.value.map(|n| n.0),
             },
             width,
             height,
         });
     }
-    let Some(target) = c.look_at else {
+    let Some(target) = c.look_at.map(|v| v.0) else {
         return invalid(
             p,
             "camera needs `look_at` (or the window model: u, v, w, f, window)",
         );
     };
     let forward = nonzero(target - eye, p, "look_at − eye")?;
-    let (up, up_pos) = c.up.as_ref().map_or((DVec3::Y, p), |u| (u.value, pos(u)));
+    let (up, up_pos) = c.up.as_ref().map_or((DVec3::Y, p), |u| (u.value.0, pos(u)));
     let up = nonzero(up, up_pos, "camera up")?;
     if forward.cross(up).length() < 1e-9 {
         return invalid(
@@ -306,7 +325,7 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
     }
     let fov = match &c.fov {
         None => 40.0,
-        Some(f) if !(f.value > 0.0 && f.value < 180.0) => {
+        Some(f) if !(f.value.0 > 0.0 && f.value.0 < 180.0) => {
             return invalid(
                 pos(f),
                 format!(
@@ -315,7 +334,7 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
                 ),
             )
         }
-        Some(f) => f.value,
+        Some(f) => f.value.0,
     };
     Ok(match c.handedness.unwrap_or_default() {
         super::format::Handedness::Left => Camera::look_at(eye, target, up, fov, width, height),
@@ -325,15 +344,15 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
     })
 }
 
-fn attenuation(a: &Spanned<[f64; 3]>) -> Result<[f64; 3], Invalid> {
-    let [c0, c1, c2] = a.value;
+fn attenuation(a: &Spanned<[super::format::Num; 3]>) -> Result<[f64; 3], Invalid> {
+    let [c0, c1, c2] = a.value.map(|n| n.0);
     if c0 < 0.0 || c1 < 0.0 || c2 < 0.0 || c0 + c1 + c2 <= 0.0 {
         return invalid(
             pos(a),
             "attenuation [c0, c1, c2] must be ≥ 0 and not all zero",
         );
     }
-    Ok(a.value)
+    Ok([c0, c1, c2])
 }
 
 fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
@@ -358,7 +377,7 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
             format!("light `{name}`: `samples` is for area (`rect`) lights"),
         );
     }
-    let kind = if let Some(position) = l.point {
+    let kind = if let Some(position) = l.point.map(|v| v.0) {
         let attenuation = match &l.attenuation {
             Some(a) => attenuation(a)?,
             None => [1.0, 0.0, 0.0],
@@ -374,11 +393,11 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
         );
     } else if let Some(d) = &l.direction {
         LightKind::Directional {
-            direction: nonzero(d.value, pos(d), "light direction")?,
+            direction: nonzero(d.value.0, pos(d), "light direction")?,
         }
     } else {
         let r = l.rect.as_ref().expect("counted above");
-        let (corner, u, v) = (r.value.corner, r.value.u, r.value.v);
+        let (corner, u, v) = (r.value.corner.0, r.value.u.0, r.value.v.0);
         if u.cross(v).length() < 1e-12 {
             return invalid(
                 pos(r),
@@ -415,25 +434,25 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
 }
 
 fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
-    let coefficient = |c: &Option<Spanned<f64>>, k: &str| -> Result<f64, Invalid> {
+    let coefficient = |c: &Option<Spanned<super::format::Num>>, k: &str| -> Result<f64, Invalid> {
         match c {
             None => Ok(0.0),
-            Some(c) if c.value < 0.0 => invalid(
+            Some(c) if c.value.0 < 0.0 => invalid(
                 pos(c),
                 format!("material `{name}`: {k} must be ≥ 0, got {}", c.value),
             ),
-            Some(c) => Ok(c.value),
+            Some(c) => Ok(c.value.0),
         }
     };
     let ior = match &m.ior {
         None => 1.0,
-        Some(i) if i.value <= 0.0 => {
+        Some(i) if i.value.0 <= 0.0 => {
             return invalid(
                 pos(i),
                 format!("material `{name}`: ior must be > 0, got {}", i.value),
             )
         }
-        Some(i) => i.value,
+        Some(i) => i.value.0,
     };
     let shininess = match &m.shininess {
         None => 1.0,
@@ -637,10 +656,10 @@ fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
     let mut m = DAffine3::IDENTITY;
     for s in steps {
         let step = match &s.value {
-            TransformStep::Translate(v) => DAffine3::from_translation(*v),
-            TransformStep::RotateX(d) => DAffine3::from_rotation_x(d.to_radians()),
-            TransformStep::RotateY(d) => DAffine3::from_rotation_y(d.to_radians()),
-            TransformStep::RotateZ(d) => DAffine3::from_rotation_z(d.to_radians()),
+            TransformStep::Translate(v) => DAffine3::from_translation(v.0),
+            TransformStep::RotateX(d) => DAffine3::from_rotation_x(d.0.to_radians()),
+            TransformStep::RotateY(d) => DAffine3::from_rotation_y(d.0.to_radians()),
+            TransformStep::RotateZ(d) => DAffine3::from_rotation_z(d.0.to_radians()),
             TransformStep::Scale(Triple(v)) => {
                 if v.abs().min_element() < 1e-12 {
                     return invalid(pos(s), "scale must not be zero in any axis");
@@ -654,65 +673,65 @@ fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
 }
 
 fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Invalid> {
-    let positive = |r: &Spanned<f64>, what: &str| -> Result<f64, Invalid> {
-        if r.value > 0.0 {
-            Ok(r.value)
+    let positive = |r: &Spanned<super::format::Num>, what: &str| -> Result<f64, Invalid> {
+        if r.value.0 > 0.0 {
+            Ok(r.value.0)
         } else {
             invalid(pos(r), format!("{what} must be > 0, got {}", r.value))
         }
     };
     if let Some(s) = &spec.sphere {
         return Ok(Shape::Sphere(Sphere {
-            center: s.center,
+            center: s.center.0,
             radius: positive(&s.radius, "sphere radius")?,
         }));
     }
     if let Some(s) = &spec.plane {
         return Ok(Shape::Plane(Plane {
-            point: s.point,
-            normal: nonzero(s.normal.value, pos(&s.normal), "plane normal")?,
+            point: s.point.0,
+            normal: nonzero(s.normal.value.0, pos(&s.normal), "plane normal")?,
         }));
     }
     if let Some(s) = &spec.aabox {
-        if !(s.min.value.cmplt(s.max).all()) {
+        if !(s.min.value.0.cmplt(s.max.0).all()) {
             return invalid(
                 pos(&s.min),
                 "box min must be smaller than max in every axis",
             );
         }
         return Ok(Shape::Box(Aabox {
-            min: s.min.value,
-            max: s.max,
+            min: s.min.value.0,
+            max: s.max.0,
         }));
     }
     if let Some(s) = &spec.cylinder {
         let radius = positive(&s.radius, "cylinder radius")?;
         nonzero(
-            s.top - s.base.value,
+            s.top.0 - s.base.value.0,
             pos(&s.base),
             "cylinder axis (top − base)",
         )?;
         return Ok(Shape::Cylinder(Cylinder {
-            base: s.base.value,
-            top: s.top,
+            base: s.base.value.0,
+            top: s.top.0,
             radius,
         }));
     }
     if let Some(s) = &spec.cone {
         let radius = positive(&s.radius, "cone radius")?;
         nonzero(
-            s.base - s.apex.value,
+            s.base.0 - s.apex.value.0,
             pos(&s.apex),
             "cone axis (base − apex)",
         )?;
         return Ok(Shape::Cone(Cone {
-            apex: s.apex.value,
-            base: s.base,
+            apex: s.apex.value.0,
+            base: s.base.0,
             radius,
         }));
     }
     if let Some(t) = &spec.triangle {
-        let [a, b, c] = t.value;
+        let [a, b, c] = t.value.map(|v| v.0);
         let tri = Triangle { a, b, c };
         if tri.normal() == DVec3::ZERO {
             return invalid(

@@ -56,7 +56,11 @@ impl Leaf {
             }
             return list;
         }
-        if let Some(s) = self.span(ray) {
+        // A span of NaN (arithmetic overflow on absurd input) is no intersection.
+        if let Some(s) = self
+            .span(ray)
+            .filter(|s| !s.t_in.is_nan() && !s.t_out.is_nan())
+        {
             list.push(Segment {
                 t_in: s.t_in,
                 t_out: s.t_out,

@@ -28,6 +28,67 @@ pub enum Integrator {
     Path,
 }
 
+/// The largest magnitude accepted for any number: squares of coordinates must not overflow.
+pub const MAX_MAGNITUDE: f64 = 1e100;
+
+fn check<E: de::Error>(v: f64) -> Result<f64, E> {
+    if !v.is_finite() {
+        Err(E::custom(format!(
+            "non-finite number `{v}`: every number in a scene must be finite"
+        )))
+    } else if v.abs() > MAX_MAGNITUDE {
+        Err(E::custom(format!(
+            "number {v:e} is too large: numbers must lie within ±1e100"
+        )))
+    } else {
+        Ok(v)
+    }
+}
+
+/// A finite number of sensible magnitude (NaN, ±∞ and |x| > 1e100 are refused where they
+/// are written, however they are spelled: `.nan`, `".inf"`, `1e308`).
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub struct Num(pub f64);
+
+impl<'de> Deserialize<'de> for Num {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Num, D::Error> {
+        // Read as a float (so errors point at the value itself), then refuse NaN, ±∞ and
+        // magnitudes whose squares would overflow, however they were spelled.
+        check(f64::deserialize(d)?).map(Num)
+    }
+}
+
+impl std::ops::Deref for Num {
+    type Target = f64;
+    fn deref(&self) -> &f64 {
+        &self.0
+    }
+}
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+/// A vector `[x, y, z]` of such numbers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct V3(pub DVec3);
+
+impl<'de> Deserialize<'de> for V3 {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<V3, D::Error> {
+        let [x, y, z] = <[Num; 3]>::deserialize(d)?;
+        Ok(V3(DVec3::new(x.0, y.0, z.0)))
+    }
+}
+
+impl std::ops::Deref for V3 {
+    type Target = DVec3;
+    fn deref(&self) -> &DVec3 {
+        &self.0
+    }
+}
+
 /// A colour or vector that may be written as one number (grey / uniform) or as `[x, y, z]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Triple(pub DVec3);
@@ -41,7 +102,7 @@ impl<'de> Deserialize<'de> for Triple {
                 f.write_str("a number or a list [x, y, z]")
             }
             fn visit_f64<E: de::Error>(self, v: f64) -> Result<Triple, E> {
-                Ok(Triple(DVec3::splat(v)))
+                Ok(Triple(DVec3::splat(check(v)?)))
             }
             fn visit_i64<E: de::Error>(self, v: i64) -> Result<Triple, E> {
                 Ok(Triple(DVec3::splat(v as f64)))
@@ -52,9 +113,10 @@ impl<'de> Deserialize<'de> for Triple {
             fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Triple, A::Error> {
                 let mut v = [0.0; 3];
                 for (i, slot) in v.iter_mut().enumerate() {
-                    *slot = seq
+                    let n: Num = seq
                         .next_element()?
                         .ok_or_else(|| de::Error::invalid_length(i, &"3 numbers"))?;
+                    *slot = n.0;
                 }
                 if seq.next_element::<f64>()?.is_some() {
                     return Err(de::Error::invalid_length(4, &"3 numbers"));
@@ -82,7 +144,7 @@ impl<'de> Deserialize<'de> for Bias {
                 f.write_str("`auto` or a length")
             }
             fn visit_f64<E: de::Error>(self, v: f64) -> Result<Bias, E> {
-                Ok(Bias::Fixed(v))
+                Ok(Bias::Fixed(check(v)?))
             }
             fn visit_i64<E: de::Error>(self, v: i64) -> Result<Bias, E> {
                 Ok(Bias::Fixed(v as f64))
@@ -104,15 +166,16 @@ impl<'de> Deserialize<'de> for Bias {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
-    pub camera: Option<Spanned<CameraSpec>>,
+    /// `camera:` with nothing after it is `Some(None)`, so its position can be reported.
+    pub camera: Option<Spanned<Option<CameraSpec>>>,
     pub background: Option<Triple>,
     pub ambient: Option<Triple>,
     pub max_depth: Option<Spanned<i64>>,
-    pub adaptive_threshold: Option<Spanned<f64>>,
+    pub adaptive_threshold: Option<Spanned<Num>>,
     pub shadow_bias: Option<Spanned<Bias>>,
     pub spp: Option<Spanned<i64>>,
     pub integrator: Option<Integrator>,
-    pub secondary_attenuation: Option<Spanned<[f64; 3]>>,
+    pub secondary_attenuation: Option<Spanned<[Num; 3]>>,
     #[serde(default)]
     pub lights: Vec<Spanned<LightSpec>>,
     #[serde(default)]
@@ -124,18 +187,18 @@ pub struct SceneFile {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
-    pub eye: Option<DVec3>,
-    pub look_at: Option<DVec3>,
-    pub up: Option<Spanned<DVec3>>,
-    pub fov: Option<Spanned<f64>>,
+    pub eye: Option<V3>,
+    pub look_at: Option<V3>,
+    pub up: Option<Spanned<V3>>,
+    pub fov: Option<Spanned<Num>>,
     /// `left` (default: +x on the right looking down +z, as the lecture's window model and
     /// POV-Ray) or `right` (+x on the right looking down −z, as Mitsuba).
     pub handedness: Option<Handedness>,
-    pub u: Option<DVec3>,
-    pub v: Option<DVec3>,
-    pub w: Option<DVec3>,
-    pub f: Option<f64>,
-    pub window: Option<Spanned<[f64; 4]>>,
+    pub u: Option<Spanned<V3>>,
+    pub v: Option<Spanned<V3>>,
+    pub w: Option<Spanned<V3>>,
+    pub f: Option<Num>,
+    pub window: Option<Spanned<[Num; 4]>>,
     pub width: Option<Spanned<i64>>,
     pub height: Option<Spanned<i64>>,
 }
@@ -144,36 +207,36 @@ pub struct CameraSpec {
 #[serde(deny_unknown_fields)]
 pub struct LightSpec {
     pub name: Option<String>,
-    pub point: Option<DVec3>,
-    pub direction: Option<Spanned<DVec3>>,
+    pub point: Option<V3>,
+    pub direction: Option<Spanned<V3>>,
     pub rect: Option<Spanned<RectSpec>>,
     /// Area lights: n × n shadow rays per shaded point (default 3).
     pub samples: Option<Spanned<i64>>,
     pub intensity: Option<Triple>,
-    pub attenuation: Option<Spanned<[f64; 3]>>,
+    pub attenuation: Option<Spanned<[Num; 3]>>,
 }
 
 /// A rectangular area light: `corner + a·u + b·v`, emitting on the side of u × v.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RectSpec {
-    pub corner: DVec3,
-    pub u: DVec3,
-    pub v: DVec3,
+    pub corner: V3,
+    pub u: V3,
+    pub v: V3,
 }
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
     pub color: Option<Triple>,
-    pub ka: Option<Spanned<f64>>,
-    pub kd: Option<Spanned<f64>>,
-    pub ks: Option<Spanned<f64>>,
-    pub shininess: Option<Spanned<f64>>,
+    pub ka: Option<Spanned<Num>>,
+    pub kd: Option<Spanned<Num>>,
+    pub ks: Option<Spanned<Num>>,
+    pub shininess: Option<Spanned<Num>>,
     pub highlight: Option<Highlight>,
-    pub kr: Option<Spanned<f64>>,
-    pub kt: Option<Spanned<f64>>,
-    pub ior: Option<Spanned<f64>>,
+    pub kr: Option<Spanned<Num>>,
+    pub kt: Option<Spanned<Num>>,
+    pub ior: Option<Spanned<Num>>,
     pub fresnel: Option<Fresnel>,
     pub emission: Option<Triple>,
 }
@@ -181,38 +244,38 @@ pub struct MaterialSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SphereSpec {
-    pub center: DVec3,
-    pub radius: Spanned<f64>,
+    pub center: V3,
+    pub radius: Spanned<Num>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneSpec {
-    pub point: DVec3,
-    pub normal: Spanned<DVec3>,
+    pub point: V3,
+    pub normal: Spanned<V3>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoxSpec {
-    pub min: Spanned<DVec3>,
-    pub max: DVec3,
+    pub min: Spanned<V3>,
+    pub max: V3,
 }
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CylinderSpec {
-    pub base: Spanned<DVec3>,
-    pub top: DVec3,
-    pub radius: Spanned<f64>,
+    pub base: Spanned<V3>,
+    pub top: V3,
+    pub radius: Spanned<Num>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ConeSpec {
-    pub apex: Spanned<DVec3>,
-    pub base: DVec3,
-    pub radius: Spanned<f64>,
+    pub apex: Spanned<V3>,
+    pub base: V3,
+    pub radius: Spanned<Num>,
 }
 
 /// A triangle mesh from a Wavefront OBJ file (relative to the scene file).
@@ -236,10 +299,10 @@ pub struct IcosphereSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum TransformStep {
-    Translate(DVec3),
-    RotateX(f64),
-    RotateY(f64),
-    RotateZ(f64),
+    Translate(V3),
+    RotateX(Num),
+    RotateY(Num),
+    RotateZ(Num),
     Scale(Triple),
 }
 
@@ -258,7 +321,7 @@ pub struct ObjectSpec {
     pub aabox: Option<BoxSpec>,
     pub cylinder: Option<CylinderSpec>,
     pub cone: Option<ConeSpec>,
-    pub triangle: Option<Spanned<[DVec3; 3]>>,
+    pub triangle: Option<Spanned<[V3; 3]>>,
     pub mesh: Option<MeshSpec>,
     pub icosphere: Option<IcosphereSpec>,
     pub union: Option<Vec<Spanned<ObjectSpec>>>,

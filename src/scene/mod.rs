@@ -71,14 +71,6 @@ pub fn parse(
             message: "empty scene file".into(),
         });
     }
-    if let Some((line, column, token)) = non_finite_literal(text) {
-        return Err(SceneError {
-            file: file.into(),
-            line,
-            column,
-            message: format!("non-finite number `{token}`: every number in a scene must be finite"),
-        });
-    }
     let parsed: format::SceneFile = serde_saphyr::from_str_with_options(text, parse_options())
         .map_err(|e| {
             let (line, column) = e
@@ -91,45 +83,34 @@ pub fn parse(
                 message: parser_message(&e.to_string()),
             }
         })?;
-    compile::compile(parsed, path.map(Path::to_path_buf), limits).map_err(|e| SceneError {
-        file: file.into(),
-        line: e.pos.line,
-        column: e.pos.column,
-        message: e.message,
-    })
+    compile::compile(parsed, path.map(Path::to_path_buf), limits)
+        .map_err(|e| empty_camera(text, e))
+        .map_err(|e| SceneError {
+            file: file.into(),
+            line: e.pos.line,
+            column: e.pos.column,
+            message: e.message,
+        })
 }
 
-/// YAML's `.nan` and `.inf` literals (the parser hands them through as floats), outside
-/// comments and quotes. Overflowing literals such as `1e999` are rejected by the parser itself.
-fn non_finite_literal(text: &str) -> Option<(u64, u64, String)> {
-    const TOKENS: [&str; 9] = [
-        ".nan", ".NaN", ".NAN", ".inf", ".Inf", ".INF", "+.inf", "-.inf", "-.Inf",
-    ];
+/// `camera:` with nothing after it parses as no camera at all; point at the empty key.
+fn empty_camera(text: &str, e: error::Invalid) -> error::Invalid {
+    if !e.message.starts_with("missing `camera`") {
+        return e;
+    }
     for (i, line) in text.lines().enumerate() {
-        let code = line.split(" #").next().unwrap_or(line);
-        let code = if code.trim_start().starts_with('#') {
-            ""
-        } else {
-            code
-        };
-        let bytes = code.as_bytes();
-        for (start, _) in code.char_indices() {
-            let before = if start == 0 { b' ' } else { bytes[start - 1] };
-            if !matches!(before, b' ' | b'[' | b',' | b':' | b'{' | b'\t') {
-                continue;
-            }
-            for t in TOKENS {
-                if code[start..].starts_with(t) {
-                    let after = bytes.get(start + t.len()).copied().unwrap_or(b' ');
-                    if matches!(after, b' ' | b']' | b',' | b'}' | b'\t') {
-                        let column = code[..start].chars().count() as u64 + 1;
-                        return Some((i as u64 + 1, column, t.to_string()));
-                    }
-                }
-            }
+        if let Some(rest) = line.strip_prefix("camera:") {
+            let column = line.len() - rest.trim_start().len() + 1;
+            return error::Invalid {
+                pos: error::Pos {
+                    line: i as u64 + 1,
+                    column: column as u64,
+                },
+                message: "`camera` is empty: give eye and look_at, or the window model".into(),
+            };
         }
     }
-    None
+    e
 }
 
 /// The parser's message on one line, without the position it repeats.
@@ -141,10 +122,33 @@ fn parser_message(raw: &str) -> String {
         Some(rest) => rest.split_once(": ").map_or(stripped, |(_, msg)| msg),
         None => stripped,
     };
-    // "… at line 2, column 1": the position is reported separately.
+    // A trailing "at line 2, column 1": the position is reported separately.
     let stripped = match stripped.rfind(" at line ") {
-        Some(i) if stripped[i..].contains(", column ") => &stripped[..i],
+        Some(i) if stripped[i..].contains(", column ") && !stripped[i..].contains('(') => {
+            &stripped[..i]
+        }
         _ => stripped,
     };
+    // Messages written for programmers using the parser, said for the scene's author.
+    if let Some(key) = stripped.strip_prefix("duplicate mapping key: ") {
+        let key = key.split(',').next().unwrap_or(key).trim();
+        return format!("duplicate key `{key}`: each key may appear once in a mapping");
+    }
+    if stripped.starts_with("multiple YAML documents") {
+        return "multiple YAML documents (a `---` line): a scene file holds one".into();
+    }
+    if stripped.starts_with("budget breached") {
+        return if stripped.contains("Depth") {
+            "nested more than 64 levels deep (CSG trees and lists must be shallower)".into()
+        } else if stripped.contains("Anchor") || stripped.contains("Alias") {
+            "YAML aliases expand too far (an alias bomb?): refused".into()
+        } else {
+            "the file is too large for the parser's limits (nodes, events or bytes)".into()
+        };
+    }
+    if stripped == "expected string scalar" {
+        return "expected a single value here (a number or a name), not a list or a mapping".into();
+    }
+
     stripped.to_string()
 }
