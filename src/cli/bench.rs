@@ -132,30 +132,23 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
             let mut rows = vec![];
             pool.install(|| -> Result<(), Failure> {
-                for n in [10, 100, 1_000, 10_000, 100_000] {
-                    rows.push(measure("spheres", n, &spheres(n), n <= max_brute)?);
-                    eprint!(
+                // Each row is printed to stderr as soon as it is measured: the sweep is long.
+                let mut add = |row: crate::bench::Row| {
+                    eprintln!(
                         "{}",
-                        table(&rows[rows.len() - 1..])
+                        table(std::slice::from_ref(&row))
                             .lines()
                             .nth(1)
                             .unwrap_or("")
-                            .to_string()
-                            + "\n"
                     );
+                    rows.push(row);
+                };
+                for n in [10, 100, 1_000, 10_000, 100_000] {
+                    add(measure("spheres", n, &spheres(n), n <= max_brute)?);
                 }
                 for k in 3..=max_subdivisions {
                     let n = 20 * 4usize.pow(k);
-                    rows.push(measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?);
-                    eprint!(
-                        "{}",
-                        table(&rows[rows.len() - 1..])
-                            .lines()
-                            .nth(1)
-                            .unwrap_or("")
-                            .to_string()
-                            + "\n"
-                    );
+                    add(measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?);
                 }
                 Ok(())
             })?;

@@ -140,10 +140,12 @@ impl Cylinder {
             BASE_CAP => -a,
             TOP_CAP => a,
             _ => {
-                                // On the axis itself (a degenerate hit of a needle-thin cylinder, found by
+                // On the axis itself (a degenerate hit of a needle-thin cylinder, found by
                 // fuzzing) any direction across the axis will do; never NaN.
                 let w = p - self.base;
-                (w - w.dot(a) * a).try_normalize().unwrap_or_else(|| a.any_orthonormal_vector())
+                (w - w.dot(a) * a)
+                    .try_normalize()
+                    .unwrap_or_else(|| a.any_orthonormal_vector())
             }
         }
     }
@@ -157,9 +159,15 @@ mod tests {
     /// a very thin cylinder gave a NaN normal.
     #[test]
     fn the_normal_on_the_axis_is_a_unit_vector() {
-        let c = Cylinder { base: DVec3::ZERO, top: DVec3::new(0.0, 0.0, 1e6), radius: 1e-3 };
+        let c = Cylinder {
+            base: DVec3::ZERO,
+            top: DVec3::new(0.0, 0.0, 1e6),
+            radius: 1e-3,
+        };
         let n = c.normal(DVec3::new(0.0, 0.0, 5.0), SIDE);
-        assert!((n.length() - 1.0).abs() < 1e-12 && n.dot(c.axis()).abs() < 1e-12, "{n}");
+        assert!(
+            (n.length() - 1.0).abs() < 1e-12 && n.dot(c.axis()).abs() < 1e-12,
+            "{n}"
+        );
     }
 }
-

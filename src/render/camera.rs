@@ -44,10 +44,7 @@ impl Camera {
         width: u32,
         height: u32,
     ) -> Camera {
-        let forward = (target - eye).normalize();
-        let right = up.cross(forward).normalize();
-        let up = forward.cross(right);
-        Camera::frame(eye, forward, right, up, fov_degrees, width, height)
+        Camera::frame(eye, target, up, fov_degrees, width, height, false)
     }
 
     /// The same, in a right-handed frame (right = forward × up, as Mitsuba and OpenGL): the
@@ -60,21 +57,31 @@ impl Camera {
         width: u32,
         height: u32,
     ) -> Camera {
-        let forward = (target - eye).normalize();
-        let right = forward.cross(up).normalize();
-        let up = right.cross(forward);
-        Camera::frame(eye, forward, right, up, fov_degrees, width, height)
+        Camera::frame(eye, target, up, fov_degrees, width, height, true)
     }
 
+    #[allow(clippy::too_many_arguments)]
     fn frame(
         eye: DVec3,
-        forward: DVec3,
-        right: DVec3,
+        target: DVec3,
         up: DVec3,
         fov_degrees: f64,
         width: u32,
         height: u32,
+        right_handed: bool,
     ) -> Camera {
+        let forward = (target - eye).normalize();
+        let right = if right_handed {
+            forward.cross(up)
+        } else {
+            up.cross(forward)
+        }
+        .normalize();
+        let up = if right_handed {
+            right.cross(forward)
+        } else {
+            forward.cross(right)
+        };
         let tan_half_fov = (fov_degrees.to_radians() / 2.0).tan();
         Camera {
             projection: Projection::LookAt {

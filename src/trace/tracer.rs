@@ -83,6 +83,23 @@ struct Task {
     indices: Option<Indices>,
 }
 
+impl Task {
+    /// Announces this ray to the recorder.
+    fn begin<R: Recorder>(&self, rec: &mut R) {
+        rec.begin(RayStart {
+            kind: self.kind,
+            depth: self.depth,
+            origin: self.ray.origin,
+            direction: self.ray.dir,
+            weight: self.weight,
+            coefficient: self.coefficient,
+        });
+        if let Some(i) = self.indices {
+            rec.indices(i);
+        }
+    }
+}
+
 impl<'s> Tracer<'s> {
     pub fn new(scene: &'s Scene) -> Tracer<'s> {
         Tracer {
@@ -148,17 +165,7 @@ impl<'s> Tracer<'s> {
             RayKind::Refraction => stats.refraction_rays += 1,
             RayKind::Shadow => stats.shadow_rays += 1,
         }
-        rec.begin(RayStart {
-            kind: task.kind,
-            depth: task.depth,
-            origin: task.ray.origin,
-            direction: task.ray.dir,
-            weight: task.weight,
-            coefficient: task.coefficient,
-        });
-        if let Some(i) = task.indices {
-            rec.indices(i);
-        }
+        task.begin(rec);
         let Some(hit) = scene.intersect(&task.ray, 0.0, f64::INFINITY, stats) else {
             rec.end(scene.background, Some(Termination::Background));
             return (scene.background, f64::INFINITY);
@@ -380,17 +387,7 @@ impl<'s> Tracer<'s> {
         };
         if let Some(why) = stop {
             if R::ACTIVE {
-                rec.begin(RayStart {
-                    kind: task.kind,
-                    depth: task.depth,
-                    origin: task.ray.origin,
-                    direction: task.ray.dir,
-                    weight: task.weight,
-                    coefficient: task.coefficient,
-                });
-                if let Some(i) = task.indices {
-                    rec.indices(i);
-                }
+                task.begin(rec);
                 rec.end(DVec3::ZERO, Some(why));
             }
             return DVec3::ZERO;
