@@ -852,6 +852,30 @@ fn in_tmux_a_panic_restores_the_terminal() {
     assert_restored(&tmux, &stty);
 }
 
+#[test]
+fn in_tmux_a_crash_in_the_render_thread_is_reported_and_resizing_to_one_cell_survives() {
+    if !have_tmux() {
+        return;
+    }
+    let (tmux, status, stty) =
+        start_in_tmux("tmux-worker-panic", "RAYTREE_EXPLORE_TEST_PANIC=worker");
+    let screen = tmux.wait_for("renderer crashed");
+    assert!(
+        screen.contains("ray tree ·"),
+        "the explorer keeps running:\n{screen}"
+    );
+    // Squeeze the terminal to one cell and back: nothing breaks, everything is drawn again.
+    tmux.run(&["resize-window", "-t", "explore", "-x", "1", "-y", "1"]);
+    std::thread::sleep(std::time::Duration::from_millis(400));
+    tmux.run(&["resize-window", "-t", "explore", "-x", "100", "-y", "30"]);
+    tmux.wait_for("ray tree ·");
+    tmux.run(&["send-keys", "-t", "explore", "q"]);
+    let after = tmux.wait_for("DONE");
+    let code = std::fs::read_to_string(&status).unwrap();
+    assert_eq!(code.trim(), "exit 0", "{after}");
+    assert_restored(&tmux, &stty);
+}
+
 // ---------------------------------------------------------------------------------------
 // The command line around it
 

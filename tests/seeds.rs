@@ -109,7 +109,7 @@ fn inspected_root_equals_rendered_pixel_in_every_lesson() {
             if path.extension().is_none_or(|e| e != "yaml") || path.ends_with("exercises.yaml") {
                 continue;
             }
-                        let mut s = raytree::scene::load(&path, &Limits::default()).unwrap();
+            let mut s = raytree::scene::load(&path, &Limits::default()).unwrap();
             // The claim is about the Whitted tracer; a path-traced pixel is a random estimate
             // that no single tree describes (tests/montecarlo.rs covers those scenes).
             if s.integrator == raytree::scene::Integrator::Path {

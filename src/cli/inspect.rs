@@ -21,7 +21,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-        let scene = a.scene.load()?;
+    let scene = a.scene.load()?;
     if scene.integrator == crate::scene::Integrator::Path {
         eprintln!("note: this scene is path traced; shown is the Whitted ray tree of the same scene (its rays, hits and local terms), not a random path sample");
     }

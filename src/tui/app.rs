@@ -1182,6 +1182,10 @@ pub fn update(app: &mut App, msg: Msg) {
                 app.preview.pass = Some(done.pass);
                 app.preview.stats = Some(done.stats);
                 app.preview.elapsed = Some(done.elapsed);
+                if let Some(why) = done.failure {
+                    app.preview.running = false;
+                    app.message = Some((format!("the preview renderer crashed: {why}"), Tone::Bad));
+                }
             }
         }
         Msg::ToggleHelp => app.show_help = !app.show_help,

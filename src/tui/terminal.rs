@@ -33,7 +33,14 @@ fn install_panic_hook() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         let previous = std::panic::take_hook();
+        let ui_thread = std::thread::current().id();
         std::panic::set_hook(Box::new(move |info| {
+            // A panic in the render threads is caught and reported inside the explorer; only
+            // the UI thread's panic ends it, so only then is the terminal restored and the
+            // message printed.
+            if std::thread::current().id() != ui_thread {
+                return;
+            }
             let _ = restore();
             previous(info);
         }));

@@ -50,6 +50,8 @@ pub struct Done {
     pub image: Image,
     pub stats: Stats,
     pub elapsed: Duration,
+    /// The render panicked: why (the preview goes dark, the explorer keeps running).
+    pub failure: Option<String>,
 }
 
 /// Whether a job is worth a draft pass first.
@@ -76,13 +78,35 @@ pub fn render_pass(
         spp,
         ..RenderOptions::of(&small)
     };
-    let (image, stats) = render(&small, options, on_row, cancel)?;
+    // A bug in the renderer must not take the terminal down with it: catch the panic here and
+    // let the explorer say what happened.
+    let rendered = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        if std::env::var("RAYTREE_EXPLORE_TEST_PANIC").as_deref() == Ok("worker") {
+            panic!("a deliberate panic in the render thread (RAYTREE_EXPLORE_TEST_PANIC=worker)");
+        }
+        render(&small, options, on_row, cancel)
+    }));
+    let (image, stats, failure) = match rendered {
+        Ok(result) => {
+            let (image, stats) = result?;
+            (image, stats, None)
+        }
+        Err(payload) => {
+            let why = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown panic".into());
+            (Image::new(w, h), Stats::default(), Some(why))
+        }
+    };
     Some(Done {
         generation: job.generation,
         pass,
         image,
         stats,
         elapsed: start.elapsed(),
+        failure,
     })
 }
 
