@@ -1,4 +1,4 @@
-//! `raytree bench`: measured sweeps.
+//! `raytree bench`: measured sweeps (run time against error; time per ray against scene size).
 
 use std::process::ExitCode;
 

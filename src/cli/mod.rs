@@ -34,7 +34,7 @@ enum Command {
     Preview(preview::Args),
     /// The terminal explorer: pick a pixel, see its ray tree (no argument: the lesson list).
     Explore(explore::Args),
-    /// Measured sweeps: time per ray against scene size, with and without the BVH.
+    /// Measured sweeps: run time against error (sweep), time per ray against scene size (scaling).
     Bench(bench::Args),
     /// List the lessons and their exercises.
     Lessons(lessons::Args),
