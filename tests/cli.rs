@@ -352,3 +352,31 @@ fn preview_and_lessons_list() {
     let text = stdout(&o);
     assert!(text.contains("08-pixel-intensity") && text.contains("pixel-p"));
 }
+
+#[test]
+fn inspect_a_path_traced_pixel_shows_sampled_paths_and_the_estimate() {
+    let o = raytree(&[
+        "inspect",
+        "lessons/examples/cornell.yaml",
+        "--pixel",
+        "128,60",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["integrator"], "path");
+    assert_eq!(v["samples"], 64);
+    let paths = v["paths"].as_array().unwrap();
+    assert_eq!(paths.len(), 4);
+    for p in paths {
+        let vertices = p["vertices"].as_array().unwrap();
+        assert!(!vertices.is_empty());
+        // Each path's value is the sum of what its vertices added.
+        let added: f64 = vertices
+            .iter()
+            .map(|x| x["added"][0].as_f64().unwrap())
+            .sum();
+        assert!((added - p["value"][0].as_f64().unwrap()).abs() < 1e-9);
+    }
+}

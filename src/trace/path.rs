@@ -27,6 +27,22 @@ pub struct PathTracer<'s> {
     pub roulette: bool,
 }
 
+/// One vertex of a recorded path, for `inspect` on a path-traced pixel.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PathVertex {
+    /// What happened here: light, background, diffuse, mirror, refraction, reflection,
+    /// absorbed (no lobe), max_depth, roulette.
+    pub event: &'static str,
+    /// The object (or light) met.
+    pub object: Option<String>,
+    pub point: DVec3,
+    /// The path's throughput after this vertex.
+    pub throughput: DVec3,
+    /// Radiance this vertex added to the estimate (emission, next-event estimation, a light or
+    /// the background reached).
+    pub added: DVec3,
+}
+
 /// Where a ray meets an area light: distance, the light, its unit normal and area.
 struct LightHit<'a> {
     t: f64,
@@ -86,6 +102,32 @@ impl<'s> PathTracer<'s> {
 
     /// One sample of the radiance arriving along a primary ray.
     pub fn radiance(&self, primary: &Ray, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
+        self.sample(primary, rng, stats, None)
+    }
+
+    /// The same sample, writing down every vertex of the path when `log` is given.
+    pub fn sample(
+        &self,
+        primary: &Ray,
+        rng: &mut Rng,
+        stats: &mut Stats,
+        mut log: Option<&mut Vec<PathVertex>>,
+    ) -> DVec3 {
+        let mut note = |event: &'static str,
+                        object: Option<&str>,
+                        point: DVec3,
+                        throughput: DVec3,
+                        added: DVec3| {
+            if let Some(log) = log.as_deref_mut() {
+                log.push(PathVertex {
+                    event,
+                    object: object.map(str::to_string),
+                    point,
+                    throughput,
+                    added,
+                });
+            }
+        };
         let scene = self.scene;
         let mut ray = *primary;
         let mut throughput = DVec3::ONE;
@@ -95,6 +137,7 @@ impl<'s> PathTracer<'s> {
         let mut bsdf_pdf: Option<f64> = None;
         stats.primary_rays += 1;
         for depth in 0..self.max_depth {
+            let before = sum;
             let hit = scene.intersect(&ray, 0.0, f64::INFINITY, stats);
             let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
             if let Some(lh) = self.light_hit(&ray, t_hit) {
@@ -106,10 +149,18 @@ impl<'s> PathTracer<'s> {
                     _ => 1.0,
                 };
                 sum += throughput * lh.light.intensity * weight;
+                note(
+                    "light",
+                    Some(&lh.light.name),
+                    ray.at(lh.t),
+                    throughput,
+                    sum - before,
+                );
                 break;
             }
             let Some(hit) = hit else {
                 sum += throughput * scene.background;
+                note("background", None, ray.at(1.0), throughput, sum - before);
                 break;
             };
             let si = scene.interaction(&ray, &hit);
@@ -120,7 +171,14 @@ impl<'s> PathTracer<'s> {
             let diffuse = m.kd * m.color;
             let weights = [diffuse.max_element(), m.kr, m.kt];
             let total: f64 = weights.iter().sum();
+            let object = &scene.objects[si.object as usize].name;
             if total <= 0.0 || depth + 1 >= self.max_depth {
+                let why = if total <= 0.0 {
+                    "absorbed"
+                } else {
+                    "max_depth"
+                };
+                note(why, Some(object), si.point, throughput, sum - before);
                 break;
             }
             let pick = rng.uniform() * total;
@@ -136,6 +194,7 @@ impl<'s> PathTracer<'s> {
                 let dir = cosine_hemisphere(n, rng.uniform(), rng.uniform());
                 bsdf_pdf = Some(cosine_pdf(n, dir));
                 throughput = lobe;
+                note("diffuse", Some(object), si.point, throughput, sum - before);
                 ray = Ray {
                     origin: si.point + offset * n,
                     dir,
@@ -144,6 +203,7 @@ impl<'s> PathTracer<'s> {
             } else if pick < weights[0] + weights[1] {
                 throughput *= m.kr * (total / weights[1]);
                 bsdf_pdf = None;
+                note("mirror", Some(object), si.point, throughput, sum - before);
                 ray = Ray {
                     origin: si.point + offset * n,
                     dir: reflect(ray.dir, n),
@@ -159,6 +219,12 @@ impl<'s> PathTracer<'s> {
                 };
                 let r = schlick(-ray.dir.dot(n), n1, n2);
                 let refracted = refract(ray.dir, n, n1, n2).filter(|_| rng.uniform() >= r);
+                let event = if refracted.is_some() {
+                    "refraction"
+                } else {
+                    "reflection"
+                };
+                note(event, Some(object), si.point, throughput, sum - before);
                 ray = match refracted {
                     Some(dir) => {
                         stats.refraction_rays += 1;
@@ -179,6 +245,7 @@ impl<'s> PathTracer<'s> {
             if self.roulette && depth >= 3 {
                 let q = throughput.max_element().clamp(0.05, 0.95);
                 if rng.uniform() >= q {
+                    note("roulette", None, ray.origin, DVec3::ZERO, DVec3::ZERO);
                     break;
                 }
                 throughput /= q;
