@@ -75,9 +75,17 @@ impl Light {
         }
     }
 
-    /// Points on an area light for its shadow rays: the centres of an n × n grid of strata
-    /// (deterministic, so soft shadows need no random numbers). Other lights have none.
-    pub fn shadow_points(&self) -> Vec<DVec3> {
+    /// How many shadow rays a shaded point sends to this light: 1, or n × n for an area light.
+    pub fn shadow_rays(&self) -> u32 {
+        match &self.kind {
+            LightKind::Rect { samples, .. } => samples.max(&1).pow(2),
+            _ => 1,
+        }
+    }
+
+    /// Target k of an area light's shadow rays: the centre of stratum k of its n × n grid
+    /// (deterministic, so soft shadows need no random numbers). None for other lights.
+    pub fn shadow_point(&self, k: u32) -> Option<DVec3> {
         match &self.kind {
             LightKind::Rect {
                 corner,
@@ -87,15 +95,13 @@ impl Light {
             } => {
                 let n = (*samples).max(1);
                 let step = 1.0 / n as f64;
-                (0..n * n)
-                    .map(|k| {
-                        *corner
-                            + ((k % n) as f64 + 0.5) * step * *u
-                            + ((k / n) as f64 + 0.5) * step * *v
-                    })
-                    .collect()
+                Some(
+                    *corner
+                        + ((k % n) as f64 + 0.5) * step * *u
+                        + ((k / n) as f64 + 0.5) * step * *v,
+                )
             }
-            _ => vec![],
+            _ => None,
         }
     }
 

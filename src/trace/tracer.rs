@@ -253,15 +253,31 @@ impl<'s> Tracer<'s> {
         let n = si.normal;
         // Which media the surface separates: the transparent solids containing a point just
         // before and just beyond it. Asking the geometry (rather than only pushing and popping
-        // a stack) keeps n1/n2 right where two glasses touch in a shared face.
-        let step = 2.0 * self.scene.bias(task.ray.origin, si.point);
-        let near = self.media_at(si.point + step * n, d, &task.media, stats);
-        let media_beyond = self.media_at(
-            si.point - step * n,
-            d,
-            &task.media.entering(si.object, m.ior),
-            stats,
-        );
+        // a stack) keeps n1/n2 right where two glasses touch in a shared face. With a single
+        // transparent object nothing can touch or nest, and entering/leaving says it all.
+        let (near, media_beyond) = if self.scene.transparent_objects.len() <= 1 {
+            if si.inside {
+                let mut outside = Media::default();
+                for &(o, ior) in &task.media.entries[..task.media.len] {
+                    if o != si.object {
+                        outside = outside.entering(o, ior);
+                    }
+                }
+                (task.media.entering(si.object, m.ior), outside)
+            } else {
+                (task.media, task.media.entering(si.object, m.ior))
+            }
+        } else {
+            let step = 2.0 * self.scene.bias(task.ray.origin, si.point);
+            let near = self.media_at(si.point + step * n, d, &task.media, stats);
+            let beyond = self.media_at(
+                si.point - step * n,
+                d,
+                &task.media.entering(si.object, m.ior),
+                stats,
+            );
+            (near, beyond)
+        };
         let (n1, n2) = if self.scene.leaves[si.leaf as usize].shape.is_solid() {
             (near.current(), media_beyond.current())
         } else {
@@ -416,22 +432,20 @@ impl<'s> Tracer<'s> {
         rec: &mut R,
         stats: &mut Stats,
     ) -> f64 {
-        let points = light.shadow_points();
-        let targets: Vec<(DVec3, f64)> = if points.is_empty() {
-            vec![(l, distance)]
-        } else {
-            points
-                .iter()
-                .map(|q| {
-                    let to = *q - si.point;
-                    (to.normalize(), to.length())
-                })
-                .collect()
-        };
-        let mut visible = 0usize;
+        // One shadow ray toward a point or directional light; one per grid point of an area
+        // light (computed on the fly: the render path allocates nothing per ray).
+        let count = light.shadow_rays();
+        let mut visible = 0u32;
         let mut first_blocker = None;
         let origin = self.offset(si, l, si.point);
-        for &(dir, dist) in &targets {
+        for k in 0..count {
+            let (dir, dist) = match light.shadow_point(k) {
+                Some(q) => {
+                    let to = q - si.point;
+                    (to.normalize(), to.length())
+                }
+                None => (l, distance),
+            };
             stats.shadow_rays += 1;
             let from = self.offset(si, dir, si.point);
             let t_max = if dist.is_finite() {
@@ -451,7 +465,7 @@ impl<'s> Tracer<'s> {
                 Some(_) => {}
             }
         }
-        let s = visible as f64 / targets.len() as f64;
+        let s = visible as f64 / count as f64;
         if R::ACTIVE {
             rec.begin(RayStart {
                 kind: RayKind::Shadow,
