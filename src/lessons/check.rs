@@ -277,13 +277,13 @@ fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
             }
         }
         Ask::HitT | Ask::HitPoint => {
-            if let Some(h) = w.tree.find(&ex.node).and_then(|n| n.hit.as_ref()) {
-                let (o, d) = (
-                    w.tree.find(&ex.node).unwrap().origin,
-                    w.tree.find(&ex.node).unwrap().direction,
-                );
+            let node = w.tree.find(&ex.node);
+            if let Some((n, h)) = node.and_then(|n| n.hit.as_ref().map(|h| (n, h))) {
                 if let Some(o_idx) = w.scene.object_index(&h.object) {
-                    let ray = Ray { origin: o, dir: d };
+                    let ray = Ray {
+                        origin: n.origin,
+                        dir: n.direction,
+                    };
                     let list = w.scene.object_trace(o_idx, &ray, false).0;
                     if let Some(s) = list.iter().find(|s| (s.t_in - h.t).abs() < 1e-9) {
                         let far = if ex.ask == Ask::HitT {
@@ -351,11 +351,9 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
             match &cam.projection {
                 Projection::Window {
                     eye,
-                    u,
-                    v,
-                    w: axis,
                     f,
                     window: [wl, wr, wt, wb],
+                    ..
                 } => {
                     let (nc, nr) = (cam.width as f64, cam.height as f64);
                     let du = if nc > 1.0 {
@@ -387,7 +385,8 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                         "p_C = (wl + i·Δu, wt + j·Δv, f) with i = {x}, j = {y}: {}",
                         text::vec3(pc)
                     ));
-                    let pw = *eye + pc.x * *u + pc.y * *v + pc.z * *axis;
+                    // The camera's own answer, so the derivation cannot drift from what is traced.
+                    let pw = cam.image_point(x as f64 + 0.5, y as f64 + 0.5);
                     out.push(format!(
                         "p_W = e + p_C.x·u + p_C.y·v + p_C.z·w = {}",
                         text::vec3(pw)
