@@ -65,6 +65,7 @@ fn time_per_ray(scene: &Scene) -> (f64, crate::trace::Stats) {
             max_depth: 1,
             spp: 1,
             seed: 0,
+            antialias: Default::default(),
         },
     );
     (
@@ -156,9 +157,8 @@ pub fn errors(image: &crate::render::Image, reference: &crate::render::Image) ->
 fn options_for(scene: &Scene, knob: Knob, value: f64, seed: u64) -> (Scene, RenderOptions) {
     let mut s = scene.clone();
     let mut o = RenderOptions {
-        max_depth: scene.max_depth,
-        spp: scene.spp,
         seed,
+        ..RenderOptions::of(scene)
     };
     match knob {
         Knob::Spp => o.spp = value as u32,

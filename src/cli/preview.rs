@@ -36,7 +36,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let options = RenderOptions {
         max_depth: depth(&scene, a.depth)?,
         spp: scene.spp.min(4),
-        seed: 0,
+        ..RenderOptions::of(&scene)
     };
     let (image, _) = render_simple(&small, options);
     let mode = if a.ascii {

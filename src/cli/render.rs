@@ -6,6 +6,7 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
+use crate::render::antialias::Antialias;
 use super::args::{depth, SceneArgs};
 use super::Failure;
 use crate::render::{render, Encoding, RenderOptions};
@@ -36,9 +37,16 @@ pub struct Args {
     /// Worker threads (default: all cores). The image is identical for any count.
     #[arg(long)]
     threads: Option<usize>,
-    /// Seed of the path tracer's random numbers (Whitted rendering uses none).
+    /// Seed of the random numbers (jittered antialiasing, glossy and frosted rays, paths).
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Where a pixel's primary rays go: grid, jittered or adaptive (default: the scene's).
+    #[arg(long, value_enum)]
+    aa: Option<AaArg>,
+    /// Adaptive antialiasing: split a square whose corners differ by more than this (sum of
+    /// |Δr| + |Δg| + |Δb|; default the scene's aa_threshold, else 0.3 as POV-Ray).
+    #[arg(long, value_name = "T")]
+    aa_threshold: Option<f64>,
     /// Render depths 1, 2, …, N side by side into one strip image (the recursion lesson).
     #[arg(long, value_name = "N")]
     depth_strip: Option<u32>,
@@ -105,6 +113,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         max_depth: depth(&scene, a.depth)?,
         spp,
         seed: a.seed,
+        antialias: antialias(&scene, a.aa, a.aa_threshold)?,
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(a.threads.unwrap_or(0))
@@ -174,10 +183,11 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     }
     if a.stats {
         eprintln!(
-            "{} × {} pixels, {} spp, depth {}, {:.3} s",
+            "{} × {} pixels, {} spp ({}), depth {}, {:.3} s",
             w,
             h,
             spp,
+            options.antialias.name(),
             options.max_depth,
             elapsed.as_secs_f64()
         );
@@ -189,4 +199,49 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         eprint!("{}", stats.report());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `--aa`: the antialiasing modes.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum AaArg {
+    Grid,
+    Jittered,
+    Adaptive,
+}
+
+/// The scene's antialiasing, changed by `--aa` and `--aa-threshold`.
+pub fn antialias(
+    scene: &crate::scene::Scene,
+    mode: Option<AaArg>,
+    threshold: Option<f64>,
+) -> Result<Antialias, Failure> {
+    let scene_threshold = match scene.antialias {
+        Antialias::Adaptive { threshold } => threshold,
+        _ => crate::render::antialias::DEFAULT_THRESHOLD,
+    };
+    let threshold_given = threshold.is_some();
+    let threshold = match threshold {
+        Some(t) if !(0.0..=3.0).contains(&t) => {
+            return Err(Failure(format!(
+                "--aa-threshold must be between 0 and 3, got {t}"
+            )))
+        }
+        Some(t) => t,
+        None => scene_threshold,
+    };
+    let chosen = match mode {
+        None => match scene.antialias {
+            Antialias::Adaptive { .. } => Antialias::Adaptive { threshold },
+            other => other,
+        },
+        Some(AaArg::Grid) => Antialias::Grid,
+        Some(AaArg::Jittered) => Antialias::Jittered,
+        Some(AaArg::Adaptive) => Antialias::Adaptive { threshold },
+    };
+    if threshold_given && !matches!(chosen, Antialias::Adaptive { .. }) {
+        return Err(Failure(
+            "--aa-threshold is for adaptive antialiasing: add --aa adaptive".into(),
+        ));
+    }
+    Ok(chosen)
 }

@@ -621,6 +621,13 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                             samples * samples
                         ));
                     }
+                    crate::shading::LightKind::Sphere { radius, samples, .. } => {
+                        out.push(format!(
+                            "sphere light of radius {}: l points to its centre (fatt as for a point light); s = the fraction of {} shadow rays (to a {samples} × {samples} pattern on the disc it shows this point) that reach it",
+                            text::num(*radius),
+                            samples * samples
+                        ));
+                    }
                 }
                 match (
                     &t.skipped,

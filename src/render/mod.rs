@@ -1,6 +1,7 @@
 //! Rendering: cameras, the parallel film loop, image output and terminal previews.
 
 mod camera;
+pub mod antialias;
 pub mod film;
 mod image;
 pub mod preview;

@@ -10,13 +10,14 @@ use serde_saphyr::Spanned;
 use super::compiled::{Geometry, Leaf, Object, Scene};
 use super::error::{invalid, Invalid, Pos};
 use super::format::{
-    Bias, CameraSpec, LightSpec, MaterialSpec, ObjectSpec, SceneFile, TransformStep, Triple,
+    AntialiasMode, Bias, CameraSpec, LightSpec, LobeSpec, MaterialSpec, ObjectSpec, SceneFile, TransformStep, Triple,
 };
 use crate::accel::Aabb;
 use crate::geometry::csg::{CsgNode, CsgOp};
 use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
+use crate::render::antialias::{Antialias, DEFAULT_THRESHOLD};
 use crate::render::{Camera, Projection};
-use crate::shading::{Fresnel, Highlight, Light, LightKind, Material};
+use crate::shading::{Fresnel, Highlight, Light, LightKind, Lobe, LobeShape, Material};
 
 /// Limits that protect against absurd input.
 #[derive(Clone, Copy, Debug)]
@@ -214,6 +215,21 @@ pub fn compile(
     }
 
     let integrator = file.integrator.unwrap_or_default();
+    let threshold = match &file.aa_threshold {
+        None => DEFAULT_THRESHOLD,
+        Some(t) if !(0.0..=3.0).contains(&t.value.0) => {
+            return invalid(
+                pos(t),
+                format!("aa_threshold must be between 0 and 3, got {}", t.value),
+            )
+        }
+        Some(t) => t.value.0,
+    };
+    let antialias = match file.antialias.unwrap_or_default() {
+        AntialiasMode::Grid => Antialias::Grid,
+        AntialiasMode::Jittered => Antialias::Jittered,
+        AntialiasMode::Adaptive => Antialias::Adaptive { threshold },
+    };
     let mut scene = Scene::assemble(
         source,
         camera,
@@ -230,6 +246,7 @@ pub fn compile(
         objects,
     );
     scene.integrator = integrator;
+    scene.antialias = antialias;
     Ok(scene)
 }
 
@@ -361,22 +378,42 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
     if intensity.min_element() < 0.0 {
         return invalid(p, format!("light `{name}` has a negative intensity"));
     }
-    let given = [l.point.is_some(), l.direction.is_some(), l.rect.is_some()]
-        .iter()
-        .filter(|&&b| b)
-        .count();
+    let given = [
+        l.point.is_some(),
+        l.direction.is_some(),
+        l.rect.is_some(),
+        l.sphere.is_some(),
+    ]
+    .iter()
+    .filter(|&&b| b)
+    .count();
     if given != 1 {
         return invalid(
             p,
-            format!("light `{name}` needs exactly one of `point`, `direction` or `rect`"),
+            format!(
+                "light `{name}` needs exactly one of `point`, `direction`, `rect` or `sphere`"
+            ),
         );
     }
-    if l.samples.is_some() && l.rect.is_none() {
+    if l.samples.is_some() && l.rect.is_none() && l.sphere.is_none() {
         return invalid(
             p,
-            format!("light `{name}`: `samples` is for area (`rect`) lights"),
+            format!("light `{name}`: `samples` is for area (`rect` and `sphere`) lights"),
         );
     }
+    let samples = match &l.samples {
+        None => 3,
+        Some(s) if !(1..=64).contains(&s.value) => {
+            return invalid(
+                pos(s),
+                format!(
+                    "light `{name}`: samples must be between 1 and 64, got {}",
+                    s.value
+                ),
+            )
+        }
+        Some(s) => s.value as u32,
+    };
     let kind = if let Some(position) = l.point.map(|v| v.0) {
         let attenuation = match &l.attenuation {
             Some(a) => attenuation(a)?,
@@ -386,10 +423,27 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
             position,
             attenuation,
         }
+    } else if let Some(sphere) = &l.sphere {
+        let radius = sphere.value.radius.value.0;
+        if radius <= 0.0 {
+            return invalid(
+                pos(&sphere.value.radius),
+                format!("light `{name}`: the sphere's radius must be > 0, got {radius}"),
+            );
+        }
+        LightKind::Sphere {
+            center: sphere.value.center.0,
+            radius,
+            attenuation: match &l.attenuation {
+                Some(a) => attenuation(a)?,
+                None => [1.0, 0.0, 0.0],
+            },
+            samples,
+        }
     } else if l.attenuation.is_some() {
         return invalid(
             p,
-            format!("light `{name}`: only point lights have distance attenuation"),
+            format!("light `{name}`: only point and sphere lights have distance attenuation"),
         );
     } else if let Some(d) = &l.direction {
         LightKind::Directional {
@@ -406,19 +460,6 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
                 ),
             );
         }
-        let samples = match &l.samples {
-            None => 3,
-            Some(s) if !(1..=64).contains(&s.value) => {
-                return invalid(
-                    pos(s),
-                    format!(
-                        "light `{name}`: samples must be between 1 and 64, got {}",
-                        s.value
-                    ),
-                )
-            }
-            Some(s) => s.value as u32,
-        };
         LightKind::Rect {
             corner,
             u,
@@ -475,7 +516,67 @@ fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
         ior,
         fresnel: m.fresnel.unwrap_or(Fresnel::None),
         emission: m.emission.map_or(DVec3::ZERO, |t| t.0),
+        glossy: m.glossy.as_ref().map(|g| lobe(name, "glossy", g)).transpose()?,
+        frosted: m.frosted.as_ref().map(|f| lobe(name, "frosted", f)).transpose()?,
     })
+}
+
+/// A glossy or frosted lobe: exactly one of `spread` (degrees, 0 < σ ≤ 45) or `exponent`
+/// (≥ 1), and 1…1024 samples (default 16).
+fn lobe(material: &str, key: &str, spec: &Spanned<LobeSpec>) -> Result<Lobe, Invalid> {
+    let l = &spec.value;
+    let shape = match (&l.spread, &l.exponent) {
+        (Some(s), None) => {
+            if !(s.value.0 > 0.0 && s.value.0 <= 45.0) {
+                return invalid(
+                    pos(s),
+                    format!(
+                        "material `{material}`: {key} spread must be between 0 and 45 degrees, got {}",
+                        s.value
+                    ),
+                );
+            }
+            LobeShape::Normal {
+                sigma: s.value.0.to_radians(),
+            }
+        }
+        (None, Some(e)) => {
+            if e.value.0 < 1.0 {
+                return invalid(
+                    pos(e),
+                    format!(
+                        "material `{material}`: {key} exponent must be ≥ 1, got {}",
+                        e.value
+                    ),
+                );
+            }
+            LobeShape::Phong {
+                exponent: e.value.0,
+            }
+        }
+        _ => {
+            return invalid(
+                pos(spec),
+                format!(
+                    "material `{material}`: {key} needs exactly one of `spread` (degrees) or `exponent`"
+                ),
+            )
+        }
+    };
+    let samples = match &l.samples {
+        None => 16,
+        Some(s) if !(1..=1024).contains(&s.value) => {
+            return invalid(
+                pos(s),
+                format!(
+                    "material `{material}`: {key} samples must be between 1 and 1024, got {}",
+                    s.value
+                ),
+            )
+        }
+        Some(s) => s.value as u32,
+    };
+    Ok(Lobe { shape, samples })
 }
 
 struct Builder<'a> {

@@ -149,6 +149,8 @@ pub struct Scene {
     pub shadow_bias: Option<f64>,
     pub spp: u32,
     pub integrator: super::format::Integrator,
+    /// Where a pixel's primary rays go (`spp` of them).
+    pub antialias: crate::render::antialias::Antialias,
     /// I_r and I_t divided by c0 + c1·d + c2·d² (d = length of the child ray), when set.
     pub secondary_attenuation: Option<[f64; 3]>,
     pub lights: Vec<Light>,
@@ -220,6 +222,7 @@ impl Scene {
             shadow_bias,
             spp,
             integrator: Default::default(),
+            antialias: Default::default(),
             secondary_attenuation,
             lights,
             materials,

@@ -28,6 +28,16 @@ pub enum Integrator {
     Path,
 }
 
+/// Where a pixel's primary rays go (see `render::antialias`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AntialiasMode {
+    #[default]
+    Grid,
+    Jittered,
+    Adaptive,
+}
+
 /// The largest magnitude accepted for any number: squares of coordinates must not overflow.
 pub const MAX_MAGNITUDE: f64 = 1e100;
 
@@ -175,6 +185,10 @@ pub struct SceneFile {
     pub shadow_bias: Option<Spanned<Bias>>,
     pub spp: Option<Spanned<i64>>,
     pub integrator: Option<Integrator>,
+    /// `grid` (default), `jittered` or `adaptive`, with `spp` samples per pixel.
+    pub antialias: Option<AntialiasMode>,
+    /// Adaptive antialiasing splits a square whose corners differ by more than this.
+    pub aa_threshold: Option<Spanned<Num>>,
     pub secondary_attenuation: Option<Spanned<[Num; 3]>>,
     #[serde(default)]
     pub lights: Vec<Spanned<LightSpec>>,
@@ -210,6 +224,7 @@ pub struct LightSpec {
     pub point: Option<V3>,
     pub direction: Option<Spanned<V3>>,
     pub rect: Option<Spanned<RectSpec>>,
+    pub sphere: Option<Spanned<SphereSpec>>,
     /// Area lights: n × n shadow rays per shaded point (default 3).
     pub samples: Option<Spanned<i64>>,
     pub intensity: Option<Triple>,
@@ -239,6 +254,20 @@ pub struct MaterialSpec {
     pub ior: Option<Spanned<Num>>,
     pub fresnel: Option<Fresnel>,
     pub emission: Option<Triple>,
+    /// Glossy reflection: the reflection ray becomes `samples` rays about the mirror direction.
+    pub glossy: Option<Spanned<LobeSpec>>,
+    /// Frosted refraction: the refraction ray becomes `samples` rays about Snell's direction.
+    pub frosted: Option<Spanned<LobeSpec>>,
+}
+
+/// A lobe: `spread` (degrees, the standard deviation of a normal distribution, as seed 000
+/// says) or `exponent` (a Phong lobe cosⁿ), and the number of rays.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LobeSpec {
+    pub spread: Option<Spanned<Num>>,
+    pub exponent: Option<Spanned<Num>>,
+    pub samples: Option<Spanned<i64>>,
 }
 
 #[derive(Clone, Debug, Deserialize)]

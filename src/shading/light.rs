@@ -21,6 +21,31 @@ pub enum LightKind {
         v: DVec3,
         samples: u32,
     },
+    /// A glowing ball. Whitted shading treats it as a point light at its centre (with the
+    /// point light's attenuation) whose shadow factor is the fraction of `samples × samples`
+    /// points on the disc it shows the shaded point that are visible; the path tracer samples
+    /// it as an emitter of radiance `intensity`.
+    Sphere {
+        center: DVec3,
+        radius: f64,
+        attenuation: [f64; 3],
+        samples: u32,
+    },
+}
+
+/// Where a ray meets an emitter, and the density with which light sampling would have chosen
+/// that direction (per solid angle, seen from the ray's origin).
+pub struct EmitterHit {
+    pub t: f64,
+    pub pdf: f64,
+}
+
+/// A direction toward an emitter chosen by light sampling.
+pub struct EmitterSample {
+    pub wi: DVec3,
+    pub distance: f64,
+    /// Density per solid angle.
+    pub pdf: f64,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -49,6 +74,11 @@ impl Light {
             LightKind::Point {
                 position,
                 attenuation: [c0, c1, c2],
+            }
+            | LightKind::Sphere {
+                center: position,
+                attenuation: [c0, c1, c2],
+                ..
             } => {
                 let to_light = *position - p;
                 let d = to_light.length();
@@ -78,15 +108,36 @@ impl Light {
     /// How many shadow rays a shaded point sends to this light: 1, or n × n for an area light.
     pub fn shadow_rays(&self) -> u32 {
         match &self.kind {
-            LightKind::Rect { samples, .. } => samples.max(&1).pow(2),
+            LightKind::Rect { samples, .. } | LightKind::Sphere { samples, .. } => {
+                samples.max(&1).pow(2)
+            }
             _ => 1,
         }
     }
 
-    /// Target k of an area light's shadow rays: the centre of stratum k of its n × n grid
-    /// (deterministic, so soft shadows need no random numbers). None for other lights.
-    pub fn shadow_point(&self, k: u32) -> Option<DVec3> {
+    /// Target k of an area light's shadow rays from the point p: the centre of stratum k of
+    /// an n × n grid on the rectangle, or on the disc the sphere shows p (mapped by Shirley
+    /// and Chiu's concentric map). Deterministic, so soft shadows need no random numbers.
+    /// None for point and directional lights.
+    pub fn shadow_point(&self, k: u32, p: DVec3) -> Option<DVec3> {
         match &self.kind {
+            LightKind::Sphere {
+                center,
+                radius,
+                samples,
+                ..
+            } => {
+                let n = (*samples).max(1);
+                let step = 1.0 / n as f64;
+                let (a, b) = (
+                    ((k % n) as f64 + 0.5) * step,
+                    ((k / n) as f64 + 0.5) * step,
+                );
+                let (dx, dy) = concentric_disc(a, b);
+                let axis = (*center - p).try_normalize().unwrap_or(DVec3::Z);
+                let (t, bt) = crate::trace::sampling::basis(axis);
+                Some(*center + *radius * (dx * t + dy * bt))
+            }
             LightKind::Rect {
                 corner,
                 u,
@@ -116,7 +167,122 @@ impl Light {
         }
     }
 
+    /// The emitter a path can hit: the front of a rectangle, or a sphere light.
+    pub fn emitter_hit(&self, ray: &crate::geometry::Ray, t_max: f64) -> Option<EmitterHit> {
+        match &self.kind {
+            LightKind::Rect { corner, u, v, .. } => {
+                let normal = u.cross(*v);
+                let area = normal.length();
+                let n = normal / area;
+                let facing = ray.dir.dot(n);
+                if facing >= 0.0 {
+                    return None; // a rectangle emits on one side only
+                }
+                let t = (*corner - ray.origin).dot(n) / facing;
+                if t <= 0.0 || t >= t_max {
+                    return None;
+                }
+                let q = ray.at(t) - *corner;
+                let (a, b) = (q.dot(*u) / u.length_squared(), q.dot(*v) / v.length_squared());
+                ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then(|| EmitterHit {
+                    t,
+                    // Area density 1/A turned into solid angle: d²/(cos θ_l · A).
+                    pdf: t * t / (-facing * area),
+                })
+            }
+            LightKind::Sphere { center, radius, .. } => {
+                let oc = ray.origin - *center;
+                let b = oc.dot(ray.dir);
+                let c = oc.length_squared() - radius * radius;
+                let disc = b * b - c;
+                if disc < 0.0 || c <= 0.0 {
+                    return None; // missed, or the path starts inside the light
+                }
+                let t = -b - disc.sqrt();
+                (t > 0.0 && t < t_max).then(|| EmitterHit {
+                    t,
+                    pdf: cone_pdf(*radius, oc.length()),
+                })
+            }
+            _ => None,
+        }
+    }
+
+    /// Light sampling from p: a point on a rectangle uniform in area, or a direction in the
+    /// cone a sphere subtends, uniform in solid angle.
+    pub fn sample_emitter(&self, p: DVec3, u1: f64, u2: f64) -> Option<EmitterSample> {
+        match &self.kind {
+            LightKind::Rect { corner, u, v, .. } => {
+                let normal = u.cross(*v);
+                let area = normal.length();
+                let q = crate::trace::sampling::rectangle(*corner, *u, *v, u1, u2);
+                let to = q - p;
+                let distance = to.length();
+                let wi = to / distance;
+                let cos_l = -(normal / area).dot(wi);
+                (cos_l > 0.0).then(|| EmitterSample {
+                    wi,
+                    distance,
+                    pdf: distance * distance / (cos_l * area),
+                })
+            }
+            LightKind::Sphere { center, radius, .. } => {
+                let to = *center - p;
+                let d = to.length();
+                if d <= *radius {
+                    return None;
+                }
+                let cos_theta = 1.0 - u1 * one_minus_cos_max(*radius, d);
+                let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
+                let phi = 2.0 * std::f64::consts::PI * u2;
+                let axis = to / d;
+                let (t, b) = crate::trace::sampling::basis(axis);
+                let wi = (sin_theta * phi.cos() * t + sin_theta * phi.sin() * b
+                    + cos_theta * axis)
+                    .normalize();
+                // Where that direction meets the sphere (the near root).
+                let bq = -to.dot(wi);
+                let disc = (bq * bq - (d * d - radius * radius)).max(0.0);
+                Some(EmitterSample {
+                    wi,
+                    distance: -bq - disc.sqrt(),
+                    pdf: cone_pdf(*radius, d),
+                })
+            }
+            _ => None,
+        }
+    }
+
     pub fn is_dark(&self) -> bool {
         self.intensity == DVec3::ZERO
     }
+}
+
+/// The density of directions uniform in the cone a sphere of radius r subtends from distance d:
+/// 1 / (2π (1 − cos θmax)).
+fn cone_pdf(r: f64, d: f64) -> f64 {
+    1.0 / (2.0 * std::f64::consts::PI * one_minus_cos_max(r, d))
+}
+
+/// 1 − cos θmax = 1 − √(1 − (r/d)²), written so that it does not cancel to 0 for a small or
+/// distant sphere.
+fn one_minus_cos_max(r: f64, d: f64) -> f64 {
+    let s2 = (r / d).powi(2).min(1.0);
+    s2 / (1.0 + (1.0 - s2).sqrt())
+}
+
+/// Shirley and Chiu's concentric map of the unit square onto the unit disc (keeps strata
+/// compact, so a grid on the square becomes rings of even area on the disc).
+fn concentric_disc(a: f64, b: f64) -> (f64, f64) {
+    let (x, y) = (2.0 * a - 1.0, 2.0 * b - 1.0);
+    if x == 0.0 && y == 0.0 {
+        return (0.0, 0.0);
+    }
+    let quarter = std::f64::consts::FRAC_PI_4;
+    let (r, theta) = if x.abs() > y.abs() {
+        (x, quarter * (y / x))
+    } else {
+        (y, 2.0 * quarter - quarter * (x / y))
+    };
+    (r * theta.cos(), r * theta.sin())
 }

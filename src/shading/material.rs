@@ -3,6 +3,8 @@
 use glam::DVec3;
 use serde::Serialize;
 
+use super::Lobe;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Highlight {
@@ -39,6 +41,10 @@ pub struct Material {
     pub fresnel: Fresnel,
     /// Light emitted by the surface (used by the path tracer).
     pub emission: DVec3,
+    /// Glossy reflection: the reflection ray becomes n rays drawn from this lobe.
+    pub glossy: Option<Lobe>,
+    /// Frosted refraction: the refraction ray becomes n rays drawn from this lobe.
+    pub frosted: Option<Lobe>,
 }
 
 impl Material {
@@ -56,6 +62,8 @@ impl Material {
             ior: 1.0,
             fresnel: Fresnel::None,
             emission: DVec3::ZERO,
+            glossy: None,
+            frosted: None,
         }
     }
 

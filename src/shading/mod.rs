@@ -1,9 +1,11 @@
 //! Shading: materials, lights, the local illumination model and the optics of secondary rays.
 
 mod light;
+pub mod lobe;
 pub mod local;
 mod material;
 pub mod optics;
 
 pub use light::{Light, LightKind, LightSample};
+pub use lobe::{Lobe, LobeShape};
 pub use material::{Fresnel, Highlight, Material};

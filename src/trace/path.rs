@@ -10,10 +10,11 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::sampling::{cosine_hemisphere, cosine_pdf, rectangle, Rng};
+use super::sampling::{cosine_hemisphere, cosine_pdf, Rng};
 use super::Stats;
 use crate::geometry::Ray;
 use crate::scene::Scene;
+use crate::shading::lobe::spread;
 use crate::shading::optics::{reflect, refract, schlick};
 use crate::shading::Light;
 
@@ -30,7 +31,7 @@ pub struct PathTracer<'s> {
 /// One vertex of a recorded path, for `inspect` on a path-traced pixel.
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct PathVertex {
-    /// What happened here: light, background, diffuse, mirror, refraction, reflection,
+    /// What happened here: light, background, diffuse, mirror, glossy, refraction, reflection,
     /// absorbed (no lobe), max_depth, roulette.
     pub event: &'static str,
     /// The object (or light) met.
@@ -43,12 +44,12 @@ pub struct PathVertex {
     pub added: DVec3,
 }
 
-/// Where a ray meets an area light: distance, the light, its unit normal and area.
+/// Where a ray meets an emitter: distance, the light, and the density light sampling would
+/// have given that direction.
 struct LightHit<'a> {
     t: f64,
     light: &'a Light,
-    normal: DVec3,
-    area: f64,
+    pdf: f64,
 }
 
 /// The power heuristic for two strategies (β = 2).
@@ -71,29 +72,16 @@ impl<'s> PathTracer<'s> {
         }
     }
 
-    /// The nearest front face of an area light the ray meets before t_max.
+    /// The nearest emitter (rectangle front or sphere light) the ray meets before t_max.
     fn light_hit(&self, ray: &Ray, t_max: f64) -> Option<LightHit<'s>> {
         let mut best: Option<LightHit> = None;
         for light in &self.scene.lights {
-            let Some((corner, u, v, n, area)) = light.rect() else {
-                continue;
-            };
-            let facing = ray.dir.dot(n);
-            if facing >= 0.0 {
-                continue; // lights emit on one side only
-            }
-            let t = (corner - ray.origin).dot(n) / facing;
-            if t <= 0.0 || t >= best.as_ref().map_or(t_max, |b| b.t) {
-                continue;
-            }
-            let q = ray.at(t) - corner;
-            let (a, b) = (q.dot(u) / u.length_squared(), q.dot(v) / v.length_squared());
-            if (0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b) {
+            let limit = best.as_ref().map_or(t_max, |b| b.t);
+            if let Some(h) = light.emitter_hit(ray, limit) {
                 best = Some(LightHit {
-                    t,
+                    t: h.t,
                     light,
-                    normal: n,
-                    area,
+                    pdf: h.pdf,
                 });
             }
         }
@@ -142,10 +130,7 @@ impl<'s> PathTracer<'s> {
             let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
             if let Some(lh) = self.light_hit(&ray, t_hit) {
                 let weight = match bsdf_pdf {
-                    Some(p) if self.next_event => {
-                        let cos_l = -ray.dir.dot(lh.normal);
-                        power_heuristic(p, lh.t * lh.t / (cos_l * lh.area))
-                    }
+                    Some(p) if self.next_event => power_heuristic(p, lh.pdf),
                     _ => 1.0,
                 };
                 sum += throughput * lh.light.intensity * weight;
@@ -203,10 +188,16 @@ impl<'s> PathTracer<'s> {
             } else if pick < weights[0] + weights[1] {
                 throughput *= m.kr * (total / weights[1]);
                 bsdf_pdf = None;
-                note("mirror", Some(object), si.point, throughput, sum - before);
+                let mirror = reflect(ray.dir, n);
+                let dir = match m.glossy {
+                    None => mirror,
+                    Some(l) => spread(l.shape, mirror, n, rng.uniform(), rng.uniform()),
+                };
+                let event = if m.glossy.is_some() { "glossy" } else { "mirror" };
+                note(event, Some(object), si.point, throughput, sum - before);
                 ray = Ray {
                     origin: si.point + offset * n,
-                    dir: reflect(ray.dir, n),
+                    dir,
                 };
                 stats.reflection_rays += 1;
             } else {
@@ -228,6 +219,10 @@ impl<'s> PathTracer<'s> {
                 ray = match refracted {
                     Some(dir) => {
                         stats.refraction_rays += 1;
+                        let dir = match m.frosted {
+                            None => dir,
+                            Some(l) => spread(l.shape, dir, n, rng.uniform(), rng.uniform()),
+                        };
                         Ray {
                             origin: si.point - offset * n,
                             dir,
@@ -259,28 +254,27 @@ impl<'s> PathTracer<'s> {
     fn direct(&self, p: DVec3, n: DVec3, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
         let mut sum = DVec3::ZERO;
         for light in &self.scene.lights {
-            let Some((corner, u, v, ln, area)) = light.rect() else {
+            let Some(e) = light.sample_emitter(p, rng.uniform(), rng.uniform()) else {
                 continue;
             };
-            let q = rectangle(corner, u, v, rng.uniform(), rng.uniform());
-            let to = q - p;
-            let dist = to.length();
-            let wi = to / dist;
-            let (cos_s, cos_l) = (n.dot(wi), -ln.dot(wi));
-            if cos_s <= 0.0 || cos_l <= 0.0 {
+            let cos_s = n.dot(e.wi);
+            if cos_s <= 0.0 {
                 continue;
             }
             stats.shadow_rays += 1;
+            let shadow = Ray {
+                origin: p,
+                dir: e.wi,
+            };
             if self
                 .scene
-                .occluded(&Ray { origin: p, dir: wi }, 0.0, dist * (1.0 - 1e-9), stats)
+                .occluded(&shadow, 0.0, e.distance * (1.0 - 1e-9), stats)
                 .is_some()
             {
                 continue;
             }
-            let light_pdf = dist * dist / (cos_l * area);
-            let weight = power_heuristic(light_pdf, cosine_pdf(n, wi));
-            sum += light.intensity * (cos_s / PI) / light_pdf * weight;
+            let weight = power_heuristic(e.pdf, cosine_pdf(n, e.wi));
+            sum += light.intensity * (cos_s / PI) / e.pdf * weight;
         }
         sum
     }

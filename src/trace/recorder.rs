@@ -23,6 +23,8 @@ pub trait Recorder {
     fn local(&mut self, local: Local);
     fn indices(&mut self, indices: Indices);
     fn shadow(&mut self, light: &str, t_max: f64, s: f64);
+    /// The open node is a cone of n sampled rays (glossy or frosted), not a ray.
+    fn samples(&mut self, n: u32);
     fn end(&mut self, color: DVec3, terminated: Option<Termination>);
 }
 
@@ -35,6 +37,7 @@ impl Recorder for NoRecorder {
     fn local(&mut self, _: Local) {}
     fn indices(&mut self, _: Indices) {}
     fn shadow(&mut self, _: &str, _: f64, _: f64) {}
+    fn samples(&mut self, _: u32) {}
     fn end(&mut self, _: DVec3, _: Option<Termination>) {}
 }
 
@@ -74,6 +77,7 @@ impl Recorder for TreeRecorder {
             light: None,
             t_max: None,
             shadow: None,
+            samples: None,
             hit: None,
             local: None,
             color: DVec3::ZERO,
@@ -99,6 +103,10 @@ impl Recorder for TreeRecorder {
         node.light = Some(light.to_string());
         node.t_max = Some(t_max);
         node.shadow = Some(s);
+    }
+
+    fn samples(&mut self, n: u32) {
+        self.current().samples = Some(n);
     }
 
     fn end(&mut self, color: DVec3, terminated: Option<Termination>) {

@@ -23,6 +23,10 @@ pub struct Stats {
     pub bvh_nodes_visited: u64,
     /// Object (or primitive) intersection routines run.
     pub primitives_tested: u64,
+    /// Reflection and refraction rays drawn from glossy and frosted lobes.
+    pub glossy_rays: u64,
+    /// Squares of pixels split by adaptive antialiasing.
+    pub aa_splits: u64,
 }
 
 impl Stats {
@@ -43,6 +47,8 @@ impl Stats {
         self.csg_pruned += o.csg_pruned;
         self.bvh_nodes_visited += o.bvh_nodes_visited;
         self.primitives_tested += o.primitives_tested;
+        self.glossy_rays += o.glossy_rays;
+        self.aa_splits += o.aa_splits;
     }
 
     /// A human-readable report, one counter per line.
@@ -75,6 +81,8 @@ impl Stats {
         line("skipped: CSG subtrees pruned", self.csg_pruned);
         line("BVH nodes visited", self.bvh_nodes_visited);
         line("objects/primitives tested", self.primitives_tested);
+        line("  of which glossy/frosted samples", self.glossy_rays);
+        line("adaptive antialiasing: squares split", self.aa_splits);
         s.push_str(&format!(
             "{:<40} {:>14.2}\n{:<40} {:>14.2}\n",
             "BVH nodes per ray",

@@ -55,6 +55,19 @@ pub fn node_title(n: &RayNode) -> String {
         (Some(h), _) => format!("hit {}", h.object),
         (None, _) => "no hit".to_string(),
     };
+    if let Some(k) = n.samples {
+        let lobe = if n.kind == RayKind::Reflection {
+            "glossy reflection"
+        } else {
+            "frosted refraction"
+        };
+        return format!(
+            "{lobe} (depth {}): mean of {k} sampled ray{}, I = {}",
+            n.depth,
+            if k == 1 { "" } else { "s" },
+            color(n.color)
+        );
+    }
     match n.kind {
         RayKind::Shadow => format!(
             "shadow → {}: {what}, s = {}",
@@ -72,7 +85,14 @@ pub fn node_title(n: &RayNode) -> String {
 
 /// The formula lines of one node: hit, then every term of the illumination model.
 pub fn node_details(n: &RayNode) -> Vec<String> {
-    let mut out = vec![format!("ray {} → {}", vec3(n.origin), vec3(n.direction))];
+    let mut out = vec![match n.samples {
+        Some(_) => format!(
+            "principal direction from {} → {}",
+            vec3(n.origin),
+            vec3(n.direction)
+        ),
+        None => format!("ray {} → {}", vec3(n.origin), vec3(n.direction)),
+    }];
     if n.kind != RayKind::Primary && n.kind != RayKind::Shadow {
         out.push(format!(
             "weight {} (coefficient {})",
@@ -82,6 +102,12 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
     }
     if let Some(i) = n.indices {
         out.push(format!("n1 = {} → n2 = {}", num(i.n1), num(i.n2)));
+    }
+    if let Some(k) = n.samples {
+        out.push(format!(
+            "I = (I_1 + … + I_{k}) / {k} = {}  (each sampled ray has coefficient 1/{k})",
+            color(n.color)
+        ));
     }
     if let Some(h) = &n.hit {
         let mut leaf = String::new();
@@ -181,9 +207,21 @@ fn draw(n: &RayNode, first: &str, rest: &str, out: &mut String) {
         } else {
             ("├── ", "│   ")
         };
+        if n.samples.is_some() && i >= SAMPLES_SHOWN {
+            // Later samples of a cone get one line each: the first few show the pattern.
+            out.push_str(&format!("{rest}{f}{}", node_title(c)));
+            if c.size() > 1 {
+                out.push_str(&format!("  [{} more rays: --format json]", c.size() - 1));
+            }
+            out.push('\n');
+            continue;
+        }
         draw(c, &format!("{rest}{f}"), &format!("{rest}{r}"), out);
     }
 }
+
+/// Sampled rays of a glossy or frosted cone drawn in full; the rest get a line each.
+const SAMPLES_SHOWN: usize = 3;
 
 /// A CSG trace drawn bottom-up readable: every node with its segment list.
 pub fn csg_trace(scene: &Scene, ray: &Ray, trace: &CsgTrace) -> String {

@@ -9,13 +9,14 @@
 use glam::DVec3;
 
 use super::recorder::{NoRecorder, RayStart, Recorder, TreeRecorder};
+use super::sampling::Rng;
 use super::tree::{HitInfo, Indices, Inspection, LightTerm, Local, RayKind, RayNode, Termination};
 use super::Stats;
 use crate::geometry::{Ray, Shape};
 use crate::scene::{Interaction, Scene};
 use crate::shading::local::{ambient, light_terms};
 use crate::shading::optics::{reflect, refract, schlick};
-use crate::shading::{Fresnel, Light};
+use crate::shading::{lobe, Fresnel, Light, Lobe};
 
 /// The refractive media a ray is inside, innermost last (nested glass keeps n1/n2 right).
 #[derive(Clone, Copy, Debug)]
@@ -72,6 +73,7 @@ pub struct Tracer<'s> {
 }
 
 /// One ray to trace and its place in the tree.
+#[derive(Clone, Copy)]
 struct Task {
     ray: Ray,
     kind: RayKind,
@@ -81,6 +83,9 @@ struct Task {
     media: Media,
     /// n1 → n2 for a refraction ray.
     indices: Option<Indices>,
+    /// A glossy or frosted surface above this ray already split the path into many rays:
+    /// deeper ones send a single sampled ray, so the work grows linearly, not as nᵈ.
+    split: bool,
 }
 
 impl Task {
@@ -121,21 +126,34 @@ impl<'s> Tracer<'s> {
         }
     }
 
-    /// The intensity seen along a primary ray (the renderer's entry point).
+    /// The intensity seen along a primary ray. Glossy and frosted surfaces draw their rays
+    /// from a fixed generator; the renderer uses `radiance_with` and the pixel's own.
     pub fn radiance(&self, ray: &Ray, stats: &mut Stats) -> DVec3 {
-        self.primary(ray, &mut NoRecorder, stats)
+        self.primary(ray, &mut NoRecorder, &mut Rng::for_pixel(0, 0, 0), stats)
     }
 
-    /// The same computation, recording its ray tree.
+    /// The renderer's entry point: random numbers from the pixel's generator.
+    pub fn radiance_with(&self, ray: &Ray, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
+        self.primary(ray, &mut NoRecorder, rng, stats)
+    }
+
+    /// The same computation as `radiance`, recording its ray tree.
     pub fn inspect(&self, ray: &Ray, stats: &mut Stats) -> RayNode {
+        self.inspect_with(ray, &mut Rng::for_pixel(0, 0, 0), stats)
+    }
+
+    pub fn inspect_with(&self, ray: &Ray, rng: &mut Rng, stats: &mut Stats) -> RayNode {
         let mut rec = TreeRecorder::new();
-        self.primary(ray, &mut rec, stats);
+        self.primary(ray, &mut rec, rng, stats);
         rec.into_tree()
     }
 
+    /// The tree of the ray through the centre of pixel (x, y), with the random numbers the
+    /// renderer gives that pixel (seed 0): for one sample per pixel its colour is the pixel's.
     pub fn inspect_pixel(&self, x: u32, y: u32) -> Inspection {
         let mut stats = Stats::default();
-        let tree = self.inspect(&self.scene.camera.pixel_ray(x, y), &mut stats);
+        let ray = self.scene.camera.pixel_ray(x, y);
+        let tree = self.inspect_with(&ray, &mut Rng::for_pixel(0, x, y), &mut stats);
         Inspection {
             pixel: Some([x, y]),
             color: tree.color,
@@ -143,7 +161,13 @@ impl<'s> Tracer<'s> {
         }
     }
 
-    pub fn primary<R: Recorder>(&self, ray: &Ray, rec: &mut R, stats: &mut Stats) -> DVec3 {
+    pub fn primary<R: Recorder>(
+        &self,
+        ray: &Ray,
+        rec: &mut R,
+        rng: &mut Rng,
+        stats: &mut Stats,
+    ) -> DVec3 {
         let task = Task {
             ray: *ray,
             kind: RayKind::Primary,
@@ -152,12 +176,19 @@ impl<'s> Tracer<'s> {
             coefficient: 1.0,
             media: Media::default(),
             indices: None,
+            split: false,
         };
-        self.trace(task, rec, stats).0
+        self.trace(task, rec, rng, stats).0
     }
 
     /// Traces one ray; returns its intensity and the distance to what it hit (∞ for none).
-    fn trace<R: Recorder>(&self, task: Task, rec: &mut R, stats: &mut Stats) -> (DVec3, f64) {
+    fn trace<R: Recorder>(
+        &self,
+        task: Task,
+        rec: &mut R,
+        rng: &mut Rng,
+        stats: &mut Stats,
+    ) -> (DVec3, f64) {
         let scene = self.scene;
         match task.kind {
             RayKind::Primary => stats.primary_rays += 1,
@@ -234,7 +265,7 @@ impl<'s> Tracer<'s> {
 
         // Secondary rays: the mirror direction and Snell's law, weighted by kr and kt.
         if m.kr > 0.0 || m.kt > 0.0 {
-            color += self.secondary(&task, &si, rec, stats);
+            color += self.secondary(&task, &si, rec, rng, stats);
         }
         rec.end(color, None);
         (color, hit.t)
@@ -246,6 +277,7 @@ impl<'s> Tracer<'s> {
         task: &Task,
         si: &Interaction,
         rec: &mut R,
+        rng: &mut Rng,
         stats: &mut Stats,
     ) -> DVec3 {
         let m = self.scene.material(si.material);
@@ -308,8 +340,13 @@ impl<'s> Tracer<'s> {
                 coefficient: kr,
                 media: task.media,
                 indices: None,
+                split: task.split,
             };
-            sum += kr * self.child(child, rec, stats);
+            sum += kr
+                * match m.glossy {
+                    None => self.child(child, rec, rng, stats),
+                    Some(lobe) => self.bundle(child, task, si, lobe, rec, rng, stats),
+                };
         }
         if kt > 0.0 {
             match transmitted {
@@ -322,12 +359,26 @@ impl<'s> Tracer<'s> {
                         coefficient: kt,
                         media: media_beyond,
                         indices: Some(Indices { n1, n2 }),
+                        split: task.split,
                     };
-                    sum += kt * self.child(child, rec, stats);
+                    sum += kt
+                        * match m.frosted {
+                            None => self.child(child, rec, rng, stats),
+                            Some(lobe) => self.bundle(child, task, si, lobe, rec, rng, stats),
+                        };
                 }
                 None => {
                     sum += kt
-                        * self.total_internal_reflection(task, si, mirror, kt, (n1, n2), rec, stats)
+                        * self.total_internal_reflection(
+                            task,
+                            si,
+                            mirror,
+                            kt,
+                            (n1, n2),
+                            rec,
+                            rng,
+                            stats,
+                        )
                 }
             }
         }
@@ -346,6 +397,7 @@ impl<'s> Tracer<'s> {
         kt: f64,
         (n1, n2): (f64, f64),
         rec: &mut R,
+        rng: &mut Rng,
         stats: &mut Stats,
     ) -> DVec3 {
         let depth = task.depth + 1;
@@ -362,8 +414,9 @@ impl<'s> Tracer<'s> {
                 coefficient: kt,
                 media: task.media,
                 indices: Some(Indices { n1, n2 }),
+                split: task.split,
             };
-            return self.child(cut, rec, stats);
+            return self.child(cut, rec, rng, stats);
         }
         stats.total_internal_reflections += 1;
         rec.begin(RayStart {
@@ -383,14 +436,21 @@ impl<'s> Tracer<'s> {
             coefficient: 1.0,
             media: task.media,
             indices: None,
+            split: task.split,
         };
-        let color = self.child(child, rec, stats);
+        let color = self.child(child, rec, rng, stats);
         rec.end(color, Some(Termination::TotalInternalReflection));
         color
     }
 
     /// Traces a secondary ray unless the depth limit or the adaptive threshold stops it.
-    fn child<R: Recorder>(&self, task: Task, rec: &mut R, stats: &mut Stats) -> DVec3 {
+    fn child<R: Recorder>(
+        &self,
+        task: Task,
+        rec: &mut R,
+        rng: &mut Rng,
+        stats: &mut Stats,
+    ) -> DVec3 {
         let scene = self.scene;
         let stop = if task.depth >= self.options.max_depth {
             stats.max_depth_cutoffs += 1;
@@ -408,7 +468,7 @@ impl<'s> Tracer<'s> {
             }
             return DVec3::ZERO;
         }
-        let (color, distance) = self.trace(task, rec, stats);
+        let (color, distance) = self.trace(task, rec, rng, stats);
         match scene.secondary_attenuation {
             // Seed 004: a secondary intensity is attenuated by the distance it travelled.
             Some([c0, c1, c2]) if distance.is_finite() => {
@@ -416,6 +476,45 @@ impl<'s> Tracer<'s> {
             }
             _ => color,
         }
+    }
+
+    /// Seed 000's Monte Carlo reflection and refraction: the light arriving in a cone about
+    /// the principal direction is the average of n rays drawn from the lobe, each traced
+    /// recursively. The tree shows the cone as a node whose children are the sampled rays.
+    #[allow(clippy::too_many_arguments)]
+    fn bundle<R: Recorder>(
+        &self,
+        principal: Task,
+        parent: &Task,
+        si: &Interaction,
+        lobe: Lobe,
+        rec: &mut R,
+        rng: &mut Rng,
+        stats: &mut Stats,
+    ) -> DVec3 {
+        let n = if principal.split { 1 } else { lobe.samples };
+        if R::ACTIVE {
+            principal.begin(rec);
+            rec.samples(n);
+        }
+        let mut sum = DVec3::ZERO;
+        for _ in 0..n {
+            let (u1, u2) = (rng.uniform(), rng.uniform());
+            let dir = lobe::spread(lobe.shape, principal.ray.dir, si.normal, u1, u2);
+            stats.glossy_rays += 1;
+            let sample = Task {
+                ray: self.spawn(si, dir, parent),
+                coefficient: 1.0 / n as f64,
+                split: true,
+                ..principal
+            };
+            sum += self.child(sample, rec, rng, stats);
+        }
+        let mean = sum / n as f64;
+        if R::ACTIVE {
+            rec.end(mean, None);
+        }
+        mean
     }
 
     /// s for one light: cast a shadow ray from the surface toward it. A point light is
@@ -439,7 +538,7 @@ impl<'s> Tracer<'s> {
         let mut first_blocker = None;
         let origin = self.offset(si, l, si.point);
         for k in 0..count {
-            let (dir, dist) = match light.shadow_point(k) {
+            let (dir, dist) = match light.shadow_point(k, si.point) {
                 Some(q) => {
                     let to = q - si.point;
                     (to.normalize(), to.length())

@@ -139,6 +139,11 @@ pub struct RayNode {
     /// The shadow factor s found by a shadow ray.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shadow: Option<f64>,
+    /// A glossy reflection or frosted refraction: this node stands for the cone about the
+    /// principal direction, its colour the mean of its `samples` children (the sampled rays,
+    /// each with coefficient 1/n).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples: Option<u32>,
     pub hit: Option<HitInfo>,
     pub local: Option<Local>,
     /// This node's intensity: local + coefficient-weighted children (linear).

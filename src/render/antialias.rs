@@ -1,0 +1,199 @@
+//! Antialiasing: where inside a pixel the primary rays go, and how their values are averaged
+//! into the pixel (seed 004: "sample point is typically the centre of a pixel, but
+//! alternatively supersample pixels").
+//!
+//! - `Grid`: n × n rays on a regular grid (a non-square count uses the R2 sequence).
+//! - `Jittered`: the same strata, each ray at a random point inside its cell (stratified).
+//! - `Adaptive`: rays at the pixel's corners; a square whose corners differ by more than a
+//!   threshold is split into four, recursively, as POV-Ray's adaptive antialiasing does.
+
+use glam::{DVec2, DVec3};
+
+use crate::trace::sampling::Rng;
+
+/// How a pixel's primary rays are placed.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum Antialias {
+    #[default]
+    Grid,
+    Jittered,
+    /// Split a square while its corners differ by more than `threshold` (the sum of the
+    /// absolute differences of r, g and b, on values clamped to [0, 1]).
+    Adaptive { threshold: f64 },
+}
+
+/// POV-Ray's default antialiasing threshold.
+pub const DEFAULT_THRESHOLD: f64 = 0.3;
+
+impl Antialias {
+    pub fn name(self) -> &'static str {
+        match self {
+            Antialias::Grid => "grid",
+            Antialias::Jittered => "jittered",
+            Antialias::Adaptive { .. } => "adaptive",
+        }
+    }
+}
+
+/// Sample positions inside a pixel, in [0, 1)². A square count is a regular n × n grid (seed
+/// 004's supersampling); any other count uses the R2 low-discrepancy sequence.
+pub fn grid_offsets(spp: u32) -> Vec<DVec2> {
+    let n = (spp as f64).sqrt().round() as u32;
+    if n * n == spp {
+        let step = 1.0 / n as f64;
+        (0..spp)
+            .map(|k| DVec2::new(((k % n) as f64 + 0.5) * step, ((k / n) as f64 + 0.5) * step))
+            .collect()
+    } else {
+        // Roberts' R2 sequence: the plastic number's powers.
+        let g = 1.324_717_957_244_746;
+        let (a1, a2) = (1.0 / g, 1.0 / (g * g));
+        (0..spp)
+            .map(|k| DVec2::new((0.5 + a1 * k as f64).fract(), (0.5 + a2 * k as f64).fract()))
+            .collect()
+    }
+}
+
+/// A grid offset moved to a random point of its cell (stratified sampling); `cell` is the
+/// side of a cell, 1/⌈√spp⌉.
+pub fn jitter(o: DVec2, cell: f64, rng: &mut Rng) -> DVec2 {
+    let jx = (o.x + (rng.uniform() - 0.5) * cell).clamp(0.0, 0.999_999);
+    let jy = (o.y + (rng.uniform() - 0.5) * cell).clamp(0.0, 0.999_999);
+    DVec2::new(jx, jy)
+}
+
+/// The side of a jitter cell for `spp` samples.
+pub fn cell(spp: usize) -> f64 {
+    1.0 / (spp as f64).sqrt().ceil()
+}
+
+/// How many times a pixel may be halved: the finest squares are 2^levels to a side, the
+/// power of two at or above √spp (16 samples → 4 × 4 → 2 levels).
+pub fn adaptive_levels(spp: u32) -> u32 {
+    let side = (spp.max(1) as f64).sqrt().ceil() as u32;
+    side.next_power_of_two().trailing_zeros()
+}
+
+/// The colour difference POV-Ray compares with its threshold: Σ |Δ| over r, g, b of the
+/// displayed (clamped) values.
+pub fn difference(a: DVec3, b: DVec3) -> f64 {
+    let clamp = |c: DVec3| c.clamp(DVec3::ZERO, DVec3::ONE);
+    let d = (clamp(a) - clamp(b)).abs();
+    d.x + d.y + d.z
+}
+
+/// Adaptive supersampling of one pixel. `corners` are the values at the pixel's corners
+/// (top-left, top-right, bottom-left, bottom-right), shared with the neighbouring pixels;
+/// `sample(u, v)` traces a ray through the point (u, v) ∈ [0, 1]² of the pixel. Returns the
+/// pixel's value and the number of squares split.
+pub fn adaptive_pixel(
+    corners: [DVec3; 4],
+    levels: u32,
+    threshold: f64,
+    sample: &mut dyn FnMut(f64, f64) -> DVec3,
+) -> (DVec3, u32) {
+    let mut splits = 0;
+    let value = square(
+        corners,
+        (0.0, 0.0, 1.0),
+        levels,
+        threshold,
+        sample,
+        &mut splits,
+    );
+    (value, splits)
+}
+
+/// One square (u0, v0, side) of a pixel: the mean of its corners if they agree, otherwise the
+/// mean of its four quarters.
+fn square(
+    c: [DVec3; 4],
+    (u0, v0, side): (f64, f64, f64),
+    levels: u32,
+    threshold: f64,
+    sample: &mut dyn FnMut(f64, f64) -> DVec3,
+    splits: &mut u32,
+) -> DVec3 {
+    let [tl, tr, bl, br] = c;
+    let differs = [(tl, tr), (tl, bl), (tr, br), (bl, br), (tl, br), (tr, bl)]
+        .iter()
+        .any(|&(a, b)| difference(a, b) > threshold);
+    if levels == 0 || !differs {
+        return (tl + tr + bl + br) / 4.0;
+    }
+    *splits += 1;
+    let h = side / 2.0;
+    // Five new points: the edge midpoints and the centre.
+    let top = sample(u0 + h, v0);
+    let left = sample(u0, v0 + h);
+    let centre = sample(u0 + h, v0 + h);
+    let right = sample(u0 + side, v0 + h);
+    let bottom = sample(u0 + h, v0 + side);
+    let quarters = [
+        ([tl, top, left, centre], (u0, v0)),
+        ([top, tr, centre, right], (u0 + h, v0)),
+        ([left, centre, bl, bottom], (u0, v0 + h)),
+        ([centre, right, bottom, br], (u0 + h, v0 + h)),
+    ];
+    quarters
+        .into_iter()
+        .map(|(cs, (u, v))| square(cs, (u, v, h), levels - 1, threshold, sample, splits))
+        .sum::<DVec3>()
+        / 4.0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn levels_follow_the_sample_count() {
+        assert_eq!(adaptive_levels(1), 0);
+        assert_eq!(adaptive_levels(4), 1);
+        assert_eq!(adaptive_levels(9), 2);
+        assert_eq!(adaptive_levels(16), 2);
+        assert_eq!(adaptive_levels(64), 3);
+    }
+
+    #[test]
+    fn a_flat_pixel_costs_only_its_corners() {
+        let mut calls = 0;
+        let (v, splits) = adaptive_pixel([DVec3::splat(0.5); 4], 3, 0.1, &mut |_, _| {
+            calls += 1;
+            DVec3::ZERO
+        });
+        assert_eq!((v, splits, calls), (DVec3::splat(0.5), 0, 0));
+    }
+
+    /// A vertical edge at u = 0.3 (white left of it): the split squares follow the edge, and
+    /// the value converges to the covered fraction 0.3 as the levels grow.
+    #[test]
+    fn an_edge_is_refined_where_it_is() {
+        let edge = |u: f64, _v: f64| if u < 0.3 { DVec3::ONE } else { DVec3::ZERO };
+        let corners = [edge(0.0, 0.0), edge(1.0, 0.0), edge(0.0, 1.0), edge(1.0, 1.0)];
+        let mut errors = vec![];
+        for levels in 1..=6 {
+            let mut calls = 0;
+            let (v, splits) = adaptive_pixel(corners, levels, 0.1, &mut |u, v| {
+                calls += 1;
+                edge(u, v)
+            });
+            // Only the column of squares that holds the edge is split: 2^k squares at level k.
+            assert_eq!(splits, (1 << levels) - 1, "levels {levels}");
+            assert!(calls < 5 * (1 << levels), "levels {levels}: {calls} rays");
+            errors.push((v.x - 0.3).abs());
+        }
+        assert!(errors[5] < 0.02, "{errors:?}");
+        assert!(errors[5] < errors[0], "{errors:?}");
+    }
+
+    #[test]
+    fn jittered_samples_stay_in_their_cells() {
+        let grid = grid_offsets(16);
+        let mut rng = Rng::for_pixel(1, 2, 3);
+        for o in &grid {
+            let j = jitter(*o, cell(16), &mut rng);
+            assert!((o.x - j.x).abs() <= 0.125 && (o.y - j.y).abs() <= 0.125);
+        }
+    }
+}
