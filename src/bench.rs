@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use crate::render::antialias::Antialias;
 use crate::render::{render_simple, RenderOptions};
 use crate::scene::{parse, Accel, Limits, Scene};
 
@@ -123,6 +124,19 @@ pub enum Knob {
     Depth,
     /// Adaptive depth control: the weight below which a ray is not traced.
     Adaptive,
+    /// Rays per glossy or frosted hit (every lobe of the scene gets this many).
+    Glossy,
+    /// Adaptive antialiasing: the corner difference above which a square is split.
+    AaThreshold,
+}
+
+impl Knob {
+    /// The name used on the command line and in table headers.
+    pub fn name(self) -> String {
+        use clap::ValueEnum;
+        self.to_possible_value()
+            .map_or_else(String::new, |v| v.get_name().to_string())
+    }
 }
 
 /// One setting of the knob: its cost and its error against the reference.
@@ -164,6 +178,14 @@ fn options_for(scene: &Scene, knob: Knob, value: f64, seed: u64) -> (Scene, Rend
         Knob::Spp => o.spp = value as u32,
         Knob::Depth => o.max_depth = value as u32,
         Knob::Adaptive => s.adaptive_threshold = value,
+        Knob::Glossy => {
+            for m in &mut s.materials {
+                for lobe in [&mut m.glossy, &mut m.frosted].into_iter().flatten() {
+                    lobe.samples = value.max(1.0) as u32;
+                }
+            }
+        }
+        Knob::AaThreshold => o.antialias = Antialias::Adaptive { threshold: value },
     }
     (s, o)
 }
@@ -209,12 +231,13 @@ pub fn sweep(
 }
 
 /// The reference when none is given: the same scene at a much higher setting (16× the largest
-/// sample count, depth 64, or no adaptive cut-off).
+/// sample count or glossy ray count, depth 64, no adaptive cut-off, or every square split).
 pub fn reference_for(scene: &Scene, knob: Knob, values: &[f64], seed: u64) -> crate::render::Image {
     let value = match knob {
         Knob::Spp => values.iter().cloned().fold(1.0, f64::max) * 16.0,
         Knob::Depth => 64.0,
-        Knob::Adaptive => 0.0,
+        Knob::Adaptive | Knob::AaThreshold => 0.0,
+        Knob::Glossy => values.iter().cloned().fold(1.0, f64::max) * 16.0,
     };
     let (s, o) = options_for(scene, knob, value, seed ^ 0x5eed);
     render_simple(&s, o).0
@@ -223,7 +246,7 @@ pub fn reference_for(scene: &Scene, knob: Knob, values: &[f64], seed: u64) -> cr
 pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
     let mut s = format!(
         "{:>10} {:>10} {:>14} {:>11} {:>11} {:>10} {:>8} {:>14}\n",
-        format!("{knob:?}").to_lowercase(),
+        knob.name(),
         "seconds",
         "rays",
         "RMSE",
@@ -251,7 +274,7 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
 pub fn sweep_csv(knob: Knob, rows: &[SweepRow]) -> String {
     let mut s = format!(
         "{},seconds,rays,rmse,rel_mse,max_abs,psnr\n",
-        format!("{knob:?}").to_lowercase()
+        knob.name()
     );
     for r in rows {
         s.push_str(&format!(

@@ -119,7 +119,7 @@ fn images_are_identical_for_one_two_and_four_threads() {
                     RenderOptions {
                         max_depth: 3,
                         spp: 4,
-                        seed: 0,
+                        ..RenderOptions::of(&scene)
                     },
                 )
             })

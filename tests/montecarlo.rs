@@ -139,6 +139,7 @@ fn path_traced_images_are_identical_for_one_and_two_threads() {
         max_depth: 5,
         spp: 8,
         seed: 42,
+        ..RenderOptions::of(&s)
     };
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)

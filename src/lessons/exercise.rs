@@ -24,6 +24,21 @@ pub enum Ask {
     Specular,
     Segments,
     Barycentric,
+    /// The rendered value of `pixel`: all its primary rays, with the scene's `spp`,
+    /// `antialias` and integrator (path tracing with the fixed seed 0, so it is repeatable).
+    PixelValue,
+    /// Primary rays traced: for `pixel` alone (its corners included), or, without a pixel,
+    /// for the whole image.
+    PrimaryRays,
+    /// Squares split by adaptive antialiasing: in `pixel`, or in the whole image.
+    SquaresSplit,
+}
+
+impl Ask {
+    /// Asks about rendering the image (or one pixel of it), not about one traced ray.
+    pub fn about_image(self) -> bool {
+        matches!(self, Ask::PrimaryRays | Ask::SquaresSplit)
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -48,6 +63,7 @@ pub struct Exercise {
     pub object: Option<String>,
     /// Another scene file of the lesson (default scene.yaml).
     pub scene: Option<String>,
+    /// Overrides the scene's max_depth (for the ray tree, and for rendering a pixel).
     pub depth: Option<u32>,
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
@@ -103,7 +119,7 @@ impl Lesson {
                     ex.id
                 ));
             }
-            if ex.pixel.is_none() && ex.ray.is_none() {
+            if ex.pixel.is_none() && ex.ray.is_none() && !ex.ask.about_image() {
                 return Err(format!(
                     "{}: exercise `{}` needs `pixel` or `ray`",
                     path.display(),
