@@ -342,10 +342,11 @@ fn first_words(s: &str, max: usize) -> String {
 pub fn answer_format(ask: Ask) -> &'static str {
     match ask {
         Ask::Segments => "t_in, t_out; t_in, t_out … (or none)",
-        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular => {
+        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue => {
             "a number (or r, g, b for a colour)"
         }
         Ask::HitT | Ask::ShadowFactor => "a number",
+        Ask::PrimaryRays | Ask::SquaresSplit => "a whole number",
         Ask::RefractedDirection => "x, y, z (or tir for total internal reflection)",
         Ask::WindowPoint
         | Ask::RayDirection

@@ -1,0 +1,206 @@
+//! Antialiasing (seed 004's supersampling; POV-Ray's adaptive method): where primary rays go,
+//! what they cost, and how close each mode comes to the exact pixel coverage.
+
+use std::sync::atomic::AtomicBool;
+
+use glam::DVec3;
+use raytree::render::antialias::Antialias;
+use raytree::render::film::Film;
+use raytree::render::{render, render_simple, Image, RenderOptions};
+use raytree::scene::{parse, Limits, Scene};
+use raytree::trace::Stats;
+
+fn scene(yaml: &str) -> Scene {
+    parse(yaml, "aa.yaml", None, &Limits::default()).unwrap()
+}
+
+/// A white triangle on black, lit only by the ambient term (so a pixel's exact value is the
+/// fraction of it the triangle covers): slanted edges, the worst case for a regular grid.
+fn edges() -> Scene {
+    scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], fov: 30, width: 24, height: 16 }\n\
+         background: 0\nambient: 1\n\
+         materials: { white: { color: 1, ka: 1 } }\n\
+         objects:\n  - { name: tri, triangle: [[-2.3, -1.7, 0], [2.9, -0.9, 0], [-0.4, 2.1, 0]], material: white }\n",
+    )
+}
+
+fn options(s: &Scene, spp: u32, antialias: Antialias, seed: u64) -> RenderOptions {
+    RenderOptions {
+        spp,
+        antialias,
+        seed,
+        ..RenderOptions::of(s)
+    }
+}
+
+fn rmse(a: &Image, b: &Image) -> f64 {
+    let se: f64 = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(x, y)| (*x - *y).length_squared())
+        .sum();
+    (se / (3 * a.pixels.len()) as f64).sqrt()
+}
+
+/// The converged coverage: a 32 × 32 grid in every pixel.
+fn reference(s: &Scene) -> Image {
+    render_simple(s, options(s, 1024, Antialias::Grid, 0)).0
+}
+
+#[test]
+fn a_flat_image_costs_adaptive_antialiasing_only_its_corners() {
+    let s = scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], fov: 30, width: 20, height: 10 }\n\
+         background: 0.5\n",
+    );
+    let (image, stats) = render_simple(
+        &s,
+        options(&s, 16, Antialias::Adaptive { threshold: 0.1 }, 0),
+    );
+    // (w + 1)(h + 1) corners, shared by neighbouring pixels, and nothing split.
+    assert_eq!(stats.primary_rays, 21 * 11);
+    assert_eq!(stats.aa_splits, 0);
+    assert!(image.pixels.iter().all(|p| *p == DVec3::splat(0.5)));
+}
+
+#[test]
+fn adaptive_antialiasing_approaches_the_full_grid_for_a_fraction_of_the_rays() {
+    let s = edges();
+    let exact = reference(&s);
+    let (centre, _) = render_simple(&s, options(&s, 1, Antialias::Grid, 0));
+    let (grid, grid_stats) = render_simple(&s, options(&s, 64, Antialias::Grid, 0));
+    let (adaptive, adaptive_stats) = render_simple(
+        &s,
+        options(&s, 64, Antialias::Adaptive { threshold: 0.1 }, 0),
+    );
+    let (e_centre, e_grid, e_adaptive) = (
+        rmse(&centre, &exact),
+        rmse(&grid, &exact),
+        rmse(&adaptive, &exact),
+    );
+    // Supersampling cuts the one-ray error several times over.
+    assert!(e_grid < 0.1 * e_centre, "{e_grid} vs {e_centre}");
+    assert!(e_adaptive < 0.2 * e_centre, "{e_adaptive} vs {e_centre}");
+    // Adaptive sampling (up to 8 × 8 squares) reaches about the error of a 4 × 4 grid with
+    // less than half its rays. It cannot reach the 8 × 8 grid: an edge that clips a pixel
+    // without separating two of its corners is never seen (POV-Ray's method shares this).
+    let (grid16, grid16_stats) = render_simple(&s, options(&s, 16, Antialias::Grid, 0));
+    let e_grid16 = rmse(&grid16, &exact);
+    assert!(e_adaptive < 1.25 * e_grid16, "{e_adaptive} vs {e_grid16}");
+    assert!(
+        adaptive_stats.primary_rays * 2 < grid16_stats.primary_rays,
+        "{} vs {} rays",
+        adaptive_stats.primary_rays,
+        grid16_stats.primary_rays
+    );
+    assert!(adaptive_stats.primary_rays * 8 < grid_stats.primary_rays);
+    assert!(adaptive_stats.aa_splits > 0);
+}
+
+#[test]
+fn a_lower_threshold_splits_more_and_errs_less() {
+    // A dim grey triangle (edges of contrast 3 × 0.2 = 0.6) beside a white one (contrast 3).
+    let s = scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], fov: 30, width: 24, height: 16 }\n\
+         background: 0\nambient: 1\n\
+         materials: { white: { color: 1, ka: 1 }, grey: { color: 0.2, ka: 1 } }\n\
+         objects:\n  - { triangle: [[-2.3, -1.7, 0], [0.2, -0.9, 0], [-0.4, 2.1, 0]], material: white }\n  \
+         - { triangle: [[0.5, -1.5, 0], [2.9, -0.2, 0], [0.9, 2.0, 0]], material: grey }\n",
+    );
+    let exact = reference(&s);
+    let run = |t: f64| render_simple(&s, options(&s, 64, Antialias::Adaptive { threshold: t }, 0));
+    // 0.9 splits only at the white triangle's edges, 0.3 at the grey one's too.
+    let (loose, loose_stats) = run(0.9);
+    let (tight, tight_stats) = run(0.3);
+    assert!(
+        tight_stats.aa_splits > loose_stats.aa_splits + 20,
+        "{} vs {}",
+        tight_stats.aa_splits,
+        loose_stats.aa_splits
+    );
+    assert!(tight_stats.primary_rays > loose_stats.primary_rays);
+    let (e_loose, e_tight) = (rmse(&loose, &exact), rmse(&tight, &exact));
+    assert!(e_tight < 0.8 * e_loose, "{e_tight} vs {e_loose}");
+}
+
+#[test]
+fn jittered_sampling_is_unbiased() {
+    // The mean over many seeds of a 4-sample jittered image is the exact coverage, within
+    // its standard error, pixel by pixel.
+    let s = edges();
+    let exact = reference(&s);
+    let runs = 96;
+    let images: Vec<Image> = (0..runs)
+        .map(|seed| render_simple(&s, options(&s, 4, Antialias::Jittered, seed)).0)
+        .collect();
+    let mut worst: f64 = 0.0;
+    for (i, e) in exact.pixels.iter().enumerate() {
+        let values: Vec<f64> = images.iter().map(|im| im.pixels[i].x).collect();
+        let mean = values.iter().sum::<f64>() / runs as f64;
+        let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (runs - 1) as f64;
+        // A 32 × 32 reference is itself off by up to ~1/64 on an edge pixel.
+        let se = (var / runs as f64).sqrt() + 1.0 / 64.0;
+        worst = worst.max((mean - e.x).abs() / se);
+    }
+    assert!(worst < 4.5, "worst |z| = {worst}");
+}
+
+#[test]
+fn a_lone_pixel_equals_the_rendered_one_in_every_mode() {
+    let s = edges();
+    for antialias in [
+        Antialias::Grid,
+        Antialias::Jittered,
+        Antialias::Adaptive { threshold: 0.2 },
+    ] {
+        let o = options(&s, 16, antialias, 7);
+        let (image, _) = render_simple(&s, o);
+        let film = Film::new(&s, o);
+        for y in 0..s.camera.height {
+            for x in 0..s.camera.width {
+                let lone = film.lone_pixel(x, y, &mut Stats::default());
+                assert_eq!(lone, image.pixels[(y * s.camera.width + x) as usize]);
+            }
+        }
+    }
+}
+
+#[test]
+fn every_mode_gives_the_same_image_on_one_and_two_threads() {
+    let s = edges();
+    for antialias in [Antialias::Jittered, Antialias::Adaptive { threshold: 0.2 }] {
+        let o = options(&s, 16, antialias, 3);
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| render(&s, o, &|_| {}, &AtomicBool::new(false)).unwrap().0)
+        };
+        assert_eq!(on(1), on(2), "{antialias:?}");
+    }
+}
+
+#[test]
+fn the_scene_file_and_the_flag_choose_the_mode() {
+    let s = scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], width: 4, height: 4 }\n\
+         spp: 16\nantialias: adaptive\naa_threshold: 0.05\n",
+    );
+    assert_eq!(s.antialias, Antialias::Adaptive { threshold: 0.05 });
+    assert_eq!(RenderOptions::of(&s).antialias, s.antialias);
+    let err = parse(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\naa_threshold: 7\n",
+        "aa.yaml",
+        None,
+        &Limits::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("aa.yaml:2:15") && err.contains("aa_threshold"),
+        "{err}"
+    );
+}
