@@ -1,0 +1,291 @@
+//! Monte Carlo reflection and refraction (seed 000), soft shadows from sphere lights, and the
+//! path tracer's light sampling, against closed-form answers.
+
+use glam::DVec3;
+use raytree::geometry::Ray;
+use raytree::render::{render_simple, RenderOptions};
+use raytree::scene::{parse, Limits, Scene};
+use raytree::trace::path::PathTracer;
+use raytree::trace::sampling::Rng;
+use raytree::trace::tree::{RayKind, RayNode};
+use raytree::trace::{Stats, Tracer};
+
+fn scene(yaml: &str) -> Scene {
+    parse(yaml, "glossy.yaml", None, &Limits::default()).unwrap()
+}
+
+const CAMERA: &str =
+    "camera: { eye: [0, 1, -1], look_at: [0, 0, 0], fov: 30, width: 16, height: 12 }\n";
+
+/// A ray from (0, 1, −1) that meets the floor at the origin; its mirror direction is
+/// (0, 1, 1)/√2, in the plane x = 0.
+fn down_ray() -> Ray {
+    Ray {
+        origin: DVec3::new(0.0, 1.0, -1.0),
+        dir: DVec3::new(0.0, -1.0, 1.0).normalize(),
+    }
+}
+
+/// A glossy floor (kr = 1, nothing else) whose cone looks at a glowing wall filling the half
+/// x > 0 of the view, black elsewhere. The lobe is symmetric about the mirror direction, which
+/// lies in the plane x = 0, so each sampled ray brings 1 or 0 with probability ½: the cone's
+/// value is ½ on average, with standard deviation ½/√n for n rays.
+fn half_wall(samples: u32) -> Scene {
+    scene(&format!(
+        "{CAMERA}background: 0\nambient: 1\n\
+         materials:\n  floor: {{ kr: 1, glossy: {{ spread: 5, samples: {samples} }} }}\n  \
+         glow: {{ color: 1, ka: 1 }}\n\
+         objects:\n  - {{ name: floor, plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }}\n  \
+         - {{ name: wall, box: {{ min: [0, 0.5, 20], max: [100, 100, 21] }}, material: glow }}\n"
+    ))
+}
+
+#[test]
+fn glossy_noise_falls_as_one_over_root_n_about_the_right_mean() {
+    let runs = 600;
+    for n in [4u32, 16, 64] {
+        let s = half_wall(n);
+        let tracer = Tracer::new(&s);
+        let values: Vec<f64> = (0..runs)
+            .map(|seed| {
+                let mut rng = Rng::for_pixel(seed, 0, 0);
+                tracer
+                    .radiance_with(&down_ray(), &mut rng, &mut Stats::default())
+                    .x
+            })
+            .collect();
+        let mean = values.iter().sum::<f64>() / runs as f64;
+        let sd =
+            (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (runs - 1) as f64).sqrt();
+        let expected_sd = 0.5 / (n as f64).sqrt();
+        assert!(
+            (mean - 0.5).abs() < 4.0 * expected_sd / (runs as f64).sqrt(),
+            "n = {n}: mean {mean}"
+        );
+        // The sample standard deviation of 600 runs is within ±12 % of the true one.
+        assert!(
+            (sd / expected_sd - 1.0).abs() < 0.12,
+            "n = {n}: sd {sd}, expected {expected_sd}"
+        );
+    }
+}
+
+#[test]
+fn a_glossy_floor_under_a_uniform_sky_reflects_exactly_kr_times_the_sky() {
+    // Every sampled ray, even one mirrored back from below the floor, sees the sky.
+    for lobe in ["spread: 30", "spread: 2", "exponent: 3"] {
+        let s = scene(&format!(
+            "{CAMERA}background: 0.8\n\
+             materials: {{ floor: {{ kr: 0.5, glossy: {{ {lobe}, samples: 8 }} }} }}\n\
+             objects: [ {{ plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }} ]\n"
+        ));
+        let (image, _) = render_simple(&s, RenderOptions::of(&s));
+        for p in &image.pixels {
+            assert!(
+                (*p - DVec3::splat(0.4)).abs().max_element() < 1e-12,
+                "{lobe}: {p}"
+            );
+        }
+    }
+}
+
+#[test]
+fn a_very_narrow_lobe_is_a_mirror() {
+    let yaml = |glossy: &str| {
+        format!(
+            "camera: {{ eye: [0, 2, -6], look_at: [0, 0.5, 0], fov: 40, width: 32, height: 24 }}\n\
+             background: [0.2, 0.3, 0.5]\nambient: 0.2\n\
+             lights: [ {{ point: [3, 6, -4], intensity: 0.9 }} ]\n\
+             materials:\n  floor: {{ color: 0.5, ka: 0.2, kd: 0.3, kr: 0.6 {glossy} }}\n  \
+             red: {{ color: [1, 0.2, 0.1], ka: 0.2, kd: 0.8 }}\n\
+             objects:\n  - {{ plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }}\n  \
+             - {{ sphere: {{ center: [0, 1, 1], radius: 1 }}, material: red }}\n"
+        )
+    };
+    let mirror = scene(&yaml(""));
+    let narrow = scene(&yaml(", glossy: { spread: 0.000001, samples: 4 }"));
+    let (a, _) = render_simple(&mirror, RenderOptions::of(&mirror));
+    let (b, _) = render_simple(&narrow, RenderOptions::of(&narrow));
+    let close = a
+        .pixels
+        .iter()
+        .zip(&b.pixels)
+        .filter(|(x, y)| (**x - **y).abs().max_element() < 1e-6)
+        .count();
+    // Only a pixel whose mirror ray grazes the sphere's silhouette may differ.
+    assert!(close + 2 >= a.pixels.len(), "{close} of {}", a.pixels.len());
+}
+
+fn cones(n: &RayNode, out: &mut Vec<(u32, RayNode)>, depth: u32) {
+    if n.samples.is_some() {
+        out.push((depth, n.clone()));
+    }
+    for c in &n.children {
+        cones(c, out, depth + 1);
+    }
+}
+
+#[test]
+fn the_tree_shows_the_cone_as_the_mean_of_its_sampled_rays() {
+    // Two glossy mirrors facing each other: the first cone splits into 6 rays, and every cone
+    // below it sends one ray, so the work grows linearly with depth, not as 6^depth.
+    let s = scene(
+        "camera: { eye: [0, 0, 0], look_at: [0, 0, 1], width: 8, height: 8 }\n\
+         background: 0.5\nambient: 0.1\nmax_depth: 5\n\
+         materials: { m: { color: 1, ka: 1, kr: 0.5, glossy: { spread: 3, samples: 6 } } }\n\
+         objects:\n  - { box: { min: [-50, -50, 5], max: [50, 50, 6] }, material: m }\n  \
+         - { box: { min: [-50, -50, -6], max: [50, 50, -5] }, material: m }\n",
+    );
+    let tree = Tracer::new(&s).inspect_pixel(4, 4).tree;
+    let mut found = vec![];
+    cones(&tree, &mut found, 0);
+    let (_, first) = &found[0];
+    assert_eq!(first.samples, Some(6));
+    assert_eq!(first.children.len(), 6);
+    let mean = first.children.iter().map(|c| c.color).sum::<DVec3>() / 6.0;
+    assert!((first.color - mean).abs().max_element() < 1e-12);
+    for c in &first.children {
+        assert_eq!(c.kind, RayKind::Reflection);
+        assert!((c.coefficient - 1.0 / 6.0).abs() < 1e-15);
+        // Within 5σ of the principal direction.
+        assert!(c.direction.angle_between(first.direction) < 15f64.to_radians());
+    }
+    assert!(found.len() > 6, "{} cones", found.len());
+    assert!(found[1..].iter().all(|(_, n)| n.samples == Some(1)));
+    // The root's colour is the one the renderer computes for that pixel.
+    let (image, _) = render_simple(&s, RenderOptions::of(&s));
+    assert_eq!(tree.color, image.pixels[4 * 8 + 4]);
+}
+
+#[test]
+fn frosted_glass_blurs_but_keeps_the_light_it_lets_through() {
+    // A frosted slab (no reflection, kt = 1) between the eye and a uniform glowing wall:
+    // every refracted ray ends on the wall or the background, both of radiance 1. (The lobe
+    // is narrow enough that no sampled ray meets the back face beyond the critical angle,
+    // where it would be trapped between the parallel faces by total internal reflection.)
+    let s = scene(
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 30, width: 12, height: 12 }\n\
+         background: 1\nambient: 1\n\
+         materials: { frost: { kt: 1, ior: 1.5, frosted: { spread: 3, samples: 8 } }, glow: { color: 1, ka: 1 } }\n\
+         objects:\n  - { box: { min: [-10, -10, -0.5], max: [10, 10, 0.5] }, material: frost }\n  \
+         - { box: { min: [-100, -100, 10], max: [100, 100, 11] }, material: glow }\n",
+    );
+    let (image, stats) = render_simple(&s, RenderOptions::of(&s));
+    assert!(stats.glossy_rays > 0);
+    for p in &image.pixels {
+        assert!((*p - DVec3::ONE).abs().max_element() < 1e-12, "{p}");
+    }
+}
+
+/// A sphere light right above a point, and a blocker whose edge plane contains the line from
+/// the point to the light's centre: the shadow-ray pattern on the disc is point-symmetric,
+/// so exactly half of the rays pass.
+#[test]
+fn a_sphere_light_half_hidden_gives_a_shadow_factor_of_one_half() {
+    let light = |samples: u32| {
+        format!(
+            "camera: {{ eye: [0, 1, -5], look_at: [0, 0, 0], width: 8, height: 8 }}\n\
+             lights: [ {{ name: bulb, sphere: {{ center: [0, 4, 0], radius: 1 }}, intensity: 1, samples: {samples} }} ]\n\
+             materials: {{ m: {{ color: 1, kd: 1 }} }}\n\
+             objects:\n  - {{ plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: m }}\n  \
+             - {{ name: blocker, box: {{ min: [0, 2, -5], max: [5, 2.1, 5] }}, material: m }}\n"
+        )
+    };
+    for samples in [2u32, 4, 6] {
+        let s = scene(&light(samples));
+        let ray = Ray {
+            origin: DVec3::new(0.0, 1.0, -1.0),
+            dir: DVec3::new(0.0, -1.0, 1.0).normalize(),
+        };
+        let tree = Tracer::new(&s).inspect(&ray, &mut Stats::default());
+        let s_factor = tree.local.as_ref().unwrap().lights[0].shadow;
+        assert_eq!(s_factor, 0.5, "{samples} × {samples} rays");
+        // Far from the blocker's edge: fully lit, or fully in its shadow.
+        for (x, expected) in [(-3.0, 1.0), (2.0, 0.0)] {
+            let ray = Ray {
+                origin: DVec3::new(x, 1.0, -1.0),
+                dir: DVec3::new(0.0, -1.0, 1.0).normalize(),
+            };
+            let tree = Tracer::new(&s).inspect(&ray, &mut Stats::default());
+            assert_eq!(
+                tree.local.as_ref().unwrap().lights[0].shadow,
+                expected,
+                "x = {x}"
+            );
+        }
+    }
+}
+
+/// A Lambertian floor of albedo ρ lit by a sphere of radiance L and radius r whose centre is
+/// at distance d, at angle θ from the normal, and wholly above the horizon: the irradiance is
+/// E = π·L·(r/d)²·cos θ, so the floor's radiance is ρ·E/π = ρ·L·(r/d)²·cos θ.
+fn lit_floor() -> Scene {
+    scene(
+        "camera: { eye: [2, 6, -3], look_at: [2, 0, 0], fov: 20, width: 6, height: 6 }\n\
+         integrator: path\nmax_depth: 2\nbackground: 0\n\
+         lights: [ { name: bulb, sphere: { center: [0, 2, 0], radius: 0.5 }, intensity: 3 } ]\n\
+         materials: { floor: { color: 1, kd: 0.5 } }\n\
+         objects: [ { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor } ]\n",
+    )
+}
+
+fn analytic(p: DVec3) -> f64 {
+    let to = DVec3::new(0.0, 2.0, 0.0) - p;
+    let d = to.length();
+    0.5 * 3.0 * (0.5 / d).powi(2) * (to.y / d)
+}
+
+/// The mean of many one-sample estimates of each pixel's centre against the closed form,
+/// within its standard error: light sampling with MIS, and BSDF sampling alone, are unbiased.
+#[test]
+fn sphere_light_estimates_are_unbiased_with_and_without_light_sampling() {
+    let s = lit_floor();
+    for next_event in [true, false] {
+        let tracer = PathTracer {
+            next_event,
+            ..PathTracer::new(&s, 2)
+        };
+        let runs = if next_event { 400 } else { 4000 };
+        let mut worst: f64 = 0.0;
+        for (x, y) in [(0, 0), (2, 3), (5, 5), (3, 1)] {
+            let ray = s.camera.pixel_ray(x, y);
+            let t = -ray.origin.y / ray.dir.y;
+            let exact = analytic(ray.at(t));
+            let mut rng = Rng::for_pixel(9, x, y);
+            let values: Vec<f64> = (0..runs)
+                .map(|_| tracer.radiance(&ray, &mut rng, &mut Stats::default()).x)
+                .collect();
+            let mean = values.iter().sum::<f64>() / runs as f64;
+            let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (runs - 1) as f64;
+            let se = (var / runs as f64).sqrt().max(1e-12);
+            worst = worst.max((mean - exact).abs() / se);
+            // With light sampling the estimate is useful, not just unbiased: within 3 %.
+            assert!(
+                !next_event || (mean / exact - 1.0).abs() < 0.03,
+                "{mean} vs {exact}"
+            );
+        }
+        assert!(worst < 4.0, "next_event {next_event}: worst |z| = {worst}");
+    }
+}
+
+#[test]
+fn light_sampling_beats_bsdf_sampling_on_a_small_light() {
+    let s = lit_floor();
+    let ray = s.camera.pixel_ray(3, 3);
+    let spread = |next_event: bool| {
+        let tracer = PathTracer {
+            next_event,
+            ..PathTracer::new(&s, 2)
+        };
+        let mut rng = Rng::for_pixel(1, 3, 3);
+        let v: Vec<f64> = (0..2000)
+            .map(|_| tracer.radiance(&ray, &mut rng, &mut Stats::default()).x)
+            .collect();
+        let m = v.iter().sum::<f64>() / v.len() as f64;
+        v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len() as f64
+    };
+    // The light covers (r/d)²/4 ≈ 1.5 % of the hemisphere's cosine-weighted measure: BSDF
+    // sampling rarely finds it, light sampling always does.
+    assert!(spread(true) * 20.0 < spread(false));
+}
