@@ -952,3 +952,28 @@ fn panels_scroll_within_their_content() {
     let text = screen(&app);
     assert!(text.contains("▶ reflection ray"), "{text}");
 }
+
+#[test]
+fn a_glossy_cone_is_folded_under_its_mean_until_opened() {
+    let mut app = open(
+        "tests/scenes/explorer-glossy.yaml",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    update(&mut app, Msg::Pick(20, 26));
+    let tree = app.full_tree.clone().unwrap();
+    let cone = tree.children.iter().position(|c| c.samples == Some(4));
+    let cone = cone.expect("the floor's reflection is a cone of 4 rays");
+    // Folded: the cone is one line, its 4 sampled rays hidden.
+    let folded = app.rows().len();
+    assert!(app.rows().iter().any(|r| r.path == vec![cone] && !r.open));
+    assert!(screen(&app).contains("glossy reflection: mean of 4 rays"));
+    insta::assert_snapshot!("glossy_cone_folded_160x48", screen(&app));
+    // Opened: the sampled rays appear below it.
+    press(&mut app, KeyCode::Tab);
+    while app.selected != vec![cone] {
+        press(&mut app, KeyCode::Char('j'));
+    }
+    press(&mut app, KeyCode::Right);
+    assert!(app.rows().len() >= folded + 4);
+}

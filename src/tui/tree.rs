@@ -97,13 +97,17 @@ pub fn parents_above(root: &RayNode, levels: usize) -> HashSet<NodePath> {
         .collect()
 }
 
-/// What is open when a tree is first shown: everything for a small tree, else the first levels.
+/// What is open when a tree is first shown: everything for a small tree, else the first
+/// levels; the sampled rays of a glossy or frosted cone stay folded under their mean.
 pub fn default_open(root: &RayNode) -> HashSet<NodePath> {
-    if root.size() <= 64 {
+    let open = if root.size() <= 64 {
         all_parents(root)
     } else {
         parents_above(root, 2)
-    }
+    };
+    open.into_iter()
+        .filter(|p| node_at(root, p).is_some_and(|n| n.samples.is_none()))
+        .collect()
 }
 
 /// The rows a tree shows with these nodes open, in display order.
@@ -202,6 +206,15 @@ pub fn label(n: &RayNode) -> String {
             n.light.as_deref().unwrap_or("?"),
             outcome(n),
             short(n.shadow.unwrap_or(0.0))
+        ),
+        _ if n.samples.is_some() => format!(
+            "{}: mean of {} rays",
+            if n.kind == RayKind::Reflection {
+                "glossy reflection"
+            } else {
+                "frosted refraction"
+            },
+            n.samples.unwrap_or(0)
         ),
         k => format!("{}: {}", k.name(), outcome(n)),
     }
