@@ -111,3 +111,67 @@ fn explanations_are_pinned() {
         insta::assert_snapshot!(format!("explain_{}", lesson.id), all);
     }
 }
+
+/// The sample-by-sample explanation of a rendered pixel recomputes it the way the film does;
+/// it says so when it does not land on the rendered value.
+#[test]
+fn rendered_pixels_are_explained_sample_by_sample() {
+    for lesson in lessons() {
+        for ex in lesson.exercises.iter().filter(|e| e.ask == Ask::PixelValue) {
+            let lines = explain(&lesson, ex).unwrap();
+            assert!(
+                !lines.iter().any(|l| l.contains("do not follow it exactly")),
+                "{}/{}:\n{}",
+                lesson.id,
+                ex.id,
+                lines.join("\n")
+            );
+        }
+    }
+}
+
+/// A path-traced answer is checked at seed 0 only; its tolerance must also cover the estimate
+/// with other random numbers, or it would be luck, not a tolerance.
+#[test]
+fn path_traced_tolerances_hold_for_other_seeds() {
+    use raytree::render::film::Film;
+    use raytree::render::RenderOptions;
+    use raytree::scene::{Integrator, Limits};
+    for lesson in lessons() {
+        let stated = lesson.stated_answers();
+        for ex in lesson.exercises.iter().filter(|e| e.ask == Ask::PixelValue) {
+            let scene = raytree::scene::load(&lesson.scene_path(ex), &Limits::default()).unwrap();
+            if scene.integrator != Integrator::Path {
+                continue;
+            }
+            let Some(raytree::lessons::Answer::Number(want)) = stated
+                .iter()
+                .find(|(id, _)| *id == ex.id)
+                .and_then(|(_, v)| parse_answer(v, false).ok())
+            else {
+                panic!("{}/{}: no numeric answer", lesson.id, ex.id);
+            };
+            let [x, y] = ex.pixel.unwrap();
+            for seed in 1..=8 {
+                let mut options = RenderOptions::of(&scene);
+                options.seed = seed;
+                if let Some(d) = ex.depth {
+                    options.max_depth = d;
+                }
+                let v = Film::new(&scene, options).lone_pixel(
+                    x,
+                    y,
+                    &mut raytree::trace::Stats::default(),
+                );
+                assert!(
+                    (v.x - want).abs() <= ex.tolerance,
+                    "{}/{} seed {seed}: {} is not within {} of {want}",
+                    lesson.id,
+                    ex.id,
+                    v.x,
+                    ex.tolerance
+                );
+            }
+        }
+    }
+}

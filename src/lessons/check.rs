@@ -6,10 +6,13 @@ use glam::DVec3;
 use super::answer::{parse_answer, Answer};
 use super::exercise::{Ask, Exercise, Lesson};
 use crate::geometry::{Ray, Shape};
-use crate::render::Projection;
-use crate::scene::{Limits, Scene};
+use crate::render::antialias::{self, Antialias};
+use crate::render::film::Film;
+use crate::render::{render_simple, Projection, RenderOptions};
+use crate::scene::{Integrator, Limits, Scene};
 use crate::shading::optics::{reflect, refract};
 use crate::shading::Highlight;
+use crate::trace::sampling::Rng;
 use crate::trace::tracer::TraceOptions;
 use crate::trace::{text, RayKind, RayNode, Stats, Termination, Tracer};
 
@@ -71,6 +74,8 @@ fn exercise_ray(scene: &Scene, ex: &Exercise) -> Result<Ray, String> {
             Ok(scene.camera.pixel_ray(*x, *y))
         }
         (None, Some(r)) if r.direction != DVec3::ZERO => Ok(Ray::new(r.origin, r.direction)),
+        // A question about the whole image: the tree shown is that of the first pixel.
+        (None, None) if ex.ask.about_image() => Ok(scene.camera.pixel_ray(0, 0)),
         _ => Err(format!(
             "exercise `{}` needs a pixel or a ray with a non-zero direction",
             ex.id
@@ -90,6 +95,41 @@ fn node<'t>(tree: &'t RayNode, ex: &Exercise) -> Result<&'t RayNode, String> {
             ex.id, ex.node
         )
     })
+}
+
+/// How an exercise renders: the scene's own settings (seed 0), with `depth` as max_depth.
+fn render_options(scene: &Scene, ex: &Exercise) -> RenderOptions {
+    let mut o = RenderOptions::of(scene);
+    if let Some(d) = ex.depth {
+        o.max_depth = d.clamp(1, 64);
+    }
+    o
+}
+
+/// Renders what an image exercise is about: its pixel alone (its value, and the work it took
+/// with its corners traced on the spot), or without a pixel the whole image (the work only).
+fn rendered(
+    scene: &Scene,
+    ex: &Exercise,
+    options: RenderOptions,
+) -> Result<(DVec3, Stats), String> {
+    let mut stats = Stats::default();
+    match ex.pixel {
+        Some([x, y]) => {
+            if x >= scene.camera.width || y >= scene.camera.height {
+                return Err(format!(
+                    "exercise `{}`: pixel {x},{y} is outside the image",
+                    ex.id
+                ));
+            }
+            let value = Film::new(scene, options).lone_pixel(x, y, &mut stats);
+            Ok((value, stats))
+        }
+        None if ex.ask == Ask::PixelValue => {
+            Err(format!("exercise `{}`: pixel_value needs a pixel", ex.id))
+        }
+        None => Ok((DVec3::ZERO, render_simple(scene, options).1)),
+    }
 }
 
 /// The value an exercise asks for, read off a traced tree.
@@ -157,6 +197,15 @@ fn answer_from(scene: &Scene, ray: &Ray, tree: &RayNode, ex: &Exercise) -> Resul
                 .barycentric
                 .ok_or_else(|| format!("exercise `{}`: the hit is not on a triangle", ex.id))?,
         ),
+        Ask::PixelValue => Answer::color(rendered(scene, ex, render_options(scene, ex))?.0),
+        Ask::PrimaryRays => Answer::Number(
+            rendered(scene, ex, render_options(scene, ex))?
+                .1
+                .primary_rays as f64,
+        ),
+        Ask::SquaresSplit => {
+            Answer::Number(rendered(scene, ex, render_options(scene, ex))?.1.aa_splits as f64)
+        }
         Ask::Segments => {
             let name = ex
                 .object
@@ -322,6 +371,42 @@ fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
                     let (n1, n2) = if h.inside { (1.0, ior) } else { (ior, 1.0) };
                     if let Some(t) = refract(n.direction, h.normal, n1, n2) {
                         tries.push((Answer::Vector(t), "n1 and n2 are swapped: η = n1/n2 with n1 the medium the ray comes from"));
+                    }
+                }
+            }
+        }
+        Ask::PixelValue | Ask::PrimaryRays => {
+            let options = render_options(&w.scene, ex);
+            let adaptive = matches!(options.antialias, Antialias::Adaptive { .. });
+            if ex.ask == Ask::PixelValue
+                && w.scene.integrator == Integrator::Whitted
+                && (options.spp > 1 || adaptive)
+            {
+                tries.push((
+                    Answer::color(w.tree.color),
+                    "that is the ray through the pixel's centre alone: the pixel is the mean of all its rays",
+                ));
+            }
+            if adaptive {
+                let grid = RenderOptions {
+                    antialias: Antialias::Grid,
+                    ..options
+                };
+                if let Ok((value, stats)) = rendered(&w.scene, ex, grid) {
+                    let a = if ex.ask == Ask::PixelValue {
+                        Answer::color(value)
+                    } else {
+                        Answer::Number(stats.primary_rays as f64)
+                    };
+                    tries.push((a, "that is the full grid of spp rays: adaptive antialiasing splits only the squares whose corners differ by more than the threshold, and a square it does not split takes the mean of its 4 corners"));
+                }
+                if ex.ask == Ask::PrimaryRays && ex.pixel.is_none() {
+                    if let Answer::Number(n) = w.expected {
+                        let (nc, nr) = (w.scene.camera.width as f64, w.scene.camera.height as f64);
+                        tries.push((
+                            Answer::Number(n - (nc + 1.0) * (nr + 1.0) + 4.0 * nc * nr),
+                            "neighbouring pixels share their corners: each of the (w + 1)·(h + 1) corners of the image is traced once",
+                        ));
                     }
                 }
             }
@@ -621,7 +706,9 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                             samples * samples
                         ));
                     }
-                    crate::shading::LightKind::Sphere { radius, samples, .. } => {
+                    crate::shading::LightKind::Sphere {
+                        radius, samples, ..
+                    } => {
                         out.push(format!(
                             "sphere light of radius {}: l points to its centre (fatt as for a point light); s = the fraction of {} shadow rays (to a {samples} × {samples} pattern on the disc it shows this point) that reach it",
                             text::num(*radius),
@@ -636,6 +723,21 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                     (Some(why), _) => out.push(format!(
                         "no shadow ray: {why}, so the light adds nothing (s = 0)"
                     )),
+                    (None, Some(sh)) if light.shadow_rays() > 1 => {
+                        let count = light.shadow_rays();
+                        let through = (t.shadow * count as f64).round();
+                        out.push(match &sh.hit {
+                            Some(b) => format!(
+                                "{through} of the {count} shadow rays reach the light (the first one blocked meets {} at t = {}) → s = {through}/{count} = {}",
+                                b.object,
+                                text::num(b.t),
+                                text::num(t.shadow)
+                            ),
+                            None => format!(
+                                "all {count} shadow rays reach the light → s = 1"
+                            ),
+                        })
+                    }
                     (None, Some(sh)) => match &sh.hit {
                         Some(b) => out.push(format!(
                             "shadow ray from {} toward l: blocked by {} at t = {} → s = 0",
@@ -729,6 +831,9 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
                 out.push(format!("on a mesh triangle (a, b, c in the file's order): (λ1, λ2, λ3) = {}, p = λ1·a + λ2·b + λ3·c", text::vec3(b)));
             }
         }
+        Ask::PixelValue | Ask::PrimaryRays | Ask::SquaresSplit => {
+            explain_render(&w, ex, &mut out)?;
+        }
         Ask::Segments => {
             let name = ex.object.as_deref().unwrap_or("");
             if let Some(o) = w.scene.object_index(name) {
@@ -757,6 +862,287 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
     Ok(out)
 }
 
+/// How a pixel (or the whole image) is rendered: its rays, where they go and what they bring.
+/// Each sample is recomputed the way `Film::pixel` takes it (same generator, same order), so
+/// the values listed are the ones the render averages.
+fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<(), String> {
+    let scene = &w.scene;
+    let cam = &scene.camera;
+    let options = render_options(scene, ex);
+    let film = Film::new(scene, options);
+    let path = scene.integrator == Integrator::Path;
+    // As `Film::pixel`: the path tracer always jitters.
+    let aa = match (options.antialias, path) {
+        (Antialias::Grid, true) => Antialias::Jittered,
+        (a, _) => a,
+    };
+    let spp = options.spp.max(1);
+    let levels = antialias::adaptive_levels(spp);
+    if path {
+        out.push(format!(
+            "integrator: path, max_depth {}: each primary ray carries one random path (seed {})",
+            options.max_depth, options.seed
+        ));
+    }
+    let Some([x, y]) = ex.pixel else {
+        let (nc, nr) = (cam.width, cam.height);
+        let (_, stats) = rendered(scene, ex, options)?;
+        match aa {
+            Antialias::Adaptive { threshold } => {
+                let corners = (nc + 1) * (nr + 1);
+                out.push(format!(
+                    "adaptive antialiasing, threshold {}: squares halved at most {levels} times (spp {spp})",
+                    text::num(threshold)
+                ));
+                out.push(format!(
+                    "first the corners of all pixels, each traced once and shared: ({nc} + 1)·({nr} + 1) = {corners} primary rays"
+                ));
+                for py in 0..nr {
+                    for px in 0..nc {
+                        let mut s = Stats::default();
+                        film.lone_pixel(px, py, &mut s);
+                        if s.aa_splits > 0 {
+                            out.push(format!(
+                                "pixel ({px}, {py}): {} square{} split",
+                                s.aa_splits,
+                                if s.aa_splits == 1 { "" } else { "s" }
+                            ));
+                        }
+                    }
+                }
+                out.push(format!(
+                    "squares split in the image: {}; every split traces 5 new rays (the 4 edge midpoints and the centre)",
+                    stats.aa_splits
+                ));
+                out.push(format!(
+                    "primary rays = {corners} + 5·{} = {}",
+                    stats.aa_splits, stats.primary_rays
+                ));
+            }
+            _ => out.push(format!(
+                "{} antialiasing: {spp} primary ray{} in each of the {nc}·{nr} pixels = {}",
+                aa.name(),
+                if spp == 1 { "" } else { "s" },
+                stats.primary_rays
+            )),
+        }
+        return Ok(());
+    };
+    let (fx, fy) = (x as f64, y as f64);
+    out.push(format!(
+        "pixel ({x}, {y}) covers the image square [{x}, {}] × [{y}, {}]; a ray through (u, v) of the pixel goes through the image point ({x} + u, {y} + v)",
+        x + 1,
+        y + 1
+    ));
+    let mut stats = Stats::default();
+    let value = match aa {
+        Antialias::Grid | Antialias::Jittered => {
+            let offsets = antialias::grid_offsets(spp);
+            let n = (spp as f64).sqrt().round() as u32;
+            let pattern = match (aa, n * n == spp) {
+                (Antialias::Grid, true) => format!(
+                    "a regular {n} × {n} grid: u, v at the centres of the cells, (k + ½)/{n}"
+                ),
+                (Antialias::Grid, false) => "the R2 sequence (spp is not a square)".to_string(),
+                _ => "jittered: one ray at a random point of each cell of the grid".to_string(),
+            };
+            out.push(format!("{} antialiasing, spp {spp}: {pattern}", aa.name()));
+            let cell = antialias::cell(offsets.len());
+            let mut rng = Rng::for_pixel(options.seed, x, y);
+            let mut values = vec![];
+            for o in &offsets {
+                let o = if aa == Antialias::Jittered {
+                    antialias::jitter(*o, cell, &mut rng)
+                } else {
+                    *o
+                };
+                let v = film.sample(fx + o.x, fy + o.y, &mut rng, &mut stats);
+                if values.len() < 16 {
+                    out.push(format!(
+                        "{} through (u, v) = ({}, {}): {}",
+                        if path { "path" } else { "ray" },
+                        text::num(o.x),
+                        text::num(o.y),
+                        text::color(v)
+                    ));
+                }
+                values.push(v);
+            }
+            if values.len() > 16 {
+                out.push(format!("… and {} more", values.len() - 16));
+            }
+            let count = values.len() as f64;
+            let mean = values.iter().sum::<DVec3>() / count;
+            out.push(format!(
+                "pixel = the mean of the {} values = {}",
+                values.len(),
+                text::color(mean)
+            ));
+            if aa == Antialias::Jittered && values.len() > 1 {
+                let var = values
+                    .iter()
+                    .map(|v| (*v - mean) * (*v - mean))
+                    .sum::<DVec3>()
+                    / (count - 1.0);
+                let sd = DVec3::new(var.x.sqrt(), var.y.sqrt(), var.z.sqrt());
+                out.push(format!(
+                    "spread of the samples: standard deviation s = {}; the mean's noise, s/√N = {}",
+                    text::color(sd),
+                    text::color(sd / count.sqrt())
+                ));
+            }
+            mean
+        }
+        Antialias::Adaptive { threshold } => {
+            out.push(format!(
+                "adaptive antialiasing, threshold {}: a square whose corners differ by more than that (Σ|Δr| + |Δg| + |Δb|) is split in four, at most {levels} times (spp {spp}: up to {side} × {side} squares)",
+                text::num(threshold),
+                side = 1u32 << levels
+            ));
+            let corners = [
+                film.corner(x, y, &mut stats),
+                film.corner(x + 1, y, &mut stats),
+                film.corner(x, y + 1, &mut stats),
+                film.corner(x + 1, y + 1, &mut stats),
+            ];
+            out.push(format!(
+                "corners (shared with the neighbours): top-left {}, top-right {}, bottom-left {}, bottom-right {}",
+                text::color(corners[0]),
+                text::color(corners[1]),
+                text::color(corners[2]),
+                text::color(corners[3])
+            ));
+            let mut rng = Rng::for_pixel(options.seed, x, y);
+            let mut sample = |u: f64, v: f64| film.sample(fx + u, fy + v, &mut rng, &mut stats);
+            adaptive_lines(
+                corners,
+                (0.0, 0.0, 1.0),
+                levels,
+                threshold,
+                &mut sample,
+                out,
+                "",
+            )
+        }
+    };
+    if ex.ask == Ask::PixelValue && !Answer::color(value).matches(&w.expected, 1e-12) {
+        out.push(format!(
+            "(the render gives {}: the steps above do not follow it exactly)",
+            w.expected.show()
+        ));
+    }
+    if ex.ask != Ask::PixelValue {
+        let mut lone = Stats::default();
+        film.lone_pixel(x, y, &mut lone);
+        let corners = if matches!(aa, Antialias::Adaptive { .. }) {
+            "4 corners + "
+        } else {
+            ""
+        };
+        out.push(format!(
+            "rendered alone, the pixel traces {corners}{} = {} primary rays and splits {} squares",
+            if corners.is_empty() {
+                format!("{spp}")
+            } else {
+                format!("5·{}", lone.aa_splits)
+            },
+            lone.primary_rays,
+            lone.aa_splits
+        ));
+    }
+    Ok(())
+}
+
+/// One square of adaptive antialiasing, explained: split or averaged, and its value.
+fn adaptive_lines(
+    c: [DVec3; 4],
+    (u0, v0, side): (f64, f64, f64),
+    levels: u32,
+    threshold: f64,
+    sample: &mut dyn FnMut(f64, f64) -> DVec3,
+    out: &mut Vec<String>,
+    indent: &str,
+) -> DVec3 {
+    let [tl, tr, bl, br] = c;
+    let largest = [(tl, tr), (tl, bl), (tr, br), (bl, br), (tl, br), (tr, bl)]
+        .iter()
+        .map(|&(a, b)| antialias::difference(a, b))
+        .fold(0.0, f64::max);
+    let name = format!(
+        "{indent}square u ∈ [{}, {}], v ∈ [{}, {}]",
+        text::num(u0),
+        text::num(u0 + side),
+        text::num(v0),
+        text::num(v0 + side)
+    );
+    let corners = format!(
+        "corners {}, {}, {}, {}",
+        text::color(tl),
+        text::color(tr),
+        text::color(bl),
+        text::color(br)
+    );
+    let mean = (tl + tr + bl + br) / 4.0;
+    if largest <= threshold {
+        out.push(format!(
+            "{name}: {corners} differ by at most {} ≤ {}: not split, value = mean of the corners = {}",
+            text::num(largest),
+            text::num(threshold),
+            text::color(mean)
+        ));
+        return mean;
+    }
+    if levels == 0 {
+        out.push(format!(
+            "{name}: {corners} differ by {} > {}, but it is the smallest square allowed: value = mean of the corners = {}",
+            text::num(largest),
+            text::num(threshold),
+            text::color(mean)
+        ));
+        return mean;
+    }
+    let h = side / 2.0;
+    let top = sample(u0 + h, v0);
+    let left = sample(u0, v0 + h);
+    let centre = sample(u0 + h, v0 + h);
+    let right = sample(u0 + side, v0 + h);
+    let bottom = sample(u0 + h, v0 + side);
+    out.push(format!(
+        "{name}: {corners} differ by {} > {}: split; 5 new rays: top {}, left {}, centre {}, right {}, bottom {}",
+        text::num(largest),
+        text::num(threshold),
+        text::color(top),
+        text::color(left),
+        text::color(centre),
+        text::color(right),
+        text::color(bottom)
+    ));
+    let deeper = format!("{indent}  ");
+    let quarters = [
+        ([tl, top, left, centre], (u0, v0)),
+        ([top, tr, centre, right], (u0 + h, v0)),
+        ([left, centre, bl, bottom], (u0, v0 + h)),
+        ([centre, right, bottom, br], (u0 + h, v0 + h)),
+    ];
+    let values: Vec<DVec3> = quarters
+        .into_iter()
+        .map(|(cs, (u, v))| {
+            adaptive_lines(cs, (u, v, h), levels - 1, threshold, sample, out, &deeper)
+        })
+        .collect();
+    let value = values.iter().sum::<DVec3>() / 4.0;
+    out.push(format!(
+        "{name} = mean of its quarters ({}) / 4 = {}",
+        values
+            .iter()
+            .map(|v| text::color(*v))
+            .collect::<Vec<_>>()
+            .join(" + "),
+        text::color(value)
+    ));
+    value
+}
+
 /// A number ready to follow a minus sign: negative values in parentheses.
 fn signed(x: f64) -> String {
     if x < 0.0 {
@@ -772,6 +1158,19 @@ fn collect_lines(n: &RayNode, out: &mut Vec<String>) {
         collect_lines(c, out);
     }
     let label = format!("I({} depth {})", n.kind.name(), n.depth);
+    if let Some(k) = n.samples {
+        let lobe = if n.kind == RayKind::Reflection {
+            "glossy reflection"
+        } else {
+            "frosted refraction"
+        };
+        out.push(format!(
+            "I({lobe} depth {}) = (I_1 + … + I_{k})/{k}, the mean of its sampled rays = {}",
+            n.depth,
+            text::color(n.color)
+        ));
+        return;
+    }
     match (&n.local, n.terminated) {
         (Some(local), _) => {
             let mut terms = vec![text::color(local.total())];
