@@ -272,10 +272,7 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
 }
 
 pub fn sweep_csv(knob: Knob, rows: &[SweepRow]) -> String {
-    let mut s = format!(
-        "{},seconds,rays,rmse,rel_mse,max_abs,psnr\n",
-        knob.name()
-    );
+    let mut s = format!("{},seconds,rays,rmse,rel_mse,max_abs,psnr\n", knob.name());
     for r in rows {
         s.push_str(&format!(
             "{},{},{},{},{},{},{}\n",

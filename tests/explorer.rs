@@ -962,6 +962,10 @@ fn a_glossy_cone_is_folded_under_its_mean_until_opened() {
     );
     update(&mut app, Msg::Pick(20, 26));
     let tree = app.full_tree.clone().unwrap();
+    // The cone's rays are the renderer's own for this pixel: the root is the rendered value.
+    let scene = app.scene.clone().unwrap();
+    let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
+    assert_eq!(tree.color, film.lone_pixel(20, 26, &mut Stats::default()));
     let cone = tree.children.iter().position(|c| c.samples == Some(4));
     let cone = cone.expect("the floor's reflection is a cone of 4 rays");
     // Folded: the cone is one line, its 4 sampled rays hidden.

@@ -29,6 +29,17 @@ fn glass_in_front_of_a_mirror() {
     insta::assert_snapshot!("glass_mirror_json", json);
 }
 
+/// A glossy floor: its reflection is a cone of 4 sampled rays, the cone's intensity their
+/// mean, each ray weighted 1/4.
+#[test]
+fn a_glossy_cone() {
+    let s = scene("tests/scenes/explorer-glossy.yaml");
+    let inspection = Tracer::new(&s).inspect_pixel(20, 26);
+    let json = serde_json::to_string_pretty(&inspection).unwrap();
+    assert!(json.contains("\"samples\": 4"));
+    insta::assert_snapshot!("glossy_cone_text", text::tree(&inspection.tree));
+}
+
 fn csg_outputs(s: &Scene, ray: &Ray) -> (String, String) {
     let traces = s.csg_traces(ray, true);
     let text: Vec<String> = traces

@@ -4,6 +4,7 @@ use std::process::ExitCode;
 
 use super::args::{depth, Format, SceneArgs, Target};
 use super::Failure;
+use crate::trace::sampling::Rng;
 use crate::trace::tree::Inspection;
 use crate::trace::{text, Stats, Tracer};
 
@@ -22,38 +23,37 @@ pub struct Args {
 
 /// A path-traced pixel: its estimate over the scene's samples, and the first few paths.
 fn paths(a: &Args, scene: &crate::scene::Scene) -> Result<ExitCode, Failure> {
+    use crate::render::antialias::{cell, grid_offsets, jitter};
+    use crate::render::film::Film;
+    use crate::render::RenderOptions;
     use crate::trace::path::PathTracer;
-    use crate::trace::sampling::Rng;
     const SHOWN: usize = 4;
     let [x, y] = a
         .target
         .pixel
         .ok_or_else(|| Failure("a path-traced scene is inspected by --pixel X,Y".into()))?;
     a.target.ray(scene)?;
-    let tracer = PathTracer::new(scene, depth(scene, a.depth)?);
-    // The renderer's own sequence for this pixel (seed 0), so the estimate is the pixel's value
-    // up to the sub-pixel positions.
-    let mut rng = Rng::for_pixel(0, x, y);
-    let spp = scene.spp.max(1);
-    let mut sum = glam::DVec3::ZERO;
+    let max_depth = depth(scene, a.depth)?;
+    let tracer = PathTracer::new(scene, max_depth);
+    let options = RenderOptions {
+        max_depth,
+        ..RenderOptions::of(scene)
+    };
+    // The pixel's value as rendered (seed 0), and its first samples replayed with the same
+    // random numbers, so the paths shown are the ones that went into it.
+    let estimate = Film::new(scene, options).lone_pixel(x, y, &mut Stats::default());
+    let spp = options.spp.max(1);
+    let offsets = grid_offsets(spp);
+    let cell = cell(offsets.len());
+    let mut rng = Rng::for_pixel(options.seed, x, y);
     let mut shown = vec![];
-    for k in 0..spp {
-        let ray = scene
-            .camera
-            .ray(x as f64 + rng.uniform(), y as f64 + rng.uniform());
+    for o in offsets.iter().take(SHOWN) {
+        let j = jitter(*o, cell, &mut rng);
+        let ray = scene.camera.ray(x as f64 + j.x, y as f64 + j.y);
         let mut log = vec![];
-        let value = tracer.sample(
-            &ray,
-            &mut rng,
-            &mut Stats::default(),
-            (k < SHOWN as u32).then_some(&mut log),
-        );
-        sum += value;
-        if (k as usize) < SHOWN {
-            shown.push((value, log));
-        }
+        let value = tracer.sample(&ray, &mut rng, &mut Stats::default(), Some(&mut log));
+        shown.push((value, log));
     }
-    let estimate = sum / spp as f64;
     match a.format {
         Format::Json => {
             let doc = serde_json::json!({
@@ -95,7 +95,12 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     }
     let ray = a.target.ray(&scene)?;
     let tracer = Tracer::with_depth(&scene, depth(&scene, a.depth)?);
-    let tree = tracer.inspect(&ray, &mut Stats::default());
+    // A pixel's glossy and frosted rays come from its own generator, as in the renderer.
+    let mut rng = match a.target.pixel {
+        Some([x, y]) => Rng::for_pixel(0, x, y),
+        None => Rng::for_pixel(0, 0, 0),
+    };
+    let tree = tracer.inspect_with(&ray, &mut rng, &mut Stats::default());
     let inspection = Inspection {
         pixel: a.target.pixel,
         color: tree.color,

@@ -6,9 +6,9 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use crate::render::antialias::Antialias;
 use super::args::{depth, SceneArgs};
 use super::Failure;
+use crate::render::antialias::Antialias;
 use crate::render::{render, Encoding, RenderOptions};
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]

@@ -19,7 +19,9 @@ pub enum Antialias {
     Jittered,
     /// Split a square while its corners differ by more than `threshold` (the sum of the
     /// absolute differences of r, g and b, on values clamped to [0, 1]).
-    Adaptive { threshold: f64 },
+    Adaptive {
+        threshold: f64,
+    },
 }
 
 /// POV-Ray's default antialiasing threshold.
@@ -65,6 +67,45 @@ pub fn jitter(o: DVec2, cell: f64, rng: &mut Rng) -> DVec2 {
 /// The side of a jitter cell for `spp` samples.
 pub fn cell(spp: usize) -> f64 {
     1.0 / (spp as f64).sqrt().ceil()
+}
+
+/// The pixel reconstruction filter of Monte Carlo (jittered) sampling.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Filter {
+    /// Every sample inside the pixel, weighted equally.
+    #[default]
+    Box,
+    /// Mitsuba's default: f(x) = e^(−x²/2σ²) − e^(−r²/2σ²) per axis, σ = 0.5 px, r = 2 px.
+    /// Samples are drawn from f itself (filter importance sampling, as pbrt-v4 does), so each
+    /// counts with weight 1 and neighbouring pixels share some of their light.
+    Gaussian,
+}
+
+const GAUSS_SIGMA: f64 = 0.5;
+const GAUSS_RADIUS: f64 = 2.0;
+
+/// An offset from the pixel's centre with density ∝ Mitsuba's Gaussian filter along one axis:
+/// a normal deviate truncated at the radius, kept with probability f(x)/e^(−x²/2σ²).
+fn gaussian_axis(rng: &mut Rng) -> f64 {
+    let tail = (-GAUSS_RADIUS * GAUSS_RADIUS / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp();
+    loop {
+        // Box–Muller.
+        let (u1, u2) = (rng.uniform(), rng.uniform());
+        let x =
+            GAUSS_SIGMA * (-2.0 * (1.0 - u1).ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos();
+        if x.abs() >= GAUSS_RADIUS {
+            continue;
+        }
+        let g = (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp();
+        if rng.uniform() * g < g - tail {
+            return x;
+        }
+    }
+}
+
+/// A sample position for pixel-relative coordinates: (0.5, 0.5) plus a filter-distributed offset.
+pub fn gaussian(rng: &mut Rng) -> DVec2 {
+    DVec2::new(0.5 + gaussian_axis(rng), 0.5 + gaussian_axis(rng))
 }
 
 /// How many times a pixel may be halved: the finest squares are 2^levels to a side, the
@@ -170,7 +211,12 @@ mod tests {
     #[test]
     fn an_edge_is_refined_where_it_is() {
         let edge = |u: f64, _v: f64| if u < 0.3 { DVec3::ONE } else { DVec3::ZERO };
-        let corners = [edge(0.0, 0.0), edge(1.0, 0.0), edge(0.0, 1.0), edge(1.0, 1.0)];
+        let corners = [
+            edge(0.0, 0.0),
+            edge(1.0, 0.0),
+            edge(0.0, 1.0),
+            edge(1.0, 1.0),
+        ];
         let mut errors = vec![];
         for levels in 1..=6 {
             let mut calls = 0;
@@ -185,6 +231,46 @@ mod tests {
         }
         assert!(errors[5] < 0.02, "{errors:?}");
         assert!(errors[5] < errors[0], "{errors:?}");
+    }
+
+    #[test]
+    fn gaussian_offsets_follow_the_filter() {
+        // Histogram of one axis against ∫ f over each bin (midpoint rule on a fine grid).
+        let f = |x: f64| {
+            (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp()
+                - (-GAUSS_RADIUS * GAUSS_RADIUS / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp()
+        };
+        let (bins, n) = (16usize, 100_000usize);
+        let mut counts = vec![0f64; bins];
+        let mut rng = Rng::for_pixel(5, 6, 7);
+        for _ in 0..n {
+            let x = gaussian_axis(&mut rng);
+            let i = ((x + GAUSS_RADIUS) / (2.0 * GAUSS_RADIUS) * bins as f64) as usize;
+            counts[i.min(bins - 1)] += 1.0;
+        }
+        let width = 2.0 * GAUSS_RADIUS / bins as f64;
+        let integral = |a: f64| {
+            (0..100)
+                .map(|k| f(a + (k as f64 + 0.5) * width / 100.0))
+                .sum::<f64>()
+                * width
+                / 100.0
+        };
+        let total: f64 = (0..bins)
+            .map(|i| integral(-GAUSS_RADIUS + i as f64 * width))
+            .sum();
+        let chi2: f64 = (0..bins)
+            .map(|i| {
+                let e = integral(-GAUSS_RADIUS + i as f64 * width) / total * n as f64;
+                if e < 5.0 {
+                    0.0
+                } else {
+                    (counts[i] - e).powi(2) / e
+                }
+            })
+            .sum();
+        // ≤ 15 degrees of freedom: the 99.9 % point is about 37.7.
+        assert!(chi2 < 37.7, "chi² = {chi2}");
     }
 
     #[test]

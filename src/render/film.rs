@@ -6,7 +6,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
-use super::antialias::{adaptive_levels, adaptive_pixel, cell, grid_offsets, jitter, Antialias};
+use super::antialias::{
+    adaptive_levels, adaptive_pixel, cell, gaussian, grid_offsets, jitter, Antialias, Filter,
+};
 use super::Image;
 use crate::scene::{Integrator, Scene};
 use crate::trace::path::PathTracer;
@@ -107,7 +109,10 @@ impl<'s> Film<'s> {
                 let cell = cell(self.offsets.len());
                 let mut sum = DVec3::ZERO;
                 for o in &self.offsets {
-                    let j = jitter(*o, cell, &mut rng);
+                    let j = match self.scene.filter {
+                        Filter::Box => jitter(*o, cell, &mut rng),
+                        Filter::Gaussian => gaussian(&mut rng),
+                    };
                     sum += self.sample(fx + j.x, fy + j.y, &mut rng, stats);
                 }
                 sum / n

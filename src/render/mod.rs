@@ -1,7 +1,7 @@
 //! Rendering: cameras, the parallel film loop, image output and terminal previews.
 
-mod camera;
 pub mod antialias;
+mod camera;
 pub mod film;
 mod image;
 pub mod preview;

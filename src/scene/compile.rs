@@ -10,12 +10,13 @@ use serde_saphyr::Spanned;
 use super::compiled::{Geometry, Leaf, Object, Scene};
 use super::error::{invalid, Invalid, Pos};
 use super::format::{
-    AntialiasMode, Bias, CameraSpec, LightSpec, LobeSpec, MaterialSpec, ObjectSpec, SceneFile, TransformStep, Triple,
+    AntialiasMode, Bias, CameraSpec, FilterKind, LightSpec, LobeSpec, MaterialSpec, ObjectSpec,
+    SceneFile, TransformStep, Triple,
 };
 use crate::accel::Aabb;
 use crate::geometry::csg::{CsgNode, CsgOp};
 use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
-use crate::render::antialias::{Antialias, DEFAULT_THRESHOLD};
+use crate::render::antialias::{Antialias, Filter, DEFAULT_THRESHOLD};
 use crate::render::{Camera, Projection};
 use crate::shading::{Fresnel, Highlight, Light, LightKind, Lobe, LobeShape, Material};
 
@@ -247,6 +248,10 @@ pub fn compile(
     );
     scene.integrator = integrator;
     scene.antialias = antialias;
+    scene.filter = match file.filter.unwrap_or_default() {
+        FilterKind::Box => Filter::Box,
+        FilterKind::Gaussian => Filter::Gaussian,
+    };
     Ok(scene)
 }
 
@@ -390,9 +395,7 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
     if given != 1 {
         return invalid(
             p,
-            format!(
-                "light `{name}` needs exactly one of `point`, `direction`, `rect` or `sphere`"
-            ),
+            format!("light `{name}` needs exactly one of `point`, `direction`, `rect` or `sphere`"),
         );
     }
     if l.samples.is_some() && l.rect.is_none() && l.sphere.is_none() {
@@ -516,8 +519,16 @@ fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
         ior,
         fresnel: m.fresnel.unwrap_or(Fresnel::None),
         emission: m.emission.map_or(DVec3::ZERO, |t| t.0),
-        glossy: m.glossy.as_ref().map(|g| lobe(name, "glossy", g)).transpose()?,
-        frosted: m.frosted.as_ref().map(|f| lobe(name, "frosted", f)).transpose()?,
+        glossy: m
+            .glossy
+            .as_ref()
+            .map(|g| lobe(name, "glossy", g))
+            .transpose()?,
+        frosted: m
+            .frosted
+            .as_ref()
+            .map(|f| lobe(name, "frosted", f))
+            .transpose()?,
     })
 }
 

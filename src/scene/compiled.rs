@@ -151,6 +151,8 @@ pub struct Scene {
     pub integrator: super::format::Integrator,
     /// Where a pixel's primary rays go (`spp` of them).
     pub antialias: crate::render::antialias::Antialias,
+    /// The reconstruction filter of jittered (Monte Carlo) sampling.
+    pub filter: crate::render::antialias::Filter,
     /// I_r and I_t divided by c0 + c1·d + c2·d² (d = length of the child ray), when set.
     pub secondary_attenuation: Option<[f64; 3]>,
     pub lights: Vec<Light>,
@@ -223,6 +225,7 @@ impl Scene {
             spp,
             integrator: Default::default(),
             antialias: Default::default(),
+            filter: Default::default(),
             secondary_attenuation,
             lights,
             materials,

@@ -38,6 +38,15 @@ pub enum AntialiasMode {
     Adaptive,
 }
 
+/// The reconstruction filter of jittered sampling.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FilterKind {
+    #[default]
+    Box,
+    Gaussian,
+}
+
 /// The largest magnitude accepted for any number: squares of coordinates must not overflow.
 pub const MAX_MAGNITUDE: f64 = 1e100;
 
@@ -189,6 +198,8 @@ pub struct SceneFile {
     pub antialias: Option<AntialiasMode>,
     /// Adaptive antialiasing splits a square whose corners differ by more than this.
     pub aa_threshold: Option<Spanned<Num>>,
+    /// `box` (default) or `gaussian` (Mitsuba's): how jittered samples are spread.
+    pub filter: Option<FilterKind>,
     pub secondary_attenuation: Option<Spanned<[Num; 3]>>,
     #[serde(default)]
     pub lights: Vec<Spanned<LightSpec>>,

@@ -129,10 +129,7 @@ impl Light {
             } => {
                 let n = (*samples).max(1);
                 let step = 1.0 / n as f64;
-                let (a, b) = (
-                    ((k % n) as f64 + 0.5) * step,
-                    ((k / n) as f64 + 0.5) * step,
-                );
+                let (a, b) = (((k % n) as f64 + 0.5) * step, ((k / n) as f64 + 0.5) * step);
                 let (dx, dy) = concentric_disc(a, b);
                 let axis = (*center - p).try_normalize().unwrap_or(DVec3::Z);
                 let (t, bt) = crate::trace::sampling::basis(axis);
@@ -183,7 +180,10 @@ impl Light {
                     return None;
                 }
                 let q = ray.at(t) - *corner;
-                let (a, b) = (q.dot(*u) / u.length_squared(), q.dot(*v) / v.length_squared());
+                let (a, b) = (
+                    q.dot(*u) / u.length_squared(),
+                    q.dot(*v) / v.length_squared(),
+                );
                 ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then(|| EmitterHit {
                     t,
                     // Area density 1/A turned into solid angle: d²/(cos θ_l · A).
@@ -237,8 +237,7 @@ impl Light {
                 let phi = 2.0 * std::f64::consts::PI * u2;
                 let axis = to / d;
                 let (t, b) = crate::trace::sampling::basis(axis);
-                let wi = (sin_theta * phi.cos() * t + sin_theta * phi.sin() * b
-                    + cos_theta * axis)
+                let wi = (sin_theta * phi.cos() * t + sin_theta * phi.sin() * b + cos_theta * axis)
                     .normalize();
                 // Where that direction meets the sphere (the near root).
                 let bq = -to.dot(wi);

@@ -89,8 +89,8 @@ pub fn pdf(shape: LobeShape, axis: DVec3, w: DVec3) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use crate::trace::sampling::Rng;
     use super::*;
+    use crate::trace::sampling::Rng;
 
     /// Chi-square goodness of fit, the way pbrt-v4 and Mitsuba test their samplers: bin the
     /// sampled directions in (θ, φ) and compare with the density integrated over each bin

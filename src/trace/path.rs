@@ -193,7 +193,11 @@ impl<'s> PathTracer<'s> {
                     None => mirror,
                     Some(l) => spread(l.shape, mirror, n, rng.uniform(), rng.uniform()),
                 };
-                let event = if m.glossy.is_some() { "glossy" } else { "mirror" };
+                let event = if m.glossy.is_some() {
+                    "glossy"
+                } else {
+                    "mirror"
+                };
                 note(event, Some(object), si.point, throughput, sum - before);
                 ray = Ray {
                     origin: si.point + offset * n,

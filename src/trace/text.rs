@@ -211,7 +211,9 @@ fn draw(n: &RayNode, first: &str, rest: &str, out: &mut String) {
             // Later samples of a cone get one line each: the first few show the pattern.
             out.push_str(&format!("{rest}{f}{}", node_title(c)));
             if c.size() > 1 {
-                out.push_str(&format!("  [{} more rays: --format json]", c.size() - 1));
+                let more = c.size() - 1;
+                let rays = if more == 1 { "ray" } else { "rays" };
+                out.push_str(&format!("  [{more} more {rays}: --format json]"));
             }
             out.push('\n');
             continue;

@@ -21,6 +21,7 @@ use crate::lessons::{self, Lesson, Verdict};
 use crate::render::preview::ColorMode;
 use crate::render::Image;
 use crate::scene::{Limits, Scene};
+use crate::trace::sampling::Rng;
 use crate::trace::{text, RayNode, Stats, Termination, Tracer};
 
 /// The deepest recursion the explorer traces (each level can double the tree).
@@ -546,19 +547,32 @@ impl App {
         let Some(scene) = self.scene.clone() else {
             return;
         };
-        let ray = scene.camera.pixel_ray(self.cursor.0, self.cursor.1);
+        let (x, y) = self.cursor;
+        let ray = scene.camera.pixel_ray(x, y);
+        // Glossy and frosted rays drawn from the pixel's own generator, as the renderer does.
+        let rng = || Rng::for_pixel(0, x, y);
         let mut stats = Stats::default();
-        let full = Tracer::with_depth(&scene, self.depth).inspect(&ray, &mut stats);
+        let full =
+            Tracer::with_depth(&scene, self.depth).inspect_with(&ray, &mut rng(), &mut stats);
         self.tree_stats = stats;
         self.full_tree = Some(full);
         if let Some(k) = self.level {
             let k = k.clamp(1, self.depth);
             self.level = Some(k);
             self.partials = (1..=self.depth)
-                .map(|d| Tracer::with_depth(&scene, d).radiance(&ray, &mut Stats::default()))
+                .map(|d| {
+                    Tracer::with_depth(&scene, d).radiance_with(
+                        &ray,
+                        &mut rng(),
+                        &mut Stats::default(),
+                    )
+                })
                 .collect();
-            self.level_tree =
-                Some(Tracer::with_depth(&scene, k).inspect(&ray, &mut Stats::default()));
+            self.level_tree = Some(Tracer::with_depth(&scene, k).inspect_with(
+                &ray,
+                &mut rng(),
+                &mut Stats::default(),
+            ));
         } else {
             self.partials.clear();
             self.level_tree = None;
