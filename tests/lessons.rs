@@ -175,3 +175,43 @@ fn path_traced_tolerances_hold_for_other_seeds() {
         }
     }
 }
+
+/// The same for a pixel of a path-traced scene with the Gaussian filter (the Cornell box):
+/// its samples are drawn around the pixel's centre, not in its cells.
+#[test]
+fn a_gaussian_filtered_pixel_is_explained_sample_by_sample() {
+    use raytree::lessons::Exercise;
+    let lesson = Lesson {
+        dir: Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/examples"),
+        id: "examples".into(),
+        title: String::new(),
+        summary: String::new(),
+        readme: String::new(),
+        exercises: vec![],
+    };
+    let ex = Exercise {
+        id: "cornell".into(),
+        question: "A pixel of the floor.".into(),
+        ask: Ask::PixelValue,
+        pixel: Some([128, 200]),
+        ray: None,
+        node: String::new(),
+        light: None,
+        object: None,
+        scene: Some("cornell.yaml".into()),
+        depth: None,
+        tolerance: 1e-3,
+        hint: None,
+    };
+    let lines = explain(&lesson, &ex).unwrap();
+    assert!(
+        lines.iter().any(|l| l.contains("Gaussian filter")),
+        "{}",
+        lines.join("\n")
+    );
+    assert!(
+        !lines.iter().any(|l| l.contains("do not follow it exactly")),
+        "{}",
+        lines.join("\n")
+    );
+}

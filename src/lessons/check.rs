@@ -6,7 +6,7 @@ use glam::DVec3;
 use super::answer::{parse_answer, Answer};
 use super::exercise::{Ask, Exercise, Lesson};
 use crate::geometry::{Ray, Shape};
-use crate::render::antialias::{self, Antialias};
+use crate::render::antialias::{self, Antialias, Filter};
 use crate::render::film::Film;
 use crate::render::{render_simple, Projection, RenderOptions};
 use crate::scene::{Integrator, Limits, Scene};
@@ -944,6 +944,9 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                     "a regular {n} × {n} grid: u, v at the centres of the cells, (k + ½)/{n}"
                 ),
                 (Antialias::Grid, false) => "the R2 sequence (spp is not a square)".to_string(),
+                _ if scene.filter == Filter::Gaussian => {
+                    "jittered, drawn from the Gaussian filter around the pixel's centre (samples may fall in the neighbours)".to_string()
+                }
                 _ => "jittered: one ray at a random point of each cell of the grid".to_string(),
             };
             out.push(format!("{} antialiasing, spp {spp}: {pattern}", aa.name()));
@@ -951,10 +954,10 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
             let mut rng = Rng::for_pixel(options.seed, x, y);
             let mut values = vec![];
             for o in &offsets {
-                let o = if aa == Antialias::Jittered {
-                    antialias::jitter(*o, cell, &mut rng)
-                } else {
-                    *o
+                let o = match (aa, scene.filter) {
+                    (Antialias::Jittered, Filter::Box) => antialias::jitter(*o, cell, &mut rng),
+                    (Antialias::Jittered, Filter::Gaussian) => antialias::gaussian(&mut rng),
+                    _ => *o,
                 };
                 let v = film.sample(fx + o.x, fy + o.y, &mut rng, &mut stats);
                 if values.len() < 16 {
