@@ -243,6 +243,15 @@ pub fn reference_for(scene: &Scene, knob: Knob, values: &[f64], seed: u64) -> cr
     render_simple(&s, o).0
 }
 
+/// 1/(seconds·MSE), or "exact" when the image equals the reference.
+fn efficiency(r: &SweepRow) -> String {
+    if r.rmse == 0.0 {
+        "exact".into()
+    } else {
+        format!("{:.0}", 1.0 / (r.seconds * r.rmse * r.rmse))
+    }
+}
+
 pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
     let mut s = format!(
         "{:>10} {:>10} {:>14} {:>11} {:>11} {:>10} {:>8} {:>14}\n",
@@ -257,7 +266,7 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
     );
     for r in rows {
         s.push_str(&format!(
-            "{:>10} {:>10.3} {:>14} {:>11.5} {:>11.5} {:>10.4} {:>8.2} {:>14.0}\n",
+            "{:>10} {:>10.3} {:>14} {:>11.5} {:>11.5} {:>10.4} {:>8.2} {:>14}\n",
             r.value,
             r.seconds,
             r.rays,
@@ -265,7 +274,7 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
             r.rel_mse,
             r.max_abs,
             r.psnr,
-            1.0 / (r.seconds * r.rmse * r.rmse).max(1e-300)
+            efficiency(r)
         ));
     }
     s
