@@ -231,7 +231,8 @@ pub fn sweep(
 }
 
 /// The reference when none is given: the same scene at a much higher setting (16× the largest
-/// sample count or glossy ray count, depth 64, no adaptive cut-off, or every square split).
+/// sample count or glossy ray count, depth 64, no adaptive cut-off, or the full grid that
+/// adaptive antialiasing approximates).
 pub fn reference_for(scene: &Scene, knob: Knob, values: &[f64], seed: u64) -> crate::render::Image {
     let value = match knob {
         Knob::Spp => values.iter().cloned().fold(1.0, f64::max) * 16.0,
@@ -239,7 +240,11 @@ pub fn reference_for(scene: &Scene, knob: Knob, values: &[f64], seed: u64) -> cr
         Knob::Adaptive | Knob::AaThreshold => 0.0,
         Knob::Glossy => values.iter().cloned().fold(1.0, f64::max) * 16.0,
     };
-    let (s, o) = options_for(scene, knob, value, seed ^ 0x5eed);
+    let (s, mut o) = options_for(scene, knob, value, seed ^ 0x5eed);
+    if knob == Knob::AaThreshold {
+        // What adaptive sampling approximates: the full grid of the same sample count.
+        o.antialias = Antialias::Grid;
+    }
     render_simple(&s, o).0
 }
 

@@ -24,7 +24,7 @@ pub struct PathTracer<'s> {
     pub max_depth: u32,
     /// Sample the lights directly at diffuse hits (off only to test that it changes nothing).
     pub next_event: bool,
-    /// Stop paths at random, unbiasedly, after three bounces (off only for tests).
+    /// Stop paths at random, unbiasedly, from the fourth bounce on (off only for tests).
     pub roulette: bool,
 }
 

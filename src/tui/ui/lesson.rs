@@ -218,7 +218,7 @@ pub fn exercise_lines(
         for part in wrap_hang(&format!("{}: {question}", ex.id), width, "") {
             lines.push(Line::from(part));
         }
-        let mut about = format!("ask: {:?}", ex.ask).to_lowercase();
+        let mut about = format!("ask: {}", snake_case(&format!("{:?}", ex.ask)));
         if let Some([x, y]) = ex.pixel {
             about.push_str(&format!(" · pixel {x},{y}"));
         }
@@ -335,6 +335,18 @@ fn first_words(s: &str, max: usize) -> String {
         out.push_str(w);
     }
     out.push('…');
+    out
+}
+
+/// "PixelValue" → "pixel_value", as exercises.yaml spells it.
+fn snake_case(name: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in name.chars().enumerate() {
+        if c.is_uppercase() && i > 0 {
+            out.push('_');
+        }
+        out.push(c.to_ascii_lowercase());
+    }
     out
 }
 
