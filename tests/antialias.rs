@@ -4,7 +4,7 @@
 use std::sync::atomic::AtomicBool;
 
 use glam::DVec3;
-use raytree::render::antialias::Antialias;
+use raytree::render::antialias::{Antialias, Filter};
 use raytree::render::film::Film;
 use raytree::render::{render, render_simple, Image, RenderOptions};
 use raytree::scene::{parse, Limits, Scene};
@@ -149,12 +149,15 @@ fn jittered_sampling_is_unbiased() {
 
 #[test]
 fn a_lone_pixel_equals_the_rendered_one_in_every_mode() {
-    let s = edges();
-    for antialias in [
-        Antialias::Grid,
-        Antialias::Jittered,
-        Antialias::Adaptive { threshold: 0.2 },
+    let mut s = edges();
+    for (antialias, filter) in [
+        (Antialias::Grid, Filter::Box),
+        (Antialias::Jittered, Filter::Box),
+        (Antialias::Adaptive { threshold: 0.2 }, Filter::Box),
+        (Antialias::Grid, Filter::Gaussian),
+        (Antialias::Jittered, Filter::Gaussian),
     ] {
+        s.filter = filter;
         let o = options(&s, 16, antialias, 7);
         let (image, _) = render_simple(&s, o);
         let film = Film::new(&s, o);
@@ -169,8 +172,13 @@ fn a_lone_pixel_equals_the_rendered_one_in_every_mode() {
 
 #[test]
 fn every_mode_gives_the_same_image_on_one_and_two_threads() {
-    let s = edges();
-    for antialias in [Antialias::Jittered, Antialias::Adaptive { threshold: 0.2 }] {
+    let mut s = edges();
+    for (antialias, filter) in [
+        (Antialias::Jittered, Filter::Box),
+        (Antialias::Adaptive { threshold: 0.2 }, Filter::Box),
+        (Antialias::Jittered, Filter::Gaussian),
+    ] {
+        s.filter = filter;
         let o = options(&s, 16, antialias, 3);
         let on = |threads: usize| {
             rayon::ThreadPoolBuilder::new()
@@ -202,5 +210,40 @@ fn the_scene_file_and_the_flag_choose_the_mode() {
     assert!(
         err.contains("aa.yaml:2:15") && err.contains("aa_threshold"),
         "{err}"
+    );
+}
+
+#[test]
+fn the_gaussian_filter_keeps_a_flat_image_flat_and_softens_an_edge() {
+    let flat = scene(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], width: 9, height: 7 }\n\
+         background: 0.25\nspp: 4\nfilter: gaussian\n",
+    );
+    let (image, _) = render_simple(&flat, RenderOptions::of(&flat));
+    // Σ w·L / Σ w of equal values, corners and edges (fewer neighbours) included.
+    assert!(image
+        .pixels
+        .iter()
+        .all(|p| (*p - DVec3::splat(0.25)).abs().max_element() < 1e-15));
+    // Across an edge the filter mixes in the neighbours: a pixel fully inside the triangle but
+    // next to its edge is no longer exactly 1, and the image is smoother than the box's.
+    let mut s = edges();
+    let (boxed, _) = render_simple(&s, options(&s, 16, Antialias::Grid, 0));
+    s.filter = Filter::Gaussian;
+    let (soft, _) = render_simple(&s, options(&s, 16, Antialias::Grid, 0));
+    let roughness = |im: &Image| {
+        let w = im.width as usize;
+        im.pixels
+            .windows(2)
+            .enumerate()
+            .filter(|(i, _)| (i + 1) % w != 0)
+            .map(|(_, p)| (p[1] - p[0]).abs().x)
+            .fold(0.0, f64::max)
+    };
+    assert!(
+        roughness(&soft) < 0.8 * roughness(&boxed),
+        "{} vs {}",
+        roughness(&soft),
+        roughness(&boxed)
     );
 }

@@ -6,7 +6,7 @@ use glam::DVec3;
 use super::answer::{parse_answer, Answer};
 use super::exercise::{Ask, Exercise, Lesson};
 use crate::geometry::{Ray, Shape};
-use crate::render::antialias::{self, Antialias, Filter};
+use crate::render::antialias::{self, Antialias};
 use crate::render::film::Film;
 use crate::render::{render_simple, Projection, RenderOptions};
 use crate::scene::{Integrator, Limits, Scene};
@@ -937,40 +937,26 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
     let mut stats = Stats::default();
     let value = match aa {
         Antialias::Grid | Antialias::Jittered => {
-            let offsets = antialias::grid_offsets(spp);
             let n = (spp as f64).sqrt().round() as u32;
             let pattern = match (aa, n * n == spp) {
                 (Antialias::Grid, true) => format!(
                     "a regular {n} × {n} grid: u, v at the centres of the cells, (k + ½)/{n}"
                 ),
                 (Antialias::Grid, false) => "the R2 sequence (spp is not a square)".to_string(),
-                _ if scene.filter == Filter::Gaussian => {
-                    "jittered, drawn from the Gaussian filter around the pixel's centre (samples may fall in the neighbours)".to_string()
-                }
                 _ => "jittered: one ray at a random point of each cell of the grid".to_string(),
             };
             out.push(format!("{} antialiasing, spp {spp}: {pattern}", aa.name()));
-            let cell = antialias::cell(offsets.len());
-            let mut rng = Rng::for_pixel(options.seed, x, y);
-            let mut values = vec![];
-            for o in &offsets {
-                let o = match (aa, scene.filter) {
-                    (Antialias::Jittered, Filter::Box) => antialias::jitter(*o, cell, &mut rng),
-                    (Antialias::Jittered, Filter::Gaussian) => antialias::gaussian(&mut rng),
-                    _ => *o,
-                };
-                let v = film.sample(fx + o.x, fy + o.y, &mut rng, &mut stats);
-                if values.len() < 16 {
-                    out.push(format!(
-                        "{} through (u, v) = ({}, {}): {}",
-                        if path { "path" } else { "ray" },
-                        text::num(o.x),
-                        text::num(o.y),
-                        text::color(v)
-                    ));
-                }
-                values.push(v);
+            let samples = film.own_samples(x, y, &mut stats);
+            for smp in samples.iter().take(16) {
+                out.push(format!(
+                    "{} through (u, v) = ({}, {}): {}",
+                    if path { "path" } else { "ray" },
+                    text::num(smp.uv.x),
+                    text::num(smp.uv.y),
+                    text::color(smp.value)
+                ));
             }
+            let values: Vec<DVec3> = samples.iter().map(|s| s.value).collect();
             if values.len() > 16 {
                 out.push(format!("… and {} more", values.len() - 16));
             }
@@ -994,7 +980,16 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                     text::color(sd / count.sqrt())
                 ));
             }
-            mean
+            if film.splats() {
+                let splatted = film.lone_pixel(x, y, &mut Stats::default());
+                out.push(format!(
+                    "the Gaussian filter (Mitsuba's: f(d) = e^(−d²/2σ²) − e^(−r²/2σ²), σ = 0.5 px, r = 2 px) then mixes in the samples of the pixels around: pixel = Σ w·L / Σ w over the samples of the 5 × 5 pixels around, w = f(dx)·f(dy) = {}",
+                    text::color(splatted)
+                ));
+                splatted
+            } else {
+                mean
+            }
         }
         Antialias::Adaptive { threshold } => {
             out.push(format!(

@@ -69,43 +69,30 @@ pub fn cell(spp: usize) -> f64 {
     1.0 / (spp as f64).sqrt().ceil()
 }
 
-/// The pixel reconstruction filter of Monte Carlo (jittered) sampling.
+/// The pixel reconstruction filter of supersampling.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Filter {
-    /// Every sample inside the pixel, weighted equally.
+    /// A pixel is the mean of its own samples.
     #[default]
     Box,
-    /// Mitsuba's default: f(x) = e^(−x²/2σ²) − e^(−r²/2σ²) per axis, σ = 0.5 px, r = 2 px.
-    /// Samples are drawn from f itself (filter importance sampling, as pbrt-v4 does), so each
-    /// counts with weight 1 and neighbouring pixels share some of their light.
+    /// Mitsuba's default: every sample is splatted onto the pixels around it with weight
+    /// f(dx)·f(dy), f(x) = e^(−x²/2σ²) − e^(−r²/2σ²), σ = 0.5 px, r = 2 px; a pixel is the
+    /// weighted mean of the samples that reach it.
     Gaussian,
 }
 
+/// The Gaussian filter's radius in pixels: a sample reaches pixels whose centres lie closer
+/// than this along both axes.
+pub const GAUSS_RADIUS: f64 = 2.0;
 const GAUSS_SIGMA: f64 = 0.5;
-const GAUSS_RADIUS: f64 = 2.0;
 
-/// An offset from the pixel's centre with density ∝ Mitsuba's Gaussian filter along one axis:
-/// a normal deviate truncated at the radius, kept with probability f(x)/e^(−x²/2σ²).
-fn gaussian_axis(rng: &mut Rng) -> f64 {
-    let tail = (-GAUSS_RADIUS * GAUSS_RADIUS / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp();
-    loop {
-        // Box–Muller.
-        let (u1, u2) = (rng.uniform(), rng.uniform());
-        let x =
-            GAUSS_SIGMA * (-2.0 * (1.0 - u1).ln()).sqrt() * (2.0 * std::f64::consts::PI * u2).cos();
-        if x.abs() >= GAUSS_RADIUS {
-            continue;
-        }
-        let g = (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp();
-        if rng.uniform() * g < g - tail {
-            return x;
-        }
+/// f(x) of the Gaussian filter, 0 at and beyond the radius.
+pub fn gaussian_weight(x: f64) -> f64 {
+    if x.abs() >= GAUSS_RADIUS {
+        return 0.0;
     }
-}
-
-/// A sample position for pixel-relative coordinates: (0.5, 0.5) plus a filter-distributed offset.
-pub fn gaussian(rng: &mut Rng) -> DVec2 {
-    DVec2::new(0.5 + gaussian_axis(rng), 0.5 + gaussian_axis(rng))
+    let g = |x: f64| (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp();
+    g(x) - g(GAUSS_RADIUS)
 }
 
 /// How many times a pixel may be halved: the finest squares are 2^levels to a side, the
@@ -234,43 +221,12 @@ mod tests {
     }
 
     #[test]
-    fn gaussian_offsets_follow_the_filter() {
-        // Histogram of one axis against ∫ f over each bin (midpoint rule on a fine grid).
-        let f = |x: f64| {
-            (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp()
-                - (-GAUSS_RADIUS * GAUSS_RADIUS / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp()
-        };
-        let (bins, n) = (16usize, 100_000usize);
-        let mut counts = vec![0f64; bins];
-        let mut rng = Rng::for_pixel(5, 6, 7);
-        for _ in 0..n {
-            let x = gaussian_axis(&mut rng);
-            let i = ((x + GAUSS_RADIUS) / (2.0 * GAUSS_RADIUS) * bins as f64) as usize;
-            counts[i.min(bins - 1)] += 1.0;
-        }
-        let width = 2.0 * GAUSS_RADIUS / bins as f64;
-        let integral = |a: f64| {
-            (0..100)
-                .map(|k| f(a + (k as f64 + 0.5) * width / 100.0))
-                .sum::<f64>()
-                * width
-                / 100.0
-        };
-        let total: f64 = (0..bins)
-            .map(|i| integral(-GAUSS_RADIUS + i as f64 * width))
-            .sum();
-        let chi2: f64 = (0..bins)
-            .map(|i| {
-                let e = integral(-GAUSS_RADIUS + i as f64 * width) / total * n as f64;
-                if e < 5.0 {
-                    0.0
-                } else {
-                    (counts[i] - e).powi(2) / e
-                }
-            })
-            .sum();
-        // ≤ 15 degrees of freedom: the 99.9 % point is about 37.7.
-        assert!(chi2 < 37.7, "chi² = {chi2}");
+    fn the_gaussian_filter_is_mitsubas() {
+        assert_eq!(gaussian_weight(2.0), 0.0);
+        assert_eq!(gaussian_weight(-2.5), 0.0);
+        // e^0 − e^(−8) at the centre; e^(−0.5) − e^(−8) one σ out.
+        assert!((gaussian_weight(0.0) - (1.0 - (-8f64).exp())).abs() < 1e-15);
+        assert!((gaussian_weight(0.5) - ((-0.5f64).exp() - (-8f64).exp())).abs() < 1e-15);
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! Rendering an image: primary rays per pixel, in parallel over rows, deterministic for any
-//! number of threads (each pixel's samples and random numbers depend only on the pixel).
+//! number of threads (each pixel's samples and random numbers depend only on the pixel, and
+//! partial sums are added in a fixed order).
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -7,7 +8,8 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::antialias::{
-    adaptive_levels, adaptive_pixel, cell, gaussian, grid_offsets, jitter, Antialias, Filter,
+    adaptive_levels, adaptive_pixel, cell, gaussian_weight, grid_offsets, jitter, Antialias,
+    Filter, GAUSS_RADIUS,
 };
 use super::Image;
 use crate::scene::{Integrator, Scene};
@@ -44,6 +46,16 @@ pub fn sample_offsets(spp: u32) -> Vec<DVec2> {
 /// own, so a corner has the same value for each of the four pixels that share it.
 const CORNER_STREAM: u64 = 0xC0_4E_E5;
 
+/// How many pixel rows (and columns) a splatted sample reaches on each side of its own.
+const SPLAT_REACH: i64 = GAUSS_RADIUS as i64;
+
+/// One sample of a pixel: where it went, in pixel-relative (u, v) ∈ [0, 1)², and its value.
+#[derive(Clone, Copy, Debug)]
+pub struct Sample {
+    pub uv: DVec2,
+    pub value: DVec3,
+}
+
 /// Everything needed to compute one pixel: the integrator and the antialiasing pattern.
 pub struct Film<'s> {
     scene: &'s Scene,
@@ -65,6 +77,21 @@ impl<'s> Film<'s> {
         }
     }
 
+    /// The antialiasing actually used: the path tracer always jitters (a regular grid would
+    /// alias its noise into patterns).
+    pub fn antialias(&self) -> Antialias {
+        match (self.options.antialias, &self.path) {
+            (Antialias::Grid, Some(_)) => Antialias::Jittered,
+            (a, _) => a,
+        }
+    }
+
+    /// Samples are splatted through the Gaussian filter (grid and jittered sampling only).
+    pub fn splats(&self) -> bool {
+        self.scene.filter == Filter::Gaussian
+            && !matches!(self.antialias(), Antialias::Adaptive { .. })
+    }
+
     /// The value seen through image point (px, py) (pixel (x, y) covers [x, x+1) × [y, y+1)).
     pub fn sample(&self, px: f64, py: f64, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
         let ray = self.scene.camera.ray(px, py);
@@ -80,8 +107,29 @@ impl<'s> Film<'s> {
         self.sample(i as f64, j as f64, &mut rng, stats)
     }
 
-    /// Pixel (x, y). `corner(i, j)` gives the value at an image corner (computed once per
-    /// image by `render`, or on the spot for a single pixel).
+    /// The grid or jittered samples of pixel (x, y), in order, from the pixel's generator.
+    pub fn own_samples(&self, x: u32, y: u32, stats: &mut Stats) -> Vec<Sample> {
+        let mut rng = Rng::for_pixel(self.options.seed, x, y);
+        let (fx, fy) = (x as f64, y as f64);
+        let jittered = self.antialias() == Antialias::Jittered;
+        let cell = cell(self.offsets.len());
+        self.offsets
+            .iter()
+            .map(|o| {
+                let uv = if jittered {
+                    jitter(*o, cell, &mut rng)
+                } else {
+                    *o
+                };
+                let value = self.sample(fx + uv.x, fy + uv.y, &mut rng, stats);
+                Sample { uv, value }
+            })
+            .collect()
+    }
+
+    /// Pixel (x, y) from its own samples (box filter) or its corners (adaptive). `corner(i, j)`
+    /// gives the value at an image corner (computed once per image by `render`, or on the spot
+    /// for a single pixel).
     pub fn pixel(
         &self,
         x: u32,
@@ -89,33 +137,10 @@ impl<'s> Film<'s> {
         corner: &dyn Fn(u32, u32, &mut Stats) -> DVec3,
         stats: &mut Stats,
     ) -> DVec3 {
-        let mut rng = Rng::for_pixel(self.options.seed, x, y);
-        let (fx, fy) = (x as f64, y as f64);
-        let n = self.offsets.len() as f64;
-        // The path tracer always jitters: a regular grid would alias its noise into patterns.
-        let antialias = match (self.options.antialias, &self.path) {
-            (Antialias::Grid, Some(_)) => Antialias::Jittered,
-            (a, _) => a,
-        };
-        match antialias {
-            Antialias::Grid => {
-                let mut sum = DVec3::ZERO;
-                for o in &self.offsets {
-                    sum += self.sample(fx + o.x, fy + o.y, &mut rng, stats);
-                }
-                sum / n
-            }
-            Antialias::Jittered => {
-                let cell = cell(self.offsets.len());
-                let mut sum = DVec3::ZERO;
-                for o in &self.offsets {
-                    let j = match self.scene.filter {
-                        Filter::Box => jitter(*o, cell, &mut rng),
-                        Filter::Gaussian => gaussian(&mut rng),
-                    };
-                    sum += self.sample(fx + j.x, fy + j.y, &mut rng, stats);
-                }
-                sum / n
+        match self.antialias() {
+            Antialias::Grid | Antialias::Jittered => {
+                let samples = self.own_samples(x, y, stats);
+                samples.iter().map(|s| s.value).sum::<DVec3>() / samples.len() as f64
             }
             Antialias::Adaptive { threshold } => {
                 let corners = [
@@ -125,6 +150,8 @@ impl<'s> Film<'s> {
                     corner(x + 1, y + 1, stats),
                 ];
                 let levels = adaptive_levels(self.options.spp);
+                let mut rng = Rng::for_pixel(self.options.seed, x, y);
+                let (fx, fy) = (x as f64, y as f64);
                 let mut inner = Stats::default();
                 let (value, splits) = adaptive_pixel(corners, levels, threshold, &mut |u, v| {
                     self.sample(fx + u, fy + v, &mut rng, &mut inner)
@@ -136,9 +163,113 @@ impl<'s> Film<'s> {
         }
     }
 
-    /// A single pixel, its corners computed on the spot: equal to the rendered pixel.
+    /// The splats of row `sy`'s samples onto rows sy − 2 … sy + 2: weighted sums and weights,
+    /// each pixel's contributions added in a fixed order (source pixel, then sample).
+    fn splat_row(&self, sy: u32, stats: &mut Stats) -> Band {
+        let w = self.scene.camera.width;
+        let mut band = Band::new(w);
+        for sx in 0..w {
+            for s in self.own_samples(sx, sy, stats) {
+                let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
+                for dy in -SPLAT_REACH..=SPLAT_REACH {
+                    let ty = sy as i64 + dy;
+                    let wy = gaussian_weight(ty as f64 + 0.5 - py);
+                    for tx in (sx as i64 - SPLAT_REACH)..=(sx as i64 + SPLAT_REACH) {
+                        if tx < 0 || tx >= w as i64 || wy == 0.0 {
+                            continue;
+                        }
+                        let weight = wy * gaussian_weight(tx as f64 + 0.5 - px);
+                        if weight > 0.0 {
+                            band.add((dy + SPLAT_REACH) as usize, tx as usize, weight, s.value);
+                        }
+                    }
+                }
+            }
+        }
+        band
+    }
+
+    /// A single pixel computed on its own: equal, bit for bit, to the rendered pixel.
     pub fn lone_pixel(&self, x: u32, y: u32, stats: &mut Stats) -> DVec3 {
-        self.pixel(x, y, &|i, j, s| self.corner(i, j, s), stats)
+        if !self.splats() {
+            return self.pixel(x, y, &|i, j, s| self.corner(i, j, s), stats);
+        }
+        // The rows whose samples reach this pixel, summed as `render` sums them.
+        let h = self.scene.camera.height as i64;
+        let mut total = Splat::default();
+        for sy in (y as i64 - SPLAT_REACH)..=(y as i64 + SPLAT_REACH) {
+            if sy < 0 || sy >= h {
+                continue;
+            }
+            let band = self.splat_row_onto(sy as u32, x, y, stats);
+            total.add(band.weight, band.sum);
+        }
+        total.value()
+    }
+
+    /// Row `sy`'s splats onto the one pixel (x, y), in `splat_row`'s order.
+    fn splat_row_onto(&self, sy: u32, x: u32, y: u32, stats: &mut Stats) -> Splat {
+        let w = self.scene.camera.width as i64;
+        let mut acc = Splat::default();
+        for sx in (x as i64 - SPLAT_REACH)..=(x as i64 + SPLAT_REACH) {
+            if sx < 0 || sx >= w {
+                continue;
+            }
+            for s in self.own_samples(sx as u32, sy, stats) {
+                let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
+                let wy = gaussian_weight(y as f64 + 0.5 - py);
+                if wy == 0.0 {
+                    continue;
+                }
+                let weight = wy * gaussian_weight(x as f64 + 0.5 - px);
+                if weight > 0.0 {
+                    acc.add(weight, weight * s.value);
+                }
+            }
+        }
+        acc
+    }
+}
+
+/// A weighted sum of samples reaching one pixel.
+#[derive(Clone, Copy, Debug, Default)]
+struct Splat {
+    sum: DVec3,
+    weight: f64,
+}
+
+impl Splat {
+    fn add(&mut self, weight: f64, weighted: DVec3) {
+        self.sum += weighted;
+        self.weight += weight;
+    }
+
+    fn value(self) -> DVec3 {
+        if self.weight > 0.0 {
+            self.sum / self.weight
+        } else {
+            DVec3::ZERO
+        }
+    }
+}
+
+/// What one row's samples add to the five rows around it.
+struct Band {
+    width: usize,
+    cells: Vec<Splat>,
+}
+
+impl Band {
+    fn new(width: u32) -> Band {
+        let rows = (2 * SPLAT_REACH + 1) as usize;
+        Band {
+            width: width as usize,
+            cells: vec![Splat::default(); rows * width as usize],
+        }
+    }
+
+    fn add(&mut self, row: usize, x: usize, weight: f64, value: DVec3) {
+        self.cells[row * self.width + x].add(weight, weight * value);
     }
 }
 
@@ -150,12 +281,25 @@ pub fn render(
     on_row: &(dyn Fn(u32) + Sync),
     cancel: &AtomicBool,
 ) -> Option<(Image, Stats)> {
-    let cam = &scene.camera;
     let film = Film::new(scene, options);
+    let image = if film.splats() {
+        splatted(&film, on_row, cancel)
+    } else {
+        per_pixel(&film, on_row, cancel)
+    };
+    image.filter(|_| !cancel.load(Ordering::Relaxed))
+}
+
+/// Every pixel from its own samples (or its corners, shared with the neighbours).
+fn per_pixel(
+    film: &Film,
+    on_row: &(dyn Fn(u32) + Sync),
+    cancel: &AtomicBool,
+) -> Option<(Image, Stats)> {
+    let cam = &film.scene.camera;
     let (w, h) = (cam.width, cam.height);
-    // Adaptive antialiasing first traces the (w+1) × (h+1) pixel corners, shared by
-    // neighbouring pixels.
-    let (corners, mut stats) = match options.antialias {
+    // Adaptive antialiasing first traces the (w+1) × (h+1) pixel corners.
+    let (corners, mut stats) = match film.antialias() {
         Antialias::Adaptive { .. } => {
             let rows: Vec<(Vec<DVec3>, Stats)> = (0..=h)
                 .into_par_iter()
@@ -197,7 +341,51 @@ pub fn render(
             a
         });
     stats.add(&rows);
-    (!cancel.load(Ordering::Relaxed)).then_some((image, stats))
+    Some((image, stats))
+}
+
+/// Samples splatted through the Gaussian filter: every row's samples are spread over the rows
+/// around it in parallel, then the bands are added in row order (so the image does not
+/// depend on the thread count).
+fn splatted(
+    film: &Film,
+    on_row: &(dyn Fn(u32) + Sync),
+    cancel: &AtomicBool,
+) -> Option<(Image, Stats)> {
+    let cam = &film.scene.camera;
+    let (w, h) = (cam.width, cam.height);
+    let bands: Vec<(Band, Stats)> = (0..h)
+        .into_par_iter()
+        .map(|sy| {
+            let mut stats = Stats::default();
+            if cancel.load(Ordering::Relaxed) {
+                return (Band::new(w), stats);
+            }
+            let band = film.splat_row(sy, &mut stats);
+            on_row(sy);
+            (band, stats)
+        })
+        .collect();
+    let mut totals = vec![Splat::default(); (w * h) as usize];
+    let mut stats = Stats::default();
+    for (sy, (band, s)) in bands.iter().enumerate() {
+        stats.add(s);
+        for r in 0..(2 * SPLAT_REACH + 1) as usize {
+            let ty = sy as i64 + r as i64 - SPLAT_REACH;
+            if ty < 0 || ty >= h as i64 {
+                continue;
+            }
+            for x in 0..w as usize {
+                let c = band.cells[r * band.width + x];
+                totals[ty as usize * w as usize + x].add(c.weight, c.sum);
+            }
+        }
+    }
+    let mut image = Image::new(w, h);
+    for (px, t) in image.pixels.iter_mut().zip(&totals) {
+        *px = t.value();
+    }
+    Some((image, stats))
 }
 
 /// Renders without progress or cancellation.
