@@ -6,13 +6,12 @@ use glam::DVec3;
 use super::answer::{parse_answer, Answer};
 use super::exercise::{Ask, Exercise, Lesson};
 use crate::geometry::{Ray, Shape};
-use crate::render::antialias::{self, Antialias};
+use crate::render::antialias::{self, Antialias, Square, Step};
 use crate::render::film::Film;
 use crate::render::{render_simple, Projection, RenderOptions};
 use crate::scene::{Integrator, Limits, Scene};
 use crate::shading::optics::{reflect, refract};
 use crate::shading::Highlight;
-use crate::trace::sampling::Rng;
 use crate::trace::tracer::TraceOptions;
 use crate::trace::{text, RayKind, RayNode, Stats, Termination, Tracer};
 
@@ -928,7 +927,6 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
         }
         return Ok(());
     };
-    let (fx, fy) = (x as f64, y as f64);
     out.push(format!(
         "pixel ({x}, {y}) covers the image square [{x}, {}] × [{y}, {}]; a ray through (u, v) of the pixel goes through the image point ({x} + u, {y} + v)",
         x + 1,
@@ -1010,17 +1008,9 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                 text::color(corners[2]),
                 text::color(corners[3])
             ));
-            let mut rng = Rng::for_pixel(options.seed, x, y);
-            let mut sample = |u: f64, v: f64| film.sample(fx + u, fy + v, &mut rng, &mut stats);
-            adaptive_lines(
-                corners,
-                (0.0, 0.0, 1.0),
-                levels,
-                threshold,
-                &mut sample,
-                out,
-                "",
-            )
+            film.adaptive(x, y, corners, &mut stats, &mut |step| {
+                out.push(adaptive_line(step, threshold))
+            })
         }
     };
     if ex.ask == Ask::PixelValue && !Answer::color(value).matches(&w.expected, 1e-12) {
@@ -1051,94 +1041,80 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
     Ok(())
 }
 
-/// One square of adaptive antialiasing, explained: split or averaged, and its value.
-fn adaptive_lines(
-    c: [DVec3; 4],
-    (u0, v0, side): (f64, f64, f64),
-    levels: u32,
-    threshold: f64,
-    sample: &mut dyn FnMut(f64, f64) -> DVec3,
-    out: &mut Vec<String>,
-    indent: &str,
-) -> DVec3 {
-    let [tl, tr, bl, br] = c;
-    let largest = [(tl, tr), (tl, bl), (tr, br), (bl, br), (tl, br), (tr, bl)]
-        .iter()
-        .map(|&(a, b)| antialias::difference(a, b))
-        .fold(0.0, f64::max);
-    let name = format!(
-        "{indent}square u ∈ [{}, {}], v ∈ [{}, {}]",
-        text::num(u0),
-        text::num(u0 + side),
-        text::num(v0),
-        text::num(v0 + side)
-    );
-    let corners = format!(
-        "corners {}, {}, {}, {}",
-        text::color(tl),
-        text::color(tr),
-        text::color(bl),
-        text::color(br)
-    );
-    let mean = (tl + tr + bl + br) / 4.0;
-    if largest <= threshold {
-        out.push(format!(
-            "{name}: {corners} differ by at most {} ≤ {}: not split, value = mean of the corners = {}",
-            text::num(largest),
-            text::num(threshold),
-            text::color(mean)
-        ));
-        return mean;
-    }
-    if levels == 0 {
-        out.push(format!(
-            "{name}: {corners} differ by {} > {}, but it is the smallest square allowed: value = mean of the corners = {}",
-            text::num(largest),
-            text::num(threshold),
-            text::color(mean)
-        ));
-        return mean;
-    }
-    let h = side / 2.0;
-    let top = sample(u0 + h, v0);
-    let left = sample(u0, v0 + h);
-    let centre = sample(u0 + h, v0 + h);
-    let right = sample(u0 + side, v0 + h);
-    let bottom = sample(u0 + h, v0 + side);
-    out.push(format!(
-        "{name}: {corners} differ by {} > {}: split; 5 new rays: top {}, left {}, centre {}, right {}, bottom {}",
-        text::num(largest),
-        text::num(threshold),
-        text::color(top),
-        text::color(left),
-        text::color(centre),
-        text::color(right),
-        text::color(bottom)
-    ));
-    let deeper = format!("{indent}  ");
-    let quarters = [
-        ([tl, top, left, centre], (u0, v0)),
-        ([top, tr, centre, right], (u0 + h, v0)),
-        ([left, centre, bl, bottom], (u0, v0 + h)),
-        ([centre, right, bottom, br], (u0 + h, v0 + h)),
-    ];
-    let values: Vec<DVec3> = quarters
-        .into_iter()
-        .map(|(cs, (u, v))| {
-            adaptive_lines(cs, (u, v, h), levels - 1, threshold, sample, out, &deeper)
-        })
-        .collect();
-    let value = values.iter().sum::<DVec3>() / 4.0;
-    out.push(format!(
-        "{name} = mean of its quarters ({}) / 4 = {}",
-        values
-            .iter()
+/// One step of adaptive antialiasing, explained: a square kept, split or merged.
+fn adaptive_line(step: &Step, threshold: f64) -> String {
+    let name = |q: &Square| {
+        format!(
+            "{}square u ∈ [{}, {}], v ∈ [{}, {}]",
+            "  ".repeat(q.level as usize),
+            text::num(q.u0),
+            text::num(q.u0 + q.side),
+            text::num(q.v0),
+            text::num(q.v0 + q.side)
+        )
+    };
+    let corners = |q: &Square| {
+        let [tl, tr, bl, br] = q.corners;
+        format!(
+            "corners {}, {}, {}, {}",
+            text::color(tl),
+            text::color(tr),
+            text::color(bl),
+            text::color(br)
+        )
+    };
+    let colors = |vs: &[DVec3], sep: &str| {
+        vs.iter()
             .map(|v| text::color(*v))
             .collect::<Vec<_>>()
-            .join(" + "),
-        text::color(value)
-    ));
-    value
+            .join(sep)
+    };
+    match step {
+        Step::Kept {
+            square,
+            smallest: false,
+            value,
+        } => format!(
+            "{}: {} differ by at most {} ≤ {}: not split, value = mean of the corners = {}",
+            name(square),
+            corners(square),
+            text::num(square.largest),
+            text::num(threshold),
+            text::color(*value)
+        ),
+        Step::Kept {
+            square,
+            smallest: true,
+            value,
+        } => format!(
+            "{}: {} differ by {} > {}, but it is the smallest square allowed: value = mean of the corners = {}",
+            name(square),
+            corners(square),
+            text::num(square.largest),
+            text::num(threshold),
+            text::color(*value)
+        ),
+        Step::Split { square, new } => {
+            let [top, left, centre, right, bottom] = new.map(text::color);
+            format!(
+                "{}: {} differ by {} > {}: split; 5 new rays: top {top}, left {left}, centre {centre}, right {right}, bottom {bottom}",
+                name(square),
+                corners(square),
+                text::num(square.largest),
+                text::num(threshold),
+            )
+        }
+        Step::Merged {
+            square,
+            quarters,
+            value,
+        } => format!(
+            "{} = mean of its quarters ({}) / 4 = {}",
+            name(square),
+            colors(quarters, " + "),
+            text::color(*value)
+        ),
+    }
 }
 
 /// A number ready to follow a minus sign: negative values in parentheses.

@@ -110,6 +110,40 @@ pub fn difference(a: DVec3, b: DVec3) -> f64 {
     d.x + d.y + d.z
 }
 
+/// A square of a pixel under adaptive antialiasing: (u0, v0) its top-left corner in the pixel,
+/// `side` its size, `level` how many times its pixel was halved to reach it.
+#[derive(Clone, Copy, Debug)]
+pub struct Square {
+    pub u0: f64,
+    pub v0: f64,
+    pub side: f64,
+    pub level: u32,
+    /// Top-left, top-right, bottom-left, bottom-right.
+    pub corners: [DVec3; 4],
+    /// The largest difference between two of its corners.
+    pub largest: f64,
+}
+
+/// What adaptive antialiasing did with one square, as it happens (the lessons explain a pixel
+/// from these; the renderer ignores them).
+#[derive(Clone, Copy, Debug)]
+pub enum Step {
+    /// Its corners agree (or it is as small as allowed): its value is their mean.
+    Kept {
+        square: Square,
+        smallest: bool,
+        value: DVec3,
+    },
+    /// Its corners differ: five new rays (top, left, centre, right and bottom midpoints).
+    Split { square: Square, new: [DVec3; 5] },
+    /// A split square's value: the mean of its quarters.
+    Merged {
+        square: Square,
+        quarters: [DVec3; 4],
+        value: DVec3,
+    },
+}
+
 /// Adaptive supersampling of one pixel. `corners` are the values at the pixel's corners
 /// (top-left, top-right, bottom-left, bottom-right), shared with the neighbouring pixels;
 /// `sample(u, v)` traces a ray through the point (u, v) ∈ [0, 1]² of the pixel. Returns the
@@ -120,54 +154,89 @@ pub fn adaptive_pixel(
     threshold: f64,
     sample: &mut dyn FnMut(f64, f64) -> DVec3,
 ) -> (DVec3, u32) {
-    let mut splits = 0;
-    let value = square(
-        corners,
-        (0.0, 0.0, 1.0),
-        levels,
-        threshold,
-        sample,
-        &mut splits,
-    );
-    (value, splits)
+    adaptive_pixel_observed(corners, levels, threshold, sample, &mut |_| {})
 }
 
-/// One square (u0, v0, side) of a pixel: the mean of its corners if they agree, otherwise the
-/// mean of its four quarters.
-fn square(
-    c: [DVec3; 4],
-    (u0, v0, side): (f64, f64, f64),
+/// `adaptive_pixel`, telling `observe` every step.
+pub fn adaptive_pixel_observed(
+    corners: [DVec3; 4],
     levels: u32,
     threshold: f64,
     sample: &mut dyn FnMut(f64, f64) -> DVec3,
-    splits: &mut u32,
-) -> DVec3 {
-    let [tl, tr, bl, br] = c;
-    let differs = [(tl, tr), (tl, bl), (tr, br), (bl, br), (tl, br), (tr, bl)]
-        .iter()
-        .any(|&(a, b)| difference(a, b) > threshold);
-    if levels == 0 || !differs {
-        return (tl + tr + bl + br) / 4.0;
+    observe: &mut dyn FnMut(&Step),
+) -> (DVec3, u32) {
+    let mut splits = 0;
+    let mut walk = Walk {
+        levels,
+        threshold,
+        sample,
+        observe,
+        splits: &mut splits,
+    };
+    let value = walk.square(corners, (0.0, 0.0, 1.0), 0);
+    (value, splits)
+}
+
+struct Walk<'a> {
+    levels: u32,
+    threshold: f64,
+    sample: &'a mut dyn FnMut(f64, f64) -> DVec3,
+    observe: &'a mut dyn FnMut(&Step),
+    splits: &'a mut u32,
+}
+
+impl Walk<'_> {
+    /// One square (u0, v0, side) of a pixel: the mean of its corners if they agree, otherwise
+    /// the mean of its four quarters.
+    fn square(&mut self, c: [DVec3; 4], (u0, v0, side): (f64, f64, f64), level: u32) -> DVec3 {
+        let [tl, tr, bl, br] = c;
+        let largest = [(tl, tr), (tl, bl), (tr, br), (bl, br), (tl, br), (tr, bl)]
+            .iter()
+            .map(|&(a, b)| difference(a, b))
+            .fold(0.0, f64::max);
+        let square = Square {
+            u0,
+            v0,
+            side,
+            level,
+            corners: c,
+            largest,
+        };
+        if level >= self.levels || largest <= self.threshold {
+            let value = (tl + tr + bl + br) / 4.0;
+            (self.observe)(&Step::Kept {
+                square,
+                smallest: largest > self.threshold,
+                value,
+            });
+            return value;
+        }
+        *self.splits += 1;
+        let h = side / 2.0;
+        let top = (self.sample)(u0 + h, v0);
+        let left = (self.sample)(u0, v0 + h);
+        let centre = (self.sample)(u0 + h, v0 + h);
+        let right = (self.sample)(u0 + side, v0 + h);
+        let bottom = (self.sample)(u0 + h, v0 + side);
+        (self.observe)(&Step::Split {
+            square,
+            new: [top, left, centre, right, bottom],
+        });
+        let quarters = [
+            ([tl, top, left, centre], (u0, v0)),
+            ([top, tr, centre, right], (u0 + h, v0)),
+            ([left, centre, bl, bottom], (u0, v0 + h)),
+            ([centre, right, bottom, br], (u0 + h, v0 + h)),
+        ]
+        .map(|(cs, (u, v))| self.square(cs, (u, v, h), level + 1));
+        let value = quarters.iter().sum::<DVec3>() / 4.0;
+        (self.observe)(&Step::Merged {
+            square,
+            quarters,
+            value,
+        });
+        value
     }
-    *splits += 1;
-    let h = side / 2.0;
-    // Five new points: the edge midpoints and the centre.
-    let top = sample(u0 + h, v0);
-    let left = sample(u0, v0 + h);
-    let centre = sample(u0 + h, v0 + h);
-    let right = sample(u0 + side, v0 + h);
-    let bottom = sample(u0 + h, v0 + side);
-    let quarters = [
-        ([tl, top, left, centre], (u0, v0)),
-        ([top, tr, centre, right], (u0 + h, v0)),
-        ([left, centre, bl, bottom], (u0, v0 + h)),
-        ([centre, right, bottom, br], (u0 + h, v0 + h)),
-    ];
-    quarters
-        .into_iter()
-        .map(|(cs, (u, v))| square(cs, (u, v, h), levels - 1, threshold, sample, splits))
-        .sum::<DVec3>()
-        / 4.0
 }
 
 #[cfg(test)]

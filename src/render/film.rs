@@ -8,8 +8,8 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::antialias::{
-    adaptive_levels, adaptive_pixel, cell, gaussian_weight, grid_offsets, jitter, Antialias,
-    Filter, GAUSS_RADIUS,
+    adaptive_levels, adaptive_pixel_observed, cell, gaussian_weight, grid_offsets, jitter,
+    Antialias, Filter, Step, GAUSS_RADIUS,
 };
 use super::Image;
 use crate::scene::{Integrator, Scene};
@@ -142,25 +142,45 @@ impl<'s> Film<'s> {
                 let samples = self.own_samples(x, y, stats);
                 samples.iter().map(|s| s.value).sum::<DVec3>() / samples.len() as f64
             }
-            Antialias::Adaptive { threshold } => {
+            Antialias::Adaptive { .. } => {
                 let corners = [
                     corner(x, y, stats),
                     corner(x + 1, y, stats),
                     corner(x, y + 1, stats),
                     corner(x + 1, y + 1, stats),
                 ];
-                let levels = adaptive_levels(self.options.spp);
-                let mut rng = Rng::for_pixel(self.options.seed, x, y);
-                let (fx, fy) = (x as f64, y as f64);
-                let mut inner = Stats::default();
-                let (value, splits) = adaptive_pixel(corners, levels, threshold, &mut |u, v| {
-                    self.sample(fx + u, fy + v, &mut rng, &mut inner)
-                });
-                stats.add(&inner);
-                stats.aa_splits += splits as u64;
-                value
+                self.adaptive(x, y, corners, stats, &mut |_| {})
             }
         }
+    }
+
+    /// Adaptive antialiasing of pixel (x, y) from its corners, telling `observe` every step
+    /// (the lessons' explanations listen; the renderer does not).
+    pub fn adaptive(
+        &self,
+        x: u32,
+        y: u32,
+        corners: [DVec3; 4],
+        stats: &mut Stats,
+        observe: &mut dyn FnMut(&Step),
+    ) -> DVec3 {
+        let Antialias::Adaptive { threshold } = self.antialias() else {
+            return corners.iter().sum::<DVec3>() / 4.0;
+        };
+        let levels = adaptive_levels(self.options.spp);
+        let mut rng = Rng::for_pixel(self.options.seed, x, y);
+        let (fx, fy) = (x as f64, y as f64);
+        let mut inner = Stats::default();
+        let (value, splits) = adaptive_pixel_observed(
+            corners,
+            levels,
+            threshold,
+            &mut |u, v| self.sample(fx + u, fy + v, &mut rng, &mut inner),
+            observe,
+        );
+        stats.add(&inner);
+        stats.aa_splits += splits as u64;
+        value
     }
 
     /// The splats of row `sy`'s samples onto rows sy − 2 … sy + 2: weighted sums and weights,
