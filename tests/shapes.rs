@@ -309,6 +309,7 @@ fn point_light_attenuation_is_one_over_the_quadratic() {
             attenuation: [1.0, 0.5, 0.25],
         },
         intensity: DVec3::ONE,
+        surface: None,
     };
     let s = light.sample(DVec3::ZERO);
     // d = 5: 1/(1 + 2.5 + 6.25) = 1/9.75.

@@ -49,7 +49,7 @@ impl Image {
             .collect()
     }
 
-    /// Writes PNG or PPM (by extension) to a temporary file beside `path` and renames it into
+    /// Writes PNG, PPM or EXR (by extension) to a temporary file beside `path` and renames it into
     /// place, so a failed or interrupted write never leaves a truncated image.
     pub fn save(&self, path: &Path, encoding: Encoding) -> Result<(), String> {
         let ext = path
@@ -75,9 +75,29 @@ impl Image {
                 out.extend(self.to_rgb8(encoding));
                 out
             }
+            Some("exr") => {
+                // Linear radiance as computed, unclamped (for comparisons with references).
+                let mut out = std::io::Cursor::new(Vec::new());
+                // The encoder takes f32 samples as bytes in native order.
+                let data: Vec<u8> = self
+                    .pixels
+                    .iter()
+                    .flat_map(|p| [p.x as f32, p.y as f32, p.z as f32])
+                    .flat_map(f32::to_ne_bytes)
+                    .collect();
+                image::ImageEncoder::write_image(
+                    image::codecs::openexr::OpenExrEncoder::new(&mut out),
+                    &data,
+                    self.width,
+                    self.height,
+                    image::ExtendedColorType::Rgb32F,
+                )
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+                out.into_inner()
+            }
             _ => {
                 return Err(format!(
-                    "{}: output must end in .png or .ppm",
+                    "{}: output must end in .png, .ppm or .exr",
                     path.display()
                 ))
             }

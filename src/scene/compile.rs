@@ -156,6 +156,35 @@ pub fn compile(
         material_index.insert(name.clone(), materials.len() as u32);
         materials.push(material(name, &m.value, pos(m))?);
     }
+    for (l, light) in file.lights.iter().zip(&mut lights) {
+        let Some(surface) = &l.value.surface else {
+            continue;
+        };
+        if !matches!(
+            light.kind,
+            LightKind::Rect { .. } | LightKind::Sphere { .. }
+        ) {
+            return invalid(
+                pos(surface),
+                format!(
+                    "light `{}`: only area (`rect` and `sphere`) lights have a surface",
+                    light.name
+                ),
+            );
+        }
+        match material_index.get(&surface.value) {
+            Some(&m) => light.surface = Some(m),
+            None => {
+                return invalid(
+                    pos(surface),
+                    format!(
+                        "light `{}`: unknown material `{}` for its surface",
+                        light.name, surface.value
+                    ),
+                )
+            }
+        }
+    }
 
     let base = source
         .as_ref()
@@ -474,6 +503,7 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
         name,
         kind,
         intensity,
+        surface: None,
     })
 }
 

@@ -240,6 +240,9 @@ pub struct LightSpec {
     pub samples: Option<Spanned<i64>>,
     pub intensity: Option<Triple>,
     pub attenuation: Option<Spanned<[Num; 3]>>,
+    /// Area lights in the path tracer: the material of the emitting surface, which then also
+    /// reflects light like any surface (Mitsuba's Cornell-box light is white).
+    pub surface: Option<Spanned<String>>,
 }
 
 /// A rectangular area light: `corner + a·u + b·v`, emitting on the side of u × v.

@@ -38,6 +38,8 @@ pub enum LightKind {
 pub struct EmitterHit {
     pub t: f64,
     pub pdf: f64,
+    /// The emitter's unit normal at the hit, facing the ray.
+    pub normal: DVec3,
 }
 
 /// A direction toward an emitter chosen by light sampling.
@@ -54,6 +56,8 @@ pub struct Light {
     pub kind: LightKind,
     /// Iℓ
     pub intensity: DVec3,
+    /// Path tracer: the material of an area light's surface (it reflects as well as emits).
+    pub surface: Option<u32>,
 }
 
 /// What a surface point sees of a light.
@@ -186,6 +190,7 @@ impl Light {
                 );
                 ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then(|| EmitterHit {
                     t,
+                    normal: n,
                     // Area density 1/A turned into solid angle: d²/(cos θ_l · A).
                     pdf: t * t / (-facing * area),
                 })
@@ -201,6 +206,7 @@ impl Light {
                 let t = -b - disc.sqrt();
                 (t > 0.0 && t < t_max).then(|| EmitterHit {
                     t,
+                    normal: (oc + t * ray.dir) / *radius,
                     pdf: cone_pdf(*radius, oc.length()),
                 })
             }

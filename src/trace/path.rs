@@ -13,7 +13,7 @@ use glam::DVec3;
 use super::sampling::{cosine_hemisphere, cosine_pdf, Rng};
 use super::Stats;
 use crate::geometry::Ray;
-use crate::scene::Scene;
+use crate::scene::{Interaction, Scene};
 use crate::shading::lobe::spread;
 use crate::shading::optics::{reflect, refract, schlick};
 use crate::shading::Light;
@@ -50,6 +50,8 @@ struct LightHit<'a> {
     t: f64,
     light: &'a Light,
     pdf: f64,
+    /// The emitter's normal at the hit, facing the ray.
+    normal: DVec3,
 }
 
 /// The power heuristic for two strategies (β = 2).
@@ -82,6 +84,7 @@ impl<'s> PathTracer<'s> {
                     t: h.t,
                     light,
                     pdf: h.pdf,
+                    normal: h.normal,
                 });
             }
         }
@@ -128,35 +131,51 @@ impl<'s> PathTracer<'s> {
             let before = sum;
             let hit = scene.intersect(&ray, 0.0, f64::INFINITY, stats);
             let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
-            if let Some(lh) = self.light_hit(&ray, t_hit) {
+            // Where the path is now: on an emitter (which may reflect too) or an object.
+            let (si, object) = if let Some(lh) = self.light_hit(&ray, t_hit) {
                 let weight = match bsdf_pdf {
                     Some(p) if self.next_event => power_heuristic(p, lh.pdf),
                     _ => 1.0,
                 };
                 sum += throughput * lh.light.intensity * weight;
+                let point = ray.at(lh.t);
                 note(
                     "light",
                     Some(&lh.light.name),
-                    ray.at(lh.t),
+                    point,
                     throughput,
                     sum - before,
                 );
-                break;
-            }
-            let Some(hit) = hit else {
-                sum += throughput * scene.background;
-                note("background", None, ray.at(1.0), throughput, sum - before);
-                break;
+                let Some(material) = lh.light.surface else {
+                    break;
+                };
+                // The light is no object: only point, normal and material are read below.
+                let si = Interaction {
+                    point,
+                    normal: lh.normal,
+                    inside: false,
+                    leaf: 0,
+                    face: 0,
+                    object: 0,
+                    material,
+                };
+                (si, lh.light.name.as_str())
+            } else {
+                let Some(hit) = hit else {
+                    sum += throughput * scene.background;
+                    note("background", None, ray.at(1.0), throughput, sum - before);
+                    break;
+                };
+                let si = scene.interaction(&ray, &hit);
+                sum += throughput * scene.material(si.material).emission;
+                (si, scene.objects[si.object as usize].name.as_str())
             };
-            let si = scene.interaction(&ray, &hit);
             let m = scene.material(si.material);
-            sum += throughput * m.emission;
 
             // Choose a lobe in proportion to its weight.
             let diffuse = m.kd * m.color;
             let weights = [diffuse.max_element(), m.kr, m.kt];
             let total: f64 = weights.iter().sum();
-            let object = &scene.objects[si.object as usize].name;
             if total <= 0.0 || depth + 1 >= self.max_depth {
                 let why = if total <= 0.0 {
                     "absorbed"
