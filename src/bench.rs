@@ -296,9 +296,11 @@ pub fn sweep_csv(knob: Knob, rows: &[SweepRow]) -> String {
     s
 }
 
-/// A log-log plot of RMSE against seconds: white background, axes, one dot per row joined by
-/// lines, and a dashed line of slope −½ (error ∝ 1/√time) through the first point.
-pub fn sweep_plot(rows: &[SweepRow]) -> crate::render::Image {
+/// A log-log plot of RMSE against seconds: white background, axes numbered by decade, one dot
+/// per row labelled with the knob's value and joined by lines, and a dashed line of slope −½
+/// (error ∝ 1/√time) through the first point.
+pub fn sweep_plot(knob: Knob, rows: &[SweepRow]) -> crate::render::Image {
+    use crate::plot_font::{decade, pixels, width};
     use glam::DVec3;
     let (w, h, m) = (640u32, 480u32, 50.0);
     let mut img = crate::render::Image::new(w, h);
@@ -345,15 +347,53 @@ pub fn sweep_plot(rows: &[SweepRow]) -> crate::render::Image {
     let black = DVec3::ZERO;
     line(to_px(x0, y0), to_px(x1, y0), black, false, &mut put);
     line(to_px(x0, y0), to_px(x0, y1), black, false, &mut put);
-    // Decade ticks on both axes.
+    let text = |t: &str, x: f64, y: f64, c: DVec3, put: &mut dyn FnMut(f64, f64, DVec3)| {
+        for (px, py) in pixels(t, x, y, 2.0) {
+            put(px, py, c);
+        }
+    };
+    // Decade ticks on both axes, numbered.
     for d in (x0.ceil() as i32)..=(x1.floor() as i32) {
         let (px, py) = to_px(d as f64, y0);
         line((px, py), (px, py - 8.0), black, false, &mut put);
+        let label = decade(d);
+        text(
+            &label,
+            px - width(&label, 2.0) / 2.0,
+            py + 6.0,
+            black,
+            &mut put,
+        );
     }
     for d in (y0.ceil() as i32)..=(y1.floor() as i32) {
         let (px, py) = to_px(x0, d as f64);
         line((px, py), (px + 8.0, py), black, false, &mut put);
+        let label = decade(d);
+        text(
+            &label,
+            px - width(&label, 2.0) - 4.0,
+            py - 5.0,
+            black,
+            &mut put,
+        );
     }
+    let title = "SECONDS";
+    text(
+        title,
+        (w as f64 - width(title, 2.0)) / 2.0,
+        h as f64 - m + 22.0,
+        black,
+        &mut put,
+    );
+    text("RMSE", 8.0, 12.0, black, &mut put);
+    let legend = format!("DOTS: {}   DASHED: SLOPE -1/2", knob.name().to_uppercase());
+    text(
+        &legend,
+        w as f64 - width(&legend, 2.0) - 12.0,
+        12.0,
+        black,
+        &mut put,
+    );
     let grey = DVec3::splat(0.6);
     let first = pts[0];
     line(
@@ -373,8 +413,18 @@ pub fn sweep_plot(rows: &[SweepRow]) -> crate::render::Image {
             &mut put,
         );
     }
-    for p in &pts {
+    for (p, r) in pts
+        .iter()
+        .zip(rows.iter().filter(|r| r.seconds > 0.0 && r.rmse > 0.0))
+    {
         let (px, py) = to_px(p.0, p.1);
+        text(
+            &format!("{}", r.value),
+            px + 7.0,
+            py - 14.0,
+            DVec3::new(0.8, 0.1, 0.1),
+            &mut put,
+        );
         for dy in -3..=3 {
             for dx in -3..=3 {
                 put(px + dx as f64, py + dy as f64, DVec3::new(0.9, 0.1, 0.1));

@@ -5,6 +5,7 @@ pub mod bench;
 pub mod cli;
 pub mod geometry;
 pub mod lessons;
+mod plot_font;
 pub mod render;
 pub mod scene;
 pub mod shading;

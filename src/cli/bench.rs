@@ -122,7 +122,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 )?;
             }
             if let Some(path) = plot {
-                crate::bench::sweep_plot(&rows).save(&path, crate::render::Encoding::Srgb)?;
+                crate::bench::sweep_plot(knob, &rows).save(&path, crate::render::Encoding::Srgb)?;
             }
         }
         Sweep::Scaling {
