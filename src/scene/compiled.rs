@@ -417,7 +417,9 @@ impl Scene {
             .collect()
     }
 
-    /// Nearest crossing of one object's surface with t_min < t < t_max.
+    /// Nearest crossing of one object's surface with t_min < t < t_max. Kept out of line: its
+    /// segment lists would otherwise give the probes' tight loops a large stack frame.
+    #[inline(never)]
     fn object_hit(
         &self,
         object: u32,
@@ -462,7 +464,7 @@ impl Scene {
 
     /// The hit of one object through its probe: `object_hit`'s answer, found faster for plain
     /// spheres and planes.
-    #[inline]
+    #[inline(always)]
     fn probe_hit(
         &self,
         probe: &Probe,
