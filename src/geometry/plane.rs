@@ -37,7 +37,12 @@ impl Plane {
             // Parallel: `span` is all or nothing, with no finite end.
             return None;
         }
-        let t = -(ray.origin - self.point).dot(self.normal) / rate;
+        let height = (ray.origin - self.point).dot(self.normal);
+        if t_min >= 0.0 && height.is_sign_negative() == rate.is_sign_negative() {
+            // t = −height/rate ≤ 0 (or NaN): behind the ray; no division needed to know.
+            return None;
+        }
+        let t = -height / rate;
         (t > t_min && t < t_max && t.is_finite()).then_some(t)
     }
 }
