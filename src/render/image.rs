@@ -142,7 +142,7 @@ impl SrgbTable {
     #[inline]
     fn encode(&self, c: f64) -> u8 {
         // NaN, negatives and 0 encode as 0; 1 and above as 255 (the formula clamps).
-        if !(c > 0.0) {
+        if c.is_nan() || c <= 0.0 {
             return 0;
         }
         if c >= 1.0 {
