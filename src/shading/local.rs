@@ -26,6 +26,11 @@ pub fn ambient(m: &Material, ia: DVec3) -> DVec3 {
 /// Diffuse (Lambert) and specular terms for a light seen along l with strength fatt·Iℓ = `light`.
 /// n faces the viewer, v points from the surface towards the viewer. Both terms are 0 for a
 /// light behind the surface (n·l ≤ 0).
+///
+/// Always inlined: where the caller ignores `highlight_cos` (the tracer with its recorder off),
+/// the compiler then computes the half vector's square root and division only for the lights
+/// that produce a highlight (ks > 0 and n·l > 0), not for every light on a matte surface.
+#[inline(always)]
 pub fn light_terms(m: &Material, n: DVec3, v: DVec3, l: DVec3, light: DVec3) -> LightTerms {
     let n_dot_l = n.dot(l);
     let highlight_cos = match m.highlight {
