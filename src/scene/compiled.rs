@@ -74,6 +74,7 @@ impl Leaf {
     }
 
     /// The outward unit normal in world space at a world point on `face`.
+    #[inline]
     pub fn normal(&self, p: DVec3, face: u32) -> DVec3 {
         match &self.transform {
             Some(tf) => {
@@ -538,7 +539,9 @@ impl Scene {
         blocker
     }
 
-    /// The shading record of a hit.
+    /// The shading record of a hit. Inlined, with the normal's dispatch, into the tracer: it runs
+    /// once per shaded hit.
+    #[inline]
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
         let leaf = &self.leaves[hit.surface.leaf as usize];
         let point = ray.at(hit.t);
