@@ -322,11 +322,18 @@ fn alternating_ratio(scene: &Scene, tracer: &Tracer, bare: &Bare) {
         black_box(f());
         start.elapsed().as_secs_f64()
     };
+    let with = || render(black_box(scene), |r, s| tracer.radiance(r, s));
+    let without = || render(black_box(scene), |r, s| bare.radiance(r, s));
+    // Which goes first alternates too (ABBA), so a warm-up or clock effect favours neither.
     let mut ratios: Vec<f64> = (0..41)
-        .map(|_| {
-            let a = time(&|| render(black_box(scene), |r, s| tracer.radiance(r, s)));
-            let b = time(&|| render(black_box(scene), |r, s| bare.radiance(r, s)));
-            a / b
+        .map(|round| {
+            if round % 2 == 0 {
+                let a = time(&with);
+                a / time(&without)
+            } else {
+                let b = time(&without);
+                time(&with) / b
+            }
         })
         .collect();
     ratios.sort_by(f64::total_cmp);
