@@ -27,4 +27,22 @@ impl Plane {
             Span::new(f64::NEG_INFINITY, 0, t, 0)
         })
     }
+
+    /// The crossing with t_min < t < t_max (and finite): what the nearest-hit search would take
+    /// from `span` (the finite end past t_min), without building the span.
+    #[inline]
+    pub fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
+        let rate = ray.dir.dot(self.normal);
+        if rate == 0.0 {
+            // Parallel: `span` is all or nothing, with no finite end.
+            return None;
+        }
+        let height = (ray.origin - self.point).dot(self.normal);
+        if t_min >= 0.0 && height.is_sign_negative() == rate.is_sign_negative() {
+            // t = −height/rate ≤ 0 (or NaN): behind the ray; no division needed to know.
+            return None;
+        }
+        let t = -height / rate;
+        (t > t_min && t < t_max && t.is_finite()).then_some(t)
+    }
 }

@@ -56,6 +56,7 @@ impl Shape {
     }
 
     /// The outward unit normal (object space) at a point on `face`.
+    #[inline]
     pub fn normal(&self, p: DVec3, face: u32) -> DVec3 {
         match self {
             Shape::Sphere(s) => s.normal(p),

@@ -106,8 +106,17 @@ impl Image {
     }
 }
 
-/// One channel to 8 bits; NaN becomes 0.
+/// One channel to 8 bits; NaN becomes 0. The sRGB curve is read from a table that gives
+/// exactly `encode_formula`'s answer without calling `powf` per channel.
 pub fn encode(c: f64, encoding: Encoding) -> u8 {
+    match encoding {
+        Encoding::Srgb => srgb_table().encode(c),
+        Encoding::Linear => encode_formula(c, encoding),
+    }
+}
+
+/// The transfer formulas themselves: what `encode` answers, and what its table is built from.
+pub fn encode_formula(c: f64, encoding: Encoding) -> u8 {
     let c = if c.is_nan() { 0.0 } else { c.clamp(0.0, 1.0) };
     let v = match encoding {
         Encoding::Linear => c,
@@ -115,6 +124,72 @@ pub fn encode(c: f64, encoding: Encoding) -> u8 {
         Encoding::Srgb => 1.055 * c.powf(1.0 / 2.4) - 0.055,
     };
     (v * 255.0 + 0.5) as u8
+}
+
+/// Buckets of the table's first guess: the curve is steepest near 0, where it still rises less
+/// than one 8-bit step per bucket, so one comparison usually settles the value.
+const SRGB_BUCKETS: usize = 4096;
+
+/// sRGB encoding as thresholds. The formula is monotone, so its value at c is the number of
+/// thresholds (the least c giving each value 1..=255) at or below c; the bucket of c gives the
+/// value at the bucket's low end, and stepping past the thresholds up to c gives the rest.
+struct SrgbTable {
+    /// thresholds[k]: the least c encoded as k or more (k = 1..=255); thresholds[256] = ∞.
+    thresholds: [f64; 257],
+    /// start[i]: the encoding of i / SRGB_BUCKETS, the lowest in bucket i.
+    start: [u8; SRGB_BUCKETS],
+}
+
+fn srgb_table() -> &'static SrgbTable {
+    static TABLE: std::sync::OnceLock<SrgbTable> = std::sync::OnceLock::new();
+    TABLE.get_or_init(SrgbTable::build)
+}
+
+impl SrgbTable {
+    fn build() -> SrgbTable {
+        let formula = |c: f64| encode_formula(c, Encoding::Srgb);
+        let mut thresholds = [f64::INFINITY; 257];
+        for (k, t) in thresholds.iter_mut().enumerate().take(256).skip(1) {
+            *t = least_reaching(formula, k as u8);
+        }
+        let mut start = [0u8; SRGB_BUCKETS];
+        for (i, s) in start.iter_mut().enumerate() {
+            *s = formula(i as f64 / SRGB_BUCKETS as f64);
+        }
+        SrgbTable { thresholds, start }
+    }
+
+    #[inline]
+    fn encode(&self, c: f64) -> u8 {
+        // NaN, negatives and 0 encode as 0; 1 and above as 255 (the formula clamps).
+        if c.is_nan() || c <= 0.0 {
+            return 0;
+        }
+        if c >= 1.0 {
+            return 255;
+        }
+        // c · 2¹² is exact, so the bucket's bounds are exactly i/4096 ≤ c < (i+1)/4096.
+        let mut v = self.start[(c * SRGB_BUCKETS as f64) as usize];
+        while c >= self.thresholds[v as usize + 1] {
+            v += 1;
+        }
+        v
+    }
+}
+
+/// The least c in [0, 1] with f(c) ≥ k, for a monotone f with f(0) < k ≤ f(1): bisection on
+/// the bit patterns of non-negative doubles, which are ordered like their values.
+fn least_reaching(f: impl Fn(f64) -> u8, k: u8) -> f64 {
+    let (mut below, mut reaching) = (0f64.to_bits(), 1f64.to_bits());
+    while reaching - below > 1 {
+        let mid = below + (reaching - below) / 2;
+        if f(f64::from_bits(mid)) >= k {
+            reaching = mid;
+        } else {
+            below = mid;
+        }
+    }
+    f64::from_bits(reaching)
 }
 
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
@@ -140,4 +215,68 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
         let _ = std::fs::remove_file(&tmp);
         format!("{}: cannot write: {e}", path.display())
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn agrees(c: f64) {
+        assert_eq!(
+            encode(c, Encoding::Srgb),
+            encode_formula(c, Encoding::Srgb),
+            "c = {c:e} ({:#x})",
+            c.to_bits()
+        );
+    }
+
+    #[test]
+    fn srgb_table_is_the_formula_at_every_step_and_bucket_edge() {
+        let table = srgb_table();
+        for &t in &table.thresholds[1..256] {
+            for bits in t.to_bits() - 2..=t.to_bits() + 2 {
+                agrees(f64::from_bits(bits));
+            }
+        }
+        for i in 0..=SRGB_BUCKETS {
+            let c = i as f64 / SRGB_BUCKETS as f64;
+            for bits in c.to_bits().saturating_sub(2)..=c.to_bits() + 2 {
+                agrees(f64::from_bits(bits));
+            }
+        }
+    }
+
+    #[test]
+    fn srgb_table_is_the_formula_everywhere_sampled() {
+        for c in [
+            f64::NAN,
+            -f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            -1.0,
+            -0.0,
+            0.0,
+            f64::MIN_POSITIVE,
+            5e-324,
+            0.0031308,
+            0.5,
+            1.0,
+            1.0 + f64::EPSILON,
+            2.0,
+        ] {
+            agrees(c);
+        }
+        // Uniform in [0, 1.1) and log-uniform down to 1e−12 (xorshift: no dependencies).
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..1_000_000 {
+            agrees(1.1 * next());
+            agrees(10f64.powf(-12.0 * next()));
+        }
+    }
 }

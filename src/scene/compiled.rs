@@ -7,7 +7,9 @@ use glam::DVec3;
 
 use crate::accel::{Aabb, Bvh};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
-use crate::geometry::{first_crossing, Ray, Segment, SegmentList, Shape, Span, Surface, Transform};
+use crate::geometry::{
+    first_crossing, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, Surface, Transform,
+};
 use crate::render::Camera;
 use crate::shading::{Light, Material};
 use crate::trace::Stats;
@@ -72,6 +74,7 @@ impl Leaf {
     }
 
     /// The outward unit normal in world space at a world point on `face`.
+    #[inline]
     pub fn normal(&self, p: DVec3, face: u32) -> DVec3 {
         match &self.transform {
             Some(tf) => {
@@ -102,6 +105,24 @@ pub struct Hit {
     pub t: f64,
     pub object: u32,
     pub surface: Surface,
+}
+
+/// How the hit searches test one object. Plain (untransformed) spheres and planes are tested
+/// directly, computing only t: no object → leaf → shape dispatch and no span. Everything else
+/// goes through `Scene::object_hit`. Both give the same hits (tests/accel.rs checks).
+#[derive(Clone, Debug)]
+enum Probe {
+    Sphere {
+        sphere: Sphere,
+        object: u32,
+        leaf: u32,
+    },
+    Plane {
+        plane: Plane,
+        object: u32,
+        leaf: u32,
+    },
+    Object(u32),
 }
 
 /// The shading record, built only for the hit that is shaded.
@@ -168,9 +189,9 @@ pub struct Scene {
     accel: Accel,
     bvh: Bvh,
     /// Objects the BVH indexes (bounded ones), by BVH item number.
-    bounded: Vec<u32>,
+    bounded: Vec<Probe>,
     /// Objects no box can hold (planes, complements): always tested.
-    unbounded: Vec<u32>,
+    unbounded: Vec<Probe>,
 }
 
 impl LeafSegments for Scene {
@@ -278,12 +299,35 @@ impl Scene {
                 .map(|&i| self.objects[i as usize].bounds)
                 .collect();
             self.bvh = Bvh::build(&boxes);
-            self.bounded = bounded;
-            self.unbounded = unbounded;
+            self.bounded = bounded.into_iter().map(|o| self.probe(o)).collect();
+            self.unbounded = unbounded.into_iter().map(|o| self.probe(o)).collect();
         } else {
             self.bvh = Bvh::default();
             self.bounded = vec![];
-            self.unbounded = (0..self.objects.len() as u32).collect();
+            self.unbounded = (0..self.objects.len() as u32)
+                .map(|o| self.probe(o))
+                .collect();
+        }
+    }
+
+    /// How the hit searches test an object: directly for a plain sphere or plane.
+    fn probe(&self, object: u32) -> Probe {
+        let Geometry::Leaf(leaf) = self.objects[object as usize].geometry else {
+            return Probe::Object(object);
+        };
+        let l = &self.leaves[leaf as usize];
+        match (&l.shape, &l.transform) {
+            (Shape::Sphere(sphere), None) => Probe::Sphere {
+                sphere: sphere.clone(),
+                object,
+                leaf,
+            },
+            (Shape::Plane(plane), None) => Probe::Plane {
+                plane: plane.clone(),
+                object,
+                leaf,
+            },
+            _ => Probe::Object(object),
         }
     }
 
@@ -380,7 +424,9 @@ impl Scene {
             .collect()
     }
 
-    /// Nearest crossing of one object's surface with t_min < t < t_max.
+    /// Nearest crossing of one object's surface with t_min < t < t_max. Kept out of line: its
+    /// segment lists would otherwise give the probes' tight loops a large stack frame.
+    #[inline(never)]
     fn object_hit(
         &self,
         object: u32,
@@ -408,14 +454,6 @@ impl Scene {
                         surface: Surface::new(*leaf, face),
                     });
                 }
-                if let (Shape::Sphere(sphere), None) = (&l.shape, &l.transform) {
-                    let t = sphere.hit(ray, t_min, t_max)?;
-                    return Some(Hit {
-                        t,
-                        object,
-                        surface: Surface::new(*leaf, 0),
-                    });
-                }
                 let s = l.span(ray)?;
                 if s.t_in > t_min {
                     (s.t_in, Surface::new(*leaf, s.face_in as u32))
@@ -431,19 +469,56 @@ impl Scene {
         (t > t_min && t < t_max && t.is_finite()).then_some(Hit { t, object, surface })
     }
 
+    /// The hit of one object through its probe: `object_hit`'s answer, found faster for plain
+    /// spheres and planes.
+    #[inline(always)]
+    fn probe_hit(
+        &self,
+        probe: &Probe,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
+        let (t, object, leaf) = match probe {
+            Probe::Sphere {
+                sphere,
+                object,
+                leaf,
+            } => {
+                stats.primitives_tested += 1;
+                (sphere.hit(ray, t_min, t_max)?, *object, *leaf)
+            }
+            Probe::Plane {
+                plane,
+                object,
+                leaf,
+            } => {
+                stats.primitives_tested += 1;
+                (plane.hit(ray, t_min, t_max)?, *object, *leaf)
+            }
+            Probe::Object(o) => return self.object_hit(*o, ray, t_min, t_max, stats),
+        };
+        Some(Hit {
+            t,
+            object,
+            surface: Surface::new(leaf, 0),
+        })
+    }
+
     /// The nearest hit with t_min < t < t_max.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut limit = t_max;
-        for &o in &self.unbounded {
-            if let Some(h) = self.object_hit(o, ray, t_min, limit, stats) {
+        for p in &self.unbounded {
+            if let Some(h) = self.probe_hit(p, ray, t_min, limit, stats) {
                 limit = h.t;
                 best = Some(h);
             }
         }
         if !self.bounded.is_empty() {
             let visits = self.bvh.closest(ray, t_min, limit, |item, limit| {
-                let h = self.object_hit(self.bounded[item as usize], ray, t_min, limit, stats)?;
+                let h = self.probe_hit(&self.bounded[item as usize], ray, t_min, limit, stats)?;
                 best = Some(h);
                 Some(h.t)
             });
@@ -454,15 +529,15 @@ impl Scene {
 
     /// Any hit with t_min < t < t_max (for shadow rays: the first blocker found).
     pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
-        for &o in &self.unbounded {
-            if let Some(h) = self.object_hit(o, ray, t_min, t_max, stats) {
+        for p in &self.unbounded {
+            if let Some(h) = self.probe_hit(p, ray, t_min, t_max, stats) {
                 return Some(h);
             }
         }
         let mut blocker = None;
         if !self.bounded.is_empty() {
             let (_, visits) = self.bvh.any(ray, t_min, t_max, |item| {
-                blocker = self.object_hit(self.bounded[item as usize], ray, t_min, t_max, stats);
+                blocker = self.probe_hit(&self.bounded[item as usize], ray, t_min, t_max, stats);
                 blocker.is_some()
             });
             stats.bvh_nodes_visited += visits.nodes;
@@ -470,7 +545,9 @@ impl Scene {
         blocker
     }
 
-    /// The shading record of a hit.
+    /// The shading record of a hit. Inlined, with the normal's dispatch, into the tracer: it runs
+    /// once per shaded hit.
+    #[inline]
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
         let leaf = &self.leaves[hit.surface.leaf as usize];
         let point = ray.at(hit.t);

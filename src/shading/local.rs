@@ -24,7 +24,13 @@ pub fn ambient(m: &Material, ia: DVec3) -> DVec3 {
 }
 
 /// Diffuse (Lambert) and specular terms for a light seen along l with strength fatt·Iℓ = `light`.
-/// n faces the viewer, v points from the surface towards the viewer.
+/// n faces the viewer, v points from the surface towards the viewer. Both terms are 0 for a
+/// light behind the surface (n·l ≤ 0).
+///
+/// Always inlined: where the caller ignores `highlight_cos` (the tracer with its recorder off),
+/// the compiler then computes the half vector's square root and division only for the lights
+/// that produce a highlight (ks > 0 and n·l > 0), not for every light on a matte surface.
+#[inline(always)]
 pub fn light_terms(m: &Material, n: DVec3, v: DVec3, l: DVec3, light: DVec3) -> LightTerms {
     let n_dot_l = n.dot(l);
     let highlight_cos = match m.highlight {
@@ -33,9 +39,11 @@ pub fn light_terms(m: &Material, n: DVec3, v: DVec3, l: DVec3, light: DVec3) -> 
     }
     .max(0.0);
     let diffuse = light * m.kd * m.color * n_dot_l.max(0.0);
-    let specular = if m.ks > 0.0 {
-        light * m.ks * highlight_cos.powf(m.shininess)
+    let specular = if m.ks > 0.0 && n_dot_l > 0.0 {
+        light * m.ks * highlight_power(highlight_cos, m.shininess)
     } else {
+        // No highlight from a light behind the surface: it does not light this side at all
+        // (the tracer's shadow factor is 0 there anyway, so this only saves the power).
         DVec3::ZERO
     };
     LightTerms {
@@ -43,5 +51,16 @@ pub fn light_terms(m: &Material, n: DVec3, v: DVec3, l: DVec3, light: DVec3) -> 
         highlight_cos,
         diffuse,
         specular,
+    }
+}
+
+/// cos^m, skipping `powf` where its answer is known exactly: a cosine clamped to 0 (most of a
+/// surface, away from the highlight) gives 0 for any positive exponent.
+#[inline]
+fn highlight_power(cos: f64, m: f64) -> f64 {
+    if cos == 0.0 && m > 0.0 {
+        0.0
+    } else {
+        cos.powf(m)
     }
 }
