@@ -245,7 +245,7 @@ impl Bare<'_> {
         let count = light.shadow_rays();
         let mut visible = 0u32;
         for k in 0..count {
-            let (dir, dist) = match light.shadow_point(k) {
+            let (dir, dist) = match light.shadow_point(k, si.point) {
                 Some(q) => {
                     let to = q - si.point;
                     (to.normalize(), to.length())

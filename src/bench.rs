@@ -231,12 +231,14 @@ pub fn sweep(
 }
 
 /// The reference when none is given: the same scene at a much higher setting (16× the largest
-/// sample count or glossy ray count, depth 64, no adaptive cut-off, or the full grid that
+/// sample count or glossy ray count, 8 levels deeper, no adaptive cut-off, or the full grid that
 /// adaptive antialiasing approximates).
 pub fn reference_for(scene: &Scene, knob: Knob, values: &[f64], seed: u64) -> crate::render::Image {
     let value = match knob {
         Knob::Spp => values.iter().cloned().fold(1.0, f64::max) * 16.0,
-        Knob::Depth => 64.0,
+        // Eight levels beyond the deepest setting: a glass surface doubles the rays at every
+        // level, so "unlimited" would never finish.
+        Knob::Depth => values.iter().cloned().fold(1.0, f64::max) + 8.0,
         Knob::Adaptive | Knob::AaThreshold => 0.0,
         Knob::Glossy => values.iter().cloned().fold(1.0, f64::max) * 16.0,
     };

@@ -90,10 +90,29 @@ fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<crate::rende
     })
 }
 
+/// Where the reference of a sweep is cached: a name hashed from the scene file's bytes, the
+/// knob, its values, the seed and this build's version.
+fn reference_cache(
+    scene: &std::path::Path,
+    knob: crate::bench::Knob,
+    values: &[f64],
+    seed: u64,
+) -> Result<std::path::PathBuf, Failure> {
+    use std::hash::{Hash, Hasher};
+    let bytes = std::fs::read(scene).map_err(|e| Failure(format!("{}: {e}", scene.display())))?;
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    bytes.hash(&mut h);
+    knob.name().hash(&mut h);
+    values.iter().for_each(|v| v.to_bits().hash(&mut h));
+    seed.hash(&mut h);
+    env!("CARGO_PKG_VERSION").hash(&mut h);
+    Ok(std::env::temp_dir().join(format!("raytree-reference-{:016x}.exr", h.finish())))
+}
+
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.sweep {
         Sweep::Sweep {
-            scene,
+            scene: scene_path,
             knob,
             values,
             reference,
@@ -103,14 +122,32 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             plot,
             clamp,
         } => {
-            let scene = super::args::load_scene(&scene, false, super::args::AccelArg::Bvh)?;
+            let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads.unwrap_or(0))
                 .build()?;
             let (w, h) = (scene.camera.width, scene.camera.height);
             let reference = match reference {
                 Some(path) => load_reference(&path, w, h)?,
-                None => pool.install(|| crate::bench::reference_for(&scene, knob, &values, seed)),
+                None => {
+                    // Rendered once at a much higher setting, then kept as a linear EXR in the
+                    // temporary folder, named by everything it depends on.
+                    let cache = reference_cache(&scene_path, knob, &values, seed)?;
+                    match load_reference(&cache, w, h) {
+                        Ok(image) => {
+                            eprintln!("reference: {} (cached)", cache.display());
+                            image
+                        }
+                        Err(_) => {
+                            let image = pool.install(|| {
+                                crate::bench::reference_for(&scene, knob, &values, seed)
+                            });
+                            image.save(&cache, crate::render::Encoding::Linear)?;
+                            eprintln!("reference: rendered, cached in {}", cache.display());
+                            image
+                        }
+                    }
+                }
             };
             let rows = pool
                 .install(|| crate::bench::sweep(&scene, knob, &values, &reference, seed, clamp));

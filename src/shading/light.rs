@@ -291,3 +291,81 @@ fn concentric_disc(a: f64, b: f64) -> (f64, f64) {
     };
     (r * theta.cos(), r * theta.sin())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::trace::sampling::{basis, Rng};
+
+    fn ball() -> Light {
+        Light {
+            name: "ball".into(),
+            kind: LightKind::Sphere {
+                center: DVec3::new(1.0, 3.0, -2.0),
+                radius: 0.8,
+                attenuation: [1.0, 0.0, 0.0],
+                samples: 1,
+            },
+            intensity: DVec3::ONE,
+            surface: None,
+        }
+    }
+
+    /// Chi-square goodness of fit of sphere-light sampling: directions must be uniform in the
+    /// cone the sphere subtends, so (1 − cos θ)/(1 − cos θmax) and φ are uniform.
+    #[test]
+    fn sphere_light_sampling_passes_chi_square() {
+        let light = ball();
+        let p = DVec3::new(0.2, -0.5, 0.3);
+        let LightKind::Sphere { center, radius, .. } = light.kind else {
+            unreachable!()
+        };
+        let axis = (center - p).normalize();
+        let d = (center - p).length();
+        let cos_max = (1.0 - (radius / d).powi(2)).sqrt();
+        let (t, b) = basis(axis);
+        let (nt, np, samples) = (10usize, 12usize, 120_000usize);
+        let mut counts = vec![0f64; nt * np];
+        let mut rng = Rng::for_pixel(4, 5, 6);
+        for _ in 0..samples {
+            let e = light
+                .sample_emitter(p, rng.uniform(), rng.uniform())
+                .unwrap();
+            // The sampled point lies on the sphere, and the density is the cone's.
+            let q = p + e.distance * e.wi;
+            assert!(((q - center).length() - radius).abs() < 1e-9);
+            assert!((e.pdf * 2.0 * std::f64::consts::PI * (1.0 - cos_max) - 1.0).abs() < 1e-9);
+            let u = (1.0 - e.wi.dot(axis)) / (1.0 - cos_max);
+            let phi =
+                e.wi.dot(b)
+                    .atan2(e.wi.dot(t))
+                    .rem_euclid(2.0 * std::f64::consts::PI);
+            let i = ((u * nt as f64) as usize).min(nt - 1);
+            let j = ((phi / (2.0 * std::f64::consts::PI) * np as f64) as usize).min(np - 1);
+            counts[i * np + j] += 1.0;
+        }
+        let expected = samples as f64 / (nt * np) as f64;
+        let chi2: f64 = counts
+            .iter()
+            .map(|c| (c - expected).powi(2) / expected)
+            .sum();
+        // 119 degrees of freedom: the 99.9 % point is about 172.
+        assert!(chi2 < 172.0, "chi² = {chi2}");
+    }
+
+    #[test]
+    fn a_ray_at_a_sphere_light_finds_it_with_the_sampling_density() {
+        let light = ball();
+        let origin = DVec3::new(0.2, -0.5, 0.3);
+        let mut rng = Rng::for_pixel(1, 2, 3);
+        for _ in 0..100 {
+            let e = light
+                .sample_emitter(origin, rng.uniform(), rng.uniform())
+                .unwrap();
+            let ray = crate::geometry::Ray { origin, dir: e.wi };
+            let hit = light.emitter_hit(&ray, f64::INFINITY).unwrap();
+            assert!((hit.t - e.distance).abs() < 1e-9);
+            assert!((hit.pdf - e.pdf).abs() < 1e-9 * e.pdf);
+        }
+    }
+}

@@ -536,7 +536,6 @@ impl<'s> Tracer<'s> {
         let count = light.shadow_rays();
         let mut visible = 0u32;
         let mut first_blocker = None;
-        let origin = self.offset(si, l, si.point);
         for k in 0..count {
             let (dir, dist) = match light.shadow_point(k, si.point) {
                 Some(q) => {
@@ -560,12 +559,14 @@ impl<'s> Tracer<'s> {
             };
             match blocker {
                 None => visible += 1,
-                Some(h) if first_blocker.is_none() => first_blocker = Some((ray, h)),
+                // Only the tree shows the blocker: rendering keeps no note of it.
+                Some(h) if R::ACTIVE && first_blocker.is_none() => first_blocker = Some((ray, h)),
                 Some(_) => {}
             }
         }
         let s = visible as f64 / count as f64;
         if R::ACTIVE {
+            let origin = self.offset(si, l, si.point);
             rec.begin(RayStart {
                 kind: RayKind::Shadow,
                 depth: depth + 1,
