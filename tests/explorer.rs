@@ -981,3 +981,21 @@ fn a_glossy_cone_is_folded_under_its_mean_until_opened() {
     press(&mut app, KeyCode::Right);
     assert!(app.rows().len() >= folded + 4);
 }
+
+#[test]
+fn a_supersampled_pixel_shows_its_rendered_value_above_the_centre_ray() {
+    let mut app = open("lessons/13-antialiasing", ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(1, 1));
+    let scene = app.scene.clone().unwrap();
+    let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
+    let rendered = film.lone_pixel(1, 1, &mut Stats::default());
+    let (value, how) = app.pixel_value.clone().expect("16 spp, adaptive");
+    assert_eq!(value, rendered);
+    assert!(how.contains("adaptive"), "{how}");
+    // The tree itself follows the centre ray, which lands on the card.
+    assert_eq!(app.full_tree.as_ref().unwrap().color, glam::DVec3::ONE);
+    assert!(screen(&app).contains("pixel = 0.625"));
+    // A one-ray scene needs no such line.
+    let plain = open(MIRROR, ColorMode::TrueColor, (160, 48));
+    assert!(plain.pixel_value.is_none());
+}

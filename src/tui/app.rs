@@ -298,6 +298,9 @@ pub struct App {
     /// The tree at `level` while stepping.
     pub level_tree: Option<RayNode>,
     pub tree_stats: Stats,
+    /// The picked pixel's rendered value and how it was sampled, when that is more than the
+    /// one centre ray the tree follows (supersampling, antialiasing, a path tracer).
+    pub pixel_value: Option<(DVec3, String)>,
     pub open: HashSet<NodePath>,
     pub selected: NodePath,
     pub tree_offset: usize,
@@ -336,6 +339,7 @@ impl App {
             full_tree: None,
             level_tree: None,
             tree_stats: Stats::default(),
+            pixel_value: None,
             open: HashSet::new(),
             selected: vec![],
             tree_offset: 0,
@@ -504,7 +508,7 @@ impl App {
     /// Lines the tree panel gives to rows (the level line takes one in level stepping).
     pub fn tree_body_height(&self) -> usize {
         let inner = self.panes().tree.inner(Margin::new(1, 1)).height as usize;
-        inner.saturating_sub(self.level.is_some() as usize)
+        inner.saturating_sub(self.level.is_some() as usize + self.pixel_value.is_some() as usize)
     }
 
     /// Takes the preview job for the worker.
@@ -555,6 +559,7 @@ impl App {
         let full =
             Tracer::with_depth(&scene, self.depth).inspect_with(&ray, &mut rng(), &mut stats);
         self.tree_stats = stats;
+        self.pixel_value = pixel_value(&scene, self.depth, x, y);
         self.full_tree = Some(full);
         if let Some(k) = self.level {
             let k = k.clamp(1, self.depth);
@@ -1436,4 +1441,33 @@ fn parse_pixel(s: &str) -> Option<(u32, u32)> {
         [x, y] => Some((x.parse().ok()?, y.parse().ok()?)),
         _ => None,
     }
+}
+
+/// The rendered value of pixel (x, y) and how it was sampled, when the pixel is more than its
+/// centre ray: several samples, corners, or a path tracer (whose tree is only the Whitted
+/// reading of the scene).
+fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
+    use crate::render::antialias::{Antialias, Filter};
+    use crate::render::film::Film;
+    use crate::render::RenderOptions;
+    let options = RenderOptions {
+        max_depth: depth,
+        ..RenderOptions::of(scene)
+    };
+    let film = Film::new(scene, options);
+    let path = scene.integrator == crate::scene::Integrator::Path;
+    if options.spp <= 1 && options.antialias == Antialias::Grid && !path {
+        return None;
+    }
+    let value = film.lone_pixel(x, y, &mut Stats::default());
+    let mut how = format!("{} spp {}", options.spp, film.antialias().name());
+    if film.splats() && scene.filter == Filter::Gaussian {
+        how.push_str(" gaussian");
+    }
+    if path {
+        how = format!("path, {how} · tree: Whitted reading of its centre ray");
+    } else {
+        how.push_str(" · tree: its centre ray");
+    }
+    Some((value, how))
 }

@@ -34,6 +34,16 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
     let mut lines: Vec<Line> = Vec::new();
+    if let Some((value, how)) = &app.pixel_value {
+        lines.push(Line::from(vec![
+            Span::styled(
+                format!("pixel = {} ", short_color(*value)),
+                themed(app, Style::new().fg(Color::Yellow)),
+            ),
+            swatch(app, *value),
+            Span::raw(format!(" {how}")),
+        ]));
+    }
     if let Some(k) = app.level {
         let mut spans = vec![Span::styled(
             "levels:",
