@@ -34,14 +34,9 @@ fn options(s: &Scene, spp: u32, antialias: Antialias, seed: u64) -> RenderOption
     }
 }
 
+/// The RMSE over all pixels and channels, as `raytree bench` reports it.
 fn rmse(a: &Image, b: &Image) -> f64 {
-    let se: f64 = a
-        .pixels
-        .iter()
-        .zip(&b.pixels)
-        .map(|(x, y)| (*x - *y).length_squared())
-        .sum();
-    (se / (3 * a.pixels.len()) as f64).sqrt()
+    raytree::bench::errors(a, b).0
 }
 
 /// The converged coverage: a 32 × 32 grid in every pixel.

@@ -344,11 +344,7 @@ mod tests {
             let j = ((phi / (2.0 * std::f64::consts::PI) * np as f64) as usize).min(np - 1);
             counts[i * np + j] += 1.0;
         }
-        let expected = samples as f64 / (nt * np) as f64;
-        let chi2: f64 = counts
-            .iter()
-            .map(|c| (c - expected).powi(2) / expected)
-            .sum();
+        let chi2 = crate::trace::sampling::chi_square_uniform(&counts);
         // 119 degrees of freedom: the 99.9 % point is about 172.
         assert!(chi2 < 172.0, "chi² = {chi2}");
     }

@@ -55,6 +55,17 @@ pub fn rectangle(corner: DVec3, u: DVec3, v: DVec3, u1: f64, u2: f64) -> DVec3 {
     corner + u1 * u + u2 * v
 }
 
+/// Pearson's χ² of histogram counts against equal expected counts (the samplers' tests bin
+/// so that every bin is equally likely).
+#[cfg(test)]
+pub(crate) fn chi_square_uniform(counts: &[f64]) -> f64 {
+    let expected = counts.iter().sum::<f64>() / counts.len() as f64;
+    counts
+        .iter()
+        .map(|c| (c - expected).powi(2) / expected)
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -77,11 +88,7 @@ mod tests {
             let j = (phi / (2.0 * PI) * bins_phi as f64).min(bins_phi as f64 - 1.0) as usize;
             counts[i * bins_phi + j] += 1.0;
         }
-        let expected = samples as f64 / (bins_theta * bins_phi) as f64;
-        let chi2: f64 = counts
-            .iter()
-            .map(|c| (c - expected).powi(2) / expected)
-            .sum();
+        let chi2 = chi_square_uniform(&counts);
         // 119 degrees of freedom: the 99.9 % point is about 172.
         assert!(chi2 < 172.0, "chi² = {chi2}");
     }
@@ -102,11 +109,7 @@ mod tests {
             let (i, j) = (((p.x / 2.0) * k as f64) as usize, (p.z * k as f64) as usize);
             counts[i.min(k - 1) * k + j.min(k - 1)] += 1.0;
         }
-        let expected = samples as f64 / (k * k) as f64;
-        let chi2: f64 = counts
-            .iter()
-            .map(|c| (c - expected).powi(2) / expected)
-            .sum();
+        let chi2 = chi_square_uniform(&counts);
         // 63 degrees of freedom: the 99.9 % point is about 104.
         assert!(chi2 < 104.0, "chi² = {chi2}");
     }
