@@ -37,11 +37,6 @@ impl RenderOptions {
     }
 }
 
-/// Kept for callers that want the regular sample pattern.
-pub fn sample_offsets(spp: u32) -> Vec<DVec2> {
-    grid_offsets(spp)
-}
-
 /// Where adaptive antialiasing takes a pixel corner's random numbers from: a stream of its
 /// own, so a corner has the same value for each of the four pixels that share it.
 const CORNER_STREAM: u64 = 0xC0_4E_E5;
@@ -183,29 +178,47 @@ impl<'s> Film<'s> {
         value
     }
 
-    /// The splats of row `sy`'s samples onto rows sy − 2 … sy + 2: weighted sums and weights,
-    /// each pixel's contributions added in a fixed order (source pixel, then sample).
-    fn splat_row(&self, sy: u32, stats: &mut Stats) -> Band {
-        let w = self.scene.camera.width;
-        let mut band = Band::new(w);
-        for sx in 0..w {
-            for s in self.own_samples(sx, sy, stats) {
+    /// Every splat of the samples of row `sy`, columns `columns`: `visit(dy, tx, w, value)`
+    /// for each target pixel (tx, sy + dy) a sample reaches with weight w > 0, in a fixed order
+    /// (source pixel, sample, target row, target column). The image and a lone pixel both
+    /// accumulate through this, so they add the same numbers in the same order.
+    fn splats_of_row(
+        &self,
+        sy: u32,
+        columns: std::ops::RangeInclusive<i64>,
+        stats: &mut Stats,
+        visit: &mut dyn FnMut(i64, i64, f64, DVec3),
+    ) {
+        let w = self.scene.camera.width as i64;
+        for sx in columns {
+            if sx < 0 || sx >= w {
+                continue;
+            }
+            for s in self.own_samples(sx as u32, sy, stats) {
                 let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
                 for dy in -SPLAT_REACH..=SPLAT_REACH {
-                    let ty = sy as i64 + dy;
-                    let wy = gaussian_weight(ty as f64 + 0.5 - py);
-                    for tx in (sx as i64 - SPLAT_REACH)..=(sx as i64 + SPLAT_REACH) {
-                        if tx < 0 || tx >= w as i64 || wy == 0.0 {
-                            continue;
-                        }
+                    let wy = gaussian_weight((sy as i64 + dy) as f64 + 0.5 - py);
+                    if wy == 0.0 {
+                        continue;
+                    }
+                    for tx in (sx - SPLAT_REACH).max(0)..=(sx + SPLAT_REACH).min(w - 1) {
                         let weight = wy * gaussian_weight(tx as f64 + 0.5 - px);
                         if weight > 0.0 {
-                            band.add((dy + SPLAT_REACH) as usize, tx as usize, weight, s.value);
+                            visit(dy, tx, weight, s.value);
                         }
                     }
                 }
             }
         }
+    }
+
+    /// What row `sy`'s samples add to rows sy − 2 … sy + 2.
+    fn splat_row(&self, sy: u32, stats: &mut Stats) -> Band {
+        let w = self.scene.camera.width;
+        let mut band = Band::new(w);
+        self.splats_of_row(sy, 0..=w as i64 - 1, stats, &mut |dy, tx, weight, value| {
+            band.add((dy + SPLAT_REACH) as usize, tx as usize, weight, value)
+        });
         band
     }
 
@@ -214,40 +227,22 @@ impl<'s> Film<'s> {
         if !self.splats() {
             return self.pixel(x, y, &|i, j, s| self.corner(i, j, s), stats);
         }
-        // The rows whose samples reach this pixel, summed as `render` sums them.
+        // The rows whose samples reach this pixel, each summed on its own and then added in
+        // row order, as `render` adds its bands.
         let h = self.scene.camera.height as i64;
+        let (x, y) = (x as i64, y as i64);
         let mut total = Splat::default();
-        for sy in (y as i64 - SPLAT_REACH)..=(y as i64 + SPLAT_REACH) {
-            if sy < 0 || sy >= h {
-                continue;
-            }
-            let band = self.splat_row_onto(sy as u32, x, y, stats);
-            total.add(band.weight, band.sum);
+        for sy in (y - SPLAT_REACH).max(0)..=(y + SPLAT_REACH).min(h - 1) {
+            let mut row = Splat::default();
+            let columns = (x - SPLAT_REACH)..=(x + SPLAT_REACH);
+            self.splats_of_row(sy as u32, columns, stats, &mut |dy, tx, weight, value| {
+                if sy + dy == y && tx == x {
+                    row.add(weight, weight * value);
+                }
+            });
+            total.add(row.weight, row.sum);
         }
         total.value()
-    }
-
-    /// Row `sy`'s splats onto the one pixel (x, y), in `splat_row`'s order.
-    fn splat_row_onto(&self, sy: u32, x: u32, y: u32, stats: &mut Stats) -> Splat {
-        let w = self.scene.camera.width as i64;
-        let mut acc = Splat::default();
-        for sx in (x as i64 - SPLAT_REACH)..=(x as i64 + SPLAT_REACH) {
-            if sx < 0 || sx >= w {
-                continue;
-            }
-            for s in self.own_samples(sx as u32, sy, stats) {
-                let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
-                let wy = gaussian_weight(y as f64 + 0.5 - py);
-                if wy == 0.0 {
-                    continue;
-                }
-                let weight = wy * gaussian_weight(x as f64 + 0.5 - px);
-                if weight > 0.0 {
-                    acc.add(weight, weight * s.value);
-                }
-            }
-        }
-        acc
     }
 }
 

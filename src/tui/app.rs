@@ -1447,7 +1447,7 @@ fn parse_pixel(s: &str) -> Option<(u32, u32)> {
 /// centre ray: several samples, corners, or a path tracer (whose tree is only the Whitted
 /// reading of the scene).
 fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
-    use crate::render::antialias::{Antialias, Filter};
+    use crate::render::antialias::Antialias;
     use crate::render::film::Film;
     use crate::render::RenderOptions;
     let options = RenderOptions {
@@ -1461,7 +1461,7 @@ fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, Stri
     }
     let value = film.lone_pixel(x, y, &mut Stats::default());
     let mut how = format!("{} spp {}", options.spp, film.antialias().name());
-    if film.splats() && scene.filter == Filter::Gaussian {
+    if film.splats() {
         how.push_str(" gaussian");
     }
     if path {
