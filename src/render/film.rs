@@ -104,22 +104,32 @@ impl<'s> Film<'s> {
 
     /// The grid or jittered samples of pixel (x, y), in order, from the pixel's generator.
     pub fn own_samples(&self, x: u32, y: u32, stats: &mut Stats) -> Vec<Sample> {
+        let mut out = Vec::with_capacity(self.offsets.len());
+        self.for_each_own_sample(x, y, stats, &mut |s| out.push(s));
+        out
+    }
+
+    /// `own_samples` without collecting them (the render loop allocates nothing per pixel).
+    fn for_each_own_sample(
+        &self,
+        x: u32,
+        y: u32,
+        stats: &mut Stats,
+        visit: &mut dyn FnMut(Sample),
+    ) {
         let mut rng = Rng::for_pixel(self.options.seed, x, y);
         let (fx, fy) = (x as f64, y as f64);
         let jittered = self.antialias() == Antialias::Jittered;
         let cell = cell(self.offsets.len());
-        self.offsets
-            .iter()
-            .map(|o| {
-                let uv = if jittered {
-                    jitter(*o, cell, &mut rng)
-                } else {
-                    *o
-                };
-                let value = self.sample(fx + uv.x, fy + uv.y, &mut rng, stats);
-                Sample { uv, value }
-            })
-            .collect()
+        for o in &self.offsets {
+            let uv = if jittered {
+                jitter(*o, cell, &mut rng)
+            } else {
+                *o
+            };
+            let value = self.sample(fx + uv.x, fy + uv.y, &mut rng, stats);
+            visit(Sample { uv, value });
+        }
     }
 
     /// Pixel (x, y) from its own samples (box filter) or its corners (adaptive). `corner(i, j)`
@@ -134,8 +144,9 @@ impl<'s> Film<'s> {
     ) -> DVec3 {
         match self.antialias() {
             Antialias::Grid | Antialias::Jittered => {
-                let samples = self.own_samples(x, y, stats);
-                samples.iter().map(|s| s.value).sum::<DVec3>() / samples.len() as f64
+                let mut sum = DVec3::ZERO;
+                self.for_each_own_sample(x, y, stats, &mut |s| sum += s.value);
+                sum / self.offsets.len() as f64
             }
             Antialias::Adaptive { .. } => {
                 let corners = [
@@ -194,7 +205,7 @@ impl<'s> Film<'s> {
             if sx < 0 || sx >= w {
                 continue;
             }
-            for s in self.own_samples(sx as u32, sy, stats) {
+            self.for_each_own_sample(sx as u32, sy, stats, &mut |s| {
                 let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
                 for dy in -SPLAT_REACH..=SPLAT_REACH {
                     let wy = gaussian_weight((sy as i64 + dy) as f64 + 0.5 - py);
@@ -208,7 +219,7 @@ impl<'s> Film<'s> {
                         }
                     }
                 }
-            }
+            });
         }
     }
 
