@@ -6,6 +6,7 @@
 
 use glam::DVec3;
 
+use super::aabb::SlabRay;
 use super::Aabb;
 use crate::geometry::Ray;
 
@@ -200,15 +201,15 @@ impl Bvh {
         if self.nodes.is_empty() {
             return work;
         }
-        let inv = ray.dir.recip();
-        let negative = [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0];
+        let slabs = SlabRay::new(ray.origin, ray.dir.recip());
+        let negative = slabs.negative;
         let mut stack = [0u32; 64];
         let mut top = 1;
         while top > 0 {
             top -= 1;
             let node = &self.nodes[stack[top] as usize];
             work.nodes += 1;
-            if !node.bounds.hit(ray, inv, t_min, t_max) {
+            if !node.bounds.hit_slabs(&slabs, t_min, t_max) {
                 continue;
             }
             if node.count > 0 {
@@ -246,7 +247,7 @@ impl Bvh {
         if self.nodes.is_empty() {
             return (false, work);
         }
-        let inv = ray.dir.recip();
+        let slabs = SlabRay::new(ray.origin, ray.dir.recip());
         let mut stack = [0u32; 64];
         let mut top = 1;
         while top > 0 {
@@ -254,7 +255,7 @@ impl Bvh {
             let index = stack[top];
             let node = &self.nodes[index as usize];
             work.nodes += 1;
-            if !node.bounds.hit(ray, inv, t_min, t_max) {
+            if !node.bounds.hit_slabs(&slabs, t_min, t_max) {
                 continue;
             }
             if node.count > 0 {
