@@ -73,6 +73,7 @@ pub struct LightSample {
 }
 
 impl Light {
+    #[inline]
     pub fn sample(&self, p: DVec3) -> LightSample {
         match &self.kind {
             LightKind::Point {
@@ -87,7 +88,7 @@ impl Light {
                 let to_light = *position - p;
                 let d = to_light.length();
                 LightSample {
-                    l: to_light / d,
+                    l: to_light * d.recip(),
                     distance: d,
                     attenuation: 1.0 / (c0 + c1 * d + c2 * d * d),
                 }

@@ -58,6 +58,16 @@ impl Media {
     }
 }
 
+/// How far a shadow ray that starts `moved` off the surface looks for blockers: up to the light
+/// (the normal is a unit vector, so the offset moved the origin by exactly `moved`).
+fn shadow_reach(distance: f64, moved: f64) -> f64 {
+    if distance.is_finite() {
+        (distance - moved).max(0.0)
+    } else {
+        distance
+    }
+}
+
 /// Options that change how one trace runs, beyond the scene's own settings.
 #[derive(Clone, Copy, Debug)]
 pub struct TraceOptions {
@@ -178,13 +188,13 @@ impl<'s> Tracer<'s> {
             indices: None,
             split: false,
         };
-        self.trace(task, rec, rng, stats).0
+        self.trace(&task, rec, rng, stats).0
     }
 
     /// Traces one ray; returns its intensity and the distance to what it hit (∞ for none).
     fn trace<R: Recorder>(
         &self,
-        task: Task,
+        task: &Task,
         rec: &mut R,
         rng: &mut Rng,
         stats: &mut Stats,
@@ -265,7 +275,7 @@ impl<'s> Tracer<'s> {
 
         // Secondary rays: the mirror direction and Snell's law, weighted by kr and kt.
         if m.kr > 0.0 || m.kt > 0.0 {
-            color += self.secondary(&task, &si, rec, rng, stats);
+            color += self.secondary(task, &si, rec, rng, stats);
         }
         rec.end(color, None);
         (color, hit.t)
@@ -344,8 +354,8 @@ impl<'s> Tracer<'s> {
             };
             sum += kr
                 * match m.glossy {
-                    None => self.child(child, rec, rng, stats),
-                    Some(lobe) => self.bundle(child, task, si, lobe, rec, rng, stats),
+                    None => self.child(&child, rec, rng, stats),
+                    Some(lobe) => self.bundle(&child, task, si, lobe, rec, rng, stats),
                 };
         }
         if kt > 0.0 {
@@ -363,8 +373,8 @@ impl<'s> Tracer<'s> {
                     };
                     sum += kt
                         * match m.frosted {
-                            None => self.child(child, rec, rng, stats),
-                            Some(lobe) => self.bundle(child, task, si, lobe, rec, rng, stats),
+                            None => self.child(&child, rec, rng, stats),
+                            Some(lobe) => self.bundle(&child, task, si, lobe, rec, rng, stats),
                         };
                 }
                 None => {
@@ -416,7 +426,7 @@ impl<'s> Tracer<'s> {
                 indices: Some(Indices { n1, n2 }),
                 split: task.split,
             };
-            return self.child(cut, rec, rng, stats);
+            return self.child(&cut, rec, rng, stats);
         }
         stats.total_internal_reflections += 1;
         rec.begin(RayStart {
@@ -438,7 +448,7 @@ impl<'s> Tracer<'s> {
             indices: None,
             split: task.split,
         };
-        let color = self.child(child, rec, rng, stats);
+        let color = self.child(&child, rec, rng, stats);
         rec.end(color, Some(Termination::TotalInternalReflection));
         color
     }
@@ -446,7 +456,7 @@ impl<'s> Tracer<'s> {
     /// Traces a secondary ray unless the depth limit or the adaptive threshold stops it.
     fn child<R: Recorder>(
         &self,
-        task: Task,
+        task: &Task,
         rec: &mut R,
         rng: &mut Rng,
         stats: &mut Stats,
@@ -484,7 +494,7 @@ impl<'s> Tracer<'s> {
     #[allow(clippy::too_many_arguments)]
     fn bundle<R: Recorder>(
         &self,
-        principal: Task,
+        principal: &Task,
         parent: &Task,
         si: &Interaction,
         lobe: Lobe,
@@ -506,9 +516,9 @@ impl<'s> Tracer<'s> {
                 ray: self.spawn(si, dir, parent),
                 coefficient: 1.0 / n as f64,
                 split: true,
-                ..principal
+                ..*principal
             };
-            sum += self.child(sample, rec, rng, stats);
+            sum += self.child(&sample, rec, rng, stats);
         }
         let mean = sum / n as f64;
         if R::ACTIVE {
@@ -545,12 +555,8 @@ impl<'s> Tracer<'s> {
                 None => (l, distance),
             };
             stats.shadow_rays += 1;
-            let from = self.offset(si, dir, si.point);
-            let t_max = if dist.is_finite() {
-                (dist - (from - si.point).length()).max(0.0)
-            } else {
-                dist
-            };
+            let (from, moved) = self.offset(si, dir, si.point);
+            let t_max = shadow_reach(dist, moved);
             let ray = Ray { origin: from, dir };
             let blocker = if self.options.shadows {
                 self.scene.occluded(&ray, 0.0, t_max, stats)
@@ -566,7 +572,7 @@ impl<'s> Tracer<'s> {
         }
         let s = visible as f64 / count as f64;
         if R::ACTIVE {
-            let origin = self.offset(si, l, si.point);
+            let (origin, moved) = self.offset(si, l, si.point);
             rec.begin(RayStart {
                 kind: RayKind::Shadow,
                 depth: depth + 1,
@@ -575,12 +581,7 @@ impl<'s> Tracer<'s> {
                 weight: 1.0,
                 coefficient: 1.0,
             });
-            let t_max = if distance.is_finite() {
-                (distance - (origin - si.point).length()).max(0.0)
-            } else {
-                distance
-            };
-            rec.shadow(&light.name, t_max, s);
+            rec.shadow(&light.name, shadow_reach(distance, moved), s);
             if let Some((ray, h)) = first_blocker {
                 let bsi = self.scene.interaction(&ray, &h);
                 rec.hit(self.hit_info(&ray, h.t, &bsi));
@@ -613,15 +614,16 @@ impl<'s> Tracer<'s> {
     /// the normal, to the side the new ray travels into, so it cannot hit its own surface.
     fn spawn(&self, si: &Interaction, dir: DVec3, parent: &Task) -> Ray {
         Ray {
-            origin: self.offset(si, dir, parent.ray.origin),
+            origin: self.offset(si, dir, parent.ray.origin).0,
             dir,
         }
     }
 
-    fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> DVec3 {
+    /// The hit point moved off the surface to the side `dir` leaves by, and how far it moved.
+    fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> (DVec3, f64) {
         let bias = self.scene.bias(from, si.point);
-        let side = if dir.dot(si.normal) >= 0.0 { 1.0 } else { -1.0 };
-        si.point + side * bias * si.normal
+        let side = if dir.dot(si.normal) >= 0.0 { bias } else { -bias };
+        (si.point + side * si.normal, bias)
     }
 
     fn hit_info(&self, ray: &Ray, t: f64, si: &Interaction) -> HitInfo {
