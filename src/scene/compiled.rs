@@ -497,7 +497,16 @@ impl Scene {
                 stats.primitives_tested += 1;
                 (plane.hit(ray, t_min, t_max)?, *object, *leaf)
             }
-            Probe::Object(o) => return self.object_hit(*o, ray, t_min, t_max, stats),
+            Probe::Object(o) => {
+                // The object's box first: a ray that misses it, or meets it only beyond the
+                // nearest hit so far, skips the object (and all of a CSG tree's evaluation).
+                let bounds = &self.objects[*o as usize].bounds;
+                if !bounds.hit(ray, ray.dir.recip(), t_min, t_max) {
+                    stats.bounds_skipped += 1;
+                    return None;
+                }
+                return self.object_hit(*o, ray, t_min, t_max, stats);
+            }
         };
         Some(Hit {
             t,

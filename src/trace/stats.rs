@@ -19,6 +19,9 @@ pub struct Stats {
     pub total_internal_reflections: u64,
     /// CSG subtrees skipped (bounding box missed, or empty operand of ∩ / −).
     pub csg_pruned: u64,
+    /// Objects not tested because the ray misses their bounding box (or meets it only beyond
+    /// the nearest hit so far). Plain spheres and planes are tested directly, without a box.
+    pub bounds_skipped: u64,
     /// BVH nodes whose box was tested.
     pub bvh_nodes_visited: u64,
     /// Object (or primitive) intersection routines run.
@@ -45,6 +48,7 @@ impl Stats {
         self.adaptive_cutoffs += o.adaptive_cutoffs;
         self.total_internal_reflections += o.total_internal_reflections;
         self.csg_pruned += o.csg_pruned;
+        self.bounds_skipped += o.bounds_skipped;
         self.bvh_nodes_visited += o.bvh_nodes_visited;
         self.primitives_tested += o.primitives_tested;
         self.glossy_rays += o.glossy_rays;
@@ -61,6 +65,7 @@ impl Stats {
         line("  shadow", self.shadow_rays);
         line("  reflection", self.reflection_rays);
         line("  refraction", self.refraction_rays);
+        line("  of which glossy/frosted samples", self.glossy_rays);
         line(
             "skipped: shadow rays, light behind (n·l ≤ 0)",
             self.shadow_skipped_backfacing,
@@ -80,8 +85,8 @@ impl Stats {
         );
         line("skipped: CSG subtrees pruned", self.csg_pruned);
         line("BVH nodes visited", self.bvh_nodes_visited);
+        line("skipped: objects, bounding box missed", self.bounds_skipped);
         line("objects/primitives tested", self.primitives_tested);
-        line("  of which glossy/frosted samples", self.glossy_rays);
         line("adaptive antialiasing: squares split", self.aa_splits);
         s.push_str(&format!(
             "{:<40} {:>14.2}\n{:<40} {:>14.2}\n",
