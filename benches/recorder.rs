@@ -13,6 +13,7 @@ use raytree::scene::{Interaction, Scene};
 use raytree::shading::local::{ambient, light_terms};
 use raytree::shading::optics::{reflect, refract, schlick};
 use raytree::shading::Fresnel;
+use raytree::trace::sampling::Rng;
 use raytree::trace::{Stats, Tracer};
 use std::hint::black_box;
 
@@ -30,13 +31,13 @@ fn scene() -> Scene {
 }
 
 /// One primary ray per pixel centre, row by row.
-fn render(scene: &Scene, radiance: impl Fn(&Ray, &mut Stats) -> DVec3) -> Vec<DVec3> {
+fn render(scene: &Scene, radiance: impl FnMut(&Ray, &mut Stats) -> DVec3) -> Vec<DVec3> {
     render_counting(scene, radiance).0
 }
 
 fn render_counting(
     scene: &Scene,
-    radiance: impl Fn(&Ray, &mut Stats) -> DVec3,
+    mut radiance: impl FnMut(&Ray, &mut Stats) -> DVec3,
 ) -> (Vec<DVec3>, Stats) {
     let mut stats = Stats::default();
     let cam = &scene.camera;
@@ -45,6 +46,14 @@ fn render_counting(
         .map(|(x, y)| radiance(&cam.ray(x as f64 + 0.5, y as f64 + 0.5), &mut stats))
         .collect();
     (pixels, stats)
+}
+
+/// The render through the tracer. Its random numbers (for glossy surfaces, which this scene
+/// lacks) come from one generator for the whole image, as the renderer makes one per pixel:
+/// none is made per ray.
+fn traced(scene: &Scene, tracer: &Tracer) -> (Vec<DVec3>, Stats) {
+    let mut rng = Rng::for_pixel(0, 0, 0);
+    render_counting(scene, |r, s| tracer.radiance_with(r, &mut rng, s))
 }
 
 /// The Whitted recursion with nothing but the arithmetic and the statistics (which are not the
@@ -253,9 +262,9 @@ impl Bare<'_> {
                 None => (l, distance),
             };
             stats.shadow_rays += 1;
-            let from = self.offset(si, dir, si.point);
+            let (from, moved) = self.offset(si, dir, si.point);
             let t_max = if dist.is_finite() {
-                (dist - (from - si.point).length()).max(0.0)
+                (dist - moved).max(0.0)
             } else {
                 dist
             };
@@ -269,15 +278,19 @@ impl Bare<'_> {
 
     fn spawn(&self, si: &Interaction, dir: DVec3, from: DVec3) -> Ray {
         Ray {
-            origin: self.offset(si, dir, from),
+            origin: self.offset(si, dir, from).0,
             dir,
         }
     }
 
-    fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> DVec3 {
+    fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> (DVec3, f64) {
         let bias = self.scene.bias(from, si.point);
-        let side = if dir.dot(si.normal) >= 0.0 { 1.0 } else { -1.0 };
-        si.point + side * bias * si.normal
+        let side = if dir.dot(si.normal) >= 0.0 {
+            bias
+        } else {
+            -bias
+        };
+        (si.point + side * si.normal, bias)
     }
 }
 
@@ -289,7 +302,7 @@ fn recorder(c: &mut Criterion) {
     );
     let tracer = Tracer::new(&scene);
     let bare = Bare { scene: &scene };
-    let (with, counted) = render_counting(&scene, |r, s| tracer.radiance(r, s));
+    let (with, counted) = traced(&scene, &tracer);
     let (without, replica_counted) = render_counting(&scene, |r, s| bare.radiance(r, s));
     assert_eq!(
         counted, replica_counted,
@@ -306,7 +319,7 @@ fn recorder(c: &mut Criterion) {
     g.sample_size(30);
     g.measurement_time(std::time::Duration::from_secs(8));
     g.bench_function("tracer_with_no_recorder", |b| {
-        b.iter(|| render(black_box(&scene), |r, s| tracer.radiance(r, s)))
+        b.iter(|| traced(black_box(&scene), &tracer).0)
     });
     g.bench_function("replica_without_recorder", |b| {
         b.iter(|| render(black_box(&scene), |r, s| bare.radiance(r, s)))
@@ -322,7 +335,7 @@ fn alternating_ratio(scene: &Scene, tracer: &Tracer, bare: &Bare) {
         black_box(f());
         start.elapsed().as_secs_f64()
     };
-    let with = || render(black_box(scene), |r, s| tracer.radiance(r, s));
+    let with = || traced(black_box(scene), tracer).0;
     let without = || render(black_box(scene), |r, s| bare.radiance(r, s));
     // Which goes first alternates too (ABBA), so a warm-up or clock effect favours neither.
     let mut ratios: Vec<f64> = (0..41)

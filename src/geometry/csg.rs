@@ -400,8 +400,16 @@ mod tests {
         let empty = list(&[], 1);
         for op in [CsgOp::Union, CsgOp::Intersection, CsgOp::Difference] {
             for l in &lists {
-                assert_eq!(combine(op, l, &empty), sweep(op, l, &empty), "{op:?} {l:?} ∅");
-                assert_eq!(combine(op, &empty, l), sweep(op, &empty, l), "{op:?} ∅ {l:?}");
+                assert_eq!(
+                    combine(op, l, &empty),
+                    sweep(op, l, &empty),
+                    "{op:?} {l:?} ∅"
+                );
+                assert_eq!(
+                    combine(op, &empty, l),
+                    sweep(op, &empty, l),
+                    "{op:?} ∅ {l:?}"
+                );
             }
         }
     }

@@ -556,7 +556,7 @@ impl Scene {
 
     /// The shading record of a hit. Inlined, with the normal's dispatch, into the tracer: it runs
     /// once per shaded hit.
-    #[inline]
+    #[inline(always)]
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
         let leaf = &self.leaves[hit.surface.leaf as usize];
         let point = ray.at(hit.t);

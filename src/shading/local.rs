@@ -86,7 +86,9 @@ mod tests {
     /// or huge exponents take `powf` itself.
     #[test]
     fn highlight_power_matches_powf() {
-        for m in [0.5, 1.0, 2.0, 7.5, 20.0, 40.0, 100.0, 200.0, 1000.0, 1024.0, 5000.0] {
+        for m in [
+            0.5, 1.0, 2.0, 7.5, 20.0, 40.0, 100.0, 200.0, 1000.0, 1024.0, 5000.0,
+        ] {
             for k in 0..=1000 {
                 let cos = k as f64 / 1000.0;
                 let (fast, exact) = (highlight_power(cos, m), cos.powf(m));

@@ -622,7 +622,11 @@ impl<'s> Tracer<'s> {
     /// The hit point moved off the surface to the side `dir` leaves by, and how far it moved.
     fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> (DVec3, f64) {
         let bias = self.scene.bias(from, si.point);
-        let side = if dir.dot(si.normal) >= 0.0 { bias } else { -bias };
+        let side = if dir.dot(si.normal) >= 0.0 {
+            bias
+        } else {
+            -bias
+        };
         (si.point + side * si.normal, bias)
     }
 
