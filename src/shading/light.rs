@@ -111,6 +111,7 @@ impl Light {
     }
 
     /// How many shadow rays a shaded point sends to this light: 1, or n × n for an area light.
+    #[inline]
     pub fn shadow_rays(&self) -> u32 {
         match &self.kind {
             LightKind::Rect { samples, .. } | LightKind::Sphere { samples, .. } => {
@@ -124,8 +125,10 @@ impl Light {
     /// an n × n grid on the rectangle, or on the disc the sphere shows p (mapped by Shirley
     /// and Chiu's concentric map). Deterministic, so soft shadows need no random numbers.
     /// None for point and directional lights.
+    #[inline]
     pub fn shadow_point(&self, k: u32, p: DVec3) -> Option<DVec3> {
         match &self.kind {
+            LightKind::Point { .. } | LightKind::Directional { .. } => None,
             LightKind::Sphere {
                 center,
                 radius,
@@ -154,7 +157,6 @@ impl Light {
                         + ((k / n) as f64 + 0.5) * step * *v,
                 )
             }
-            _ => None,
         }
     }
 
