@@ -20,6 +20,11 @@ impl Sphere {
     /// c = |o − c|² − r² (see `Quadratic::roots` for how it is solved stably).
     pub fn span(&self, ray: &Ray) -> Option<Span> {
         let q = Quadratic::new(self, ray);
+        // A line that clearly passes the sphere by needs no division or square root (the test
+        // never rejects a line `roots` would accept: see `MISS_MARGIN`).
+        if q.clearly_misses() {
+            return None;
+        }
         let (t0, t1) = q.roots()?;
         Some(Span::new(t0, 0, t1, 0))
     }
@@ -169,5 +174,40 @@ mod tests {
             "{}",
             span.t_out
         );
+    }
+
+    /// The division-free miss test only ever rejects lines that have no roots: swept over
+    /// lines that pass the centre at (1 ± 10⁻ᵏ) radii (tangent and just inside included), from
+    /// near and far, at scales from 10⁻⁴ to 10⁶.
+    #[test]
+    fn the_miss_test_never_rejects_a_line_with_roots() {
+        for scale_exp in -4..=6 {
+            let k = 10f64.powi(scale_exp);
+            let s = Sphere {
+                center: DVec3::new(0.3, -0.2, 0.1) * k,
+                radius: 0.7 * k,
+            };
+            for distance in [1.5, 10.0, 1e3, 1e6] {
+                for offset_exp in 1..=17 {
+                    for sign in [-1.0, 0.0, 1.0] {
+                        let offset = sign * 10f64.powi(-offset_exp);
+                        // From `origin`, aim so the line passes the centre at (1 + offset)·r.
+                        let origin = s.center + DVec3::new(-distance, 0.0, 0.0) * s.radius;
+                        let sin = (1.0 + offset) / distance;
+                        let dir = DVec3::new((1.0 - sin * sin).sqrt(), sin, 0.0);
+                        let q = Quadratic::new(&s, &Ray { origin, dir });
+                        if q.clearly_misses() {
+                            assert!(q.roots().is_none(), "{s:?} {origin} {dir}");
+                        } else {
+                            // The margin grows with the size of the terms (the distance), but
+                            // from up to 10 radii away every line that misses by 10⁻³ radii
+                            // or more is rejected: the test has teeth.
+                            let clear = sign > 0.0 && offset_exp <= 3 && distance <= 10.0;
+                            assert!(!clear, "{offset}: {s:?} {origin}");
+                        }
+                    }
+                }
+            }
+        }
     }
 }
