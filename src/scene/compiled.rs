@@ -204,9 +204,11 @@ impl LeafSegments for Scene {
 }
 
 /// Below this many bounded objects the BVH buys nothing. Measured with `benches/intersect.rs`
-/// (3072 primary rays, spheres): 4 objects 223 µs brute force vs 219 µs BVH (a tie), 8 objects
-/// 409 µs vs 280 µs, 64 objects 3.0 ms vs 0.49 ms, 1000 objects 47 ms vs 1.4 ms.
-const BVH_MIN_OBJECTS: usize = 4;
+/// (3072 primary rays, spheres; brute force vs BVH): 4 objects 97 µs vs 191 µs, 8 objects
+/// 141 µs vs 206 µs, 16 objects 229–322 µs vs 286 µs (a tie), 64 objects 0.81 ms vs 0.40 ms,
+/// 1000 objects 15 ms vs 1.2 ms. (Brute force rejects most spheres in a few instructions, in a
+/// loop the processor predicts; shadow rays, which stop at the first blocker, favour it more.)
+const BVH_MIN_OBJECTS: usize = 16;
 
 impl Scene {
     #[allow(clippy::too_many_arguments)]
