@@ -293,35 +293,36 @@ fn sweep(op: CsgOp, a: &[Segment], b: &[Segment]) -> SegmentList {
             (None, None) => break,
         };
         let before = op.keeps(in_a, in_b);
-        // The surface the result crosses here, preferring A's boundary, then B's. B's surfaces
-        // bound a difference from the other side: flip them.
-        let mut candidates: smallvec::SmallVec<[(bool, Surface); 4]> = smallvec::SmallVec::new();
+        // The surface the result crosses here: the first boundary at t that enters (or
+        // leaves) as the result does, A's before B's; failing that, the first one at t. B's
+        // surfaces bound a difference from the other side: flip them.
+        let mut first: [Option<Surface>; 2] = [None, None]; // [leaving, entering]
+        let mut any: Option<Surface> = None;
+        let mut note = |entering: bool, surface: Surface| {
+            first[entering as usize].get_or_insert(surface);
+            any.get_or_insert(surface);
+        };
         while let Some(e) = event(a, i).filter(|e| e.t == t) {
             in_a = e.entering;
-            candidates.push((e.entering, e.surface));
+            note(e.entering, e.surface);
             i += 1;
         }
         while let Some(e) = event(b, j).filter(|e| e.t == t) {
             in_b = e.entering;
             let flip = op == CsgOp::Difference;
             let s = if flip { e.surface.flipped() } else { e.surface };
-            candidates.push((e.entering != flip, s));
+            note(e.entering != flip, s);
             j += 1;
         }
-        if candidates.is_empty() {
+        let Some(fallback) = any else {
             // Only a NaN boundary is left (no t equals it): nothing more can be combined.
             break;
-        }
+        };
         let after = op.keeps(in_a, in_b);
         if before == after {
             continue;
         }
-        let surface = candidates
-            .iter()
-            .find(|(entering, _)| *entering == after)
-            .or(candidates.first())
-            .map(|c| c.1)
-            .expect("a change of state needs an event");
+        let surface = first[after as usize].unwrap_or(fallback);
         if after {
             open = Some((t, surface));
         } else if let Some((t_in, enter)) = open.take() {
