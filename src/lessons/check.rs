@@ -1132,12 +1132,7 @@ fn collect_lines(n: &RayNode, out: &mut Vec<String>) {
         collect_lines(c, out);
     }
     let label = format!("I({} depth {})", n.kind.name(), n.depth);
-    if let Some(k) = n.samples {
-        let lobe = if n.kind == RayKind::Reflection {
-            "glossy reflection"
-        } else {
-            "frosted refraction"
-        };
+    if let Some((lobe, k)) = n.cone() {
         out.push(format!(
             "I({lobe} depth {}) = (I_1 + … + I_{k})/{k}, the mean of its sampled rays = {}",
             n.depth,

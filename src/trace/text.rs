@@ -55,12 +55,7 @@ pub fn node_title(n: &RayNode) -> String {
         (Some(h), _) => format!("hit {}", h.object),
         (None, _) => "no hit".to_string(),
     };
-    if let Some(k) = n.samples {
-        let lobe = if n.kind == RayKind::Reflection {
-            "glossy reflection"
-        } else {
-            "frosted refraction"
-        };
+    if let Some((lobe, k)) = n.cone() {
         return format!(
             "{lobe} (depth {}): mean of {k} sampled ray{}, I = {}",
             n.depth,

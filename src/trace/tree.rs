@@ -153,6 +153,16 @@ pub struct RayNode {
 }
 
 impl RayNode {
+    /// For a glossy or frosted cone: its name and how many rays it averages.
+    pub fn cone(&self) -> Option<(&'static str, u32)> {
+        let name = if self.kind == RayKind::Reflection {
+            "glossy reflection"
+        } else {
+            "frosted refraction"
+        };
+        self.samples.map(|k| (name, k))
+    }
+
     /// Follows a path of child kinds ("reflection/refraction") from this node.
     pub fn find(&self, path: &str) -> Option<&RayNode> {
         let mut node = self;

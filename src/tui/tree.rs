@@ -200,21 +200,15 @@ pub fn outcome(n: &RayNode) -> String {
 
 /// The text of a tree line without the intensity: "reflection: hit b".
 pub fn label(n: &RayNode) -> String {
+    if let Some((lobe, k)) = n.cone() {
+        return format!("{lobe}: mean of {k} rays");
+    }
     match n.kind {
         RayKind::Shadow => format!(
             "shadow → {}: {}, s = {}",
             n.light.as_deref().unwrap_or("?"),
             outcome(n),
             short(n.shadow.unwrap_or(0.0))
-        ),
-        _ if n.samples.is_some() => format!(
-            "{}: mean of {} rays",
-            if n.kind == RayKind::Reflection {
-                "glossy reflection"
-            } else {
-                "frosted refraction"
-            },
-            n.samples.unwrap_or(0)
         ),
         k => format!("{}: {}", k.name(), outcome(n)),
     }
