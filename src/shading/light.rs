@@ -88,7 +88,7 @@ impl Light {
                 let to_light = *position - p;
                 let d = to_light.length();
                 LightSample {
-                    l: to_light * d.recip(),
+                    l: to_light / d,
                     distance: d,
                     attenuation: 1.0 / (c0 + c1 * d + c2 * d * d),
                 }
