@@ -14,6 +14,7 @@ use raytree::shading::local::{ambient, light_terms};
 use raytree::shading::optics::{reflect, refract, schlick};
 use raytree::shading::Fresnel;
 use raytree::trace::sampling::Rng;
+use raytree::trace::tracer::shadow_reach;
 use raytree::trace::{Stats, Tracer};
 use std::hint::black_box;
 
@@ -262,12 +263,8 @@ impl Bare<'_> {
                 None => (l, distance),
             };
             stats.shadow_rays += 1;
-            let (from, moved) = self.offset(si, dir, si.point);
-            let t_max = if dist.is_finite() {
-                (dist - moved).max(0.0)
-            } else {
-                dist
-            };
+            let (from, moved) = self.scene.offset(si, dir, si.point);
+            let t_max = shadow_reach(dist, moved);
             let ray = Ray { origin: from, dir };
             if self.scene.occluded(&ray, 0.0, t_max, stats).is_none() {
                 visible += 1;
@@ -278,19 +275,9 @@ impl Bare<'_> {
 
     fn spawn(&self, si: &Interaction, dir: DVec3, from: DVec3) -> Ray {
         Ray {
-            origin: self.offset(si, dir, from).0,
+            origin: self.scene.offset(si, dir, from).0,
             dir,
         }
-    }
-
-    fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> (DVec3, f64) {
-        let bias = self.scene.bias(from, si.point);
-        let side = if dir.dot(si.normal) >= 0.0 {
-            bias
-        } else {
-            -bias
-        };
-        (si.point + side * si.normal, bias)
     }
 }
 

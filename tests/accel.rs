@@ -168,3 +168,26 @@ fn rays_at_the_torus_mesh_edges_and_vertices_never_leak() {
     }
     assert!(aimed > 1000);
 }
+
+/// Bounding boxes change how much work CSG takes, never the image: the CSG peer scene renders
+/// the same with them on and off. On, rays skip whole objects by their boxes and subtrees by
+/// theirs, and fewer primitives are tested; `--no-csg-pruning` turns every CSG box off, the
+/// object's own box included.
+#[test]
+fn csg_bounding_boxes_skip_work_but_never_change_the_image() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/peers/csg.yaml");
+    let mut scene = raytree::scene::load(&path, &Limits::default()).unwrap();
+    scene.camera = scene.camera.resized(80, 60);
+    let options = RenderOptions {
+        spp: 1,
+        ..RenderOptions::of(&scene)
+    };
+    let (boxed, with) = render_simple(&scene, options);
+    scene.csg_pruning = false;
+    let (unboxed, without) = render_simple(&scene, options);
+    assert_eq!(boxed, unboxed);
+    assert_eq!(with.rays(), without.rays());
+    assert!(with.bounds_skipped > 0 && with.csg_pruned > 0);
+    assert_eq!((without.bounds_skipped, without.csg_pruned), (0, 0));
+    assert!(with.primitives_tested < without.primitives_tested);
+}

@@ -360,20 +360,33 @@ impl Scene {
         match &self.objects[object as usize].geometry {
             Geometry::Leaf(leaf) => self.leaves[*leaf as usize].segments(*leaf, ray),
             Geometry::Csg(root) => {
-                let r = CsgRay {
-                    ray,
-                    inv_dir: ray.dir.recip(),
-                    t_min,
-                    t_max,
-                    use_bounds: self.csg_pruning,
-                    prune: self.csg_pruning,
-                };
-                let mut work = CsgWork::default();
-                let list = root.segments(self, &r, &mut work);
-                stats.csg_pruned += work.pruned;
-                list
+                self.csg_segments(root, ray, ray.dir.recip(), t_min, t_max, stats)
             }
         }
+    }
+
+    /// A CSG tree's segment list; `inv_dir` is 1/d, for its bounding boxes.
+    fn csg_segments(
+        &self,
+        root: &CsgNode,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> SegmentList {
+        let r = CsgRay {
+            ray,
+            inv_dir,
+            t_min,
+            t_max,
+            use_bounds: self.csg_pruning,
+            prune: self.csg_pruning,
+        };
+        let mut work = CsgWork::default();
+        let list = root.segments(self, &r, &mut work);
+        stats.csg_pruned += work.pruned;
+        list
     }
 
     /// The CSG trace of an object along the whole line of the ray (for `raytree csg`).
@@ -433,6 +446,7 @@ impl Scene {
         &self,
         object: u32,
         ray: &Ray,
+        inv_dir: DVec3,
         t_min: f64,
         t_max: f64,
         stats: &mut Stats,
@@ -463,8 +477,8 @@ impl Scene {
                     (s.t_out, Surface::new(*leaf, s.face_out as u32))
                 }
             }
-            Geometry::Csg(_) => first_crossing(
-                &self.object_segments(object, ray, t_min, t_max, stats),
+            Geometry::Csg(root) => first_crossing(
+                &self.csg_segments(root, ray, inv_dir, t_min, t_max, stats),
                 t_min,
             )?,
         };
@@ -502,12 +516,15 @@ impl Scene {
             Probe::Object(o) => {
                 // The object's box first: a ray that misses it, or meets it only beyond the
                 // nearest hit so far, skips the object (and all of a CSG tree's evaluation).
-                let bounds = &self.objects[*o as usize].bounds;
-                if !bounds.hit(ray, ray.dir.recip(), t_min, t_max) {
+                // `--no-csg-pruning` switches a CSG tree's boxes off, this one included.
+                let object = &self.objects[*o as usize];
+                let inv_dir = ray.dir.recip();
+                let boxed = self.csg_pruning || !matches!(object.geometry, Geometry::Csg(_));
+                if boxed && !object.bounds.hit(ray, inv_dir, t_min, t_max) {
                     stats.bounds_skipped += 1;
                     return None;
                 }
-                return self.object_hit(*o, ray, t_min, t_max, stats);
+                return self.object_hit(*o, ray, inv_dir, t_min, t_max, stats);
             }
         };
         Some(Hit {
@@ -589,9 +606,23 @@ impl Scene {
     /// (|o| + |p|), so 1e−10 of them clears it by a factor of ~10⁶ while staying far below the
     /// size of any feature a scene at that scale can have (tests/robustness.rs sweeps scales
     /// 1e−4…1e6 and offsets to 1e6).
+    #[inline]
     pub fn bias(&self, origin: DVec3, point: DVec3) -> f64 {
         self.shadow_bias.unwrap_or_else(|| {
             (1e-10 * (origin.abs().max_element() + point.abs().max_element())).max(1e-300)
         })
+    }
+
+    /// The hit point of a ray from `from`, moved off the surface to the side `dir` leaves by
+    /// (so a ray from there cannot hit the surface again), and how far it moved.
+    #[inline]
+    pub fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> (DVec3, f64) {
+        let bias = self.bias(from, si.point);
+        let side = if dir.dot(si.normal) >= 0.0 {
+            bias
+        } else {
+            -bias
+        };
+        (si.point + side * si.normal, bias)
     }
 }

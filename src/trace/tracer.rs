@@ -60,7 +60,7 @@ impl Media {
 
 /// How far a shadow ray that starts `moved` off the surface looks for blockers: up to the light
 /// (the normal is a unit vector, so the offset moved the origin by exactly `moved`).
-fn shadow_reach(distance: f64, moved: f64) -> f64 {
+pub fn shadow_reach(distance: f64, moved: f64) -> f64 {
     if distance.is_finite() {
         (distance - moved).max(0.0)
     } else {
@@ -555,7 +555,7 @@ impl<'s> Tracer<'s> {
                 None => (l, distance),
             };
             stats.shadow_rays += 1;
-            let (from, moved) = self.offset(si, dir, si.point);
+            let (from, moved) = self.scene.offset(si, dir, si.point);
             let t_max = shadow_reach(dist, moved);
             let ray = Ray { origin: from, dir };
             let blocker = if self.options.shadows {
@@ -572,7 +572,7 @@ impl<'s> Tracer<'s> {
         }
         let s = visible as f64 / count as f64;
         if R::ACTIVE {
-            let (origin, moved) = self.offset(si, l, si.point);
+            let (origin, moved) = self.scene.offset(si, l, si.point);
             rec.begin(RayStart {
                 kind: RayKind::Shadow,
                 depth: depth + 1,
@@ -614,20 +614,9 @@ impl<'s> Tracer<'s> {
     /// the normal, to the side the new ray travels into, so it cannot hit its own surface.
     fn spawn(&self, si: &Interaction, dir: DVec3, parent: &Task) -> Ray {
         Ray {
-            origin: self.offset(si, dir, parent.ray.origin).0,
+            origin: self.scene.offset(si, dir, parent.ray.origin).0,
             dir,
         }
-    }
-
-    /// The hit point moved off the surface to the side `dir` leaves by, and how far it moved.
-    fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> (DVec3, f64) {
-        let bias = self.scene.bias(from, si.point);
-        let side = if dir.dot(si.normal) >= 0.0 {
-            bias
-        } else {
-            -bias
-        };
-        (si.point + side * si.normal, bias)
     }
 
     fn hit_info(&self, ray: &Ray, t: f64, si: &Interaction) -> HitInfo {
