@@ -256,19 +256,101 @@ fn event(list: &[Segment], k: usize) -> Option<Event> {
     })
 }
 
-/// Combine two segment lists: the sweep below, or its answer at once when one list is empty
-/// (the ray missed that operand, often by its bounding box). ∅ ∩ B, A ∩ ∅ and ∅ − B are empty;
-/// A ∪ ∅ and A − ∅ are A, and ∅ ∪ B is B, provided that list is already regular (segments of
-/// positive length, not touching), which is what the sweep would make of it.
+/// Combine two segment lists: the sweep below, or its answer read off directly in the two
+/// common cases.
+///
+/// - One list is empty (the ray missed that operand, often by its bounding box). ∅ ∩ B, A ∩ ∅
+///   and ∅ − B are empty; A ∪ ∅ and A − ∅ are A, and ∅ ∪ B is B, provided that list is
+///   already regular (segments of positive length, not touching), which is what the sweep
+///   would make of it.
+/// - Each list is one segment (two convex primitives) and no two ends coincide: see `pair`.
 pub fn combine(op: CsgOp, a: &[Segment], b: &[Segment]) -> SegmentList {
-    match (op, a.is_empty(), b.is_empty()) {
-        (CsgOp::Intersection, true, _)
-        | (CsgOp::Intersection, _, true)
-        | (CsgOp::Difference, true, _) => SegmentList::new(),
-        (CsgOp::Union | CsgOp::Difference, false, true) if is_regular(a) => a.into(),
-        (CsgOp::Union, true, false) if is_regular(b) => b.into(),
+    match (op, a, b) {
+        (CsgOp::Intersection, [], _)
+        | (CsgOp::Intersection, _, [])
+        | (CsgOp::Difference, [], _) => SegmentList::new(),
+        (CsgOp::Union | CsgOp::Difference, _, []) if is_regular(a) => a.into(),
+        (CsgOp::Union, [], _) if is_regular(b) => b.into(),
+        (CsgOp::Union | CsgOp::Intersection | CsgOp::Difference, [x], [y]) => {
+            pair(op, x, y).unwrap_or_else(|| sweep(op, a, b))
+        }
         _ => sweep(op, a, b),
     }
+}
+
+/// A op B for single segments A = [a₀, a₁] and B = [b₀, b₁] whose four ends are distinct and
+/// in order (a₀ < a₁, b₀ < b₁; never true with a NaN). Then every end of the result is one
+/// end of A or B, with its surface, and which one follows from the order of the ends alone,
+/// as the sweep would find it one boundary at a time. Coinciding ends (touching or shared
+/// faces, which the sweep merges or drops) are left to the sweep: None.
+fn pair(op: CsgOp, a: &Segment, b: &Segment) -> Option<SegmentList> {
+    let ordered = a.t_in < a.t_out && b.t_in < b.t_out;
+    let distinct = a.t_in != b.t_in && a.t_in != b.t_out && a.t_out != b.t_in && a.t_out != b.t_out;
+    if !(ordered && distinct) {
+        return None;
+    }
+    let segment = |t_in, enter, t_out, exit| Segment {
+        t_in,
+        t_out,
+        enter,
+        exit,
+    };
+    let mut out = SegmentList::new();
+    match op {
+        // The later entry and the earlier exit, if the entry comes first.
+        CsgOp::Intersection => {
+            let (t_in, enter) = if a.t_in > b.t_in {
+                (a.t_in, a.enter)
+            } else {
+                (b.t_in, b.enter)
+            };
+            let (t_out, exit) = if a.t_out < b.t_out {
+                (a.t_out, a.exit)
+            } else {
+                (b.t_out, b.exit)
+            };
+            if t_in < t_out {
+                out.push(segment(t_in, enter, t_out, exit));
+            }
+        }
+        // Apart: both, in order. Overlapping: from the earlier entry to the later exit.
+        CsgOp::Union => {
+            if a.t_out < b.t_in {
+                out.extend([*a, *b]);
+            } else if b.t_out < a.t_in {
+                out.extend([*b, *a]);
+            } else {
+                let (t_in, enter) = if a.t_in < b.t_in {
+                    (a.t_in, a.enter)
+                } else {
+                    (b.t_in, b.enter)
+                };
+                let (t_out, exit) = if a.t_out > b.t_out {
+                    (a.t_out, a.exit)
+                } else {
+                    (b.t_out, b.exit)
+                };
+                out.push(segment(t_in, enter, t_out, exit));
+            }
+        }
+        // A where B is not: B's entry ends a piece of A and its exit starts one, with B's
+        // surfaces seen from the other side.
+        CsgOp::Difference => {
+            let (b_enter, b_exit) = (b.enter.flipped(), b.exit.flipped());
+            if b.t_out < a.t_in || a.t_out < b.t_in {
+                out.push(*a);
+            } else {
+                if a.t_in < b.t_in {
+                    out.push(segment(a.t_in, a.enter, b.t_in, b_enter));
+                }
+                if b.t_out < a.t_out {
+                    out.push(segment(b.t_out, b_exit, a.t_out, a.exit));
+                }
+            }
+        }
+        CsgOp::Complement => return None,
+    }
+    Some(out)
 }
 
 /// Every segment has positive length and ends before the next begins (false for any NaN).
@@ -413,6 +495,59 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Two single segments combine to exactly what the sweep builds, surfaces included, for
+    /// every order of their ends: distinct (the direct answer), coinciding (left to the sweep),
+    /// infinite, of zero length, and NaN.
+    #[test]
+    fn combining_two_segments_is_the_sweep() {
+        let ends = [
+            f64::NEG_INFINITY,
+            0.0,
+            1.0,
+            2.0,
+            3.0,
+            4.0,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        let mut pairs = 0;
+        for &a0 in &ends {
+            for &a1 in &ends {
+                for &b0 in &ends {
+                    for &b1 in &ends {
+                        let a = [Segment {
+                            t_in: a0,
+                            t_out: a1,
+                            enter: Surface::new(0, 1),
+                            exit: Surface::new(0, 2),
+                        }];
+                        let b = [Segment {
+                            t_in: b0,
+                            t_out: b1,
+                            enter: Surface::new(1, 3),
+                            exit: Surface::new(1, 4),
+                        }];
+                        for op in [CsgOp::Union, CsgOp::Intersection, CsgOp::Difference] {
+                            let (fast, slow) = (combine(op, &a, &b), sweep(op, &a, &b));
+                            // Bitwise, so that NaN ends compare too.
+                            let bits = |l: &[Segment]| {
+                                l.iter()
+                                    .map(|s| (s.t_in.to_bits(), s.t_out.to_bits(), s.enter, s.exit))
+                                    .collect::<Vec<_>>()
+                            };
+                            assert_eq!(bits(&fast), bits(&slow), "{op:?} {a:?} {b:?}");
+                            pairs += pair(op, &a[0], &b[0]).is_some() as u32;
+                        }
+                    }
+                }
+            }
+        }
+        // The direct answer took every ordered choice of four distinct ends from the seven
+        // non-NaN ones, and nothing else: C(7, 4) sets × 6 ways to split one into A and B
+        // (4!/(2!·2!)) × 3 operations.
+        assert_eq!(pairs, 35 * 6 * 3);
     }
 
     #[test]
