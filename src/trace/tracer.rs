@@ -570,7 +570,12 @@ impl<'s> Tracer<'s> {
                 Some(_) => {}
             }
         }
-        let s = visible as f64 / count as f64;
+        // The fraction of the grid that sees the light (for one ray, 0 or 1 without dividing).
+        let s = match visible {
+            0 => 0.0,
+            v if v == count => 1.0,
+            v => v as f64 / count as f64,
+        };
         if R::ACTIVE {
             let (origin, moved) = self.scene.offset(si, l, si.point);
             rec.begin(RayStart {
