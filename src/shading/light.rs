@@ -125,19 +125,8 @@ impl Light {
     /// an n × n grid on the rectangle, or on the disc the sphere shows p (mapped by Shirley
     /// and Chiu's concentric map). Deterministic, so soft shadows need no random numbers.
     /// None for point and directional lights.
-    ///
-    /// That answer is inlined into the tracer's shadow loop, which asks it for every shadow
-    /// ray; the grid's arithmetic stays out of line.
-    #[inline(always)]
+    #[inline]
     pub fn shadow_point(&self, k: u32, p: DVec3) -> Option<DVec3> {
-        match &self.kind {
-            LightKind::Point { .. } | LightKind::Directional { .. } => None,
-            _ => self.area_point(k, p),
-        }
-    }
-
-    #[inline(never)]
-    fn area_point(&self, k: u32, p: DVec3) -> Option<DVec3> {
         match &self.kind {
             LightKind::Point { .. } | LightKind::Directional { .. } => None,
             LightKind::Sphere {

@@ -570,12 +570,7 @@ impl<'s> Tracer<'s> {
                 Some(_) => {}
             }
         }
-        // The fraction of the grid that sees the light (for one ray, 0 or 1 without dividing).
-        let s = match visible {
-            0 => 0.0,
-            v if v == count => 1.0,
-            v => v as f64 / count as f64,
-        };
+        let s = visible as f64 / count as f64;
         if R::ACTIVE {
             let (origin, moved) = self.scene.offset(si, l, si.point);
             rec.begin(RayStart {
