@@ -89,6 +89,93 @@ proptest! {
     }
 }
 
+/// The packet search answers every ray exactly as the one-ray search does, hit for hit and
+/// counter for counter, also for rays whose signs differ from the first ray's.
+fn assert_packet_is_one_by_one(scene: &Scene, rays: &[Ray]) -> Result<(), TestCaseError> {
+    let mut packet_stats = Stats::default();
+    let mut hits = vec![None; rays.len()];
+    scene.intersect_packet(rays, &mut hits, &mut packet_stats);
+    let mut single_stats = Stats::default();
+    for (ray, hit) in rays.iter().zip(&hits) {
+        let single = scene.intersect(ray, 0.0, f64::INFINITY, &mut single_stats);
+        prop_assert_eq!(*hit, single, "{:?}", ray);
+    }
+    prop_assert_eq!(packet_stats, single_stats);
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_packet_finds_what_its_rays_find_one_by_one(
+        objs in objects(),
+        origin in prop::array::uniform3(-15.0..15.0f64),
+        aim in prop::array::uniform3(-1.0..1.0f64),
+        spread in prop::sample::select(vec![1e-3, 0.05, 2.0]),
+        offsets in prop::collection::vec(prop::array::uniform3(-1.0..1.0f64), 1..=16),
+    ) {
+        let scene = random_scene(&objs);
+        prop_assume!(scene.bvh_nodes() > 0);
+        // A pixel's samples (a small spread) up to rays in every direction (a large one).
+        let rays: Vec<Ray> = offsets
+            .iter()
+            .map(|o| {
+                let d = DVec3::from_array(aim) + spread * DVec3::from_array(*o);
+                Ray::new(DVec3::from_array(origin), d.try_normalize().unwrap_or(DVec3::Z))
+            })
+            .collect();
+        assert_packet_is_one_by_one(&scene, &rays)?;
+    }
+}
+
+/// Exact ties: pairs of boxes that share their +x face, one shallow and one deep, so the
+/// tree can part them along x. A ray through a shared face meets both at the same t, and the
+/// one-ray search keeps whichever it visits first, nearer side first by the ray's own signs. In
+/// each packet the first ray points the other way along x: a packet that ordered every ray's
+/// visits by that one's signs would keep the other box.
+#[test]
+fn a_packet_breaks_ties_as_the_one_ray_search_does() {
+    let mut yaml = String::from(
+        "camera: { eye: [30, 0, 0], look_at: [0, 0, 0] }\nlights: [ { point: [30, 0, 0] } ]\nmaterials: { m: { kd: 1 } }\nobjects:\n",
+    );
+    for i in 0..24 {
+        let (y, z) = ((i % 6) as f64 * 2.5 - 6.25, (i / 6) as f64 * 2.5 - 3.75);
+        for (name, back) in [("shallow", 0.5), ("deep", -3.0 - i as f64)] {
+            yaml.push_str(&format!(
+                "  - {{ name: {name}{i}, box: {{ min: [{back}, {}, {}], max: [1.5, {}, {}] }}, material: m }}\n",
+                y - 1.0,
+                z - 1.0,
+                y + 1.0,
+                z + 1.0
+            ));
+        }
+    }
+    let scene = parse(&yaml, "ties.yaml", None, &Limits::default()).unwrap();
+    assert!(scene.bvh_nodes() > 0);
+    let mut ties = 0;
+    for k in 0..64 {
+        let rays: Vec<Ray> = (0..16)
+            .map(|j| {
+                let a = (k * 16 + j) as f64 * 0.618_033_988_75;
+                let b = (k * 16 + j) as f64 * 0.414_213_562_37;
+                let x = if j == 0 { 1.0 } else { -1.0 };
+                let d = DVec3::new(x, 0.5 * (a.fract() - 0.5), 0.3 * (b.fract() - 0.5));
+                Ray::new(DVec3::new(30.0, 0.0, 0.0), d.normalize())
+            })
+            .collect();
+        assert_packet_is_one_by_one(&scene, &rays).unwrap();
+        ties += rays
+            .iter()
+            .filter(|r| {
+                let hit = scene.intersect(r, 0.0, f64::INFINITY, &mut Stats::default());
+                hit.is_some_and(|h| (r.origin + h.t * r.dir).x == 1.5)
+            })
+            .count();
+    }
+    assert!(ties > 100, "only {ties} rays met a shared face");
+}
+
 #[test]
 fn images_are_identical_for_one_two_and_four_threads() {
     let objs: Vec<(u8, [f64; 3], f64)> = (0..60)

@@ -23,6 +23,87 @@ struct Node {
     axis: u8,
 }
 
+/// Whether two rays take the same path through a BVH's ordering: their directions have the
+/// same signs (as their reciprocals see them, −0 counting as negative).
+pub fn same_signs(a: &Ray, b: &Ray) -> bool {
+    let negative = |r: &Ray| r.dir.recip().to_array().map(f64::is_sign_negative);
+    negative(a) == negative(b)
+}
+
+/// Up to 16 rays laid out by component, for slab tests of one box against all of them.
+/// Unused lanes repeat the first ray (their answers are masked off).
+struct Packet {
+    origin: [[f64; PACKET]; 3],
+    inv_dir: [[f64; PACKET]; 3],
+}
+
+pub const PACKET: usize = 16;
+
+impl Packet {
+    fn new(rays: &[Ray]) -> Packet {
+        assert!(
+            !rays.is_empty() && rays.len() <= PACKET,
+            "1 to 16 rays per packet"
+        );
+        let mut p = Packet {
+            origin: [[0.0; PACKET]; 3],
+            inv_dir: [[0.0; PACKET]; 3],
+        };
+        for lane in 0..PACKET {
+            let r = &rays[if lane < rays.len() { lane } else { 0 }];
+            let inv = r.dir.recip();
+            for axis in 0..3 {
+                p.origin[axis][lane] = r.origin[axis];
+                p.inv_dir[axis][lane] = inv[axis];
+            }
+        }
+        p
+    }
+
+    fn negative(&self, lane: usize) -> [bool; 3] {
+        [0, 1, 2].map(|axis| self.inv_dir[axis][lane].is_sign_negative())
+    }
+
+    /// Bit i set if ray i meets the box within [t_min, t_max[i]]: `Aabb::hit_slabs` for every
+    /// lane, written without branches (a NaN still never rejects).
+    #[inline(always)]
+    fn hits(&self, b: &Aabb, t_min: f64, t_max: &[f64]) -> u16 {
+        let mut exit = [f64::INFINITY; PACKET];
+        exit[..t_max.len()].copy_from_slice(t_max);
+        let mut enter = [t_min; PACKET];
+        for axis in 0..3 {
+            let (lo, hi) = (b.min[axis], b.max[axis]);
+            for lane in 0..PACKET {
+                let inv = self.inv_dir[axis][lane];
+                let o = self.origin[axis][lane];
+                let (near, far) = if inv.is_sign_negative() {
+                    (hi, lo)
+                } else {
+                    (lo, hi)
+                };
+                let t_near = (near - o) * inv;
+                let t_far = (far - o) * inv;
+                enter[lane] = if t_near > enter[lane] {
+                    t_near
+                } else {
+                    enter[lane]
+                };
+                exit[lane] = if t_far < exit[lane] {
+                    t_far
+                } else {
+                    exit[lane]
+                };
+            }
+        }
+        let mut mask = 0u16;
+        for lane in 0..PACKET {
+            let e = exit[lane];
+            mask |= ((enter[lane] <= e + e.abs() * 4.0 * f64::EPSILON) as u16) << lane;
+        }
+        mask
+    }
+}
+
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
@@ -231,6 +312,69 @@ impl Bvh {
                 };
                 stack[top] = far;
                 stack[top + 1] = near;
+                top += 2;
+            }
+        }
+        work
+    }
+
+    /// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
+    /// path through the tree). A node is fetched once for the packet and its box tested for
+    /// all its rays together, in a loop the compiler turns into vector instructions;
+    /// `visit(ray, item, t_max)` is as in `closest`, per ray.
+    ///
+    /// The rays' directions must have the signs of the first one's (see `same_signs`): then
+    /// every ray visits the same nodes and items in the same order as `closest` would take it,
+    /// with the same arithmetic, so its answer is `closest`'s to the last bit, ties included.
+    pub fn closest_packet(
+        &self,
+        rays: &[Ray],
+        t_min: f64,
+        t_max: &mut [f64],
+        mut visit: impl FnMut(usize, u32, f64) -> Option<f64>,
+    ) -> Visits {
+        let mut work = Visits::default();
+        if self.nodes.is_empty() || rays.is_empty() {
+            return work;
+        }
+        let packet = Packet::new(rays);
+        let negative = packet.negative(0);
+        debug_assert!((0..rays.len()).all(|lane| packet.negative(lane) == negative));
+        let all = (u32::MAX >> (32 - rays.len())) as u16;
+        let mut stack = [(0u32, 0u16); 64];
+        stack[0] = (0, all);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (index, active) = stack[top];
+            let node = &self.nodes[index as usize];
+            work.nodes += active.count_ones() as u64;
+            let hit = active & packet.hits(&node.bounds, t_min, t_max);
+            if hit == 0 {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.offset as usize;
+                for &item in &self.items[first..first + node.count as usize] {
+                    let mut m = hit;
+                    while m != 0 {
+                        let i = m.trailing_zeros() as usize;
+                        m &= m - 1;
+                        work.items += 1;
+                        if let Some(t) = visit(i, item, t_max[i]) {
+                            t_max[i] = t_max[i].min(t);
+                        }
+                    }
+                }
+            } else {
+                let left = index + 1;
+                let (near, far) = if negative[node.axis as usize] {
+                    (node.offset, left)
+                } else {
+                    (left, node.offset)
+                };
+                stack[top] = (far, hit);
+                stack[top + 1] = (near, hit);
                 top += 2;
             }
         }

@@ -12,6 +12,7 @@ use super::antialias::{
     Antialias, Filter, Step, GAUSS_RADIUS,
 };
 use super::Image;
+use crate::accel::bvh::PACKET;
 use crate::scene::{Integrator, Scene};
 use crate::trace::path::PathTracer;
 use crate::trace::sampling::Rng;
@@ -120,6 +121,25 @@ impl<'s> Film<'s> {
         let mut rng = Rng::for_pixel(self.options.seed, x, y);
         let (fx, fy) = (x as f64, y as f64);
         let jittered = self.antialias() == Antialias::Jittered;
+        if !jittered && self.path.is_none() {
+            // A regular grid's primary rays are known before any is traced: their nearest hits
+            // are found together, a packet at a time (see `Scene::intersect_packet`).
+            for chunk in self.offsets.chunks(PACKET) {
+                let mut rays = [crate::geometry::Ray::new(DVec3::ZERO, DVec3::Z); PACKET];
+                for (r, o) in rays.iter_mut().zip(chunk) {
+                    *r = self.scene.camera.ray(fx + o.x, fy + o.y);
+                }
+                let n = chunk.len();
+                let mut hits = [None; PACKET];
+                self.scene
+                    .intersect_packet(&rays[..n], &mut hits[..n], stats);
+                for ((o, r), h) in chunk.iter().zip(&rays).zip(hits) {
+                    let value = self.whitted.radiance_from_hit(r, h, &mut rng, stats);
+                    visit(Sample { uv: *o, value });
+                }
+            }
+            return;
+        }
         let cell = cell(self.offsets.len());
         for o in &self.offsets {
             let uv = if jittered {

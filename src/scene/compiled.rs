@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 
+use crate::accel::bvh::{same_signs, PACKET};
 use crate::accel::{Aabb, Bvh};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::{
@@ -568,6 +569,50 @@ impl Scene {
             stats.bvh_nodes_visited += visits.nodes;
         }
         best
+    }
+
+    /// `intersect` (t_min = 0, t_max = ∞) for up to 16 rays at once: `hits[i]` is exactly what
+    /// `intersect` answers for ray i, and the stats are those of tracing the rays one by one.
+    /// The rays that share the first one's direction signs go through the BVH as a packet;
+    /// any others, one by one.
+    pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
+        if self.bounded.is_empty() {
+            for (ray, hit) in rays.iter().zip(hits.iter_mut()) {
+                *hit = self.intersect(ray, 0.0, f64::INFINITY, stats);
+            }
+            return;
+        }
+        let mut packet = [rays[0]; PACKET];
+        let mut lanes = [0usize; PACKET];
+        let mut n = 0;
+        for (i, ray) in rays.iter().enumerate() {
+            if same_signs(ray, &rays[0]) {
+                (packet[n], lanes[n]) = (*ray, i);
+                n += 1;
+            } else {
+                hits[i] = self.intersect(ray, 0.0, f64::INFINITY, stats);
+            }
+        }
+        let mut limits = [f64::INFINITY; PACKET];
+        for lane in 0..n {
+            let (ray, hit) = (&packet[lane], &mut hits[lanes[lane]]);
+            *hit = None;
+            for p in &self.unbounded {
+                if let Some(h) = self.probe_hit(p, ray, 0.0, limits[lane], stats) {
+                    limits[lane] = h.t;
+                    *hit = Some(h);
+                }
+            }
+        }
+        let visits =
+            self.bvh
+                .closest_packet(&packet[..n], 0.0, &mut limits[..n], |lane, item, limit| {
+                    let probe = &self.bounded[item as usize];
+                    let h = self.probe_hit(probe, &packet[lane], 0.0, limit, stats)?;
+                    hits[lanes[lane]] = Some(h);
+                    Some(h.t)
+                });
+        stats.bvh_nodes_visited += visits.nodes;
     }
 
     /// Any hit with t_min < t < t_max (for shadow rays: the first blocker found).

@@ -13,7 +13,7 @@ use super::sampling::Rng;
 use super::tree::{HitInfo, Indices, Inspection, LightTerm, Local, RayKind, RayNode, Termination};
 use super::Stats;
 use crate::geometry::{Ray, Shape};
-use crate::scene::{Interaction, Scene};
+use crate::scene::{Hit, Interaction, Scene};
 use crate::shading::local::{ambient, light_terms};
 use crate::shading::optics::{reflect, refract, schlick};
 use crate::shading::{lobe, Fresnel, Light, Lobe};
@@ -99,6 +99,19 @@ struct Task {
 }
 
 impl Task {
+    fn primary(ray: &Ray) -> Task {
+        Task {
+            ray: *ray,
+            kind: RayKind::Primary,
+            depth: 0,
+            weight: 1.0,
+            coefficient: 1.0,
+            media: Media::default(),
+            indices: None,
+            split: false,
+        }
+    }
+
     /// Announces this ray to the recorder.
     fn begin<R: Recorder>(&self, rec: &mut R) {
         rec.begin(RayStart {
@@ -147,6 +160,18 @@ impl<'s> Tracer<'s> {
         self.primary(ray, &mut NoRecorder, rng, stats)
     }
 
+    /// `radiance_with` for a primary ray whose nearest hit was already found (a packet).
+    pub fn radiance_from_hit(
+        &self,
+        ray: &Ray,
+        hit: Option<Hit>,
+        rng: &mut Rng,
+        stats: &mut Stats,
+    ) -> DVec3 {
+        let task = Task::primary(ray);
+        self.trace_from(&task, hit, &mut NoRecorder, rng, stats).0
+    }
+
     /// The same computation as `radiance`, recording its ray tree.
     pub fn inspect(&self, ray: &Ray, stats: &mut Stats) -> RayNode {
         self.inspect_with(ray, &mut Rng::for_pixel(0, 0, 0), stats)
@@ -178,23 +203,27 @@ impl<'s> Tracer<'s> {
         rng: &mut Rng,
         stats: &mut Stats,
     ) -> DVec3 {
-        let task = Task {
-            ray: *ray,
-            kind: RayKind::Primary,
-            depth: 0,
-            weight: 1.0,
-            coefficient: 1.0,
-            media: Media::default(),
-            indices: None,
-            split: false,
-        };
-        self.trace(&task, rec, rng, stats).0
+        self.trace(&Task::primary(ray), rec, rng, stats).0
     }
 
     /// Traces one ray; returns its intensity and the distance to what it hit (∞ for none).
+    #[inline(always)]
     fn trace<R: Recorder>(
         &self,
         task: &Task,
+        rec: &mut R,
+        rng: &mut Rng,
+        stats: &mut Stats,
+    ) -> (DVec3, f64) {
+        let hit = self.scene.intersect(&task.ray, 0.0, f64::INFINITY, stats);
+        self.trace_from(task, hit, rec, rng, stats)
+    }
+
+    /// `trace` from the ray's nearest hit.
+    fn trace_from<R: Recorder>(
+        &self,
+        task: &Task,
+        hit: Option<Hit>,
         rec: &mut R,
         rng: &mut Rng,
         stats: &mut Stats,
@@ -207,7 +236,7 @@ impl<'s> Tracer<'s> {
             RayKind::Shadow => stats.shadow_rays += 1,
         }
         task.begin(rec);
-        let Some(hit) = scene.intersect(&task.ray, 0.0, f64::INFINITY, stats) else {
+        let Some(hit) = hit else {
             rec.end(scene.background, Some(Termination::Background));
             return (scene.background, f64::INFINITY);
         };
