@@ -30,13 +30,21 @@ pub fn same_signs(a: &Ray, b: &Ray) -> bool {
     negative(a) == negative(b)
 }
 
-/// Up to 16 rays laid out by component, for slab tests of one box against all of them.
-/// Unused lanes repeat the first ray (their answers are masked off).
+/// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
+/// all of them: each group is one set of 4-wide vector instructions. The unused lanes of the
+/// last group repeat its first ray (their answers are masked off).
 struct Packet {
-    origin: [[f64; PACKET]; 3],
-    inv_dir: [[f64; PACKET]; 3],
+    quads: [Quad; PACKET / 4],
+    len: usize,
 }
 
+#[derive(Clone, Copy, Default)]
+struct Quad {
+    origin: [[f64; 4]; 3],
+    inv_dir: [[f64; 4]; 3],
+}
+
+/// The most rays searched together.
 pub const PACKET: usize = 16;
 
 impl Packet {
@@ -46,61 +54,66 @@ impl Packet {
             "1 to 16 rays per packet"
         );
         let mut p = Packet {
-            origin: [[0.0; PACKET]; 3],
-            inv_dir: [[0.0; PACKET]; 3],
+            quads: [Quad::default(); PACKET / 4],
+            len: rays.len(),
         };
-        for lane in 0..PACKET {
-            let r = &rays[if lane < rays.len() { lane } else { 0 }];
-            let inv = r.dir.recip();
-            for axis in 0..3 {
-                p.origin[axis][lane] = r.origin[axis];
-                p.inv_dir[axis][lane] = inv[axis];
+        for (q, quad) in p.quads.iter_mut().enumerate().take(rays.len().div_ceil(4)) {
+            for lane in 0..4 {
+                let r = rays.get(4 * q + lane).unwrap_or(&rays[4 * q]);
+                let inv = r.dir.recip();
+                for axis in 0..3 {
+                    quad.origin[axis][lane] = r.origin[axis];
+                    quad.inv_dir[axis][lane] = inv[axis];
+                }
             }
         }
         p
     }
 
-    fn negative(&self, lane: usize) -> [bool; 3] {
-        [0, 1, 2].map(|axis| self.inv_dir[axis][lane].is_sign_negative())
+    fn negative(&self, ray: usize) -> [bool; 3] {
+        let quad = &self.quads[ray / 4];
+        [0, 1, 2].map(|axis| quad.inv_dir[axis][ray % 4].is_sign_negative())
     }
 
     /// Bit i set if ray i meets the box within [t_min, t_max[i]]: `Aabb::hit_slabs` for every
-    /// lane, written without branches (a NaN still never rejects).
+    /// ray of the groups `active` names, written without branches (a NaN still never rejects).
     #[inline(always)]
-    fn hits(&self, b: &Aabb, t_min: f64, t_max: &[f64]) -> u16 {
-        let mut exit = [f64::INFINITY; PACKET];
-        exit[..t_max.len()].copy_from_slice(t_max);
-        let mut enter = [t_min; PACKET];
-        for axis in 0..3 {
-            let (lo, hi) = (b.min[axis], b.max[axis]);
-            for lane in 0..PACKET {
-                let inv = self.inv_dir[axis][lane];
-                let o = self.origin[axis][lane];
-                let (near, far) = if inv.is_sign_negative() {
-                    (hi, lo)
-                } else {
-                    (lo, hi)
-                };
-                let t_near = (near - o) * inv;
-                let t_far = (far - o) * inv;
-                enter[lane] = if t_near > enter[lane] {
-                    t_near
-                } else {
-                    enter[lane]
-                };
-                exit[lane] = if t_far < exit[lane] {
-                    t_far
-                } else {
-                    exit[lane]
-                };
+    fn hits(&self, b: &Aabb, t_min: f64, t_max: &[f64; PACKET], active: u16) -> u16 {
+        let mut mask = 0u16;
+        for (q, quad) in self.quads.iter().enumerate().take(self.len.div_ceil(4)) {
+            let mut enter = [t_min; 4];
+            let mut exit: [f64; 4] = t_max[4 * q..4 * q + 4].try_into().unwrap();
+            for axis in 0..3 {
+                let (lo, hi) = (b.min[axis], b.max[axis]);
+                for lane in 0..4 {
+                    let inv = quad.inv_dir[axis][lane];
+                    let o = quad.origin[axis][lane];
+                    let (near, far) = if inv.is_sign_negative() {
+                        (hi, lo)
+                    } else {
+                        (lo, hi)
+                    };
+                    let t_near = (near - o) * inv;
+                    let t_far = (far - o) * inv;
+                    enter[lane] = if t_near > enter[lane] {
+                        t_near
+                    } else {
+                        enter[lane]
+                    };
+                    exit[lane] = if t_far < exit[lane] {
+                        t_far
+                    } else {
+                        exit[lane]
+                    };
+                }
+            }
+            for lane in 0..4 {
+                let e = exit[lane];
+                let hit = enter[lane] <= e + e.abs() * 4.0 * f64::EPSILON;
+                mask |= (hit as u16) << (4 * q + lane);
             }
         }
-        let mut mask = 0u16;
-        for lane in 0..PACKET {
-            let e = exit[lane];
-            mask |= ((enter[lane] <= e + e.abs() * 4.0 * f64::EPSILON) as u16) << lane;
-        }
-        mask
+        mask & active
     }
 }
 
@@ -330,7 +343,7 @@ impl Bvh {
         &self,
         rays: &[Ray],
         t_min: f64,
-        t_max: &mut [f64],
+        t_max: &mut [f64; PACKET],
         mut visit: impl FnMut(usize, u32, f64) -> Option<f64>,
     ) -> Visits {
         let mut work = Visits::default();
@@ -349,7 +362,7 @@ impl Bvh {
             let (index, active) = stack[top];
             let node = &self.nodes[index as usize];
             work.nodes += active.count_ones() as u64;
-            let hit = active & packet.hits(&node.bounds, t_min, t_max);
+            let hit = packet.hits(&node.bounds, t_min, t_max, active);
             if hit == 0 {
                 continue;
             }

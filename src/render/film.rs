@@ -121,9 +121,10 @@ impl<'s> Film<'s> {
         let mut rng = Rng::for_pixel(self.options.seed, x, y);
         let (fx, fy) = (x as f64, y as f64);
         let jittered = self.antialias() == Antialias::Jittered;
-        if !jittered && self.path.is_none() {
+        let packets = self.scene.bvh_nodes() > 0 && self.offsets.len() > 1;
+        if !jittered && self.path.is_none() && packets {
             // A regular grid's primary rays are known before any is traced: their nearest hits
-            // are found together, a packet at a time (see `Scene::intersect_packet`).
+            // in the BVH are found together, a packet at a time (`Scene::intersect_packet`).
             for chunk in self.offsets.chunks(PACKET) {
                 let mut rays = [crate::geometry::Ray::new(DVec3::ZERO, DVec3::Z); PACKET];
                 for (r, o) in rays.iter_mut().zip(chunk) {
