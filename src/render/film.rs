@@ -13,6 +13,7 @@ use super::antialias::{
 };
 use super::Image;
 use crate::accel::bvh::PACKET;
+use crate::geometry::Ray;
 use crate::scene::{Integrator, Scene};
 use crate::trace::path::PathTracer;
 use crate::trace::sampling::Rng;
@@ -123,22 +124,7 @@ impl<'s> Film<'s> {
         let jittered = self.antialias() == Antialias::Jittered;
         let packets = self.scene.bvh_nodes() > 0 && self.offsets.len() > 1;
         if !jittered && self.path.is_none() && packets {
-            // A regular grid's primary rays are known before any is traced: their nearest hits
-            // in the BVH are found together, a packet at a time (`Scene::intersect_packet`).
-            for chunk in self.offsets.chunks(PACKET) {
-                let mut rays = [crate::geometry::Ray::new(DVec3::ZERO, DVec3::Z); PACKET];
-                for (r, o) in rays.iter_mut().zip(chunk) {
-                    *r = self.scene.camera.ray(fx + o.x, fy + o.y);
-                }
-                let n = chunk.len();
-                let mut hits = [None; PACKET];
-                self.scene
-                    .intersect_packet(&rays[..n], &mut hits[..n], stats);
-                for ((o, r), h) in chunk.iter().zip(&rays).zip(hits) {
-                    let value = self.whitted.radiance_from_hit(r, h, &mut rng, stats);
-                    visit(Sample { uv: *o, value });
-                }
-            }
+            self.grid_in_packets(fx, fy, &mut rng, stats, visit);
             return;
         }
         let cell = cell(self.offsets.len());
@@ -150,6 +136,37 @@ impl<'s> Film<'s> {
             };
             let value = self.sample(fx + uv.x, fy + uv.y, &mut rng, stats);
             visit(Sample { uv, value });
+        }
+    }
+
+    /// The grid samples of the pixel at (fx, fy), as `for_each_own_sample` takes them, with
+    /// their primary rays' nearest hits in the BVH found together, a packet at a time
+    /// (`Scene::intersect_packet`): a regular grid's rays are all known before any is traced.
+    fn grid_in_packets(
+        &self,
+        fx: f64,
+        fy: f64,
+        rng: &mut Rng,
+        stats: &mut Stats,
+        visit: &mut dyn FnMut(Sample),
+    ) {
+        for chunk in self.offsets.chunks(PACKET) {
+            let unused = Ray {
+                origin: DVec3::ZERO,
+                dir: DVec3::Z,
+            };
+            let mut rays = [unused; PACKET];
+            for (r, o) in rays.iter_mut().zip(chunk) {
+                *r = self.scene.camera.ray(fx + o.x, fy + o.y);
+            }
+            let n = chunk.len();
+            let mut hits = [None; PACKET];
+            self.scene
+                .intersect_packet(&rays[..n], &mut hits[..n], stats);
+            for ((o, r), hit) in chunk.iter().zip(&rays).zip(hits) {
+                let value = self.whitted.radiance_from_hit(r, hit, rng, stats);
+                visit(Sample { uv: *o, value });
+            }
         }
     }
 
