@@ -23,11 +23,11 @@ struct Node {
     axis: u8,
 }
 
-/// Whether two rays take the same path through a BVH's ordering: their directions have the
-/// same signs (as their reciprocals see them, −0 counting as negative).
-pub fn same_signs(a: &Ray, b: &Ray) -> bool {
-    let negative = |r: &Ray| r.dir.recip().to_array().map(f64::is_sign_negative);
-    negative(a) == negative(b)
+/// Which way a ray's direction points on each axis, as the traversal orders children by it
+/// (the signs of 1/d: −0 counts as negative). Rays with equal signs take the same path
+/// through the ordering.
+pub fn signs(r: &Ray) -> [bool; 3] {
+    r.dir.recip().to_array().map(f64::is_sign_negative)
 }
 
 /// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
@@ -336,7 +336,7 @@ impl Bvh {
     /// all its rays together, in a loop the compiler turns into vector instructions;
     /// `visit(ray, item, t_max)` is as in `closest`, per ray.
     ///
-    /// The rays' directions must have the signs of the first one's (see `same_signs`): then
+    /// The rays' directions must have the signs of the first one's (see `signs`): then
     /// every ray visits the same nodes and items in the same order as `closest` would take it,
     /// with the same arithmetic, so its answer is `closest`'s to the last bit, ties included.
     pub fn closest_packet(

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 
-use crate::accel::bvh::{same_signs, PACKET};
+use crate::accel::bvh::{signs, PACKET};
 use crate::accel::{Aabb, Bvh};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::{
@@ -581,13 +581,18 @@ impl Scene {
     /// The rays that share the first one's direction signs go through the BVH as a packet
     /// (if there are at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
-        let alike = rays.iter().filter(|r| same_signs(r, &rays[0])).count();
-        let one_by_one = self.bounded.is_empty() || alike < PACKET_MIN;
+        let first = signs(&rays[0]);
+        let mut alike = [false; PACKET];
+        for (a, ray) in alike.iter_mut().zip(rays) {
+            *a = signs(ray) == first;
+        }
+        let one_by_one =
+            self.bounded.is_empty() || alike.iter().filter(|&&a| a).count() < PACKET_MIN;
         let mut packet = [rays[0]; PACKET];
         let mut lanes = [0usize; PACKET];
         let mut n = 0;
         for (i, ray) in rays.iter().enumerate() {
-            if !one_by_one && same_signs(ray, &rays[0]) {
+            if !one_by_one && alike[i] {
                 (packet[n], lanes[n]) = (*ray, i);
                 n += 1;
             } else {
