@@ -127,22 +127,44 @@ impl Aabb {
     pub fn hit_slabs(&self, r: &SlabRay, t_min: f64, t_max: f64) -> bool {
         let (mut enter, mut exit) = (t_min, t_max);
         for axis in 0..3 {
-            let (near, far) = if r.negative[axis] {
-                (self.max[axis], self.min[axis])
-            } else {
-                (self.min[axis], self.max[axis])
-            };
-            let t_near = (near - r.origin[axis]) * r.inv_dir[axis];
-            let t_far = (far - r.origin[axis]) * r.inv_dir[axis];
-            // Written so a NaN (0·∞: the origin on a slab's plane, the ray parallel to it)
-            // compares false and leaves the interval as it was: it must not reject.
-            if t_near > enter {
-                enter = t_near;
-            }
-            if t_far < exit {
-                exit = t_far;
-            }
+            (enter, exit) = slab(
+                (self.min[axis], self.max[axis]),
+                r.origin[axis],
+                r.inv_dir[axis],
+                (enter, exit),
+            );
         }
-        enter <= exit + exit.abs() * 4.0 * f64::EPSILON
+        overlaps(enter, exit)
     }
+}
+
+/// One slab of the slab test: the interval (enter, exit) of t, narrowed to where the ray lies
+/// between the planes lo and hi of one axis. The sign of 1/d says which plane it meets first.
+/// Written so a NaN (0·∞: the origin on a slab's plane, the ray parallel to it) compares false
+/// and leaves the interval as it was: it must not reject.
+#[inline(always)]
+pub fn slab(
+    (lo, hi): (f64, f64),
+    origin: f64,
+    inv_dir: f64,
+    (enter, exit): (f64, f64),
+) -> (f64, f64) {
+    let (near, far) = if inv_dir.is_sign_negative() {
+        (hi, lo)
+    } else {
+        (lo, hi)
+    };
+    let t_near = (near - origin) * inv_dir;
+    let t_far = (far - origin) * inv_dir;
+    (
+        if t_near > enter { t_near } else { enter },
+        if t_far < exit { t_far } else { exit },
+    )
+}
+
+/// Whether the slabs left an interval: enter ≤ exit, with a few ulps of slack so that a ray
+/// grazing an edge (where rounding can put enter a hair past exit) still counts.
+#[inline(always)]
+pub fn overlaps(enter: f64, exit: f64) -> bool {
+    enter <= exit + exit.abs() * 4.0 * f64::EPSILON
 }

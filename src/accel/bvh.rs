@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::aabb::SlabRay;
+use super::aabb::{overlaps, slab, SlabRay};
 use super::Aabb;
 use crate::geometry::Ray;
 
@@ -27,7 +27,7 @@ struct Node {
 /// (the signs of 1/d: −0 counts as negative). Rays with equal signs take the same path
 /// through the ordering.
 pub fn signs(r: &Ray) -> [bool; 3] {
-    r.dir.recip().to_array().map(f64::is_sign_negative)
+    SlabRay::new(r.origin, r.dir.recip()).negative
 }
 
 /// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
@@ -70,13 +70,9 @@ impl Packet {
         p
     }
 
-    fn negative(&self, ray: usize) -> [bool; 3] {
-        let quad = &self.quads[ray / 4];
-        [0, 1, 2].map(|axis| quad.inv_dir[axis][ray % 4].is_sign_negative())
-    }
-
-    /// Bit i set if ray i meets the box within [t_min, t_max[i]]: `Aabb::hit_slabs` for every
-    /// ray of the groups `active` names, written without branches (a NaN still never rejects).
+    /// Bit i set if ray i meets the box within [t_min, t_max[i]], for the rays `active` names:
+    /// `Aabb::hit_slabs` for every lane, with the same `slab` and `overlaps` steps, so the same
+    /// answer to the last bit.
     #[inline(always)]
     fn hits(&self, b: &Aabb, t_min: f64, t_max: &[f64; PACKET], active: u16) -> u16 {
         let mut mask = 0u16;
@@ -84,33 +80,17 @@ impl Packet {
             let mut enter = [t_min; 4];
             let mut exit: [f64; 4] = t_max[4 * q..4 * q + 4].try_into().unwrap();
             for axis in 0..3 {
-                let (lo, hi) = (b.min[axis], b.max[axis]);
                 for lane in 0..4 {
-                    let inv = quad.inv_dir[axis][lane];
-                    let o = quad.origin[axis][lane];
-                    let (near, far) = if inv.is_sign_negative() {
-                        (hi, lo)
-                    } else {
-                        (lo, hi)
-                    };
-                    let t_near = (near - o) * inv;
-                    let t_far = (far - o) * inv;
-                    enter[lane] = if t_near > enter[lane] {
-                        t_near
-                    } else {
-                        enter[lane]
-                    };
-                    exit[lane] = if t_far < exit[lane] {
-                        t_far
-                    } else {
-                        exit[lane]
-                    };
+                    (enter[lane], exit[lane]) = slab(
+                        (b.min[axis], b.max[axis]),
+                        quad.origin[axis][lane],
+                        quad.inv_dir[axis][lane],
+                        (enter[lane], exit[lane]),
+                    );
                 }
             }
             for lane in 0..4 {
-                let e = exit[lane];
-                let hit = enter[lane] <= e + e.abs() * 4.0 * f64::EPSILON;
-                mask |= (hit as u16) << (4 * q + lane);
+                mask |= (overlaps(enter[lane], exit[lane]) as u16) << (4 * q + lane);
             }
         }
         mask & active
@@ -351,8 +331,8 @@ impl Bvh {
             return work;
         }
         let packet = Packet::new(rays);
-        let negative = packet.negative(0);
-        debug_assert!((0..rays.len()).all(|lane| packet.negative(lane) == negative));
+        let negative = signs(&rays[0]);
+        debug_assert!(rays.iter().all(|r| signs(r) == negative));
         let all = (u32::MAX >> (32 - rays.len())) as u16;
         let mut stack = [(0u32, 0u16); 64];
         stack[0] = (0, all);
