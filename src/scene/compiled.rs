@@ -557,14 +557,7 @@ impl Scene {
 
     /// The nearest hit with t_min < t < t_max.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
-        let mut best: Option<Hit> = None;
-        let mut limit = t_max;
-        for p in &self.unbounded {
-            if let Some(h) = self.probe_hit(p, ray, t_min, limit, stats) {
-                limit = h.t;
-                best = Some(h);
-            }
-        }
+        let (mut best, limit) = self.nearest_unbounded(ray, t_min, t_max, stats);
         if !self.bounded.is_empty() {
             let visits = self.bvh.closest(ray, t_min, limit, |item, limit| {
                 let h = self.probe_hit(&self.bounded[item as usize], ray, t_min, limit, stats)?;
@@ -576,12 +569,33 @@ impl Scene {
         best
     }
 
+    /// The nearest hit among the objects outside the BVH, and the limit it sets for the rest.
+    #[inline(always)]
+    fn nearest_unbounded(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> (Option<Hit>, f64) {
+        let (mut best, mut limit) = (None, t_max);
+        for p in &self.unbounded {
+            if let Some(h) = self.probe_hit(p, ray, t_min, limit, stats) {
+                limit = h.t;
+                best = Some(h);
+            }
+        }
+        (best, limit)
+    }
+
     /// `intersect` (t_min = 0, t_max = ∞) for up to 16 rays at once: `hits[i]` is exactly what
     /// `intersect` answers for ray i, and the stats are those of tracing the rays one by one.
     /// The rays that share the first one's direction signs go through the BVH as a packet
     /// (if there are at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
-        let first = signs(&rays[0]);
+        let Some(first) = rays.first().map(signs) else {
+            return;
+        };
         let mut alike = [false; PACKET];
         for (a, ray) in alike.iter_mut().zip(rays) {
             *a = signs(ray) == first;
@@ -604,14 +618,8 @@ impl Scene {
         }
         let mut limits = [f64::INFINITY; PACKET];
         for lane in 0..n {
-            let (ray, hit) = (&packet[lane], &mut hits[lanes[lane]]);
-            *hit = None;
-            for p in &self.unbounded {
-                if let Some(h) = self.probe_hit(p, ray, 0.0, limits[lane], stats) {
-                    limits[lane] = h.t;
-                    *hit = Some(h);
-                }
-            }
+            let (hit, limit) = self.nearest_unbounded(&packet[lane], 0.0, f64::INFINITY, stats);
+            (hits[lanes[lane]], limits[lane]) = (hit, limit);
         }
         let visits =
             self.bvh
