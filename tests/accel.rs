@@ -4,8 +4,11 @@
 use glam::DVec3;
 use proptest::prelude::*;
 use raytree::geometry::Ray;
+use raytree::render::antialias::grid_offsets;
+use raytree::render::film::Film;
 use raytree::render::{render_simple, RenderOptions};
 use raytree::scene::{parse, Accel, Limits, Scene};
+use raytree::trace::sampling::Rng;
 use raytree::trace::Stats;
 
 fn random_scene(objects: &[(u8, [f64; 3], f64)]) -> Scene {
@@ -174,6 +177,51 @@ fn a_packet_breaks_ties_as_the_one_ray_search_does() {
             .count();
     }
     assert!(ties > 100, "only {ties} rays met a shared face");
+}
+
+/// A pixel whose grid samples search the BVH as packets gets exactly the value and the counters
+/// of tracing its samples one at a time, in order, from the pixel's random numbers (glossy
+/// surfaces draw from them, so the order in which samples are shaded matters too).
+#[test]
+fn a_pixel_traced_in_packets_is_the_pixel_traced_sample_by_sample() {
+    let mut yaml = String::from(
+        "camera: { eye: [0, 0, -30], look_at: [0, 0, 0], width: 24, height: 18 }\nspp: 16\nmax_depth: 3\nlights: [ { point: [10, 20, -20] } ]\nmaterials: { m: { ka: 0.2, kd: 0.6, kr: 0.3, glossy: { spread: 8, samples: 3 } } }\nobjects:\n  - { name: floor, plane: { point: [0, -12, 0], normal: [0, 1, 0] }, material: m }\n",
+    );
+    for i in 0..40 {
+        let (x, y, z) = (
+            (i % 8) as f64 * 3.0 - 10.5,
+            (i / 8) as f64 * 3.0 - 6.0,
+            (i % 3) as f64,
+        );
+        yaml.push_str(&format!(
+            "  - {{ name: s{i}, sphere: {{ center: [{x}, {y}, {z}], radius: 1.3 }}, material: m }}\n"
+        ));
+    }
+    let scene = parse(&yaml, "packets.yaml", None, &Limits::default()).unwrap();
+    assert!(scene.bvh_nodes() > 0);
+    let options = RenderOptions::of(&scene);
+    let film = Film::new(&scene, options);
+    let no_corners = |_: u32, _: u32, _: &mut Stats| -> DVec3 { unreachable!("grid sampling") };
+    let offsets = grid_offsets(options.spp);
+    let mut total = Stats::default();
+    for (x, y) in [(0, 0), (5, 4), (12, 9), (20, 13), (23, 17)] {
+        let mut packed_stats = Stats::default();
+        let packed = film.pixel(x, y, &no_corners, &mut packed_stats);
+        let mut stats = Stats::default();
+        let mut rng = Rng::for_pixel(options.seed, x, y);
+        let sum: DVec3 = offsets
+            .iter()
+            .map(|o| film.sample(x as f64 + o.x, y as f64 + o.y, &mut rng, &mut stats))
+            .sum();
+        assert_eq!(packed, sum / offsets.len() as f64, "pixel ({x}, {y})");
+        assert_eq!(packed_stats, stats, "pixel ({x}, {y})");
+        total.add(&stats);
+    }
+    // The pixels did meet the BVH and glossy surfaces.
+    assert!(
+        total.glossy_rays > 0 && total.bvh_nodes_visited > 0,
+        "{total:?}"
+    );
 }
 
 #[test]
