@@ -12,6 +12,7 @@ out = [
     "background: [0.35, 0.55, 0.85]",
     "ambient: 1",
     "max_depth: 5",
+    "adaptive_threshold: 0.00392156862745098  # POV-Ray's adc_bailout 1/255",
     "spp: 16",
     "lights: [ { name: light, point: [-10, 20, -15], intensity: 1 } ]",
     "materials:",
