@@ -179,11 +179,37 @@ fn a_packet_breaks_ties_as_the_one_ray_search_does() {
     assert!(ties > 100, "only {ties} rays met a shared face");
 }
 
-/// A pixel whose grid samples search the BVH as packets gets exactly the value and the counters
-/// of tracing its samples one at a time, in order, from the pixel's random numbers (glossy
-/// surfaces draw from them, so the order in which samples are shaded matters too).
+/// Pixels whose grid samples are traced as packets (`Tracer::radiance_packet`: their nearest
+/// hits, then every light's terms and shadow rays for all of them, then their secondary rays)
+/// get exactly the value and the counters of tracing their samples one at a time, in order,
+/// from the pixel's random numbers (glossy surfaces draw from them, so the order in which
+/// samples are shaded matters too).
+fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) -> Stats {
+    let options = RenderOptions::of(scene);
+    let film = Film::new(scene, options);
+    let no_corners = |_: u32, _: u32, _: &mut Stats| -> DVec3 { unreachable!("grid sampling") };
+    let offsets = grid_offsets(options.spp);
+    let mut total = Stats::default();
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    for (x, y) in (0..h).flat_map(|y| (0..w).map(move |x| (x, y))) {
+        let mut packed_stats = Stats::default();
+        let packed = film.pixel(x, y, &no_corners, &mut packed_stats);
+        let mut stats = Stats::default();
+        let mut rng = Rng::for_pixel(options.seed, x, y);
+        let sum: DVec3 = offsets
+            .iter()
+            .map(|o| film.sample(x as f64 + o.x, y as f64 + o.y, &mut rng, &mut stats))
+            .sum();
+        assert_eq!(packed, sum / offsets.len() as f64, "pixel ({x}, {y})");
+        assert_eq!(packed_stats, stats, "pixel ({x}, {y})");
+        total.add(&stats);
+    }
+    total
+}
+
+/// In a BVH scene: the primary rays and the shadow rays search it as packets.
 #[test]
-fn a_pixel_traced_in_packets_is_the_pixel_traced_sample_by_sample() {
+fn every_pixel_traced_in_packets_is_traced_sample_by_sample() {
     let mut yaml = String::from(
         "camera: { eye: [0, 0, -30], look_at: [0, 0, 0], width: 24, height: 18 }\nspp: 16\nmax_depth: 3\nlights: [ { point: [10, 20, -20] } ]\nmaterials: { m: { ka: 0.2, kd: 0.6, kr: 0.3, glossy: { spread: 8, samples: 3 } } }\nobjects:\n  - { name: floor, plane: { point: [0, -12, 0], normal: [0, 1, 0] }, material: m }\n",
     );
@@ -199,29 +225,91 @@ fn a_pixel_traced_in_packets_is_the_pixel_traced_sample_by_sample() {
     }
     let scene = parse(&yaml, "packets.yaml", None, &Limits::default()).unwrap();
     assert!(scene.bvh_nodes() > 0);
-    let options = RenderOptions::of(&scene);
-    let film = Film::new(&scene, options);
-    let no_corners = |_: u32, _: u32, _: &mut Stats| -> DVec3 { unreachable!("grid sampling") };
-    let offsets = grid_offsets(options.spp);
-    let mut total = Stats::default();
-    for (x, y) in [(0, 0), (5, 4), (12, 9), (20, 13), (23, 17)] {
-        let mut packed_stats = Stats::default();
-        let packed = film.pixel(x, y, &no_corners, &mut packed_stats);
-        let mut stats = Stats::default();
-        let mut rng = Rng::for_pixel(options.seed, x, y);
-        let sum: DVec3 = offsets
-            .iter()
-            .map(|o| film.sample(x as f64 + o.x, y as f64 + o.y, &mut rng, &mut stats))
-            .sum();
-        assert_eq!(packed, sum / offsets.len() as f64, "pixel ({x}, {y})");
-        assert_eq!(packed_stats, stats, "pixel ({x}, {y})");
-        total.add(&stats);
-    }
-    // The pixels did meet the BVH and glossy surfaces.
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    // The pixels did meet the BVH and glossy surfaces, and cast shadow rays.
     assert!(
-        total.glossy_rays > 0 && total.bvh_nodes_visited > 0,
+        total.glossy_rays > 0 && total.bvh_nodes_visited > 0 && total.shadow_rays > 0,
         "{total:?}"
     );
+}
+
+/// Without a BVH, and with every kind of light: point, directional, an area light (its grid of
+/// shadow rays goes one point at a time), a dark one and one behind most surfaces, over glass,
+/// a mirror and a CSG object.
+#[test]
+fn every_pixel_under_every_kind_of_light_traced_in_packets_is_traced_sample_by_sample() {
+    let yaml = "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 20, height: 15 }
+spp: 9
+ambient: 0.2
+max_depth: 4
+lights:
+  - { name: key, point: [-4, 6, -5], intensity: 0.8, attenuation: [1, 0.05, 0] }
+  - { name: sun, direction: [0.3, -1, 0.4], intensity: 0.4 }
+  - { name: panel, rect: { corner: [1, 5, -2], u: [1, 0, 0], v: [0, 0, 1] }, intensity: 0.5, samples: 2 }
+  - { name: off, point: [0, 8, 0], intensity: 0 }
+  - { name: below, point: [0, -5, 0], intensity: 0.3 }
+materials:
+  floor: { color: 0.6, ka: 0.2, kd: 0.8 }
+  red: { color: [0.8, 0.1, 0.1], ka: 0.1, kd: 0.8, ks: 0.4, shininess: 40, highlight: phong }
+  mirror: { color: 0.1, kd: 0.1, ks: 0.6, shininess: 200, kr: 0.8 }
+  glass: { color: 1, kd: 0.05, ks: 0.6, shininess: 200, kr: 0.1, kt: 0.9, ior: 1.5, fresnel: schlick }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { name: red, sphere: { center: [-1.8, 1, 0.5], radius: 1 }, material: red }
+  - { name: mirror, sphere: { center: [0, 1, 1.5], radius: 1 }, material: mirror }
+  - { name: glass, sphere: { center: [1.6, 1, -0.5], radius: 1 }, material: glass }
+  - name: lens
+    intersection:
+      - { sphere: { center: [0, 0, 0.5], radius: 1 } }
+      - { sphere: { center: [0, 0, -0.5], radius: 1 } }
+    transform: [ { translate: [0, 2.6, 0] } ]
+    material: glass
+";
+    let scene = parse(yaml, "lights.yaml", None, &Limits::default()).unwrap();
+    assert_eq!(scene.bvh_nodes(), 0);
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.shadow_skipped_dark > 0
+            && total.shadow_skipped_backfacing > 0
+            && total.refraction_rays > 0
+            && total.reflection_rays > 0,
+        "{total:?}"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
+
+    /// Shadow rays from anywhere, in any directions, with any reach: the packet's answer is
+    /// every ray's own `occluded`, and so are the counters.
+    #[test]
+    fn shadow_rays_in_a_packet_are_blocked_as_one_by_one(
+        objs in objects(),
+        rays in prop::collection::vec(
+            (prop::array::uniform3(-15.0..15.0f64), prop::array::uniform3(-1.0..1.0f64), 0.0..40.0f64),
+            1..=16,
+        ),
+        directional in any::<bool>(),
+    ) {
+        let scene = random_scene(&objs);
+        let (rays, reach): (Vec<Ray>, Vec<f64>) = rays
+            .iter()
+            .map(|(o, d, t)| {
+                let d = DVec3::from_array(*d).try_normalize().unwrap_or(DVec3::Y);
+                let t = if directional { f64::INFINITY } else { *t };
+                (Ray::new(DVec3::from_array(*o), d), t)
+            })
+            .unzip();
+        let mut packet_stats = Stats::default();
+        let blocked = scene.occluded_packet(&rays, &reach, &mut packet_stats);
+        let mut single_stats = Stats::default();
+        for (i, (ray, t)) in rays.iter().zip(&reach).enumerate() {
+            let single = scene.occluded(ray, 0.0, *t, &mut single_stats).is_some();
+            prop_assert_eq!(blocked & (1 << i) != 0, single, "ray {}: {:?}", i, ray);
+        }
+        prop_assert_eq!(blocked >> rays.len(), 0);
+        prop_assert_eq!(packet_stats, single_stats);
+    }
 }
 
 #[test]

@@ -374,6 +374,62 @@ impl Bvh {
         work
     }
 
+    /// `any` for a packet of up to 16 rays, ray i searching [t_min, t_max[i]]: bit i of the
+    /// answer is set when `visit(i, item)` returned true for some item. Each ray visits the
+    /// nodes and items `any` would, in the same order, and leaves the packet at its first
+    /// blocker; the directions may point anywhere (the order does not depend on them).
+    pub fn any_packet(
+        &self,
+        rays: &[Ray],
+        t_min: f64,
+        t_max: &[f64; PACKET],
+        mut visit: impl FnMut(usize, u32) -> bool,
+    ) -> (u32, Visits) {
+        let mut work = Visits::default();
+        if self.nodes.is_empty() || rays.is_empty() {
+            return (0, work);
+        }
+        let packet = Packet::new(rays);
+        let all = (u32::MAX >> (32 - rays.len())) as u16;
+        let mut done = 0u16;
+        let mut stack = [(0u32, 0u16); 64];
+        stack[0] = (0, all);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (index, active) = stack[top];
+            let active = active & !done;
+            if active == 0 {
+                continue;
+            }
+            let node = &self.nodes[index as usize];
+            work.nodes += active.count_ones() as u64;
+            let hit = packet.hits(&node.bounds, t_min, t_max, active);
+            if hit == 0 {
+                continue;
+            }
+            if node.count > 0 {
+                let first = node.offset as usize;
+                for &item in &self.items[first..first + node.count as usize] {
+                    let mut m = hit & !done;
+                    while m != 0 {
+                        let i = m.trailing_zeros() as usize;
+                        m &= m - 1;
+                        work.items += 1;
+                        if visit(i, item) {
+                            done |= 1 << i;
+                        }
+                    }
+                }
+            } else {
+                stack[top] = (node.offset, hit);
+                stack[top + 1] = (index + 1, hit);
+                top += 2;
+            }
+        }
+        (done as u32, work)
+    }
+
     /// Stops at the first item for which `visit` returns true (shadow rays need any blocker).
     pub fn any(
         &self,

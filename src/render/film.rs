@@ -122,7 +122,7 @@ impl<'s> Film<'s> {
         let mut rng = Rng::for_pixel(self.options.seed, x, y);
         let (fx, fy) = (x as f64, y as f64);
         let jittered = self.antialias() == Antialias::Jittered;
-        let packets = self.scene.bvh_nodes() > 0 && self.offsets.len() > 1;
+        let packets = self.offsets.len() > 1;
         if !jittered && self.path.is_none() && packets {
             self.grid_in_packets(fx, fy, &mut rng, stats, visit);
             return;
@@ -163,8 +163,10 @@ impl<'s> Film<'s> {
             let mut hits = [None; PACKET];
             self.scene
                 .intersect_packet(&rays[..n], &mut hits[..n], stats);
-            for ((o, r), hit) in chunk.iter().zip(&rays).zip(hits) {
-                let value = self.whitted.radiance_from_hit(r, hit, rng, stats);
+            let mut values = [DVec3::ZERO; PACKET];
+            self.whitted
+                .radiance_packet(&rays[..n], &hits[..n], rng, stats, &mut values[..n]);
+            for (o, value) in chunk.iter().zip(values) {
                 visit(Sample { uv: *o, value });
             }
         }

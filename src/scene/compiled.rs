@@ -650,6 +650,68 @@ impl Scene {
         blocker
     }
 
+    /// Whether a blocker with 0 < t < t_max is among the objects in the BVH.
+    fn occluded_in_bvh(&self, ray: &Ray, t_max: f64, stats: &mut Stats) -> bool {
+        let (blocked, visits) = self.bvh.any(ray, 0.0, t_max, |item| {
+            self.probe_hit(&self.bounded[item as usize], ray, 0.0, t_max, stats)
+                .is_some()
+        });
+        stats.bvh_nodes_visited += visits.nodes;
+        blocked
+    }
+
+    /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < t_max[i]:
+    /// bit i of the answer is set when ray i is blocked, and the stats are those of asking
+    /// `occluded` ray by ray. Rays that get past the objects outside the BVH search it as a
+    /// packet (any directions will do: an any-hit search visits the nodes in a fixed order).
+    pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+        let mut blocked = 0u32;
+        let mut packet = [Ray {
+            origin: DVec3::ZERO,
+            dir: DVec3::Z,
+        }; PACKET];
+        let mut reach = [0.0; PACKET];
+        let mut lanes = [0usize; PACKET];
+        let mut n = 0;
+        for (i, ray) in rays.iter().enumerate() {
+            if self
+                .unbounded
+                .iter()
+                .any(|p| self.probe_hit(p, ray, 0.0, t_max[i], stats).is_some())
+            {
+                blocked |= 1 << i;
+            } else if !self.bounded.is_empty() {
+                (packet[n], reach[n], lanes[n]) = (*ray, t_max[i], i);
+                n += 1;
+            }
+        }
+        if n == 0 {
+            return blocked;
+        }
+        if n < PACKET_MIN {
+            for (ray, (&t, &i)) in packet.iter().zip(reach.iter().zip(&lanes)).take(n) {
+                if self.occluded_in_bvh(ray, t, stats) {
+                    blocked |= 1 << i;
+                }
+            }
+            return blocked;
+        }
+        let (hit, visits) = self
+            .bvh
+            .any_packet(&packet[..n], 0.0, &reach, |lane, item| {
+                let probe = &self.bounded[item as usize];
+                self.probe_hit(probe, &packet[lane], 0.0, reach[lane], stats)
+                    .is_some()
+            });
+        stats.bvh_nodes_visited += visits.nodes;
+        for (k, &i) in lanes[..n].iter().enumerate() {
+            if hit & (1 << k) != 0 {
+                blocked |= 1 << i;
+            }
+        }
+        blocked
+    }
+
     /// The shading record of a hit. Inlined, with the normal's dispatch, into the tracer: it runs
     /// once per shaded hit.
     #[inline(always)]

@@ -12,11 +12,12 @@ use super::recorder::{NoRecorder, RayStart, Recorder, TreeRecorder};
 use super::sampling::Rng;
 use super::tree::{HitInfo, Indices, Inspection, LightTerm, Local, RayKind, RayNode, Termination};
 use super::Stats;
+use crate::accel::bvh::PACKET;
 use crate::geometry::{Ray, Shape};
 use crate::scene::{Hit, Interaction, Scene};
-use crate::shading::local::{ambient, light_terms};
+use crate::shading::local::{ambient, light_terms, LightTerms};
 use crate::shading::optics::{reflect, refract, schlick};
-use crate::shading::{lobe, Fresnel, Light, Lobe};
+use crate::shading::{lobe, Fresnel, Light, LightSample, Lobe, Material};
 
 /// The refractive media a ray is inside, innermost last (nested glass keeps n1/n2 right).
 #[derive(Clone, Copy, Debug)]
@@ -160,18 +161,6 @@ impl<'s> Tracer<'s> {
         self.primary(ray, &mut NoRecorder, rng, stats)
     }
 
-    /// `radiance_with` for a primary ray whose nearest hit was already found (a packet).
-    pub fn radiance_from_hit(
-        &self,
-        ray: &Ray,
-        hit: Option<Hit>,
-        rng: &mut Rng,
-        stats: &mut Stats,
-    ) -> DVec3 {
-        let task = Task::primary(ray);
-        self.trace_from(&task, hit, &mut NoRecorder, rng, stats).0
-    }
-
     /// The same computation as `radiance`, recording its ray tree.
     pub fn inspect(&self, ray: &Ray, stats: &mut Stats) -> RayNode {
         self.inspect_with(ray, &mut Rng::for_pixel(0, 0, 0), stats)
@@ -251,23 +240,7 @@ impl<'s> Tracer<'s> {
         let mut color = ambient(m, scene.ambient);
         let mut terms = Vec::new();
         for light in &scene.lights {
-            let sample = light.sample(si.point);
-            let lit = light_terms(
-                m,
-                si.normal,
-                v,
-                sample.l,
-                sample.attenuation * light.intensity,
-            );
-            let skipped = if lit.n_dot_l <= 0.0 {
-                stats.shadow_skipped_backfacing += 1;
-                Some("light behind the surface (n·l ≤ 0)")
-            } else if light.is_dark() {
-                stats.shadow_skipped_dark += 1;
-                Some("light has zero intensity")
-            } else {
-                None
-            };
+            let (sample, lit, skipped) = self.light_share(m, &si, v, light, stats);
             let s = match skipped {
                 Some(_) => 0.0,
                 None => self.shadow_factor(
@@ -301,13 +274,145 @@ impl<'s> Tracer<'s> {
                 lights: terms,
             });
         }
+        self.finish(task, &si, color, hit.t, rec, rng, stats)
+    }
 
+    /// The primary rays of one pixel (a regular grid's samples, up to 16) from their nearest
+    /// hits: `out[i]` is exactly what `radiance_with` gives ray i, and the stats and the
+    /// random numbers drawn are those of tracing the rays one after another.
+    ///
+    /// The same steps as `trace_from`, taken in another order: every ray's local terms of a
+    /// light first, then all their shadow rays toward it together (`Scene::occluded_packet`),
+    /// and only then each ray's reflection and refraction, in order. The rays of a pixel are
+    /// independent, so the processor overlaps one ray's chain of square roots and divisions
+    /// with the next one's, and the shadow rays search the BVH as a packet. (Only the shadow
+    /// and secondary rays draw random numbers, in the same order as one by one.)
+    pub fn radiance_packet(
+        &self,
+        rays: &[Ray],
+        hits: &[Option<Hit>],
+        rng: &mut Rng,
+        stats: &mut Stats,
+        out: &mut [DVec3],
+    ) {
+        let scene = self.scene;
+        let n = rays.len();
+        assert!(n <= PACKET && hits.len() == n && out.len() == n);
+        let mut shaded: [Option<Interaction>; PACKET] = [None; PACKET];
+        for i in 0..n {
+            stats.primary_rays += 1;
+            match &hits[i] {
+                None => out[i] = scene.background,
+                Some(hit) => {
+                    let si = scene.interaction(&rays[i], hit);
+                    out[i] = ambient(scene.material(si.material), scene.ambient);
+                    shaded[i] = Some(si);
+                }
+            }
+        }
+        for light in &scene.lights {
+            let single = light.shadow_rays() == 1 && self.options.shadows;
+            let mut terms = [DVec3::ZERO; PACKET];
+            let mut shadow_rays = [Ray {
+                origin: DVec3::ZERO,
+                dir: DVec3::Z,
+            }; PACKET];
+            let mut reach = [0.0; PACKET];
+            let mut lanes = [0usize; PACKET];
+            let mut cast = 0;
+            for i in 0..n {
+                let Some(si) = &shaded[i] else { continue };
+                let m = scene.material(si.material);
+                let (sample, lit, skipped) = self.light_share(m, si, -rays[i].dir, light, stats);
+                terms[i] = lit.diffuse + lit.specular;
+                if skipped.is_some() {
+                    out[i] += 0.0 * terms[i];
+                } else if single {
+                    stats.shadow_rays += 1;
+                    (shadow_rays[cast], reach[cast]) =
+                        self.shadow_ray(si, sample.l, sample.distance);
+                    lanes[cast] = i;
+                    cast += 1;
+                } else {
+                    let s = self.shadow_factor(
+                        si,
+                        0,
+                        sample.l,
+                        sample.distance,
+                        light,
+                        &mut NoRecorder,
+                        stats,
+                    );
+                    out[i] += s * terms[i];
+                }
+            }
+            let blocked = scene.occluded_packet(&shadow_rays[..cast], &reach[..cast], stats);
+            for (k, &i) in lanes[..cast].iter().enumerate() {
+                let s = if blocked & (1 << k) == 0 { 1.0 } else { 0.0 };
+                out[i] += s * terms[i];
+            }
+        }
+        for i in 0..n {
+            if let (Some(si), Some(hit)) = (&shaded[i], &hits[i]) {
+                let task = Task::primary(&rays[i]);
+                out[i] = self
+                    .finish(&task, si, out[i], hit.t, &mut NoRecorder, rng, stats)
+                    .0;
+            }
+        }
+    }
+
+    /// One light's diffuse and specular terms at a shaded point, before the shadow factor,
+    /// and why no shadow ray is needed, if none is.
+    #[inline(always)]
+    fn light_share(
+        &self,
+        m: &Material,
+        si: &Interaction,
+        v: DVec3,
+        light: &Light,
+        stats: &mut Stats,
+    ) -> (LightSample, LightTerms, Option<&'static str>) {
+        let sample = light.sample(si.point);
+        let lit = light_terms(
+            m,
+            si.normal,
+            v,
+            sample.l,
+            sample.attenuation * light.intensity,
+        );
+        let skipped = if lit.n_dot_l <= 0.0 {
+            stats.shadow_skipped_backfacing += 1;
+            Some("light behind the surface (n·l ≤ 0)")
+        } else if light.is_dark() {
+            stats.shadow_skipped_dark += 1;
+            Some("light has zero intensity")
+        } else {
+            None
+        };
+        (sample, lit, skipped)
+    }
+
+    /// The local intensity `color` plus the secondary rays' kr·I_r + kt·I_t: the node's total.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn finish<R: Recorder>(
+        &self,
+        task: &Task,
+        si: &Interaction,
+        mut color: DVec3,
+        t: f64,
+        rec: &mut R,
+        rng: &mut Rng,
+        stats: &mut Stats,
+    ) -> (DVec3, f64) {
+        let m = self.scene.material(si.material);
         // Secondary rays: the mirror direction and Snell's law, weighted by kr and kt.
         if m.kr > 0.0 || m.kt > 0.0 {
-            color += self.secondary(task, &si, rec, rng, stats);
+            color += self.secondary(task, si, rec, rng, stats);
         }
         rec.end(color, None);
-        (color, hit.t)
+        (color, t)
     }
 
     /// kr·I_r + kt·I_t at a surface.
@@ -584,9 +689,7 @@ impl<'s> Tracer<'s> {
                 None => (l, distance),
             };
             stats.shadow_rays += 1;
-            let (from, moved) = self.scene.offset(si, dir, si.point);
-            let t_max = shadow_reach(dist, moved);
-            let ray = Ray { origin: from, dir };
+            let (ray, t_max) = self.shadow_ray(si, dir, dist);
             let blocker = if self.options.shadows {
                 self.scene.occluded(&ray, 0.0, t_max, stats)
             } else {
@@ -618,6 +721,14 @@ impl<'s> Tracer<'s> {
             rec.end(DVec3::splat(s), None);
         }
         s
+    }
+
+    /// A shadow ray from the surface along `dir` and how far it looks for blockers: up to a
+    /// light `distance` away.
+    #[inline(always)]
+    fn shadow_ray(&self, si: &Interaction, dir: DVec3, distance: f64) -> (Ray, f64) {
+        let (from, moved) = self.scene.offset(si, dir, si.point);
+        (Ray { origin: from, dir }, shadow_reach(distance, moved))
     }
 
     /// The transparent solids that contain q, innermost last: those already on the ray's
