@@ -326,51 +326,17 @@ impl Bvh {
         t_max: &mut [f64; PACKET],
         mut visit: impl FnMut(usize, u32, f64) -> Option<f64>,
     ) -> Visits {
-        let mut work = Visits::default();
-        if self.nodes.is_empty() || rays.is_empty() {
-            return work;
-        }
-        let packet = Packet::new(rays);
-        let negative = signs(&rays[0]);
+        let Some(first) = rays.first() else {
+            return Visits::default();
+        };
+        let negative = signs(first);
         debug_assert!(rays.iter().all(|r| signs(r) == negative));
-        let all = (u32::MAX >> (32 - rays.len())) as u16;
-        let mut stack = [(0u32, 0u16); 64];
-        stack[0] = (0, all);
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (index, active) = stack[top];
-            let node = &self.nodes[index as usize];
-            work.nodes += active.count_ones() as u64;
-            let hit = packet.hits(&node.bounds, t_min, t_max, active);
-            if hit == 0 {
-                continue;
+        let (_, work) = self.walk_packet(rays, t_min, t_max, Some(negative), |i, item, t_max| {
+            if let Some(t) = visit(i, item, t_max[i]) {
+                t_max[i] = t_max[i].min(t);
             }
-            if node.count > 0 {
-                let first = node.offset as usize;
-                for &item in &self.items[first..first + node.count as usize] {
-                    let mut m = hit;
-                    while m != 0 {
-                        let i = m.trailing_zeros() as usize;
-                        m &= m - 1;
-                        work.items += 1;
-                        if let Some(t) = visit(i, item, t_max[i]) {
-                            t_max[i] = t_max[i].min(t);
-                        }
-                    }
-                }
-            } else {
-                let left = index + 1;
-                let (near, far) = if negative[node.axis as usize] {
-                    (node.offset, left)
-                } else {
-                    (left, node.offset)
-                };
-                stack[top] = (far, hit);
-                stack[top + 1] = (near, hit);
-                top += 2;
-            }
-        }
+            false
+        });
         work
     }
 
@@ -384,6 +350,23 @@ impl Bvh {
         t_min: f64,
         t_max: &[f64; PACKET],
         mut visit: impl FnMut(usize, u32) -> bool,
+    ) -> (u32, Visits) {
+        let mut t_max = *t_max;
+        self.walk_packet(rays, t_min, &mut t_max, None, |i, item, _| visit(i, item))
+    }
+
+    /// The depth-first walk of both packet searches. Each node's box is tested for the rays
+    /// still searching below it; at a leaf, `step(ray, item, t_max)` runs for every item and
+    /// every ray that met the leaf's box, in order, and returns true when that ray is done
+    /// (it leaves the packet). Children are visited nearer side first by the rays' common
+    /// `signs`, or left first without them (as `any` does). Answers the rays that are done.
+    fn walk_packet(
+        &self,
+        rays: &[Ray],
+        t_min: f64,
+        t_max: &mut [f64; PACKET],
+        signs: Option<[bool; 3]>,
+        mut step: impl FnMut(usize, u32, &mut [f64; PACKET]) -> bool,
     ) -> (u32, Visits) {
         let mut work = Visits::default();
         if self.nodes.is_empty() || rays.is_empty() {
@@ -416,14 +399,19 @@ impl Bvh {
                         let i = m.trailing_zeros() as usize;
                         m &= m - 1;
                         work.items += 1;
-                        if visit(i, item) {
+                        if step(i, item, t_max) {
                             done |= 1 << i;
                         }
                     }
                 }
             } else {
-                stack[top] = (node.offset, hit);
-                stack[top + 1] = (index + 1, hit);
+                let left = index + 1;
+                let (near, far) = match signs {
+                    Some(negative) if negative[node.axis as usize] => (node.offset, left),
+                    _ => (left, node.offset),
+                };
+                stack[top] = (far, hit);
+                stack[top + 1] = (near, hit);
                 top += 2;
             }
         }
