@@ -593,6 +593,13 @@ impl Scene {
     /// The rays that share the first one's direction signs go through the BVH as a packet
     /// (if there are at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
+        if self.bounded.is_empty() {
+            // No BVH: nothing to share.
+            for (ray, hit) in rays.iter().zip(hits) {
+                *hit = self.intersect(ray, 0.0, f64::INFINITY, stats);
+            }
+            return;
+        }
         let Some(first) = rays.first().map(signs) else {
             return;
         };
@@ -600,8 +607,7 @@ impl Scene {
         for (a, ray) in alike.iter_mut().zip(rays) {
             *a = signs(ray) == first;
         }
-        let one_by_one =
-            self.bounded.is_empty() || alike.iter().filter(|&&a| a).count() < PACKET_MIN;
+        let one_by_one = alike.iter().filter(|&&a| a).count() < PACKET_MIN;
         let mut packet = [rays[0]; PACKET];
         let mut lanes = [0usize; PACKET];
         let mut n = 0;
