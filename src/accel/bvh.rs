@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::aabb::{overlaps, slab, SlabRay};
+use super::aabb::{slab, SlabRay};
 use super::Aabb;
 use crate::geometry::Ray;
 
@@ -89,11 +89,44 @@ impl Packet {
                     );
                 }
             }
-            for lane in 0..4 {
-                mask |= (overlaps(enter[lane], exit[lane]) as u16) << (4 * q + lane);
-            }
+            mask |= (overlaps4(&enter, &exit) as u16) << (4 * q);
         }
         mask & active
+    }
+}
+
+/// `overlaps` for four lanes, as four bits (bit k for lane k).
+#[inline(always)]
+fn overlaps4(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    {
+        // One vector compare and one mask move. Written out portably, the compiler took the
+        // four bits out of the compare one at a time and put them back together (perf put a
+        // quarter of the packet search's samples there); this way the 10 000-sphere peer scene
+        // renders 6 % faster, with the same image.
+        use std::arch::x86_64::*;
+        // SAFETY: the target has AVX (checked at compile time); the loads read 4 f64 each
+        // from arrays of 4.
+        unsafe {
+            let e = _mm256_loadu_pd(enter.as_ptr());
+            let x = _mm256_loadu_pd(exit.as_ptr());
+            let abs = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+            // exit + |exit|·4·ε, multiplied in `overlaps`' order so every bit is the same.
+            let slack = _mm256_mul_pd(
+                _mm256_mul_pd(abs, _mm256_set1_pd(4.0)),
+                _mm256_set1_pd(f64::EPSILON),
+            );
+            let bound = _mm256_add_pd(x, slack);
+            _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(e, bound)) as u8
+        }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    {
+        let mut bits = 0;
+        for lane in 0..4 {
+            bits |= (super::aabb::overlaps(enter[lane], exit[lane]) as u8) << lane;
+        }
+        bits
     }
 }
 
@@ -462,6 +495,47 @@ impl Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The four-lane overlap test answers every lane as `overlaps` does, at the edges of the
+    /// number line too (signed zeros, subnormals, the largest finite numbers, ∞, NaN).
+    #[test]
+    fn overlaps4_is_overlaps_lane_by_lane() {
+        let values = [
+            f64::NEG_INFINITY,
+            -f64::MAX,
+            -1e300,
+            -1.0,
+            -0.0,
+            0.0,
+            1e-320,
+            1.0,
+            1.0 + f64::EPSILON,
+            1.0 + 4.0 * f64::EPSILON,
+            f64::MAX / 2.0,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        let pairs: Vec<(f64, f64)> = values
+            .iter()
+            .flat_map(|&e| values.iter().map(move |&x| (e, x)))
+            .collect();
+        for chunk in pairs.chunks(4) {
+            let enter = std::array::from_fn(|k| chunk[k % chunk.len()].0);
+            let exit = std::array::from_fn(|k| chunk[k % chunk.len()].1);
+            let bits = overlaps4(&enter, &exit);
+            for lane in 0..4 {
+                let expected = super::super::aabb::overlaps(enter[lane], exit[lane]);
+                assert_eq!(
+                    bits >> lane & 1 == 1,
+                    expected,
+                    "{} {}",
+                    enter[lane],
+                    exit[lane]
+                );
+            }
+        }
+    }
 
     /// Boxes on a line; the BVH must report exactly the boxes a brute-force test finds.
     #[test]
