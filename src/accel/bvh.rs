@@ -7,6 +7,7 @@
 use glam::DVec3;
 
 use super::aabb::{slab, SlabRay};
+use super::hull::{Hull, Verdict};
 use super::Aabb;
 use crate::geometry::Ray;
 
@@ -36,6 +37,8 @@ pub fn signs(r: &Ray) -> [bool; 3] {
 struct Packet {
     quads: [Quad; PACKET / 4],
     len: usize,
+    /// The rays' hull, which answers most box tests for all of them at once.
+    hull: Option<Hull>,
 }
 
 #[derive(Clone, Copy, Default)]
@@ -56,6 +59,7 @@ impl Packet {
         let mut p = Packet {
             quads: [Quad::default(); PACKET / 4],
             len: rays.len(),
+            hull: None,
         };
         for (q, quad) in p.quads.iter_mut().enumerate().take(rays.len().div_ceil(4)) {
             for lane in 0..4 {
@@ -67,14 +71,34 @@ impl Packet {
                 }
             }
         }
+        p.hull = Hull::new((0..rays.len()).map(|i| {
+            let quad = &p.quads[i / 4];
+            let lane = |v: &[[f64; 4]; 3]| [v[0][i % 4], v[1][i % 4], v[2][i % 4]];
+            (lane(&quad.origin), lane(&quad.inv_dir))
+        }));
         p
     }
 
     /// Bit i set if ray i meets the box within [t_min, t_max[i]], for the rays `active` names:
     /// `Aabb::hit_slabs` for every lane, with the same `slab` and `overlaps` steps, so the same
-    /// answer to the last bit.
+    /// answer to the last bit. `reach` bounds the rays' t_max; with it the hull answers for all
+    /// of them when it can (as exactly: see `hull.rs`).
     #[inline(always)]
-    fn hits(&self, b: &Aabb, t_min: f64, t_max: &[f64; PACKET], active: u16) -> u16 {
+    fn hits(
+        &self,
+        b: &Aabb,
+        t_min: f64,
+        t_max: &[f64; PACKET],
+        reach: (f64, f64),
+        active: u16,
+    ) -> u16 {
+        if let Some(hull) = &self.hull {
+            match hull.classify(b, t_min, reach) {
+                Verdict::AllMiss => return 0,
+                Verdict::AllHit => return active,
+                Verdict::Mixed => {}
+            }
+        }
         let mut mask = 0u16;
         for (q, quad) in self.quads.iter().enumerate().take(self.len.div_ceil(4)) {
             let mut enter = [t_min; 4];
@@ -408,6 +432,15 @@ impl Bvh {
         let packet = Packet::new(rays);
         let all = (u32::MAX >> (32 - rays.len())) as u16;
         let mut done = 0u16;
+        // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
+        let reach_of = |t_max: &[f64; PACKET]| {
+            t_max[..rays.len()]
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                    (if t < lo { t } else { lo }, if t > hi { t } else { hi })
+                })
+        };
+        let mut reach = reach_of(t_max);
         let mut stack = [(0u32, 0u16); 64];
         stack[0] = (0, all);
         let mut top = 1;
@@ -420,7 +453,7 @@ impl Bvh {
             }
             let node = &self.nodes[index as usize];
             work.nodes += active.count_ones() as u64;
-            let hit = packet.hits(&node.bounds, t_min, t_max, active);
+            let hit = packet.hits(&node.bounds, t_min, t_max, reach, active);
             if hit == 0 {
                 continue;
             }
@@ -437,6 +470,7 @@ impl Bvh {
                         }
                     }
                 }
+                reach = reach_of(t_max);
             } else {
                 let left = index + 1;
                 let (near, far) = match signs {

@@ -2,6 +2,7 @@
 
 mod aabb;
 pub mod bvh;
+mod hull;
 
 pub use aabb::Aabb;
 pub use bvh::Bvh;
