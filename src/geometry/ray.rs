@@ -13,6 +13,12 @@ pub struct Ray {
 }
 
 impl Ray {
+    /// A filler for the unused places of a fixed-size array of rays (a packet).
+    pub const UNUSED: Ray = Ray {
+        origin: DVec3::ZERO,
+        dir: DVec3::Z,
+    };
+
     /// A world ray; the direction is normalised here.
     pub fn new(origin: DVec3, dir: DVec3) -> Ray {
         Ray {

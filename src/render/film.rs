@@ -151,11 +151,7 @@ impl<'s> Film<'s> {
         visit: &mut dyn FnMut(Sample),
     ) {
         for chunk in self.offsets.chunks(PACKET) {
-            let unused = Ray {
-                origin: DVec3::ZERO,
-                dir: DVec3::Z,
-            };
-            let mut rays = [unused; PACKET];
+            let mut rays = [Ray::UNUSED; PACKET];
             for (r, o) in rays.iter_mut().zip(chunk) {
                 *r = self.scene.camera.ray(fx + o.x, fy + o.y);
             }

@@ -672,10 +672,7 @@ impl Scene {
     /// packet (any directions will do: an any-hit search visits the nodes in a fixed order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
         let mut blocked = 0u32;
-        let mut packet = [Ray {
-            origin: DVec3::ZERO,
-            dir: DVec3::Z,
-        }; PACKET];
+        let mut packet = [Ray::UNUSED; PACKET];
         let mut reach = [0.0; PACKET];
         let mut lanes = [0usize; PACKET];
         let mut n = 0;

@@ -313,10 +313,7 @@ impl<'s> Tracer<'s> {
         for light in &scene.lights {
             let single = light.shadow_rays() == 1 && self.options.shadows;
             let mut terms = [DVec3::ZERO; PACKET];
-            let mut shadow_rays = [Ray {
-                origin: DVec3::ZERO,
-                dir: DVec3::Z,
-            }; PACKET];
+            let mut shadow_rays = [Ray::UNUSED; PACKET];
             let mut reach = [0.0; PACKET];
             let mut lanes = [0usize; PACKET];
             let mut cast = 0;
