@@ -3,6 +3,7 @@
 mod aabox;
 pub mod cone;
 pub mod csg;
+pub mod csg_crossing;
 pub mod cylinder;
 mod mesh;
 mod plane;

@@ -8,6 +8,7 @@ use glam::DVec3;
 use crate::accel::bvh::{signs, PACKET};
 use crate::accel::{Aabb, Bvh};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
+use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use crate::geometry::{
     first_crossing, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, Surface, Transform,
 };
@@ -193,6 +194,9 @@ pub struct Scene {
     bounded: Vec<Probe>,
     /// Objects no box can hold (planes, complements): always tested.
     unbounded: Vec<Probe>,
+    /// Per object: its CSG tree's flat form, when it has one (nearest hits without segment
+    /// lists).
+    flat_csg: Vec<Option<FlatCsg>>,
 }
 
 impl LeafSegments for Scene {
@@ -201,6 +205,13 @@ impl LeafSegments for Scene {
     }
     fn leaf_name(&self, leaf: u32) -> String {
         self.leaves[leaf as usize].name.clone()
+    }
+}
+
+impl LeafSpans for Scene {
+    #[inline]
+    fn leaf_span(&self, leaf: u32, ray: &Ray) -> Option<Span> {
+        self.leaves[leaf as usize].span(ray)
     }
 }
 
@@ -243,6 +254,13 @@ impl Scene {
                 .any(|o| matches!(o.geometry, Geometry::Csg(_))),
             lights: lights.len(),
         };
+        let flat_csg = objects
+            .iter()
+            .map(|o| match &o.geometry {
+                Geometry::Csg(root) => FlatCsg::new(root),
+                Geometry::Leaf(_) => None,
+            })
+            .collect();
         let mut scene = Scene {
             source,
             camera,
@@ -267,6 +285,7 @@ impl Scene {
             bvh: Bvh::default(),
             bounded: vec![],
             unbounded: vec![],
+            flat_csg,
         };
         scene.transparent_objects = scene
             .leaves
@@ -510,12 +529,46 @@ impl Scene {
                     (s.t_out, Surface::new(*leaf, s.face_out as u32))
                 }
             }
-            Geometry::Csg(root) => first_crossing(
-                &self.csg_segments(root, ray, inv_dir, t_min, t_max, stats),
-                t_min,
-            )?,
+            Geometry::Csg(root) => self.csg_hit(object, root, ray, inv_dir, t_min, t_max, stats)?,
         };
         (t > t_min && t < t_max && t.is_finite()).then_some(Hit { t, object, surface })
+    }
+
+    /// The nearest crossing of a CSG object's surface past t_min: read off its primitives'
+    /// spans when the tree is flat and the answer is clear, else from its segment list.
+    #[allow(clippy::too_many_arguments)]
+    fn csg_hit(
+        &self,
+        object: u32,
+        root: &CsgNode,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<(f64, Surface)> {
+        if let Some(flat) = &self.flat_csg[object as usize] {
+            let r = CsgRay {
+                ray,
+                inv_dir,
+                t_min,
+                t_max,
+                use_bounds: self.csg_pruning,
+                prune: self.csg_pruning,
+            };
+            let mut work = CsgWork::default();
+            let crossing = flat.nearest(self, &r, &mut work);
+            stats.csg_pruned += work.pruned;
+            match crossing {
+                Crossing::Hit(t, surface) => return Some((t, surface)),
+                Crossing::Miss => return None,
+                Crossing::Undecided => {}
+            }
+        }
+        first_crossing(
+            &self.csg_segments(root, ray, inv_dir, t_min, t_max, stats),
+            t_min,
+        )
     }
 
     /// The hit of one object through its probe: `object_hit`'s answer, found faster for plain

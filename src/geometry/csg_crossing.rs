@@ -1,0 +1,283 @@
+//! The nearest surface crossing of a flat CSG object (one operation over primitives), read off
+//! the primitives' spans without building segment lists.
+//!
+//! A ray is inside the result exactly where the operation's rule holds for "inside A", "inside
+//! B", … (seed 000's tables), and a primitive's span says where the ray is inside it. So the
+//! result's boundaries are the span ends at which the rule changes its answer, and the nearest
+//! hit is the first such end past t_min. This is what the segment-list sweep computes, one
+//! boundary at a time; the two can differ only where several ends coincide and the rule
+//! changes there (touching or shared faces: which surface does the result keep?). There this
+//! path answers `Undecided` and the caller asks the segment lists, which settle it as the notes
+//! do. Bounding boxes and the notes' pruning rules are applied in the tree's own order and
+//! counted the same way, so `--stats` does not change either.
+
+use smallvec::SmallVec;
+
+use super::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
+use super::{Ray, Span, Surface};
+use crate::accel::Aabb;
+
+/// At most this many primitives: the inside flags fit a small mask and the ends sort quickly.
+const MAX_LEAVES: usize = 8;
+
+/// A CSG tree of depth one, ready for `nearest`.
+#[derive(Clone, Debug)]
+pub struct FlatCsg {
+    op: CsgOp,
+    /// The operands in the tree's order: leaf index and world bounds.
+    leaves: SmallVec<[(u32, Aabb); 2]>,
+}
+
+/// The answer of `FlatCsg::nearest`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Crossing {
+    Hit(f64, Surface),
+    Miss,
+    /// Several span ends coincide where the rule changes: ask the segment lists.
+    Undecided,
+}
+
+/// The environment: a primitive's span along a ray.
+pub trait LeafSpans {
+    fn leaf_span(&self, leaf: u32, ray: &Ray) -> Option<Span>;
+}
+
+impl FlatCsg {
+    /// The flat form of a tree that is one ∪ or ∩ over up to eight primitives, or one
+    /// difference A − B of two. Deeper trees, longer differences and complements keep the
+    /// segment lists (their pruning depends on whole intermediate lists).
+    pub fn new(root: &CsgNode) -> Option<FlatCsg> {
+        let CsgNode::Op { op, children, .. } = root else {
+            return None;
+        };
+        let fits = match op {
+            CsgOp::Union | CsgOp::Intersection => children.len() <= MAX_LEAVES,
+            CsgOp::Difference => children.len() == 2,
+            CsgOp::Complement => false,
+        };
+        let leaves = children
+            .iter()
+            .map(|c| match c {
+                CsgNode::Leaf { leaf, bounds } => Some((*leaf, *bounds)),
+                CsgNode::Op { .. } => None,
+            })
+            .collect::<Option<SmallVec<_>>>()?;
+        fits.then_some(FlatCsg { op: *op, leaves })
+    }
+
+    /// Inside the result, given the inside flags of the operands (bit k: operand k).
+    #[inline]
+    fn keeps(&self, inside: u32) -> bool {
+        match self.op {
+            CsgOp::Union => inside != 0,
+            CsgOp::Intersection => inside == (1 << self.leaves.len()) - 1,
+            // A and not B.
+            CsgOp::Difference => inside == 1,
+            CsgOp::Complement => unreachable!("complements stay trees"),
+        }
+    }
+
+    /// The first boundary of the result with r.t_min < t < r.t_max (finite). The caller has
+    /// already tested the root's box (the object's box). `work` is only added to when the
+    /// answer is decided, so an `Undecided` evaluation can be redone by the segment lists
+    /// without counting anything twice.
+    pub fn nearest(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
+        let mut spans: SmallVec<[Option<Span>; 2]> = SmallVec::new();
+        let mut done = CsgWork::default();
+        // The intersection so far: [latest entry, earliest exit], empty once an operand is.
+        let (mut latest_in, mut earliest_out) = (f64::NEG_INFINITY, f64::INFINITY);
+        let mut empty = false;
+        for (k, &(leaf, bounds)) in self.leaves.iter().enumerate() {
+            // The notes' rule: once ∩'s operands so far, or −'s first one, are empty, so is
+            // the result: the rest need not be looked at.
+            let prunes = matches!(self.op, CsgOp::Intersection | CsgOp::Difference);
+            if k > 0 && r.prune && prunes && empty {
+                done.pruned += 1;
+                spans.push(None);
+                continue;
+            }
+            let span = if r.use_bounds && !bounds.hit(r.ray, r.inv_dir, r.t_min, r.t_max) {
+                done.pruned += 1;
+                None
+            } else {
+                done.leaves_tested += 1;
+                match env.leaf_span(leaf, r.ray) {
+                    // A span of NaN (overflow on absurd input) is no intersection.
+                    Some(s) if s.t_in.is_nan() || s.t_out.is_nan() => None,
+                    // Reversed ends: leave them to the sweep.
+                    Some(s) if s.t_in > s.t_out => return Crossing::Undecided,
+                    s => s,
+                }
+            };
+            // Emptiness as the segment lists see it: the first operand's list is empty only
+            // without a span; ∩ with more operands is empty unless its entry precedes its exit.
+            match span {
+                None => empty = true,
+                Some(s) => {
+                    latest_in = latest_in.max(s.t_in);
+                    earliest_out = earliest_out.min(s.t_out);
+                    if k > 0 && latest_in >= earliest_out {
+                        empty = true;
+                    }
+                }
+            }
+            spans.push(span);
+        }
+
+        // Inside flags just after t_min, and the span ends beyond it, in order.
+        let mut inside = 0u32;
+        let mut ends: SmallVec<[(f64, usize, bool); 4]> = SmallVec::new();
+        let within = |t: f64| t > r.t_min && t < r.t_max && t.is_finite();
+        for (k, s) in spans.iter().enumerate() {
+            let Some(s) = s else { continue };
+            if s.t_in <= r.t_min && r.t_min < s.t_out {
+                inside |= 1 << k;
+            }
+            if within(s.t_in) {
+                ends.push((s.t_in, k, true));
+            }
+            if within(s.t_out) {
+                ends.push((s.t_out, k, false));
+            }
+        }
+        ends.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+
+        let mut result = Crossing::Miss;
+        let was = self.keeps(inside);
+        let mut i = 0;
+        while i < ends.len() {
+            // Every end at this t, applied together.
+            let t = ends[i].0;
+            let first = i;
+            while i < ends.len() && ends[i].0 == t {
+                let (_, k, entering) = ends[i];
+                if entering {
+                    inside |= 1 << k;
+                } else {
+                    inside &= !(1 << k);
+                }
+                i += 1;
+            }
+            let now = self.keeps(inside);
+            if now == was {
+                continue;
+            }
+            if i - first > 1 {
+                return Crossing::Undecided;
+            }
+            let (_, k, entering) = ends[first];
+            let s = spans[k].expect("an end belongs to a span");
+            let face = if entering { s.face_in } else { s.face_out };
+            let surface = Surface::new(self.leaves[k].0, face as u32);
+            // B's surfaces bound a difference from the other side.
+            let carved = self.op == CsgOp::Difference && k > 0;
+            result = Crossing::Hit(t, if carved { surface.flipped() } else { surface });
+            break;
+        }
+        work.pruned += done.pruned;
+        work.leaves_tested += done.leaves_tested;
+        result
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// Spans given directly, per leaf.
+    struct Fixed(Vec<Option<(f64, f64)>>);
+
+    impl LeafSpans for Fixed {
+        fn leaf_span(&self, leaf: u32, _: &Ray) -> Option<Span> {
+            self.0[leaf as usize].map(|(a, b)| Span::new(a, 1, b, 2))
+        }
+    }
+
+    fn flat(op: CsgOp, n: u32) -> FlatCsg {
+        let everything = Aabb::everything();
+        FlatCsg::new(&CsgNode::Op {
+            op,
+            name: "t".into(),
+            children: (0..n)
+                .map(|leaf| CsgNode::Leaf {
+                    leaf,
+                    bounds: everything,
+                })
+                .collect(),
+            bounds: everything,
+        })
+        .unwrap()
+    }
+
+    fn nearest(op: CsgOp, spans: &[Option<(f64, f64)>], t_min: f64) -> (Crossing, CsgWork) {
+        let ray = Ray::raw(DVec3::ZERO, DVec3::X);
+        let r = CsgRay {
+            ray: &ray,
+            inv_dir: ray.dir.recip(),
+            t_min,
+            t_max: f64::INFINITY,
+            use_bounds: true,
+            prune: true,
+        };
+        let mut work = CsgWork::default();
+        let c = flat(op, spans.len() as u32).nearest(&Fixed(spans.to_vec()), &r, &mut work);
+        (c, work)
+    }
+
+    #[test]
+    fn seed_000_difference_is_entered_at_a_and_left_at_b() {
+        // The notes' A = [13, 23], B = [16, 22]: A − B = [13, 16] ∪ [22, 23].
+        let spans = [Some((13.0, 23.0)), Some((16.0, 22.0))];
+        let hit = |t_min| nearest(CsgOp::Difference, &spans, t_min).0;
+        assert_eq!(hit(0.0), Crossing::Hit(13.0, Surface::new(0, 1)));
+        // From inside A − B the ray leaves through B's near wall, seen from the other side.
+        assert_eq!(hit(14.0), Crossing::Hit(16.0, Surface::new(1, 1).flipped()));
+        assert_eq!(hit(17.0), Crossing::Hit(22.0, Surface::new(1, 2).flipped()));
+        assert_eq!(hit(22.5), Crossing::Hit(23.0, Surface::new(0, 2)));
+        assert_eq!(hit(23.0), Crossing::Miss);
+        // A ray starting on A's entry is inside A: it leaves through B's near wall.
+        assert_eq!(hit(13.0), Crossing::Hit(16.0, Surface::new(1, 1).flipped()));
+    }
+
+    #[test]
+    fn coinciding_ends_where_the_result_changes_are_left_to_the_sweep() {
+        // Shared face: A ∪ B touching at 2 does not change there; ∩ of the same is empty.
+        let touching = [Some((1.0, 2.0)), Some((2.0, 3.0))];
+        assert_eq!(
+            nearest(CsgOp::Union, &touching, 1.5).0,
+            Crossing::Hit(3.0, Surface::new(1, 2))
+        );
+        assert_eq!(
+            nearest(CsgOp::Intersection, &touching, 0.0).0,
+            Crossing::Miss
+        );
+        // Equal spans: the rule changes where two ends coincide.
+        let same = [Some((1.0, 2.0)), Some((1.0, 2.0))];
+        assert_eq!(nearest(CsgOp::Union, &same, 0.0).0, Crossing::Undecided);
+        // Reversed ends are not a span this path understands.
+        assert_eq!(
+            nearest(CsgOp::Union, &[Some((2.0, 1.0)), None], 0.0).0,
+            Crossing::Undecided
+        );
+    }
+
+    #[test]
+    fn empty_operands_prune_the_rest_and_only_decided_answers_count() {
+        let (c, work) = nearest(CsgOp::Intersection, &[None, Some((1.0, 2.0))], 0.0);
+        assert_eq!((c, work.pruned, work.leaves_tested), (Crossing::Miss, 1, 1));
+        // Disjoint operands of ∩: the third is pruned.
+        let spans = [Some((1.0, 2.0)), Some((3.0, 4.0)), Some((0.0, 5.0))];
+        let (c, work) = nearest(CsgOp::Intersection, &spans, 0.0);
+        assert_eq!((c, work.pruned, work.leaves_tested), (Crossing::Miss, 1, 2));
+        // Operands of ∩ that only touch leave nothing: the third is pruned.
+        let spans = [Some((1.0, 2.0)), Some((2.0, 3.0)), Some((0.0, 5.0))];
+        let (c, work) = nearest(CsgOp::Intersection, &spans, 0.0);
+        assert_eq!((c, work.pruned, work.leaves_tested), (Crossing::Miss, 1, 2));
+        let (c, work) = nearest(CsgOp::Union, &[Some((1.0, 2.0)), Some((1.0, 3.0))], 0.0);
+        assert_eq!(
+            (c, work.pruned, work.leaves_tested),
+            (Crossing::Undecided, 0, 0)
+        );
+    }
+}
