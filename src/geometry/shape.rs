@@ -4,7 +4,7 @@ use glam::DVec3;
 
 use std::sync::Arc;
 
-use super::{Aabox, Cone, Cylinder, Mesh, Plane, Ray, Sphere, Triangle};
+use super::{Aabox, Cone, Cylinder, Mesh, Plane, Ray, Sphere, Transform, Triangle};
 use crate::accel::Aabb;
 
 /// Where a ray is inside a convex primitive: one interval with the faces it enters and leaves
@@ -67,6 +67,84 @@ impl Shape {
             Shape::Triangle(s) => s.normal(),
             Shape::Mesh(m) => m.normal(p, face),
         }
+    }
+
+    /// The shape carried to world space by `tf`, when the result is a shape of the same kind:
+    /// then the renderer can intersect it in world space and skip carrying every ray into
+    /// object space. Spheres, cylinders and cones stay themselves under similarities (moves,
+    /// turns, uniform scales), boxes under scales along the axes and moves, planes under any
+    /// transform, triangles under any that keeps their orientation. Meshes keep their
+    /// transform (their inner BVH is built in object space).
+    pub fn moved(&self, tf: &Transform) -> Option<Shape> {
+        let m = &tf.to_world;
+        let p = |v: DVec3| m.transform_point3(v);
+        let scale = tf.similarity_scale();
+        let moved = match self {
+            Shape::Sphere(s) => Shape::Sphere(Sphere {
+                center: p(s.center),
+                radius: s.radius * scale?,
+            }),
+            Shape::Cylinder(s) => Shape::Cylinder(Cylinder {
+                base: p(s.base),
+                top: p(s.top),
+                radius: s.radius * scale?,
+            }),
+            Shape::Cone(s) => Shape::Cone(Cone {
+                apex: p(s.apex),
+                base: p(s.base),
+                radius: s.radius * scale?,
+            }),
+            Shape::Box(b) => {
+                let l = m.matrix3;
+                let diagonal = [
+                    l.x_axis.y, l.x_axis.z, l.y_axis.x, l.y_axis.z, l.z_axis.x, l.z_axis.y,
+                ]
+                .iter()
+                .all(|&v| v == 0.0);
+                if !diagonal {
+                    return None;
+                }
+                let (a, c) = (p(b.min), p(b.max));
+                Shape::Box(Aabox {
+                    min: a.min(c),
+                    max: a.max(c),
+                })
+            }
+            Shape::Plane(s) => Shape::Plane(Plane {
+                point: p(s.point),
+                normal: tf.normal_to_world(s.normal),
+            }),
+            Shape::Triangle(t) if m.matrix3.determinant() > 0.0 => Shape::Triangle(Triangle {
+                a: p(t.a),
+                b: p(t.b),
+                c: p(t.c),
+            }),
+            Shape::Triangle(_) | Shape::Mesh(_) => return None,
+        };
+        // Nothing may overflow, underflow to a point or collapse a box or an axis.
+        let b = moved.bounds();
+        let sound = match &moved {
+            Shape::Sphere(s) => s.radius.is_normal() && s.center.is_finite(),
+            Shape::Cylinder(s) => {
+                s.radius.is_normal()
+                    && s.axis().is_finite()
+                    && b.min.is_finite()
+                    && b.max.is_finite()
+            }
+            Shape::Cone(s) => {
+                s.radius.is_normal()
+                    && s.axis().is_finite()
+                    && b.min.is_finite()
+                    && b.max.is_finite()
+            }
+            Shape::Box(s) => s.min.is_finite() && s.max.is_finite() && s.min.cmplt(s.max).all(),
+            Shape::Plane(s) => s.point.is_finite() && s.normal.is_finite(),
+            Shape::Triangle(t) => {
+                t.normal() != DVec3::ZERO && b.min.is_finite() && b.max.is_finite()
+            }
+            Shape::Mesh(_) => false,
+        };
+        sound.then_some(moved)
     }
 
     /// Object-space bounds (infinite for a plane).

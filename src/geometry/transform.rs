@@ -39,6 +39,20 @@ impl Transform {
         self.to_world.transform_point3(p)
     }
 
+    /// s when the linear part is s times a rotation or reflection (to rounding): such a
+    /// transform carries spheres to spheres and cylinders to cylinders.
+    pub fn similarity_scale(&self) -> Option<f64> {
+        let m = self.to_world.matrix3;
+        // The Gram matrix MᵀM is s²·I exactly for a similarity.
+        let gram = m.transpose() * m;
+        let s2 = (gram.x_axis.x + gram.y_axis.y + gram.z_axis.z) / 3.0;
+        let off = (gram - DMat3::from_diagonal(DVec3::splat(s2)))
+            .to_cols_array()
+            .iter()
+            .fold(0.0f64, |worst, v| worst.max(v.abs()));
+        (s2.is_normal() && off <= 1e-12 * s2).then(|| s2.sqrt())
+    }
+
     /// `self` applied after `inner`.
     pub fn after(&self, inner: &Transform) -> Transform {
         Transform::new(self.to_world * inner.to_world)

@@ -740,15 +740,27 @@ impl Builder<'_> {
             .name
             .clone()
             .unwrap_or_else(|| format!("{}.{}{}", ctx.object_name, shape.kind(), ctx.leaf_count));
-        let identity = transform.to_world == DAffine3::IDENTITY;
-        let bounds = shape.bounds().transformed(&transform.to_world);
+        // A shape the transform keeps of its kind is stored in world space: no ray needs
+        // carrying to object space for it.
+        let (shape, transform) = if transform.to_world == DAffine3::IDENTITY {
+            (shape, None)
+        } else {
+            match shape.moved(&transform) {
+                Some(moved) => (moved, None),
+                None => (shape, Some(transform)),
+            }
+        };
+        let bounds = match &transform {
+            Some(tf) => shape.bounds().transformed(&tf.to_world),
+            None => shape.bounds(),
+        };
         let leaf = self.leaves.len() as u32;
         self.leaves.push(Leaf {
             name,
             object: ctx.object,
             path: ctx.path.clone(),
             shape,
-            transform: (!identity).then_some(transform),
+            transform,
             material,
             bounds,
         });
