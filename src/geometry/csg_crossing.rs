@@ -24,8 +24,10 @@ const MAX_LEAVES: usize = 8;
 #[derive(Clone, Debug)]
 pub struct FlatCsg {
     op: CsgOp,
-    /// The operands in the tree's order: leaf index and world bounds.
-    leaves: SmallVec<[(u32, Aabb); 2]>,
+    /// The operands in the tree's order: leaf index, and world bounds worth testing. A box
+    /// that holds the root's box is met whenever the root's is (the slab test is monotone in
+    /// the box's planes), so it is not tested again: None.
+    leaves: SmallVec<[(u32, Option<Aabb>); 2]>,
 }
 
 /// The answer of `FlatCsg::nearest`.
@@ -55,10 +57,15 @@ impl FlatCsg {
             CsgOp::Difference => children.len() == 2,
             CsgOp::Complement => false,
         };
+        let root_bounds = root.bounds();
+        let holds_root =
+            |b: &Aabb| b.min.cmple(root_bounds.min).all() && root_bounds.max.cmple(b.max).all();
         let leaves = children
             .iter()
             .map(|c| match c {
-                CsgNode::Leaf { leaf, bounds } => Some((*leaf, *bounds)),
+                CsgNode::Leaf { leaf, bounds } => {
+                    Some((*leaf, (!holds_root(bounds)).then_some(*bounds)))
+                }
                 CsgNode::Op { .. } => None,
             })
             .collect::<Option<SmallVec<_>>>()?;
@@ -78,7 +85,7 @@ impl FlatCsg {
     }
 
     /// The first boundary of the result with r.t_min < t < r.t_max (finite). The caller has
-    /// already tested the root's box (the object's box). `work` is only added to when the
+    /// already tested the root's box (the object's box) when `r.use_bounds` is set. `work` is only added to when the
     /// answer is decided, so an `Undecided` evaluation can be redone by the segment lists
     /// without counting anything twice.
     pub fn nearest(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
@@ -96,7 +103,8 @@ impl FlatCsg {
                 spans.push(None);
                 continue;
             }
-            let span = if r.use_bounds && !bounds.hit(r.ray, r.inv_dir, r.t_min, r.t_max) {
+            let missed = |b: Aabb| !b.hit(r.ray, r.inv_dir, r.t_min, r.t_max);
+            let span = if r.use_bounds && bounds.is_some_and(missed) {
                 done.pruned += 1;
                 None
             } else {
