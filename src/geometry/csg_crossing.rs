@@ -17,8 +17,9 @@ use super::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
 use super::{Ray, Span, Surface};
 use crate::accel::Aabb;
 
-/// At most this many primitives: the inside flags fit a small mask and the ends sort quickly.
-const MAX_LEAVES: usize = 8;
+/// At most this many primitives: the inside flags fit a mask, the ends sort quickly, and the
+/// working lists live on the stack (a heap allocation per ray would cost more than the lists).
+const MAX_LEAVES: usize = 16;
 
 /// A CSG tree of depth one, ready for `nearest`.
 #[derive(Clone, Debug)]
@@ -45,7 +46,7 @@ pub trait LeafSpans {
 }
 
 impl FlatCsg {
-    /// The flat form of a tree that is one ∪ or ∩ over up to eight primitives, or one
+    /// The flat form of a tree that is one ∪ or ∩ over up to sixteen primitives, or one
     /// difference A − B of two. Deeper trees, longer differences and complements keep the
     /// segment lists (their pruning depends on whole intermediate lists).
     pub fn new(root: &CsgNode) -> Option<FlatCsg> {
@@ -89,7 +90,7 @@ impl FlatCsg {
     /// answer is decided, so an `Undecided` evaluation can be redone by the segment lists
     /// without counting anything twice.
     pub fn nearest(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
-        let mut spans: SmallVec<[Option<Span>; 2]> = SmallVec::new();
+        let mut spans: SmallVec<[Option<Span>; MAX_LEAVES]> = SmallVec::new();
         let mut done = CsgWork::default();
         // The intersection so far: [latest entry, earliest exit], empty once an operand is.
         let (mut latest_in, mut earliest_out) = (f64::NEG_INFINITY, f64::INFINITY);
@@ -134,7 +135,7 @@ impl FlatCsg {
 
         // Inside flags just after t_min, and the span ends beyond it, in order.
         let mut inside = 0u32;
-        let mut ends: SmallVec<[(f64, usize, bool); 4]> = SmallVec::new();
+        let mut ends: SmallVec<[(f64, usize, bool); 2 * MAX_LEAVES]> = SmallVec::new();
         let within = |t: f64| t > r.t_min && t < r.t_max && t.is_finite();
         for (k, s) in spans.iter().enumerate() {
             let Some(s) = s else { continue };
