@@ -86,15 +86,20 @@ impl FlatCsg {
     }
 
     /// The first boundary of the result with r.t_min < t < r.t_max (finite). The caller has
-    /// already tested the root's box (the object's box) when `r.use_bounds` is set. `work` is only added to when the
-    /// answer is decided, so an `Undecided` evaluation can be redone by the segment lists
-    /// without counting anything twice.
+    /// already tested the root's box (the object's box) when `r.use_bounds` is set. `work` is
+    /// only added to when the answer is decided, so an `Undecided` evaluation can be redone by
+    /// the segment lists without counting anything twice.
+    ///
+    /// One function on purpose: split in two (the operands' spans, then the walk along the
+    /// ends), the CSG peer scene ran 3–4 % slower, and 36 % slower with the spans returned by
+    /// value.
     pub fn nearest(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
         let mut spans: SmallVec<[Option<Span>; MAX_LEAVES]> = SmallVec::new();
         let mut done = CsgWork::default();
         // The intersection so far: [latest entry, earliest exit], empty once an operand is.
         let (mut latest_in, mut earliest_out) = (f64::NEG_INFINITY, f64::INFINITY);
         let mut empty = false;
+        // The operands' spans, in the tree's order, with its boxes and pruning rules.
         for (k, &(leaf, bounds)) in self.leaves.iter().enumerate() {
             // The notes' rule: once ∩'s operands so far, or −'s first one, are empty, so is
             // the result: the rest need not be looked at.
@@ -133,7 +138,7 @@ impl FlatCsg {
             spans.push(span);
         }
 
-        // Inside flags just after t_min, and the span ends beyond it, in order.
+        // The walk: inside flags just after t_min, and the span ends beyond it, in order.
         let mut inside = 0u32;
         let mut ends: SmallVec<[(f64, usize, bool); 2 * MAX_LEAVES]> = SmallVec::new();
         let within = |t: f64| t > r.t_min && t < r.t_max && t.is_finite();
