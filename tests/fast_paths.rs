@@ -287,6 +287,15 @@ proptest! {
     }
 }
 
+/// A box around c, at least 0.1 from it on every side.
+fn box_around(c: DVec3, e: DVec3) -> Shape {
+    let e = e.abs() + 0.1;
+    Shape::Box(Aabox {
+        min: c - e,
+        max: c + e,
+    })
+}
+
 /// A shape, and a transform of the kind it keeps (or any transform, for `keeps = false`).
 fn moved_case() -> impl Strategy<Value = (Shape, DAffine3, bool)> {
     let v = |r: f64| prop::array::uniform3(-r..r).prop_map(DVec3::from_array);
@@ -334,17 +343,7 @@ fn moved_case() -> impl Strategy<Value = (Shape, DAffine3, bool)> {
             m,
             true
         )),
-        (v(2.0), v(1.0), axis_scale).prop_map(|(c, e, m)| {
-            let e = e.abs() + 0.1;
-            (
-                Shape::Box(Aabox {
-                    min: c - e,
-                    max: c + e,
-                }),
-                m,
-                true,
-            )
-        }),
+        (v(2.0), v(1.0), axis_scale).prop_map(|(c, e, m)| (box_around(c, e), m, true)),
         (v(2.0), v(1.0), any.clone()).prop_filter_map("normal", |(p, n, m)| {
             Some((
                 Shape::Plane(Plane {
@@ -372,17 +371,7 @@ fn moved_case() -> impl Strategy<Value = (Shape, DAffine3, bool)> {
                 false,
             )
         }),
-        (v(2.0), v(1.0), any).prop_map(|(c, e, m)| {
-            let e = e.abs() + 0.1;
-            (
-                Shape::Box(Aabox {
-                    min: c - e,
-                    max: c + e,
-                }),
-                m,
-                false,
-            )
-        }),
+        (v(2.0), v(1.0), any).prop_map(|(c, e, m)| (box_around(c, e), m, false)),
     ]
 }
 

@@ -385,33 +385,31 @@ impl Scene {
         match &self.objects[object as usize].geometry {
             Geometry::Leaf(leaf) => self.leaves[*leaf as usize].segments(*leaf, ray),
             Geometry::Csg(root) => {
-                self.csg_segments(root, ray, ray.dir.recip(), t_min, t_max, stats)
+                let r = self.csg_ray(ray, ray.dir.recip(), t_min, t_max);
+                self.csg_segments(root, &r, stats)
             }
         }
     }
 
-    /// A CSG tree's segment list; `inv_dir` is 1/d, for its bounding boxes.
-    fn csg_segments(
-        &self,
-        root: &CsgNode,
-        ray: &Ray,
-        inv_dir: DVec3,
-        t_min: f64,
-        t_max: f64,
-        stats: &mut Stats,
-    ) -> SegmentList {
-        let r = CsgRay {
+    /// A CSG tree's segment list.
+    fn csg_segments(&self, root: &CsgNode, r: &CsgRay, stats: &mut Stats) -> SegmentList {
+        let mut work = CsgWork::default();
+        let list = root.segments(self, r, &mut work);
+        stats.csg_pruned += work.pruned;
+        list
+    }
+
+    /// The ray as CSG evaluation sees it, with the scene's boxes and pruning switched on or off.
+    #[inline]
+    fn csg_ray<'a>(&self, ray: &'a Ray, inv_dir: DVec3, t_min: f64, t_max: f64) -> CsgRay<'a> {
+        CsgRay {
             ray,
             inv_dir,
             t_min,
             t_max,
             use_bounds: self.csg_pruning,
             prune: self.csg_pruning,
-        };
-        let mut work = CsgWork::default();
-        let list = root.segments(self, &r, &mut work);
-        stats.csg_pruned += work.pruned;
-        list
+        }
     }
 
     /// The CSG trace of an object along the whole line of the ray (for `raytree csg`).
@@ -529,35 +527,26 @@ impl Scene {
                     (s.t_out, Surface::new(*leaf, s.face_out as u32))
                 }
             }
-            Geometry::Csg(root) => self.csg_hit(object, root, ray, inv_dir, t_min, t_max, stats)?,
+            Geometry::Csg(root) => {
+                let r = self.csg_ray(ray, inv_dir, t_min, t_max);
+                self.csg_hit(object, root, &r, stats)?
+            }
         };
         (t > t_min && t < t_max && t.is_finite()).then_some(Hit { t, object, surface })
     }
 
     /// The nearest crossing of a CSG object's surface past t_min: read off its primitives'
     /// spans when the tree is flat and the answer is clear, else from its segment list.
-    #[allow(clippy::too_many_arguments)]
     fn csg_hit(
         &self,
         object: u32,
         root: &CsgNode,
-        ray: &Ray,
-        inv_dir: DVec3,
-        t_min: f64,
-        t_max: f64,
+        r: &CsgRay,
         stats: &mut Stats,
     ) -> Option<(f64, Surface)> {
         if let Some(flat) = &self.flat_csg[object as usize] {
-            let r = CsgRay {
-                ray,
-                inv_dir,
-                t_min,
-                t_max,
-                use_bounds: self.csg_pruning,
-                prune: self.csg_pruning,
-            };
             let mut work = CsgWork::default();
-            let crossing = flat.nearest(self, &r, &mut work);
+            let crossing = flat.nearest(self, r, &mut work);
             stats.csg_pruned += work.pruned;
             match crossing {
                 Crossing::Hit(t, surface) => return Some((t, surface)),
@@ -565,10 +554,7 @@ impl Scene {
                 Crossing::Undecided => {}
             }
         }
-        first_crossing(
-            &self.csg_segments(root, ray, inv_dir, t_min, t_max, stats),
-            t_min,
-        )
+        first_crossing(&self.csg_segments(root, r, stats), r.t_min)
     }
 
     /// The hit of one object through its probe: `object_hit`'s answer, found faster for plain
