@@ -428,7 +428,10 @@ impl<'s> Tracer<'s> {
         // before and just beyond it. Asking the geometry (rather than only pushing and popping
         // a stack) keeps n1/n2 right where two glasses touch in a shared face. With a single
         // transparent object nothing can touch or nest, and entering/leaving says it all.
-        let (near, media_beyond) = if self.scene.transparent_objects.len() <= 1 {
+        // A surface that transmits nothing and has no Fresnel term needs neither index.
+        let (near, media_beyond) = if m.kt == 0.0 && m.fresnel == Fresnel::None {
+            (task.media, task.media)
+        } else if self.scene.transparent_objects.len() <= 1 {
             if si.inside {
                 let mut outside = Media::default();
                 for &(o, ior) in &task.media.entries[..task.media.len] {
