@@ -160,7 +160,9 @@ impl Bare<'_> {
         let scene = self.scene;
         let m = scene.material(si.material);
         let (d, n) = (ray.dir, si.normal);
-        let (near, beyond) = if si.inside {
+        let (near, beyond) = if m.kt == 0.0 && m.fresnel == Fresnel::None {
+            (*media, *media)
+        } else if si.inside {
             let mut outside = Media::NONE;
             for &(o, ior) in &media.entries[..media.len] {
                 if o != si.object {
