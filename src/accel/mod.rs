@@ -6,3 +6,4 @@ mod hull;
 
 pub use aabb::Aabb;
 pub use bvh::Bvh;
+pub(crate) use hull::{Hull, Verdict};

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use glam::DVec3;
 
 use crate::accel::bvh::{signs, PACKET};
-use crate::accel::{Aabb, Bvh};
+use crate::accel::{Aabb, Bvh, Hull, Verdict};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use crate::geometry::{
@@ -197,6 +197,9 @@ pub struct Scene {
     /// Per object: its CSG tree's flat form, when it has one (nearest hits without segment
     /// lists).
     flat_csg: Vec<Option<FlatCsg>>,
+    /// Some object outside the BVH is tested behind its box: packets of rays then try each
+    /// such box once against their hull (`packet_hull`).
+    boxes_outside_bvh: bool,
 }
 
 impl LeafSegments for Scene {
@@ -286,6 +289,7 @@ impl Scene {
             bounded: vec![],
             unbounded: vec![],
             flat_csg,
+            boxes_outside_bvh: false,
         };
         scene.transparent_objects = scene
             .leaves
@@ -335,6 +339,31 @@ impl Scene {
                 .map(|o| self.probe(o))
                 .collect();
         }
+        self.boxes_outside_bvh = self.unbounded.iter().any(|p| matches!(p, Probe::Object(_)));
+    }
+
+    /// The hull of a packet of rays, for the boxes of the objects outside the BVH (None where
+    /// there are none, or the rays' directions differ in sign).
+    fn packet_hull(&self, rays: &[Ray]) -> Option<Hull> {
+        if !self.boxes_outside_bvh {
+            return None;
+        }
+        Hull::new(
+            rays.iter()
+                .map(|r| (r.origin.to_array(), r.dir.recip().to_array())),
+        )
+    }
+
+    /// Whether every ray of a packet misses an object's box within [0, its t_max] (each t_max
+    /// within `reach`), proved once on the packet's hull: then `boxed_object_hit` would skip
+    /// the object for every one of them.
+    fn missed_by_all(&self, hull: &Hull, probe: &Probe, reach: (f64, f64)) -> bool {
+        let Probe::Object(o) = probe else {
+            return false;
+        };
+        let object = &self.objects[*o as usize];
+        let boxed = self.csg_pruning || !matches!(object.geometry, Geometry::Csg(_));
+        boxed && hull.classify(&object.bounds, 0.0, reach) == Verdict::AllMiss
     }
 
     /// How the hit searches test an object: directly for a plain sphere or plane.
@@ -633,9 +662,33 @@ impl Scene {
     /// (if there are at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
         if self.bounded.is_empty() {
-            // No BVH: nothing to share.
-            for (ray, hit) in rays.iter().zip(hits) {
-                *hit = self.intersect(ray, 0.0, f64::INFINITY, stats);
+            let Some(hull) = self.packet_hull(rays) else {
+                // No BVH and no boxes: nothing to share.
+                for (ray, hit) in rays.iter().zip(hits) {
+                    *hit = self.intersect(ray, 0.0, f64::INFINITY, stats);
+                }
+                return;
+            };
+            // Object by object across the rays: each ray still meets the objects in order,
+            // as in `intersect`, so it gets the same hit and the same counts.
+            let mut limits = [f64::INFINITY; PACKET];
+            let limits = &mut limits[..rays.len()];
+            hits.fill(None);
+            for p in &self.unbounded {
+                let reach = limits
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                        (lo.min(t), hi.max(t))
+                    });
+                if self.missed_by_all(&hull, p, reach) {
+                    stats.bounds_skipped += rays.len() as u64;
+                    continue;
+                }
+                for (i, ray) in rays.iter().enumerate() {
+                    if let Some(h) = self.probe_hit(p, ray, 0.0, limits[i], stats) {
+                        (limits[i], hits[i]) = (h.t, Some(h));
+                    }
+                }
             }
             return;
         }
@@ -710,6 +763,39 @@ impl Scene {
     /// `occluded` ray by ray. Rays that get past the objects outside the BVH search it as a
     /// packet (any directions will do: an any-hit search visits the nodes in a fixed order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+        if let Some(hull) = self
+            .bounded
+            .is_empty()
+            .then(|| self.packet_hull(rays))
+            .flatten()
+        {
+            // No BVH: object by object across the rays still open, each ray meeting the
+            // objects in order until the first blocker, as in `occluded`.
+            let reach = t_max
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                    (lo.min(t), hi.max(t))
+                });
+            let all = (1u32 << rays.len()) - 1;
+            let mut open = all;
+            for p in &self.unbounded {
+                if open == 0 {
+                    break;
+                }
+                if self.missed_by_all(&hull, p, reach) {
+                    stats.bounds_skipped += open.count_ones() as u64;
+                    continue;
+                }
+                for (i, ray) in rays.iter().enumerate() {
+                    if open & (1 << i) != 0
+                        && self.probe_hit(p, ray, 0.0, t_max[i], stats).is_some()
+                    {
+                        open &= !(1 << i);
+                    }
+                }
+            }
+            return all & !open;
+        }
         let mut blocked = 0u32;
         let mut packet = [Ray::UNUSED; PACKET];
         let mut reach = [0.0; PACKET];
