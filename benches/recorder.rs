@@ -130,6 +130,7 @@ impl Bare<'_> {
                 v,
                 sample.l,
                 sample.attenuation * light.intensity,
+                false,
             );
             let s = if lit.n_dot_l <= 0.0 {
                 stats.shadow_skipped_backfacing += 1;

@@ -285,8 +285,9 @@ fn lighting_terms_match_the_formulas() {
     let n = DVec3::Y;
     let l = DVec3::new(3f64.sqrt() / 2.0, 0.5, 0.0);
     let v = DVec3::Y;
-    let t = light_terms(&m, n, v, l, DVec3::ONE);
+    let t = light_terms(&m, n, v, l, DVec3::ONE, false);
     assert!((t.n_dot_l - 0.5).abs() < E);
+    assert!((t.highlight_cos - 0.75f64.sqrt()).abs() < E);
     assert!((t.diffuse - 0.5 * 0.5 * m.color).length() < E);
     // Blinn: h halfway between l (60°) and v (0°) is at 30°: (h·n)² = cos²30° = 0.75.
     assert!((t.specular - DVec3::splat(0.4 * 0.75)).length() < E);
@@ -295,8 +296,23 @@ fn lighting_terms_match_the_formulas() {
         highlight: Highlight::Phong,
         ..m.clone()
     };
-    let t = light_terms(&phong, n, v, l, DVec3::ONE);
+    let t = light_terms(&phong, n, v, l, DVec3::ONE, false);
     assert!((t.specular - DVec3::splat(0.4 * 0.25)).length() < E);
+    // Without a highlight (ks = 0) the cosine is worked out only where it is shown.
+    let matte = Material {
+        ks: 0.0,
+        ..m.clone()
+    };
+    let (unshown, shown) = (
+        light_terms(&matte, n, v, l, DVec3::ONE, false),
+        light_terms(&matte, n, v, l, DVec3::ONE, true),
+    );
+    assert_eq!(
+        (unshown.highlight_cos, unshown.specular),
+        (0.0, DVec3::ZERO)
+    );
+    assert!((shown.highlight_cos - 0.75f64.sqrt()).abs() < E);
+    assert_eq!(unshown.diffuse, shown.diffuse);
     assert!((ambient(&m, DVec3::splat(0.3)) - 0.06 * m.color).length() < E);
 }
 

@@ -27,28 +27,27 @@ pub fn ambient(m: &Material, ia: DVec3) -> DVec3 {
 /// n faces the viewer, v points from the surface towards the viewer. Both terms are 0 for a
 /// light behind the surface (n·l ≤ 0).
 ///
-/// Always inlined: where the caller ignores `highlight_cos` (the tracer with its recorder off),
-/// the compiler then computes the half vector's square root and division only for the lights
-/// that produce a highlight (ks > 0 and n·l > 0), not for every light on a matte surface.
+/// The highlight's cosine costs a square root and a division (Blinn) on the shading's critical
+/// path, so it is computed only where it makes a highlight (ks > 0 and n·l > 0), or where the
+/// caller `shows` it (a recorded ray tree lists it for every light); elsewhere it is left 0.
 #[inline(always)]
-pub fn light_terms(m: &Material, n: DVec3, v: DVec3, l: DVec3, light: DVec3) -> LightTerms {
+pub fn light_terms(
+    m: &Material,
+    n: DVec3,
+    v: DVec3,
+    l: DVec3,
+    light: DVec3,
+    shows: bool,
+) -> LightTerms {
     let n_dot_l = n.dot(l);
-    let highlight_cos = match m.highlight {
-        Highlight::Blinn => {
-            // h·n = (l + v)·n / |l + v|: the square root only where the cosine is positive.
-            let h = l + v;
-            let hn = h.dot(n);
-            if hn > 0.0 {
-                hn / h.length()
-            } else {
-                0.0
-            }
-        }
-        Highlight::Phong => (2.0 * n_dot_l * n - l).dot(v),
-    }
-    .max(0.0);
+    let lights_highlight = m.ks > 0.0 && n_dot_l > 0.0;
+    let highlight_cos = if lights_highlight || shows {
+        highlight_cos(m, n, v, l, n_dot_l)
+    } else {
+        0.0
+    };
     let diffuse = light * m.kd * m.color * n_dot_l.max(0.0);
-    let specular = if m.ks > 0.0 && n_dot_l > 0.0 {
+    let specular = if lights_highlight {
         light * m.ks * highlight_power(highlight_cos, m.shininess)
     } else {
         // No highlight from a light behind the surface: it does not light this side at all
@@ -61,6 +60,25 @@ pub fn light_terms(m: &Material, n: DVec3, v: DVec3, l: DVec3, light: DVec3) -> 
         diffuse,
         specular,
     }
+}
+
+/// h·n (Blinn) or r·v (Phong), clamped at 0.
+#[inline(always)]
+fn highlight_cos(m: &Material, n: DVec3, v: DVec3, l: DVec3, n_dot_l: f64) -> f64 {
+    match m.highlight {
+        Highlight::Blinn => {
+            // h·n = (l + v)·n / |l + v|: the square root only where the cosine is positive.
+            let h = l + v;
+            let hn = h.dot(n);
+            if hn > 0.0 {
+                hn / h.length()
+            } else {
+                0.0
+            }
+        }
+        Highlight::Phong => (2.0 * n_dot_l * n - l).dot(v),
+    }
+    .max(0.0)
 }
 
 /// cos^m, skipping `powf` where a cheaper answer is good enough: a cosine clamped to 0 (most of a

@@ -240,7 +240,7 @@ impl<'s> Tracer<'s> {
         let mut color = ambient(m, scene.ambient);
         let mut terms = Vec::new();
         for light in &scene.lights {
-            let (sample, lit, skipped) = self.light_share(m, &si, v, light, stats);
+            let (sample, lit, skipped) = self.light_share(m, &si, v, light, R::ACTIVE, stats);
             let s = match skipped {
                 Some(_) => 0.0,
                 None => self.shadow_factor(
@@ -320,7 +320,8 @@ impl<'s> Tracer<'s> {
             for i in 0..n {
                 let Some(si) = &shaded[i] else { continue };
                 let m = scene.material(si.material);
-                let (sample, lit, skipped) = self.light_share(m, si, -rays[i].dir, light, stats);
+                let (sample, lit, skipped) =
+                    self.light_share(m, si, -rays[i].dir, light, false, stats);
                 terms[i] = lit.diffuse + lit.specular;
                 if skipped.is_some() {
                     out[i] += 0.0 * terms[i];
@@ -360,7 +361,7 @@ impl<'s> Tracer<'s> {
     }
 
     /// One light's diffuse and specular terms at a shaded point, before the shadow factor,
-    /// and why no shadow ray is needed, if none is.
+    /// and why no shadow ray is needed, if none is. `shows`: the terms go into a recorded tree.
     #[inline(always)]
     fn light_share(
         &self,
@@ -368,6 +369,7 @@ impl<'s> Tracer<'s> {
         si: &Interaction,
         v: DVec3,
         light: &Light,
+        shows: bool,
         stats: &mut Stats,
     ) -> (LightSample, LightTerms, Option<&'static str>) {
         let sample = light.sample(si.point);
@@ -377,6 +379,7 @@ impl<'s> Tracer<'s> {
             v,
             sample.l,
             sample.attenuation * light.intensity,
+            shows,
         );
         let skipped = if lit.n_dot_l <= 0.0 {
             stats.shadow_skipped_backfacing += 1;
