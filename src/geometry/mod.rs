@@ -11,6 +11,7 @@ mod ray;
 mod segment;
 mod shape;
 mod sphere;
+pub mod sphere_group;
 mod transform;
 mod triangle;
 
@@ -23,5 +24,6 @@ pub use ray::Ray;
 pub use segment::{first_crossing, Segment, SegmentList, Surface};
 pub use shape::{Shape, Span};
 pub use sphere::Sphere;
+pub use sphere_group::SphereGroup;
 pub use transform::Transform;
 pub use triangle::{Triangle, TriangleHit};

@@ -13,7 +13,7 @@ pub struct Sphere {
 /// Relative tolerance under which a slightly negative discriminant counts as a tangent. The
 /// lecture's tangent example (P = (−3, 1), d = (0.8, −0.6)) lands 2e−16 below zero in floating
 /// point; without this it would be reported as a miss.
-const TANGENT_TOLERANCE: f64 = 1e-12;
+pub(super) const TANGENT_TOLERANCE: f64 = 1e-12;
 
 impl Sphere {
     /// Substituting p(t) = o + t·d gives a·t² + 2b·t + c = 0 with a = d·d, b = d·(o − c),
@@ -58,11 +58,11 @@ impl Sphere {
 /// moves those terms by ~1e−15 of their size, so anything the test rejects is missed by a factor
 /// of ~10⁹ more than the exact test's tangent tolerance needs: it never rejects a ray `span`
 /// would accept.
-const MISS_MARGIN: f64 = 1e-6;
+pub(super) const MISS_MARGIN: f64 = 1e-6;
 
 /// Below this size of terms, products may be subnormal and lose their relative accuracy: the
 /// miss test stands aside and the exact arithmetic decides.
-const MISS_TEST_FLOOR: f64 = 1e-250;
+pub(super) const MISS_TEST_FLOOR: f64 = 1e-250;
 
 /// The ray–sphere quadratic a·t² + 2b·t + c = 0, with the terms both `span` and `hit` need.
 struct Quadratic {

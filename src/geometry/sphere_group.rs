@@ -1,0 +1,240 @@
+//! Up to four plain spheres tested against one ray side by side.
+//!
+//! `Sphere::hit` leaves most misses early, through branches that the processor guesses wrong
+//! whenever a ray's fate differs from the last one's. Here the same arithmetic runs for four
+//! spheres at once without a branch (the compiler turns the loop into vector instructions),
+//! and each test's early exits become masks. Every lane's t is the one `Sphere::hit` gives to
+//! the last bit, so a group answers exactly what testing its spheres one after another does.
+
+use glam::DVec3;
+use wide::f64x4;
+
+use super::sphere::{MISS_MARGIN, MISS_TEST_FLOOR, TANGENT_TOLERANCE};
+use super::{Ray, Sphere};
+
+/// Spheres per group: four f64 lanes fill one 256-bit (AVX) vector.
+pub const LANES: usize = 4;
+
+/// The spheres' centres and squared radii in structure-of-arrays form, one lane per sphere.
+#[derive(Clone, Debug)]
+pub struct SphereGroup {
+    cx: f64x4,
+    cy: f64x4,
+    cz: f64x4,
+    r2: f64x4,
+    /// All ones in the lanes that hold a sphere.
+    used: f64x4,
+    len: usize,
+}
+
+impl SphereGroup {
+    /// A group of one to four spheres, tested in the order given.
+    pub fn new(spheres: &[Sphere]) -> SphereGroup {
+        assert!(!spheres.is_empty() && spheres.len() <= LANES);
+        let lane = |f: &dyn Fn(&Sphere) -> f64, unused: f64| {
+            let mut v = [unused; LANES];
+            for (k, s) in spheres.iter().enumerate() {
+                v[k] = f(s);
+            }
+            f64x4::new(v)
+        };
+        SphereGroup {
+            cx: lane(&|s| s.center.x, 0.0),
+            cy: lane(&|s| s.center.y, 0.0),
+            cz: lane(&|s| s.center.z, 0.0),
+            r2: lane(&|s| s.radius * s.radius, 0.0),
+            used: lane(&|_| f64::from_bits(u64::MAX), 0.0),
+            len: spheres.len(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The nearest crossing with t_min < t < t_max and the sphere it belongs to: the first of
+    /// the nearest, as testing the spheres in order with a shrinking limit finds it.
+    #[inline(always)]
+    pub fn nearest(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
+        let t = self.candidates(ray, t_min)?;
+        let mut best = None;
+        let mut limit = t_max;
+        for (k, &t) in t.iter().enumerate().take(self.len) {
+            if t > t_min && t < limit {
+                limit = t;
+                best = Some((t, k));
+            }
+        }
+        best
+    }
+
+    /// The first sphere, in order, with a crossing at t_min < t < t_max (a shadow ray's first
+    /// blocker), and its t.
+    #[inline(always)]
+    pub fn first(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
+        let t = self.candidates(ray, t_min)?;
+        (0..self.len)
+            .find(|&k| t[k] > t_min && t[k] < t_max)
+            .map(|k| (t[k], k))
+    }
+
+    /// Each lane's candidate t, NaN where `Sphere::hit` returns early; None when every lane
+    /// does so before the divisions and the square root (most rays, for most groups). The
+    /// steps are `Quadratic::new`, the two early exits, `Quadratic::roots` and the choice of
+    /// root in `Sphere::hit`, with the same operations in the same order.
+    #[inline(always)]
+    fn candidates(&self, ray: &Ray, t_min: f64) -> Option<[f64; LANES]> {
+        let DVec3 {
+            x: dx,
+            y: dy,
+            z: dz,
+        } = ray.dir;
+        let a = f64x4::splat(dx * dx + dy * dy + dz * dz);
+        let (dx, dy, dz) = (f64x4::splat(dx), f64x4::splat(dy), f64x4::splat(dz));
+        let zero = f64x4::ZERO;
+        // a·t² + 2b·t + c = 0 with oc = o − centre.
+        let ox = f64x4::splat(ray.origin.x) - self.cx;
+        let oy = f64x4::splat(ray.origin.y) - self.cy;
+        let oz = f64x4::splat(ray.origin.z) - self.cz;
+        let oc2 = ox * ox + oy * oy + oz * oz;
+        let b = dx * ox + dy * oy + dz * oz;
+        let c = oc2 - self.r2;
+        // Outside and moving away; a line that clearly passes by.
+        let away = if t_min >= 0.0 {
+            c.simd_gt(zero) & b.simd_gt(zero)
+        } else {
+            zero
+        };
+        let scale = b * b + a * (oc2 + self.r2);
+        let d = b * b - a * c;
+        let passes = scale.simd_gt(f64x4::splat(MISS_TEST_FLOOR))
+            & d.simd_lt(f64x4::splat(-MISS_MARGIN) * scale);
+        let open = self.used & !(away | passes);
+        if open.to_bitmask() == 0 {
+            return None;
+        }
+        // disc = r² − ℓ², ℓ the distance from the centre to the line.
+        let s = b / a;
+        let (lx, ly, lz) = (ox - s * dx, oy - s * dy, oz - s * dz);
+        let disc = self.r2 - (lx * lx + ly * ly + lz * lz);
+        let no_root = disc.simd_lt(f64x4::splat(-TANGENT_TOLERANCE) * self.r2);
+        let disc = disc.simd_lt(zero).bitselect(zero, disc);
+        // q = −(b + sign(b)·√disc), t = q/a and c/q. (sign(b) for a NaN b does not matter:
+        // q is NaN either way.)
+        let root = (a * disc).sqrt();
+        let sign = (b & f64x4::splat(-0.0)) | f64x4::ONE;
+        let q = -(b + sign * root);
+        let (x, y) = (q / a, c / q);
+        let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
+        let t_in = q0.bitselect(zero, tangent.bitselect(x, x.min(y)));
+        let t_out = q0.bitselect(zero, tangent.bitselect(x, x.max(y)));
+        let t = t_in.simd_gt(f64x4::splat(t_min)).bitselect(t_in, t_out);
+        Some(
+            (open & !no_root)
+                .bitselect(t, f64x4::splat(f64::NAN))
+                .to_array(),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn one_by_one(spheres: &[Sphere], ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
+        let mut best = None;
+        let mut limit = t_max;
+        for (k, s) in spheres.iter().enumerate() {
+            if let Some(t) = s.hit(ray, t_min, limit) {
+                (limit, best) = (t, Some((t, k)));
+            }
+        }
+        best
+    }
+
+    fn first_one_by_one(
+        spheres: &[Sphere],
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+    ) -> Option<(f64, usize)> {
+        spheres
+            .iter()
+            .enumerate()
+            .find_map(|(k, s)| s.hit(ray, t_min, t_max).map(|t| (t, k)))
+    }
+
+    /// Coordinates on a coarse grid, so that tangents, shared centres, equal distances and
+    /// rays through centres come up often.
+    fn coord() -> impl Strategy<Value = f64> {
+        (-8i32..=8).prop_map(|k| k as f64 * 0.5)
+    }
+
+    fn sphere() -> impl Strategy<Value = Sphere> {
+        (coord(), coord(), coord(), 0u32..6).prop_map(|(x, y, z, r)| Sphere {
+            center: DVec3::new(x, y, z),
+            radius: [0.5, 1.0, 1.5, 2.0, 1e-9, 1e7][r as usize],
+        })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4000))]
+
+        /// The group's nearest hit and first blocker are those of the spheres one by one, to
+        /// the last bit of t.
+        #[test]
+        fn a_group_answers_as_its_spheres_one_by_one(
+            spheres in prop::collection::vec(sphere(), 1..=LANES),
+            origin in (coord(), coord(), coord()),
+            aim in (coord(), coord(), coord()),
+            scale_exp in -3i32..=3,
+            t_min in prop::sample::select(vec![0.0, 1e-9, 0.5, f64::NEG_INFINITY]),
+            t_max in prop::sample::select(vec![f64::INFINITY, 3.0, 0.25]),
+        ) {
+            let k = 10f64.powi(scale_exp);
+            let spheres: Vec<Sphere> = spheres
+                .into_iter()
+                .map(|s| Sphere { center: s.center * k, radius: s.radius * k })
+                .collect();
+            let origin = DVec3::new(origin.0, origin.1, origin.2) * k;
+            let dir = DVec3::new(aim.0 + 0.25, aim.1, aim.2 - 0.125).normalize();
+            let ray = Ray { origin, dir };
+            let group = SphereGroup::new(&spheres);
+            let bits = |h: Option<(f64, usize)>| h.map(|(t, k)| (t.to_bits(), k));
+            prop_assert_eq!(
+                bits(group.nearest(&ray, t_min, t_max)),
+                bits(one_by_one(&spheres, &ray, t_min, t_max))
+            );
+            prop_assert_eq!(
+                bits(group.first(&ray, t_min, t_max)),
+                bits(first_one_by_one(&spheres, &ray, t_min, t_max))
+            );
+        }
+    }
+
+    /// The lecture's tangent ray (seed 004) and a ray from inside, beside spheres it misses.
+    #[test]
+    fn tangent_and_inside_rays() {
+        let unit = Sphere {
+            center: DVec3::ZERO,
+            radius: 1.0,
+        };
+        let far = Sphere {
+            center: DVec3::new(0.0, 50.0, 0.0),
+            radius: 1.0,
+        };
+        let group = SphereGroup::new(&[far.clone(), unit.clone()]);
+        let tangent = Ray::new(DVec3::new(-3.0, 1.0, 0.0), DVec3::new(0.8, -0.6, 0.0));
+        let (t, k) = group.nearest(&tangent, 0.0, f64::INFINITY).unwrap();
+        assert_eq!(k, 1);
+        assert!((t - 3.0).abs() < 1e-12);
+        let inside = Ray::new(DVec3::ZERO, DVec3::X);
+        assert_eq!(group.nearest(&inside, 0.0, f64::INFINITY), Some((1.0, 1)));
+        assert_eq!(group.first(&inside, 0.0, 0.5), None);
+    }
+}
