@@ -25,10 +25,10 @@ struct Node {
 }
 
 /// Which way a ray's direction points on each axis, as the traversal orders children by it
-/// (the signs of 1/d: −0 counts as negative). Rays with equal signs take the same path
-/// through the ordering.
+/// (the signs of 1/d, −0 counting as negative: the signs of d itself, read without the
+/// divisions). Rays with equal signs take the same path through the ordering.
 pub fn signs(r: &Ray) -> [bool; 3] {
-    SlabRay::new(r.origin, r.dir.recip()).negative
+    r.dir.to_array().map(f64::is_sign_negative)
 }
 
 /// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
@@ -529,6 +529,37 @@ impl Bvh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The signs read off d are those of 1/d, which the slab tests order children by: at ±0,
+    /// subnormals, the largest numbers and ±∞ too.
+    #[test]
+    fn signs_are_those_of_the_reciprocal() {
+        let values = [
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE / 8.0,
+            -f64::MIN_POSITIVE / 8.0,
+            0.3,
+            -0.3,
+            f64::MAX,
+            -f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for &x in &values {
+            for &y in &values {
+                let r = Ray {
+                    origin: DVec3::ZERO,
+                    dir: DVec3::new(x, y, -x),
+                };
+                assert_eq!(
+                    signs(&r),
+                    SlabRay::new(r.origin, r.dir.recip()).negative,
+                    "{x} {y}"
+                );
+            }
+        }
+    }
 
     /// The four-lane overlap test answers every lane as `overlaps` does, at the edges of the
     /// number line too (signed zeros, subnormals, the largest finite numbers, ∞, NaN).
