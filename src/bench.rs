@@ -100,7 +100,7 @@ pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<
 pub fn table(rows: &[Row]) -> String {
     let mut s = format!(
         "{:<8} {:>9} {:>10} {:>14} {:>16} {:>8} {:>12} {:>12}\n",
-        "scene", "N", "build s", "BVH ns/ray", "brute ns/ray", "ratio", "nodes/ray", "prims/ray"
+        "scene", "N", "load s", "BVH ns/ray", "brute ns/ray", "ratio", "nodes/ray", "prims/ray"
     );
     for r in rows {
         let (brute, ratio) = match r.brute_ns {
