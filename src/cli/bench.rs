@@ -1,18 +1,19 @@
-//! `raytree bench`: measured sweeps (run time against error; time per ray against scene size).
+//! `raytree bench`: measured sweeps (run time against error; time per ray against scene size;
+//! speed-up with threads against the machine's own).
 
 use std::process::ExitCode;
 
 use super::Failure;
-use crate::bench::{measure, mesh, spheres, table};
+use crate::bench::{measure, mesh, spheres, table, threads, threads_table};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
     #[command(subcommand)]
-    sweep: Sweep,
+    measure: Measure,
 }
 
 #[derive(clap::Subcommand, Debug)]
-enum Sweep {
+enum Measure {
     /// Run time against error: renders SCENE at each value of one knob, compares every image
     /// with a reference (an EXR/PNG file, or the scene at a much higher setting) and prints
     /// seconds, rays, RMSE, relative MSE, max error, PSNR and efficiency 1/(seconds·MSE).
@@ -50,6 +51,17 @@ enum Sweep {
         /// Largest icosphere subdivision level (20·4^k triangles; 8 is 1.3 million).
         #[arg(long, default_value_t = 8)]
         max_subdivisions: u32,
+    },
+    /// Speed-up with threads: SCENE rendered on 1 thread and on N, alternately, beside a
+    /// control job of pure arithmetic split the same way, whose speed-up is the most this
+    /// machine gives N threads. Prints medians over the runs.
+    Threads {
+        scene: std::path::PathBuf,
+        /// N (default: every core, at least 2).
+        #[arg(long)]
+        threads: Option<usize>,
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
+        runs: u64,
     },
 }
 
@@ -110,8 +122,8 @@ fn reference_cache(
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    match a.sweep {
-        Sweep::Sweep {
+    match a.measure {
+        Measure::Sweep {
             scene: scene_path,
             knob,
             values,
@@ -162,7 +174,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 crate::bench::sweep_plot(knob, &rows).save(&path, crate::render::Encoding::Srgb)?;
             }
         }
-        Sweep::Scaling {
+        Measure::Scaling {
             max_brute,
             max_subdivisions,
         } => {
@@ -190,6 +202,21 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 Ok(())
             })?;
             print!("{}", table(&rows));
+        }
+        Measure::Threads {
+            scene: scene_path,
+            threads: n,
+            runs,
+        } => {
+            let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
+            let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
+            let n = n.unwrap_or(cores).max(2);
+            eprintln!(
+                "{}: {runs} rounds of 1 and {n} threads, scene and control alternating",
+                scene_path.display()
+            );
+            let (rounds, rays) = threads(&scene, n, runs as usize)?;
+            print!("{}", threads_table(&rounds, n, rays));
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -1,0 +1,9 @@
+//! `raytree bench`: measured sweeps, one module each.
+
+mod scaling;
+mod sweep;
+mod threads;
+
+pub use scaling::{measure, mesh, spheres, table, Row};
+pub use sweep::{errors, reference_for, sweep, sweep_csv, sweep_plot, sweep_table, Knob, SweepRow};
+pub use threads::{threads, threads_table, ThreadRun};

@@ -1,0 +1,115 @@
+//! The scaling sweep: how the time per ray grows with the number of objects, with and without
+//! the BVH (seed 002's O(n·p) → O(p·log n)).
+
+use std::time::Instant;
+
+use glam::DVec3;
+
+use crate::render::{render_simple, RenderOptions};
+use crate::scene::{parse, Accel, Limits, Scene};
+
+/// One line of the scaling table.
+#[derive(Clone, Debug)]
+pub struct Row {
+    pub kind: &'static str,
+    pub n: usize,
+    /// Seconds to parse and compile the scene, BVH included.
+    pub build: f64,
+    /// Nanoseconds per ray with the BVH.
+    pub bvh_ns: f64,
+    /// Nanoseconds per ray testing everything (None when skipped as too slow).
+    pub brute_ns: Option<f64>,
+    pub nodes_per_ray: f64,
+    pub prims_per_ray: f64,
+}
+
+const HEADER: &str =
+    "camera: { eye: [0, 0, -40], look_at: [0, 0, 0], fov: 40, width: 160, height: 120 }\n\
+    background: 0.2\nambient: 0.2\nmax_depth: 1\n\
+    lights: [ { point: [20, 30, -30], intensity: 1 } ]\n\
+    materials: { m: { ka: 0.2, kd: 0.8 } }\nobjects:\n";
+
+/// N spheres at quasi-random places in a cube of side 20; their total volume stays fixed, so
+/// the image looks alike for every N.
+pub fn spheres(n: usize) -> String {
+    let mut yaml = String::from(HEADER);
+    let r = 6.0 / (n as f64).cbrt();
+    for i in 0..n {
+        // The R3 low-discrepancy sequence: well spread, deterministic.
+        let g = 1.220_744_084_605_759_5_f64;
+        let k = i as f64 + 1.0;
+        let c = DVec3::new(
+            (k / g).fract(),
+            (k / (g * g)).fract(),
+            (k / (g * g * g)).fract(),
+        ) * 20.0
+            - 10.0;
+        yaml.push_str(&format!(
+            "  - {{ sphere: {{ center: [{}, {}, {}], radius: {r} }}, material: m }}\n",
+            c.x, c.y, c.z
+        ));
+    }
+    yaml
+}
+
+/// An icosphere mesh of 20·4^k triangles filling the view.
+pub fn mesh(subdivisions: u32) -> String {
+    format!("{HEADER}  - {{ icosphere: {{ subdivisions: {subdivisions} }}, material: m, transform: [ {{ scale: 10 }} ] }}\n")
+}
+
+fn time_per_ray(scene: &Scene) -> (f64, crate::trace::Stats) {
+    let start = Instant::now();
+    let (_, stats) = render_simple(
+        scene,
+        RenderOptions {
+            max_depth: 1,
+            spp: 1,
+            seed: 0,
+            antialias: Default::default(),
+        },
+    );
+    (
+        start.elapsed().as_secs_f64() * 1e9 / stats.rays() as f64,
+        stats,
+    )
+}
+
+/// Measures one scene with the BVH and (when `brute` is true) without.
+pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<Row, String> {
+    let start = Instant::now();
+    let mut scene = parse(yaml, kind, None, &Limits::default()).map_err(|e| e.to_string())?;
+    let build = start.elapsed().as_secs_f64();
+    let (bvh_ns, stats) = time_per_ray(&scene);
+    let rays = stats.rays() as f64;
+    let brute_ns = brute.then(|| {
+        scene.set_accel(Accel::None);
+        time_per_ray(&scene).0
+    });
+    Ok(Row {
+        kind,
+        n,
+        build,
+        bvh_ns,
+        brute_ns,
+        nodes_per_ray: stats.bvh_nodes_visited as f64 / rays,
+        prims_per_ray: stats.primitives_tested as f64 / rays,
+    })
+}
+
+pub fn table(rows: &[Row]) -> String {
+    let mut s = format!(
+        "{:<8} {:>9} {:>10} {:>14} {:>16} {:>8} {:>12} {:>12}\n",
+        "scene", "N", "load s", "BVH ns/ray", "brute ns/ray", "ratio", "nodes/ray", "prims/ray"
+    );
+    for r in rows {
+        let (brute, ratio) = match r.brute_ns {
+            Some(b) => (format!("{b:.0}"), format!("{:.1}×", b / r.bvh_ns)),
+            None => ("(skipped)".into(), "".into()),
+        };
+        s.push_str(&format!(
+            "{:<8} {:>9} {:>10.3} {:>14.0} {:>16} {:>8} {:>12.1} {:>12.1}\n",
+            r.kind, r.n, r.build, r.bvh_ns, brute, ratio, r.nodes_per_ray, r.prims_per_ray
+        ));
+    }
+    s
+}
