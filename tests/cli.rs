@@ -380,3 +380,27 @@ fn inspect_a_path_traced_pixel_shows_sampled_paths_and_the_estimate() {
         assert!((added - p["value"][0].as_f64().unwrap()).abs() < 1e-9);
     }
 }
+
+#[test]
+fn bench_threads_prints_both_speed_ups_and_refuses_one_thread() {
+    let o = raytree(&["bench", "threads", LESSON_SCENE, "--runs", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 5, "{out}");
+    for (line, name) in [(1, "scene"), (2, "arithmetic")] {
+        let fields: Vec<&str> = lines[line].split_whitespace().collect();
+        assert_eq!(fields[0], name, "{out}");
+        // Seconds on one thread and on N, then the speed-up: all positive numbers.
+        let seconds: Vec<f64> = fields[1..3].iter().map(|f| f.parse().unwrap()).collect();
+        assert!(seconds.iter().all(|&s| s > 0.0), "{out}");
+        let speed_up: f64 = fields[3].trim_end_matches('×').parse().unwrap();
+        assert!(speed_up > 0.0, "{out}");
+    }
+    assert!(lines[3].starts_with("rays per second:"), "{out}");
+    assert!(lines[4].contains("% of the arithmetic's"), "{out}");
+
+    let one = raytree(&["bench", "threads", LESSON_SCENE, "--threads", "1"]);
+    assert_eq!(one.status.code(), Some(2));
+    assert!(stderr(&one).contains("--threads"), "{}", stderr(&one));
+}

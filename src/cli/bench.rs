@@ -58,8 +58,8 @@ enum Measure {
     Threads {
         scene: std::path::PathBuf,
         /// N (default: every core, at least 2).
-        #[arg(long)]
-        threads: Option<usize>,
+        #[arg(long, value_parser = clap::value_parser!(u64).range(2..))]
+        threads: Option<u64>,
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
         runs: u64,
     },
@@ -210,7 +210,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         } => {
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
             let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
-            let n = n.unwrap_or(cores).max(2);
+            let n = n.map_or(cores.max(2), |n| n as usize);
             eprintln!(
                 "{}: {runs} rounds of 1 and {n} threads, scene and control alternating",
                 scene_path.display()

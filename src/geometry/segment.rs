@@ -11,8 +11,7 @@ use smallvec::SmallVec;
 pub struct Surface {
     /// Index of the primitive ("leaf") in the compiled scene.
     pub leaf: u32,
-    /// Face of the primitive (a box has six, a cylinder three, ...).
-    /// Face of a primitive, or triangle of a mesh.
+    /// Face of the primitive (a box has six, a cylinder three, ...), or triangle of a mesh.
     pub face: u32,
     /// True when the surface is seen from its inside as the boundary of the result, e.g. the
     /// carved-out wall of a difference: its outward normal must be reversed.
