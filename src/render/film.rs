@@ -363,8 +363,9 @@ fn per_pixel(
     // Adaptive antialiasing first traces the (w+1) × (h+1) pixel corners.
     let (corners, mut stats) = match film.antialias() {
         Antialias::Adaptive { .. } => {
-            let rows: Vec<(Vec<DVec3>, Stats)> = (0..=h)
+            let rows: Vec<(Vec<DVec3>, Stats)> = (0..h + 1)
                 .into_par_iter()
+                .with_max_len(1)
                 .map(|j| {
                     let mut stats = Stats::default();
                     let row = (0..=w).map(|i| film.corner(i, j, &mut stats)).collect();
@@ -383,9 +384,18 @@ fn per_pixel(
     };
     let corner = |i: u32, j: u32, _: &mut Stats| corners[(j * (w + 1) + i) as usize];
     let mut image = Image::new(w, h);
+    // One row per job (`with_max_len(1)`, here and in the loops above and below). Left to
+    // itself, rayon cuts the rows into a few long runs, about four per thread, and cuts only
+    // stolen runs further. A run cannot be stolen once it has started, so a thread that ran
+    // out of work waited idle for the other's last run: up to a quarter of the image. With
+    // rows handed out one at a time, the threads finish at most a row apart. (CSG peer scene,
+    // whose rows through the glass lens cost far more than the others, two threads: a core
+    // stood idle for 0.37 s of each render before and 0.04 s after; `raytree bench threads`
+    // measured 1.70× against one thread before and 1.98× after.)
     let rows = image
         .pixels
         .par_chunks_mut(w as usize)
+        .with_max_len(1)
         .enumerate()
         .map(|(y, row)| {
             let mut stats = Stats::default();
@@ -418,6 +428,7 @@ fn splatted(
     let (w, h) = (cam.width, cam.height);
     let bands: Vec<(Band, Stats)> = (0..h)
         .into_par_iter()
+        .with_max_len(1)
         .map(|sy| {
             let mut stats = Stats::default();
             if cancel.load(Ordering::Relaxed) {
