@@ -51,23 +51,21 @@ fn render(pool: &rayon::ThreadPool, scene: &Scene) -> (f64, u64) {
     (start.elapsed().as_secs_f64(), stats.rays())
 }
 
-/// `runs` rounds of: the scene on one thread, on `threads`, then the control job on one and on
-/// `threads`. The control is sized to take about as long as the one-thread render, so both
-/// meet the machine in the same state. Also returns the scene's ray count.
-pub fn threads(
+/// `runs` rounds of: the scene on one thread, on `n`, then the control job on one and on `n`.
+/// The control is sized to take about as long as the one-thread render, so both meet the
+/// machine in the same state. Also returns the scene's ray count.
+pub fn thread_rounds(
     scene: &Scene,
-    threads: usize,
+    n: usize,
     runs: usize,
 ) -> Result<(Vec<ThreadRun>, u64), rayon::ThreadPoolBuildError> {
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-    let many = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()?;
+    let many = rayon::ThreadPoolBuilder::new().num_threads(n).build()?;
     // Warm-up (caches, page faults, the pools' threads), and the size of the control job.
     let (seconds, rays) = render(&one, scene);
     let probe = 1 << 22;
     let rate = probe as f64 / control(&one, probe).max(1e-9);
-    let iterations = ((rate * seconds) as u64).max(threads as u64);
+    let iterations = ((rate * seconds) as u64).max(n as u64);
     let rounds = (0..runs)
         .map(|_| ThreadRun {
             render_one: render(&one, scene).0,

@@ -4,7 +4,7 @@
 use std::process::ExitCode;
 
 use super::Failure;
-use crate::bench::{measure, mesh, spheres, table, threads, threads_table};
+use crate::bench::{measure, mesh, spheres, table, thread_rounds, threads_table};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -215,7 +215,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 "{}: {runs} rounds of 1 and {n} threads, scene and control alternating",
                 scene_path.display()
             );
-            let (rounds, rays) = threads(&scene, n, runs as usize)?;
+            let (rounds, rays) = thread_rounds(&scene, n, runs as usize)?;
             print!("{}", threads_table(&rounds, n, rays));
         }
     }

@@ -363,6 +363,7 @@ fn per_pixel(
     // Adaptive antialiasing first traces the (w+1) × (h+1) pixel corners.
     let (corners, mut stats) = match film.antialias() {
         Antialias::Adaptive { .. } => {
+            // `0..h + 1`, not `0..=h`: rayon's inclusive ranges take no `with_max_len`.
             let rows: Vec<(Vec<DVec3>, Stats)> = (0..h + 1)
                 .into_par_iter()
                 .with_max_len(1)
