@@ -132,6 +132,112 @@ proptest! {
     }
 }
 
+/// A scene of plain spheres and planes, too few for a BVH: packets test each object against
+/// four rays at a time (`RayLanes`). Coordinates on a coarse grid, so that tangents, shared
+/// centres and rays through centres come up. A plane after sphere k (`planes_after`) breaks
+/// the run of spheres there: runs become groups of up to four, a lone sphere its own probe.
+fn plain_scene(spheres: &[([i8; 3], u8)], planes_after: &[usize]) -> Scene {
+    let mut yaml = String::from(
+        "camera: { eye: [0, 0, -30], look_at: [0, 0, 0], width: 8, height: 6 }\nlights: [ { point: [10, 20, -20] } ]\nmaterials: { m: { kd: 0.6 } }\nobjects:\n",
+    );
+    for (i, ([x, y, z], r)) in spheres.iter().enumerate() {
+        let r = [0.5, 1.0, 1.5, 2.0][*r as usize % 4];
+        yaml.push_str(&format!(
+            "  - {{ name: s{i}, sphere: {{ center: [{x}, {y}, {z}], radius: {r} }}, material: m }}\n"
+        ));
+        if planes_after.contains(&i) {
+            let (n, h) = [("[0, 1, 0]", -4), ("[1, 0, 0]", 6), ("[0.6, 0, 0.8]", 0)][i % 3];
+            yaml.push_str(&format!(
+                "  - {{ name: p{i}, plane: {{ point: [0, {h}, 0], normal: {n} }}, material: m }}\n"
+            ));
+        }
+    }
+    let scene = parse(&yaml, "plain.yaml", None, &Limits::default()).unwrap();
+    assert_eq!(scene.bvh_nodes(), 0);
+    scene
+}
+
+fn plain_objects() -> impl Strategy<Value = (Vec<([i8; 3], u8)>, Vec<usize>)> {
+    (
+        prop::collection::vec((prop::array::uniform3(-4i8..=4), any::<u8>()), 1..15),
+        prop::collection::vec(0usize..15, 0..4),
+    )
+}
+
+/// Rays on the same coarse grid: from points on it, or from a sphere's surface, in
+/// directions through grid points.
+fn grid_rays() -> impl Strategy<Value = Vec<Ray>> {
+    prop::collection::vec(
+        (
+            prop::array::uniform3(-6i8..=6),
+            prop::array::uniform3(-2i8..=2),
+        ),
+        1..=16,
+    )
+    .prop_map(|rays| {
+        rays.into_iter()
+            .map(|(o, d)| {
+                let d = DVec3::from_array(d.map(f64::from));
+                let d = d.try_normalize().unwrap_or(DVec3::Z);
+                Ray::new(DVec3::from_array(o.map(|c| f64::from(c) * 0.5)), d)
+            })
+            .collect()
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Plain scenes: the packet's nearest hits, tested four rays at a time, are every ray's
+    /// own, to the last bit of t, and so are the counters.
+    #[test]
+    fn a_packet_of_rays_in_lanes_finds_what_they_find_one_by_one(
+        (spheres, planes) in plain_objects(),
+        rays in grid_rays(),
+    ) {
+        let scene = plain_scene(&spheres, &planes);
+        assert_packet_is_one_by_one(&scene, &rays)?;
+    }
+
+    /// Plain scenes: shadow rays tested four at a time are blocked as one by one, with any
+    /// reach, and count the same tests.
+    #[test]
+    fn shadow_rays_in_lanes_are_blocked_as_one_by_one(
+        (spheres, planes) in plain_objects(),
+        rays in grid_rays(),
+        reach in prop::sample::select(vec![0.0, 0.5, 3.0, 7.25, f64::INFINITY]),
+    ) {
+        let scene = plain_scene(&spheres, &planes);
+        let reach = vec![reach; rays.len()];
+        let mut packet_stats = Stats::default();
+        let blocked = scene.occluded_packet(&rays, &reach, &mut packet_stats);
+        let mut single_stats = Stats::default();
+        for (i, (ray, t)) in rays.iter().zip(&reach).enumerate() {
+            let single = scene.occluded(ray, 0.0, *t, &mut single_stats).is_some();
+            prop_assert_eq!(blocked & (1 << i) != 0, single, "ray {}: {:?}", i, ray);
+        }
+        prop_assert_eq!(blocked >> rays.len(), 0);
+        prop_assert_eq!(packet_stats, single_stats);
+    }
+}
+
+/// The Whitted peer scene (plain spheres and a plane, mirror and glass), small: every pixel,
+/// traced in packets with its objects tested four rays at a time, is exactly its samples
+/// traced one by one.
+#[test]
+fn every_pixel_of_a_plain_scene_traced_in_lanes_is_traced_sample_by_sample() {
+    let yaml = std::fs::read_to_string("benches/peers/whitted.yaml")
+        .unwrap()
+        .replace("width: 800, height: 600", "width: 40, height: 30");
+    let scene = parse(&yaml, "whitted.yaml", None, &Limits::default()).unwrap();
+    assert_eq!(scene.camera.width, 40);
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.shadow_rays > 0 && total.reflection_rays > 0 && total.refraction_rays > 0,
+        "{total:?}"
+    );
+}
+
 /// Exact ties: pairs of boxes that share their +x face, one shallow and one deep, so the
 /// tree can part them along x. A ray through a shared face meets both at the same t, and the
 /// one-ray search keeps whichever it visits first, nearer side first by the ray's own signs. In

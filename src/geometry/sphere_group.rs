@@ -84,9 +84,7 @@ impl SphereGroup {
     }
 
     /// Each lane's candidate t, NaN where `Sphere::hit` returns early; None when every lane
-    /// does so before the divisions and the square root (most rays, for most groups). The
-    /// steps are `Quadratic::new`, the two early exits, `Quadratic::roots` and the choice of
-    /// root in `Sphere::hit`, with the same operations in the same order.
+    /// does so before the divisions and the square root (most rays, for most groups).
     #[inline(always)]
     fn candidates(&self, ray: &Ray, t_min: f64) -> Option<[f64; LANES]> {
         let DVec3 {
@@ -95,51 +93,137 @@ impl SphereGroup {
             z: dz,
         } = ray.dir;
         let a = f64x4::splat(dx * dx + dy * dy + dz * dz);
-        let (dx, dy, dz) = (f64x4::splat(dx), f64x4::splat(dy), f64x4::splat(dz));
-        let zero = f64x4::ZERO;
-        // a·t² + 2b·t + c = 0 with oc = o − centre.
-        let ox = f64x4::splat(ray.origin.x) - self.cx;
-        let oy = f64x4::splat(ray.origin.y) - self.cy;
-        let oz = f64x4::splat(ray.origin.z) - self.cz;
-        let oc2 = ox * ox + oy * oy + oz * oz;
-        let b = dx * ox + dy * oy + dz * oz;
-        let c = oc2 - self.r2;
-        // Outside and moving away; a line that clearly passes by.
-        let away = if t_min >= 0.0 {
-            c.simd_gt(zero) & b.simd_gt(zero)
-        } else {
-            zero
+        let o = ray.origin;
+        let rays = RayLanes {
+            origin: [o.x, o.y, o.z].map(f64x4::splat),
+            dir: [dx, dy, dz].map(f64x4::splat),
+            a,
         };
-        let scale = b * b + a * (oc2 + self.r2);
-        let d = b * b - a * c;
-        let passes = scale.simd_gt(f64x4::splat(MISS_TEST_FLOOR))
-            & d.simd_lt(f64x4::splat(-MISS_MARGIN) * scale);
-        let open = self.used & !(away | passes);
-        if open.to_bitmask() == 0 {
-            return None;
-        }
-        // disc = r² − ℓ², ℓ the distance from the centre to the line.
-        let s = b / a;
-        let (lx, ly, lz) = (ox - s * dx, oy - s * dy, oz - s * dz);
-        let disc = self.r2 - (lx * lx + ly * ly + lz * lz);
-        let no_root = disc.simd_lt(f64x4::splat(-TANGENT_TOLERANCE) * self.r2);
-        let disc = disc.simd_lt(zero).bitselect(zero, disc);
-        // q = −(b + sign(b)·√disc), t = q/a and c/q. (sign(b) for a NaN b does not matter:
-        // q is NaN either way.)
-        let root = (a * disc).sqrt();
-        let sign = (b & f64x4::splat(-0.0)) | f64x4::ONE;
-        let q = -(b + sign * root);
-        let (x, y) = (q / a, c / q);
-        let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
-        let t_in = q0.bitselect(zero, tangent.bitselect(x, x.min(y)));
-        let t_out = q0.bitselect(zero, tangent.bitselect(x, x.max(y)));
-        let t = t_in.simd_gt(f64x4::splat(t_min)).bitselect(t_in, t_out);
-        Some(
-            (open & !no_root)
-                .bitselect(t, f64x4::splat(f64::NAN))
-                .to_array(),
-        )
+        let spheres = [self.cx, self.cy, self.cz];
+        Some(crossings(&rays, spheres, self.r2, self.used, t_min)?.to_array())
     }
+
+    /// Sphere k of the group against every ray of `rays` (the lanes in `open`): each lane's
+    /// candidate t, bit for bit what `candidates` gives that ray for sphere k.
+    #[inline(always)]
+    pub fn sphere_against(
+        &self,
+        k: usize,
+        rays: &RayLanes,
+        open: f64x4,
+        t_min: f64,
+    ) -> Option<f64x4> {
+        let lane = |v: f64x4| v.to_array()[k];
+        let centre = DVec3::new(lane(self.cx), lane(self.cy), lane(self.cz));
+        sphere_against_lanes(centre, lane(self.r2), rays, open, t_min)
+    }
+}
+
+/// One sphere (centre, r²) against every ray of `rays` (the lanes in `open`): each lane's
+/// candidate t, bit for bit what `Sphere::hit` computes for that ray (NaN where it returns
+/// early); None when every open lane returns early.
+#[inline(always)]
+pub fn sphere_against_lanes(
+    centre: DVec3,
+    r2: f64,
+    rays: &RayLanes,
+    open: f64x4,
+    t_min: f64,
+) -> Option<f64x4> {
+    let centre = centre.to_array().map(f64x4::splat);
+    crossings(rays, centre, f64x4::splat(r2), open, t_min)
+}
+
+/// Up to four rays, one per lane (structure of arrays): the shadow rays of a packet, tested
+/// against one sphere or plane at a time.
+#[derive(Clone, Copy, Debug)]
+pub struct RayLanes {
+    pub origin: [f64x4; 3],
+    pub dir: [f64x4; 3],
+    /// d·d, as `Sphere::hit` computes it.
+    pub a: f64x4,
+}
+
+impl RayLanes {
+    /// The rays in lanes 0, 1, …; lanes beyond them hold `Ray::UNUSED`.
+    pub fn new(rays: &[Ray]) -> RayLanes {
+        assert!(rays.len() <= LANES);
+        let mut o = [[0.0; LANES]; 3];
+        let mut d = [[0.0, 0.0, 0.0, 0.0], [0.0; LANES], [1.0; LANES]];
+        for (k, r) in rays.iter().enumerate() {
+            for axis in 0..3 {
+                (o[axis][k], d[axis][k]) = (r.origin[axis], r.dir[axis]);
+            }
+        }
+        let dir = d.map(f64x4::new);
+        RayLanes {
+            origin: o.map(f64x4::new),
+            dir,
+            a: dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2],
+        }
+    }
+}
+
+/// The steps of `Sphere::hit` (`Quadratic::new`, the two early exits, `Quadratic::roots` and
+/// the choice of root), with the same operations in the same order, for four (ray, sphere)
+/// pairs side by side: lane i pairs ray lane i with sphere lane i. A lane's t is NaN where
+/// `Sphere::hit` returns early; None when every lane of `open` does so before the divisions
+/// and the square root.
+#[inline(always)]
+fn crossings(
+    rays: &RayLanes,
+    centre: [f64x4; 3],
+    r2: f64x4,
+    open: f64x4,
+    t_min: f64,
+) -> Option<f64x4> {
+    let [dx, dy, dz] = rays.dir;
+    let a = rays.a;
+    let zero = f64x4::ZERO;
+    // a·t² + 2b·t + c = 0 with oc = o − centre.
+    let ox = rays.origin[0] - centre[0];
+    let oy = rays.origin[1] - centre[1];
+    let oz = rays.origin[2] - centre[2];
+    let oc2 = ox * ox + oy * oy + oz * oz;
+    let b = dx * ox + dy * oy + dz * oz;
+    let c = oc2 - r2;
+    // Outside and moving away; a line that clearly passes by.
+    let away = if t_min >= 0.0 {
+        c.simd_gt(zero) & b.simd_gt(zero)
+    } else {
+        zero
+    };
+    let scale = b * b + a * (oc2 + r2);
+    let d = b * b - a * c;
+    let passes = scale.simd_gt(f64x4::splat(MISS_TEST_FLOOR))
+        & d.simd_lt(f64x4::splat(-MISS_MARGIN) * scale);
+    let open = open & !(away | passes);
+    if open.to_bitmask() == 0 {
+        return None;
+    }
+    // disc = r² − ℓ², ℓ the distance from the centre to the line.
+    let s = b / a;
+    let (lx, ly, lz) = (ox - s * dx, oy - s * dy, oz - s * dz);
+    let disc = r2 - (lx * lx + ly * ly + lz * lz);
+    let no_root = disc.simd_lt(f64x4::splat(-TANGENT_TOLERANCE) * r2);
+    let disc = disc.simd_lt(zero).bitselect(zero, disc);
+    // q = −(b + sign(b)·√disc), t = q/a and c/q. (sign(b) for a NaN b does not matter:
+    // q is NaN either way.)
+    let root = (a * disc).sqrt();
+    let sign = (b & f64x4::splat(-0.0)) | f64x4::ONE;
+    let q = -(b + sign * root);
+    let (x, y) = (q / a, c / q);
+    let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
+    let t_in = q0.bitselect(zero, tangent.bitselect(x, x.min(y)));
+    let t_out = q0.bitselect(zero, tangent.bitselect(x, x.max(y)));
+    let t = t_in.simd_gt(f64x4::splat(t_min)).bitselect(t_in, t_out);
+    Some((open & !no_root).bitselect(t, f64x4::splat(f64::NAN)))
+}
+
+/// All ones in lane i when bit i of `bits` is set.
+pub fn lane_mask(bits: u32) -> f64x4 {
+    let on = f64::from_bits(u64::MAX);
+    f64x4::new([0, 1, 2, 3].map(|i| if bits & (1 << i) != 0 { on } else { 0.0 }))
 }
 
 #[cfg(test)]
@@ -215,6 +299,38 @@ mod tests {
                 bits(group.first(&ray, t_min, t_max)),
                 bits(first_one_by_one(&spheres, &ray, t_min, t_max))
             );
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        /// One sphere of a group against four rays in lanes gives each ray, to the last bit,
+        /// the t that the group gives it for that sphere (NaN for none).
+        #[test]
+        fn a_sphere_against_rays_in_lanes_answers_as_for_each_ray(
+            spheres in prop::collection::vec(sphere(), 1..=LANES),
+            rays in prop::collection::vec(((coord(), coord(), coord()), (coord(), coord(), coord())), 1..=LANES),
+            t_min in prop::sample::select(vec![0.0, 1e-9, 0.5, f64::NEG_INFINITY]),
+        ) {
+            let group = SphereGroup::new(&spheres);
+            let rays: Vec<Ray> = rays
+                .into_iter()
+                .map(|(o, d)| Ray {
+                    origin: DVec3::new(o.0, o.1, o.2),
+                    dir: DVec3::new(d.0 + 0.25, d.1, d.2 - 0.125).normalize(),
+                })
+                .collect();
+            let lanes = RayLanes::new(&rays);
+            let open = lane_mask((1 << rays.len()) - 1);
+            for k in 0..spheres.len() {
+                let t = group.sphere_against(k, &lanes, open, t_min).map(|t| t.to_array());
+                for (i, ray) in rays.iter().enumerate() {
+                    let alone = group.candidates(ray, t_min).map_or(f64::NAN, |t| t[k]);
+                    let in_lanes = t.map_or(f64::NAN, |t| t[i]);
+                    prop_assert_eq!(in_lanes.to_bits(), alone.to_bits(), "sphere {} ray {}", k, i);
+                }
+            }
         }
     }
 

@@ -4,12 +4,13 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
+use wide::f64x4;
 
 use crate::accel::bvh::{signs, PACKET};
 use crate::accel::{Aabb, Bvh, Hull, Verdict};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
-use crate::geometry::sphere_group::LANES;
+use crate::geometry::sphere_group::{lane_mask, sphere_against_lanes, RayLanes, LANES};
 use crate::geometry::{
     first_crossing, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, SphereGroup, Surface,
     Transform,
@@ -253,6 +254,9 @@ pub struct Scene {
     /// Some object outside the BVH is tested behind its box: packets of rays then try each
     /// such box once against their hull (`packet_hull`).
     boxes_outside_bvh: bool,
+    /// No BVH, and every object a plain sphere or plane: a packet's rays, primary and shadow,
+    /// are tested four at a time (`intersect_in_lanes`, `occluded_in_lanes`).
+    plain: bool,
 }
 
 impl LeafSegments for Scene {
@@ -343,6 +347,7 @@ impl Scene {
             unbounded: vec![],
             flat_csg,
             boxes_outside_bvh: false,
+            plain: false,
         };
         scene.transparent_objects = scene
             .leaves
@@ -395,6 +400,7 @@ impl Scene {
             );
         }
         self.boxes_outside_bvh = self.unbounded.iter().any(|p| matches!(p, Probe::Object(_)));
+        self.plain = self.bounded.is_empty() && !self.boxes_outside_bvh;
     }
 
     /// The hull of a packet of rays, for the boxes of the objects outside the BVH (None where
@@ -766,6 +772,12 @@ impl Scene {
     /// The rays that share the first one's direction signs go through the BVH as a packet
     /// (if there are at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
+        if self.plain {
+            for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
+                self.intersect_in_lanes(rays, hits, stats);
+            }
+            return;
+        }
         if self.bounded.is_empty() {
             let Some(hull) = self.packet_hull(rays) else {
                 // No BVH and no boxes: nothing to share.
@@ -869,6 +881,13 @@ impl Scene {
     /// `occluded` ray by ray. Rays that get past the objects outside the BVH search it as a
     /// packet (any directions will do: an any-hit search visits the nodes in a fixed order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+        if self.plain {
+            let mut blocked = 0;
+            for (k, (rays, t_max)) in rays.chunks(LANES).zip(t_max.chunks(LANES)).enumerate() {
+                blocked |= self.occluded_in_lanes(rays, t_max, stats) << (k * LANES);
+            }
+            return blocked;
+        }
         if let Some(hull) = self
             .bounded
             .is_empty()
@@ -944,6 +963,127 @@ impl Scene {
             }
         }
         blocked
+    }
+
+    /// `intersect` (t_min = 0, t_max = ∞) for up to four rays in a scene of plain spheres and
+    /// planes: each object is tested against all the rays at once, in `RayLanes`. Each ray
+    /// meets the objects in the same order as in `intersect`, with the same arithmetic and the
+    /// same shrinking limit, so it finds the same hit and counts the same tests.
+    fn intersect_in_lanes(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
+        let lanes = RayLanes::new(rays);
+        let used = (1u32 << rays.len()) - 1;
+        let all = lane_mask(used);
+        let mut limit = f64x4::splat(f64::INFINITY);
+        hits.fill(None);
+        // Lanes whose t lies in 0 < t < limit take it as their nearest hit so far.
+        let mut take = |t: f64x4, bits: u32, object: u32, leaf: u32, limit: &mut f64x4| {
+            let bits = bits & used;
+            if bits == 0 {
+                return;
+            }
+            *limit = lane_mask(bits).bitselect(t, *limit);
+            let t = t.to_array();
+            for (i, hit) in hits.iter_mut().enumerate() {
+                if bits & (1 << i) != 0 {
+                    *hit = Some(Hit {
+                        t: t[i],
+                        object,
+                        surface: Surface::new(leaf, 0),
+                    });
+                }
+            }
+        };
+        let within =
+            |t: f64x4, limit: f64x4| (t.simd_gt(f64x4::ZERO) & t.simd_lt(limit)).to_bitmask();
+        let n = rays.len() as u64;
+        for p in &self.unbounded {
+            match p {
+                Probe::Plane {
+                    plane,
+                    object,
+                    leaf,
+                } => {
+                    stats.primitives_tested += n;
+                    let (t, bits) = plane.hits_of_lanes(&lanes, 0.0, limit);
+                    take(t, bits, *object, *leaf, &mut limit);
+                }
+                Probe::Sphere {
+                    sphere,
+                    object,
+                    leaf,
+                } => {
+                    stats.primitives_tested += n;
+                    let r2 = sphere.radius * sphere.radius;
+                    if let Some(t) = sphere_against_lanes(sphere.center, r2, &lanes, all, 0.0) {
+                        take(t, within(t, limit), *object, *leaf, &mut limit);
+                    }
+                }
+                Probe::Spheres {
+                    group,
+                    objects,
+                    leaves,
+                } => {
+                    stats.primitives_tested += group.len() as u64 * n;
+                    for k in 0..group.len() {
+                        if let Some(t) = group.sphere_against(k, &lanes, all, 0.0) {
+                            take(t, within(t, limit), objects[k], leaves[k], &mut limit);
+                        }
+                    }
+                }
+                Probe::Object(_) => unreachable!("a plain scene has no boxed objects"),
+            }
+        }
+    }
+
+    /// `occluded` (t_min = 0) for up to four shadow rays in a scene of plain spheres and planes:
+    /// each object is tested against all the rays still open at once, in `RayLanes`. Each ray
+    /// meets the objects in the same order as in `occluded`, with the same arithmetic, so it
+    /// is blocked by the same one and counts the same tests.
+    fn occluded_in_lanes(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+        let lanes = RayLanes::new(rays);
+        let mut reach = [0.0; LANES];
+        reach[..t_max.len()].copy_from_slice(t_max);
+        let reach = f64x4::new(reach);
+        let all = (1u32 << rays.len()) - 1;
+        let mut open = all;
+        // The lanes whose t (NaN for none) lies in 0 < t < t_max.
+        let within = |t: f64x4| (t.simd_gt(f64x4::ZERO) & t.simd_lt(reach)).to_bitmask();
+        for p in &self.unbounded {
+            if open == 0 {
+                break;
+            }
+            match p {
+                Probe::Plane { plane, .. } => {
+                    stats.primitives_tested += open.count_ones() as u64;
+                    open &= !plane.hits_of_lanes(&lanes, 0.0, reach).1;
+                }
+                Probe::Sphere { sphere, .. } => {
+                    stats.primitives_tested += open.count_ones() as u64;
+                    let r2 = sphere.radius * sphere.radius;
+                    let open_lanes = lane_mask(open);
+                    if let Some(t) =
+                        sphere_against_lanes(sphere.center, r2, &lanes, open_lanes, 0.0)
+                    {
+                        open &= !within(t);
+                    }
+                }
+                Probe::Spheres { group, .. } => {
+                    // A ray is blocked by the first sphere in the group's order, and counts the
+                    // spheres up to it, as `SphereGroup::first` does.
+                    for k in 0..group.len() {
+                        if open == 0 {
+                            break;
+                        }
+                        stats.primitives_tested += open.count_ones() as u64;
+                        if let Some(t) = group.sphere_against(k, &lanes, lane_mask(open), 0.0) {
+                            open &= !within(t);
+                        }
+                    }
+                }
+                Probe::Object(_) => unreachable!("a plain scene has no boxed objects"),
+            }
+        }
+        all & !open
     }
 
     /// The shading record of a hit. Inlined, with the normal's dispatch, into the tracer: it runs
