@@ -202,6 +202,8 @@ pub struct Features {
     pub reflective: bool,
     pub transparent: bool,
     pub csg: bool,
+    /// Some material draws random numbers (glossy or frosted lobes).
+    pub sampled: bool,
     pub lights: usize,
 }
 
@@ -312,6 +314,7 @@ impl Scene {
             csg: objects
                 .iter()
                 .any(|o| matches!(o.geometry, Geometry::Csg(_))),
+            sampled: used(Material::sampled),
             lights: lights.len(),
         };
         let flat_csg = objects
@@ -401,6 +404,11 @@ impl Scene {
         }
         self.boxes_outside_bvh = self.unbounded.iter().any(|p| matches!(p, Probe::Object(_)));
         self.plain = self.bounded.is_empty() && !self.boxes_outside_bvh;
+    }
+
+    /// Whether packets of rays test the objects four rays at a time (`intersect_in_lanes`).
+    pub fn tests_in_lanes(&self) -> bool {
+        self.plain
     }
 
     /// The hull of a packet of rays, for the boxes of the objects outside the BVH (None where

@@ -74,4 +74,9 @@ impl Material {
     pub fn transparent(&self) -> bool {
         self.kt > 0.0
     }
+
+    /// Whether shading it draws random numbers: a glossy or frosted lobe sends sampled rays.
+    pub fn sampled(&self) -> bool {
+        self.glossy.is_some() || self.frosted.is_some()
+    }
 }
