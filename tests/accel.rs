@@ -238,6 +238,52 @@ fn every_pixel_of_a_plain_scene_traced_in_lanes_is_traced_sample_by_sample() {
     );
 }
 
+/// A plain scene with everything the secondary rays' waves must get right: Fresnel, glass
+/// nested in glass (n1/n2 from the geometry), an air bubble inside glass (total internal
+/// reflection), distance attenuation of secondary rays, the adaptive threshold and the depth
+/// limit, under every kind of light. Every pixel is exactly its samples traced one by one.
+#[test]
+fn every_pixel_of_a_plain_scene_with_nested_glass_traced_in_waves_is_traced_sample_by_sample() {
+    let yaml = "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 24, height: 18 }
+spp: 9
+ambient: 0.2
+max_depth: 6
+adaptive_threshold: 0.01
+secondary_attenuation: [1, 0.05, 0]
+lights:
+  - { name: key, point: [-4, 6, -5], intensity: 0.8, attenuation: [1, 0.05, 0] }
+  - { name: sun, direction: [0.3, -1, 0.4], intensity: 0.4 }
+  - { name: panel, rect: { corner: [1, 5, -2], u: [1, 0, 0], v: [0, 0, 1] }, intensity: 0.5, samples: 2 }
+  - { name: off, point: [0, 8, 0], intensity: 0 }
+  - { name: below, point: [0, -5, 0], intensity: 0.3 }
+materials:
+  floor: { color: 0.6, ka: 0.2, kd: 0.8, kr: 0.1 }
+  red: { color: [0.8, 0.1, 0.1], ka: 0.1, kd: 0.8, ks: 0.4, shininess: 40, highlight: phong }
+  mirror: { color: 0.1, kd: 0.1, ks: 0.6, shininess: 200, kr: 0.8 }
+  glass: { color: 1, kd: 0.05, ks: 0.6, shininess: 200, kr: 0.1, kt: 0.9, ior: 1.5, fresnel: schlick }
+  air: { color: 1, kt: 1, kr: 0.2, ior: 1.0 }
+  diamond: { color: 1, kd: 0.02, kr: 0.2, kt: 0.8, ior: 2.4 }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { name: red, sphere: { center: [-1.8, 1, 0.5], radius: 1 }, material: red }
+  - { name: mirror, sphere: { center: [0, 1, 1.5], radius: 1 }, material: mirror }
+  - { name: glass, sphere: { center: [1.6, 1, -0.5], radius: 1 }, material: glass }
+  - { name: bubble, sphere: { center: [1.7, 1.1, -0.6], radius: 0.45 }, material: air }
+  - { name: diamond, sphere: { center: [-0.6, 0.5, -1.5], radius: 0.5 }, material: diamond }
+";
+    let scene = parse(yaml, "nested.yaml", None, &Limits::default()).unwrap();
+    assert!(scene.tests_in_lanes());
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.total_internal_reflections > 0
+            && total.adaptive_cutoffs > 0
+            && total.max_depth_cutoffs > 0
+            && total.shadow_skipped_dark > 0
+            && total.shadow_skipped_backfacing > 0,
+        "{total:?}"
+    );
+}
+
 /// Exact ties: pairs of boxes that share their +x face, one shallow and one deep, so the
 /// tree can part them along x. A ray through a shared face meets both at the same t, and the
 /// one-ray search keeps whichever it visits first, nearer side first by the ray's own signs. In
