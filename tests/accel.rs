@@ -107,6 +107,25 @@ fn assert_packet_is_one_by_one(scene: &Scene, rays: &[Ray]) -> Result<(), TestCa
     Ok(())
 }
 
+/// The packet's shadow rays are blocked exactly as each ray's own `occluded` says, and the
+/// counters are those of asking ray by ray.
+fn assert_shadow_packet_is_one_by_one(
+    scene: &Scene,
+    rays: &[Ray],
+    reach: &[f64],
+) -> Result<(), TestCaseError> {
+    let mut packet_stats = Stats::default();
+    let blocked = scene.occluded_packet(rays, reach, &mut packet_stats);
+    let mut single_stats = Stats::default();
+    for (i, (ray, t)) in rays.iter().zip(reach).enumerate() {
+        let single = scene.occluded(ray, 0.0, *t, &mut single_stats).is_some();
+        prop_assert_eq!(blocked & (1 << i) != 0, single, "ray {}: {:?}", i, ray);
+    }
+    prop_assert_eq!(blocked >> rays.len(), 0);
+    prop_assert_eq!(packet_stats, single_stats);
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
 
@@ -209,15 +228,7 @@ proptest! {
     ) {
         let scene = plain_scene(&spheres, &planes);
         let reach = vec![reach; rays.len()];
-        let mut packet_stats = Stats::default();
-        let blocked = scene.occluded_packet(&rays, &reach, &mut packet_stats);
-        let mut single_stats = Stats::default();
-        for (i, (ray, t)) in rays.iter().zip(&reach).enumerate() {
-            let single = scene.occluded(ray, 0.0, *t, &mut single_stats).is_some();
-            prop_assert_eq!(blocked & (1 << i) != 0, single, "ray {}: {:?}", i, ray);
-        }
-        prop_assert_eq!(blocked >> rays.len(), 0);
-        prop_assert_eq!(packet_stats, single_stats);
+        assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
     }
 }
 
@@ -238,40 +249,55 @@ fn every_pixel_of_a_plain_scene_traced_in_lanes_is_traced_sample_by_sample() {
     );
 }
 
+/// Every kind of light: point (attenuated), directional, an area light (its grid of shadow rays
+/// goes one point at a time), a dark one, and one below most surfaces.
+const EVERY_KIND_OF_LIGHT: &str = "lights:
+  - { name: key, point: [-4, 6, -5], intensity: 0.8, attenuation: [1, 0.05, 0] }
+  - { name: sun, direction: [0.3, -1, 0.4], intensity: 0.4 }
+  - { name: panel, rect: { corner: [1, 5, -2], u: [1, 0, 0], v: [0, 0, 1] }, intensity: 0.5, samples: 2 }
+  - { name: off, point: [0, 8, 0], intensity: 0 }
+  - { name: below, point: [0, -5, 0], intensity: 0.3 }
+";
+
+/// The end of a `materials:` list (red Phong, mirror, Schlick glass) and the start of an
+/// `objects:` list that uses them: a floor and three spheres on it.
+const SPHERES_ON_A_FLOOR: &str = "  red: { color: [0.8, 0.1, 0.1], ka: 0.1, kd: 0.8, ks: 0.4, shininess: 40, highlight: phong }
+  mirror: { color: 0.1, kd: 0.1, ks: 0.6, shininess: 200, kr: 0.8 }
+  glass: { color: 1, kd: 0.05, ks: 0.6, shininess: 200, kr: 0.1, kt: 0.9, ior: 1.5, fresnel: schlick }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { name: red, sphere: { center: [-1.8, 1, 0.5], radius: 1 }, material: red }
+  - { name: mirror, sphere: { center: [0, 1, 1.5], radius: 1 }, material: mirror }
+  - { name: glass, sphere: { center: [1.6, 1, -0.5], radius: 1 }, material: glass }
+";
+
 /// A plain scene with everything the secondary rays' waves must get right: Fresnel, glass
 /// nested in glass (n1/n2 from the geometry), an air bubble inside glass (total internal
 /// reflection), distance attenuation of secondary rays, the adaptive threshold and the depth
 /// limit, under every kind of light. Every pixel is exactly its samples traced one by one.
 #[test]
 fn every_pixel_of_a_plain_scene_with_nested_glass_traced_in_waves_is_traced_sample_by_sample() {
-    let yaml = "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 24, height: 18 }
+    let yaml = [
+        "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 24, height: 18 }
 spp: 9
 ambient: 0.2
 max_depth: 6
 adaptive_threshold: 0.01
 secondary_attenuation: [1, 0.05, 0]
-lights:
-  - { name: key, point: [-4, 6, -5], intensity: 0.8, attenuation: [1, 0.05, 0] }
-  - { name: sun, direction: [0.3, -1, 0.4], intensity: 0.4 }
-  - { name: panel, rect: { corner: [1, 5, -2], u: [1, 0, 0], v: [0, 0, 1] }, intensity: 0.5, samples: 2 }
-  - { name: off, point: [0, 8, 0], intensity: 0 }
-  - { name: below, point: [0, -5, 0], intensity: 0.3 }
-materials:
+",
+        EVERY_KIND_OF_LIGHT,
+        "materials:
   floor: { color: 0.6, ka: 0.2, kd: 0.8, kr: 0.1 }
-  red: { color: [0.8, 0.1, 0.1], ka: 0.1, kd: 0.8, ks: 0.4, shininess: 40, highlight: phong }
-  mirror: { color: 0.1, kd: 0.1, ks: 0.6, shininess: 200, kr: 0.8 }
-  glass: { color: 1, kd: 0.05, ks: 0.6, shininess: 200, kr: 0.1, kt: 0.9, ior: 1.5, fresnel: schlick }
   air: { color: 1, kt: 1, kr: 0.2, ior: 1.0 }
   diamond: { color: 1, kd: 0.02, kr: 0.2, kt: 0.8, ior: 2.4 }
-objects:
-  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
-  - { name: red, sphere: { center: [-1.8, 1, 0.5], radius: 1 }, material: red }
-  - { name: mirror, sphere: { center: [0, 1, 1.5], radius: 1 }, material: mirror }
-  - { name: glass, sphere: { center: [1.6, 1, -0.5], radius: 1 }, material: glass }
-  - { name: bubble, sphere: { center: [1.7, 1.1, -0.6], radius: 0.45 }, material: air }
+",
+        SPHERES_ON_A_FLOOR,
+        "  - { name: bubble, sphere: { center: [1.7, 1.1, -0.6], radius: 0.45 }, material: air }
   - { name: diamond, sphere: { center: [-0.6, 0.5, -1.5], radius: 0.5 }, material: diamond }
-";
-    let scene = parse(yaml, "nested.yaml", None, &Limits::default()).unwrap();
+",
+    ]
+    .concat();
+    let scene = parse(&yaml, "nested.yaml", None, &Limits::default()).unwrap();
     assert!(scene.tests_in_lanes());
     let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
     assert!(
@@ -390,34 +416,27 @@ fn every_pixel_traced_in_packets_is_traced_sample_by_sample() {
 /// a mirror and a CSG object.
 #[test]
 fn every_pixel_under_every_kind_of_light_traced_in_packets_is_traced_sample_by_sample() {
-    let yaml = "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 20, height: 15 }
+    let yaml = [
+        "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 20, height: 15 }
 spp: 9
 ambient: 0.2
 max_depth: 4
-lights:
-  - { name: key, point: [-4, 6, -5], intensity: 0.8, attenuation: [1, 0.05, 0] }
-  - { name: sun, direction: [0.3, -1, 0.4], intensity: 0.4 }
-  - { name: panel, rect: { corner: [1, 5, -2], u: [1, 0, 0], v: [0, 0, 1] }, intensity: 0.5, samples: 2 }
-  - { name: off, point: [0, 8, 0], intensity: 0 }
-  - { name: below, point: [0, -5, 0], intensity: 0.3 }
-materials:
+",
+        EVERY_KIND_OF_LIGHT,
+        "materials:
   floor: { color: 0.6, ka: 0.2, kd: 0.8 }
-  red: { color: [0.8, 0.1, 0.1], ka: 0.1, kd: 0.8, ks: 0.4, shininess: 40, highlight: phong }
-  mirror: { color: 0.1, kd: 0.1, ks: 0.6, shininess: 200, kr: 0.8 }
-  glass: { color: 1, kd: 0.05, ks: 0.6, shininess: 200, kr: 0.1, kt: 0.9, ior: 1.5, fresnel: schlick }
-objects:
-  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
-  - { name: red, sphere: { center: [-1.8, 1, 0.5], radius: 1 }, material: red }
-  - { name: mirror, sphere: { center: [0, 1, 1.5], radius: 1 }, material: mirror }
-  - { name: glass, sphere: { center: [1.6, 1, -0.5], radius: 1 }, material: glass }
-  - name: lens
+",
+        SPHERES_ON_A_FLOOR,
+        "  - name: lens
     intersection:
       - { sphere: { center: [0, 0, 0.5], radius: 1 } }
       - { sphere: { center: [0, 0, -0.5], radius: 1 } }
     transform: [ { translate: [0, 2.6, 0] } ]
     material: glass
-";
-    let scene = parse(yaml, "lights.yaml", None, &Limits::default()).unwrap();
+",
+    ]
+    .concat();
+    let scene = parse(&yaml, "lights.yaml", None, &Limits::default()).unwrap();
     assert_eq!(scene.bvh_nodes(), 0);
     let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
     assert!(
@@ -452,15 +471,7 @@ proptest! {
                 (Ray::new(DVec3::from_array(*o), d), t)
             })
             .unzip();
-        let mut packet_stats = Stats::default();
-        let blocked = scene.occluded_packet(&rays, &reach, &mut packet_stats);
-        let mut single_stats = Stats::default();
-        for (i, (ray, t)) in rays.iter().zip(&reach).enumerate() {
-            let single = scene.occluded(ray, 0.0, *t, &mut single_stats).is_some();
-            prop_assert_eq!(blocked & (1 << i) != 0, single, "ray {}: {:?}", i, ray);
-        }
-        prop_assert_eq!(blocked >> rays.len(), 0);
-        prop_assert_eq!(packet_stats, single_stats);
+        assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
     }
 }
 

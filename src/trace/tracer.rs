@@ -434,10 +434,10 @@ impl<'s> Tracer<'s> {
     /// task i, and the stats are those of tracing the tasks one after another.
     ///
     /// The same steps as `trace_from`, taken in another order: every ray's local terms of a
-    /// light first, then all their shadow rays toward it together (`Scene::occluded_packet`),
-    /// and then the secondary rays (`secondary_packet`). The rays of a packet are
-    /// independent, so the processor overlaps one ray's chain of square roots and divisions
-    /// with the next one's, and the shadow rays search the BVH as a packet.
+    /// light first, then all their shadow rays toward it together (`Scene::occluded_packet`:
+    /// the BVH searched as a packet, or in a plain scene each object tested against four rays
+    /// at once), and then the secondary rays: in waves (`secondary_packet`) where the objects
+    /// are tested in lanes and nothing draws random numbers, else one ray after another.
     fn shade_packet<L: Lanes + ?Sized>(
         &self,
         tasks: &L,
