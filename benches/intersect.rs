@@ -170,6 +170,59 @@ fn bvh(c: &mut Criterion) {
     g.finish();
 }
 
+/// Packets of 16 rays in a plain scene (8 spheres, brute force): tested one ray at a time, and
+/// four rays at a time in lanes (`intersect_packet`, `occluded_packet`).
+fn lanes(c: &mut Criterion) {
+    let mut scene = spheres(8);
+    scene.set_accel(Accel::None);
+    assert!(scene.tests_in_lanes());
+    let cam = scene.camera.clone();
+    let rs: Vec<Ray> = (0..48)
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .map(|(x, y)| cam.pixel_ray(x, y))
+        .collect();
+    let reach = vec![f64::INFINITY; rs.len()];
+    let mut g = c.benchmark_group("8 spheres, 3072 rays in packets of 16");
+    g.bench_function("nearest, one by one", |b| {
+        b.iter(|| {
+            let mut stats = Stats::default();
+            rs.iter()
+                .filter(|r| scene.intersect(r, 0.0, f64::INFINITY, &mut stats).is_some())
+                .count()
+        })
+    });
+    g.bench_function("nearest, in lanes", |b| {
+        b.iter(|| {
+            let mut stats = Stats::default();
+            let mut hits = [None; 16];
+            rs.chunks(16)
+                .map(|p| {
+                    scene.intersect_packet(p, &mut hits[..p.len()], &mut stats);
+                    hits.iter().filter(|h| h.is_some()).count()
+                })
+                .sum::<usize>()
+        })
+    });
+    g.bench_function("blocked, one by one", |b| {
+        b.iter(|| {
+            let mut stats = Stats::default();
+            rs.iter()
+                .filter(|r| scene.occluded(r, 0.0, f64::INFINITY, &mut stats).is_some())
+                .count()
+        })
+    });
+    g.bench_function("blocked, in lanes", |b| {
+        b.iter(|| {
+            let mut stats = Stats::default();
+            rs.chunks(16)
+                .zip(reach.chunks(16))
+                .map(|(p, t)| scene.occluded_packet(p, t, &mut stats).count_ones() as usize)
+                .sum::<usize>()
+        })
+    });
+    g.finish();
+}
+
 fn render(c: &mut Criterion) {
     let scene = raytree::scene::load(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/06-refraction/scene.yaml"),
@@ -186,6 +239,6 @@ fn render(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, render
+    targets = shapes, sphere_group, bvh, lanes, render
 }
 criterion_main!(benches);
