@@ -20,7 +20,7 @@ pub use cone::Cone;
 pub use cylinder::Cylinder;
 pub use mesh::Mesh;
 pub use plane::Plane;
-pub use ray::Ray;
+pub use ray::{lane_mask, Ray, RayLanes};
 pub use segment::{first_crossing, Segment, SegmentList, Surface};
 pub use shape::{Shape, Span};
 pub use sphere::Sphere;

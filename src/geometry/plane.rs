@@ -4,7 +4,7 @@
 use glam::DVec3;
 use wide::f64x4;
 
-use super::sphere_group::RayLanes;
+use super::ray::RayLanes;
 use super::{Ray, Span};
 
 #[derive(Clone, Debug, PartialEq)]

@@ -5,6 +5,9 @@
 //! the same point in both spaces and segment lists never need re-scaling.
 
 use glam::DVec3;
+use wide::f64x4;
+
+use super::sphere_group::LANES;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
@@ -35,4 +38,38 @@ impl Ray {
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + t * self.dir
     }
+}
+
+/// Up to four rays, one per `f64x4` lane (structure of arrays): a packet's rays tested against
+/// one sphere or plane at a time, or one ray repeated in every lane against a group of spheres.
+#[derive(Clone, Copy, Debug)]
+pub struct RayLanes {
+    pub origin: [f64x4; 3],
+    pub dir: [f64x4; 3],
+    /// d·d, as `Sphere::hit` computes it.
+    pub a: f64x4,
+}
+
+impl RayLanes {
+    /// The rays in lanes 0, 1, …; lanes beyond them hold `Ray::UNUSED`.
+    pub fn new(rays: &[Ray]) -> RayLanes {
+        assert!(rays.len() <= LANES);
+        let (mut o, mut d) = ([Ray::UNUSED.origin; LANES], [Ray::UNUSED.dir; LANES]);
+        for (k, r) in rays.iter().enumerate() {
+            (o[k], d[k]) = (r.origin, r.dir);
+        }
+        let axis = |v: &[DVec3; LANES], i: usize| f64x4::new(v.map(|p| p[i]));
+        let dir = [axis(&d, 0), axis(&d, 1), axis(&d, 2)];
+        RayLanes {
+            origin: [axis(&o, 0), axis(&o, 1), axis(&o, 2)],
+            dir,
+            a: dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2],
+        }
+    }
+}
+
+/// All ones in lane i when bit i of `bits` is set.
+pub fn lane_mask(bits: u32) -> f64x4 {
+    let on = f64::from_bits(u64::MAX);
+    f64x4::new([0, 1, 2, 3].map(|i| if bits & (1 << i) != 0 { on } else { 0.0 }))
 }

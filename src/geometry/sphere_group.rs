@@ -10,6 +10,7 @@
 use glam::DVec3;
 use wide::f64x4;
 
+use super::ray::RayLanes;
 use super::sphere::{MISS_MARGIN, MISS_TEST_FLOOR, TANGENT_TOLERANCE};
 use super::{Ray, Sphere};
 
@@ -134,36 +135,6 @@ pub fn sphere_against_lanes(
     crossings(rays, centre, f64x4::splat(r2), open, t_min)
 }
 
-/// Up to four rays, one per lane (structure of arrays): the shadow rays of a packet, tested
-/// against one sphere or plane at a time.
-#[derive(Clone, Copy, Debug)]
-pub struct RayLanes {
-    pub origin: [f64x4; 3],
-    pub dir: [f64x4; 3],
-    /// d·d, as `Sphere::hit` computes it.
-    pub a: f64x4,
-}
-
-impl RayLanes {
-    /// The rays in lanes 0, 1, …; lanes beyond them hold `Ray::UNUSED`.
-    pub fn new(rays: &[Ray]) -> RayLanes {
-        assert!(rays.len() <= LANES);
-        let mut o = [[0.0; LANES]; 3];
-        let mut d = [[0.0, 0.0, 0.0, 0.0], [0.0; LANES], [1.0; LANES]];
-        for (k, r) in rays.iter().enumerate() {
-            for axis in 0..3 {
-                (o[axis][k], d[axis][k]) = (r.origin[axis], r.dir[axis]);
-            }
-        }
-        let dir = d.map(f64x4::new);
-        RayLanes {
-            origin: o.map(f64x4::new),
-            dir,
-            a: dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2],
-        }
-    }
-}
-
 /// The steps of `Sphere::hit` (`Quadratic::new`, the two early exits, `Quadratic::roots` and
 /// the choice of root), with the same operations in the same order, for four (ray, sphere)
 /// pairs side by side: lane i pairs ray lane i with sphere lane i. A lane's t is NaN where
@@ -220,15 +191,10 @@ fn crossings(
     Some((open & !no_root).bitselect(t, f64x4::splat(f64::NAN)))
 }
 
-/// All ones in lane i when bit i of `bits` is set.
-pub fn lane_mask(bits: u32) -> f64x4 {
-    let on = f64::from_bits(u64::MAX);
-    f64x4::new([0, 1, 2, 3].map(|i| if bits & (1 << i) != 0 { on } else { 0.0 }))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::ray::lane_mask;
     use proptest::prelude::*;
 
     fn one_by_one(spheres: &[Sphere], ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {

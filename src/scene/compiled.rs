@@ -10,11 +10,12 @@ use crate::accel::bvh::{signs, PACKET};
 use crate::accel::{Aabb, Bvh, Hull, Verdict};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
-use crate::geometry::sphere_group::{lane_mask, sphere_against_lanes, RayLanes, LANES};
+use crate::geometry::sphere_group::{sphere_against_lanes, LANES};
 use crate::geometry::{
     first_crossing, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, SphereGroup, Surface,
     Transform,
 };
+use crate::geometry::{lane_mask, RayLanes};
 use crate::render::Camera;
 use crate::shading::{Light, Material};
 use crate::trace::Stats;
@@ -780,8 +781,9 @@ impl Scene {
 
     /// `intersect` (t_min = 0, t_max = ∞) for up to 16 rays at once: `hits[i]` is exactly what
     /// `intersect` answers for ray i, and the stats are those of tracing the rays one by one.
-    /// The rays that share the first one's direction signs go through the BVH as a packet
-    /// (if there are at least `PACKET_MIN` of them); any others, one by one.
+    /// In a plain scene the rays go four at a time (`intersect_in_lanes`). Otherwise the rays
+    /// that share the first one's direction signs go through the BVH as a packet (if there are
+    /// at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
         if self.plain {
             for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
@@ -889,8 +891,10 @@ impl Scene {
 
     /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < t_max[i]:
     /// bit i of the answer is set when ray i is blocked, and the stats are those of asking
-    /// `occluded` ray by ray. Rays that get past the objects outside the BVH search it as a
-    /// packet (any directions will do: an any-hit search visits the nodes in a fixed order).
+    /// `occluded` ray by ray. In a plain scene the rays go four at a time
+    /// (`occluded_in_lanes`). Otherwise rays that get past the objects outside the BVH search
+    /// it as a packet (any directions will do: an any-hit search visits the nodes in a fixed
+    /// order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
         if self.plain {
             let mut blocked = 0;

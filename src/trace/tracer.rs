@@ -772,9 +772,9 @@ impl<'s> Tracer<'s> {
             indices: None,
             split: task.split,
         });
-        let refraction = match transmitted {
-            _ if kt.is_nan() || kt <= 0.0 => Transmission::None,
-            Some(dir) => Transmission::Ray(Task {
+        let refraction = match (kt > 0.0, transmitted) {
+            (false, _) => Transmission::None,
+            (true, Some(dir)) => Transmission::Ray(Task {
                 ray: self.spawn(si, dir, task),
                 kind: RayKind::Refraction,
                 depth: task.depth + 1,
@@ -784,7 +784,7 @@ impl<'s> Tracer<'s> {
                 indices: Some(Indices { n1, n2 }),
                 split: task.split,
             }),
-            None => Transmission::TotalInternalReflection {
+            (true, None) => Transmission::TotalInternalReflection {
                 mirror,
                 indices: (n1, n2),
             },
