@@ -236,9 +236,39 @@ fn render(c: &mut Criterion) {
     });
 }
 
+/// The CSG peer scene's lens (∩ of two spheres) against a sphere of its size: nearest hits of
+/// rays that all meet its box, through `Scene::intersect`.
+fn csg(c: &mut Criterion) {
+    let rs = rays(1024);
+    let scene = |object: &str| {
+        let yaml = format!(
+            "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], fov: 40, width: 8, height: 8 }}\nmaterials: {{ m: {{ kd: 1 }} }}\nobjects:\n  - {{ {object}, material: m }}\n"
+        );
+        parse(&yaml, "csg", None, &Limits::default()).unwrap()
+    };
+    let lens = scene("intersection: [ { sphere: { center: [0, 0, -0.4], radius: 0.6 } }, { sphere: { center: [0, 0, 0.4], radius: 0.6 } } ]");
+    let sphere = scene("sphere: { center: [0, 0, 0], radius: 0.5 }");
+    let mut g = c.benchmark_group("nearest hit, 1024 rays");
+    for (name, scene) in [("sphere", &sphere), ("lens", &lens)] {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let mut stats = Stats::default();
+                rs.iter()
+                    .filter(|r| {
+                        scene
+                            .intersect(black_box(r), 0.0, f64::INFINITY, &mut stats)
+                            .is_some()
+                    })
+                    .count()
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, lanes, render
+    targets = shapes, sphere_group, bvh, lanes, csg, render
 }
 criterion_main!(benches);

@@ -151,11 +151,17 @@ proptest! {
     }
 }
 
-/// A scene of plain spheres and planes, too few for a BVH: packets test each object against
-/// four rays at a time (`RayLanes`). Coordinates on a coarse grid, so that tangents, shared
-/// centres and rays through centres come up. A plane after sphere k (`planes_after`) breaks
-/// the run of spheres there: runs become groups of up to four, a lone sphere its own probe.
-fn plain_scene(spheres: &[([i8; 3], u8)], planes_after: &[usize]) -> Scene {
+/// A scene too small for a BVH: packets test each plain sphere and plane against four rays at
+/// a time (`RayLanes`), and other objects ray by ray behind their boxes. Coordinates on a
+/// coarse grid, so that tangents, shared centres and rays through centres come up. A plane
+/// after sphere k (`planes_after`) breaks the run of spheres there: runs become groups of up
+/// to four, a lone sphere its own probe. An object after sphere k (`boxed_after`), centred on
+/// it, is one of: a box minus a sphere, a turned box, a cylinder, a lens (∩ of two spheres).
+fn scene_without_bvh(
+    spheres: &[([i8; 3], u8)],
+    planes_after: &[usize],
+    boxed_after: &[usize],
+) -> Scene {
     let mut yaml = String::from(
         "camera: { eye: [0, 0, -30], look_at: [0, 0, 0], width: 8, height: 6 }\nlights: [ { point: [10, 20, -20] } ]\nmaterials: { m: { kd: 0.6 } }\nobjects:\n",
     );
@@ -170,23 +176,39 @@ fn plain_scene(spheres: &[([i8; 3], u8)], planes_after: &[usize]) -> Scene {
                 "  - {{ name: p{i}, plane: {{ point: [0, {h}, 0], normal: {n} }}, material: m }}\n"
             ));
         }
+        if boxed_after.contains(&i) {
+            let object = match i % 4 {
+                0 => "difference: [ { box: { min: [-1, -1, -1], max: [1, 1, 1] } }, { sphere: { center: [0, 0, 0], radius: 1.3 } } ]",
+                1 => "box: { min: [-1, -0.5, -1], max: [1, 0.5, 1] }",
+                2 => "cylinder: { base: [0, -1, 0], top: [0, 1, 0], radius: 0.75 }",
+                _ => "intersection: [ { sphere: { center: [0, 0, -0.5], radius: 1 } }, { sphere: { center: [0, 0, 0.5], radius: 1 } } ]",
+            };
+            // Turned about y (the box no longer lines up with the axes), then moved.
+            yaml.push_str(&format!(
+                "  - {{ name: b{i}, {object}, transform: [ {{ rotate_y: 35 }}, {{ translate: [{x}, {y}, {z}] }} ], material: m }}\n"
+            ));
+        }
     }
-    let scene = parse(&yaml, "plain.yaml", None, &Limits::default()).unwrap();
+    let scene = parse(&yaml, "lanes.yaml", None, &Limits::default()).unwrap();
     assert_eq!(scene.bvh_nodes(), 0);
     scene
 }
 
-fn plain_objects() -> impl Strategy<Value = (Vec<([i8; 3], u8)>, Vec<usize>)> {
+type ObjectsWithoutBvh = (Vec<([i8; 3], u8)>, Vec<usize>, Vec<usize>);
+
+fn objects_without_bvh() -> impl Strategy<Value = ObjectsWithoutBvh> {
     (
-        prop::collection::vec((prop::array::uniform3(-4i8..=4), any::<u8>()), 1..15),
-        prop::collection::vec(0usize..15, 0..4),
+        // Up to 15 bounded objects: 16 would get a BVH.
+        prop::collection::vec((prop::array::uniform3(-4i8..=4), any::<u8>()), 1..12),
+        prop::collection::vec(0usize..12, 0..4),
+        prop::collection::vec(0usize..12, 0..4),
     )
 }
 
-/// Rays on the same coarse grid: from points on it, or from a sphere's surface, in
-/// directions through grid points.
+/// Rays on the same coarse grid: from points on it, in directions through grid points; or a
+/// pixel's samples, alike enough for the packet's hull to rule boxes out for all of them.
 fn grid_rays() -> impl Strategy<Value = Vec<Ray>> {
-    prop::collection::vec(
+    let scattered = prop::collection::vec(
         (
             prop::array::uniform3(-6i8..=6),
             prop::array::uniform3(-2i8..=2),
@@ -201,32 +223,49 @@ fn grid_rays() -> impl Strategy<Value = Vec<Ray>> {
                 Ray::new(DVec3::from_array(o.map(|c| f64::from(c) * 0.5)), d)
             })
             .collect()
-    })
+    });
+    let alike = (
+        prop::array::uniform3(-6i8..=6),
+        prop::array::uniform3(-2i8..=2),
+        prop::sample::select(vec![0.001, 0.05]),
+        1..=16usize,
+    )
+        .prop_map(|(o, d, spread, n)| {
+            let origin = DVec3::from_array(o.map(|c| f64::from(c) * 0.5));
+            let aim = DVec3::from_array(d.map(f64::from)) + DVec3::new(0.013, 0.007, 0.011);
+            (0..n)
+                .map(|k| {
+                    let (u, v) = ((k % 4) as f64 - 1.5, (k / 4) as f64 - 1.5);
+                    Ray::new(origin, aim + spread * DVec3::new(u, v, 0.5 * u - v))
+                })
+                .collect()
+        });
+    prop_oneof![scattered, alike]
 }
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
 
-    /// Plain scenes: the packet's nearest hits, tested four rays at a time, are every ray's
-    /// own, to the last bit of t, and so are the counters.
+    /// Scenes without a BVH: the packet's nearest hits, tested four rays at a time, are every
+    /// ray's own, to the last bit of t, and so are the counters.
     #[test]
     fn a_packet_of_rays_in_lanes_finds_what_they_find_one_by_one(
-        (spheres, planes) in plain_objects(),
+        (spheres, planes, boxed) in objects_without_bvh(),
         rays in grid_rays(),
     ) {
-        let scene = plain_scene(&spheres, &planes);
+        let scene = scene_without_bvh(&spheres, &planes, &boxed);
         assert_packet_is_one_by_one(&scene, &rays)?;
     }
 
-    /// Plain scenes: shadow rays tested four at a time are blocked as one by one, with any
-    /// reach, and count the same tests.
+    /// Scenes without a BVH: shadow rays tested four at a time are blocked as one by one, with
+    /// any reach, and count the same tests.
     #[test]
     fn shadow_rays_in_lanes_are_blocked_as_one_by_one(
-        (spheres, planes) in plain_objects(),
+        (spheres, planes, boxed) in objects_without_bvh(),
         rays in grid_rays(),
         reach in prop::sample::select(vec![0.0, 0.5, 3.0, 7.25, f64::INFINITY]),
     ) {
-        let scene = plain_scene(&spheres, &planes);
+        let scene = scene_without_bvh(&spheres, &planes, &boxed);
         let reach = vec![reach; rays.len()];
         assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
     }
@@ -245,6 +284,23 @@ fn every_pixel_of_a_plain_scene_traced_in_lanes_is_traced_sample_by_sample() {
     let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
     assert!(
         total.shadow_rays > 0 && total.reflection_rays > 0 && total.refraction_rays > 0,
+        "{total:?}"
+    );
+}
+
+/// The CSG peer scene (a glass lens, a box carved by a sphere, a cylinder under a cone, on a
+/// plane), small: its CSG objects are tested ray by ray inside the lanes, and every pixel is
+/// exactly its samples traced one by one.
+#[test]
+fn every_pixel_of_the_csg_scene_traced_in_lanes_is_traced_sample_by_sample() {
+    let yaml = std::fs::read_to_string("benches/peers/csg.yaml")
+        .unwrap()
+        .replace("width: 800, height: 600", "width: 40, height: 30");
+    let scene = parse(&yaml, "csg.yaml", None, &Limits::default()).unwrap();
+    assert_eq!((scene.camera.width, scene.bvh_nodes()), (40, 0));
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.total_internal_reflections > 0 && total.csg_pruned > 0 && total.bounds_skipped > 0,
         "{total:?}"
     );
 }

@@ -13,6 +13,8 @@
 //! the verdict on each ray. A NaN (0 · ∞, a ray parallel to a slab) breaks that chain: a hull
 //! with an infinite 1/d is not built, and such packets are tested ray by ray.
 
+use glam::DVec3;
+
 use super::aabb::overlaps;
 use super::Aabb;
 
@@ -40,29 +42,32 @@ pub struct Hull {
 impl Hull {
     /// The hull of rays given as (origin, 1/d), or None when two rays' 1/d differ in sign on
     /// an axis, or an origin or a 1/d is infinite or NaN (the bounds would not bound them).
+    /// Whole vectors at a time: built for every packet, it cost as much as a ray's own tests
+    /// when done axis by axis.
+    #[inline]
     pub fn new(rays: impl IntoIterator<Item = ([f64; 3], [f64; 3])>) -> Option<Hull> {
-        let mut rays = rays.into_iter();
+        let mut rays = rays
+            .into_iter()
+            .map(|(o, inv)| (DVec3::from_array(o), DVec3::from_array(inv)));
         let (o, inv) = rays.next()?;
-        let mut hull = Hull {
-            origin_lo: o,
-            origin_hi: o,
-            inv_lo: inv,
-            inv_hi: inv,
-            negative: inv.map(f64::is_sign_negative),
-        };
-        for (o, inv) in std::iter::once((o, inv)).chain(rays) {
-            for axis in 0..3 {
-                let alike = inv[axis].is_sign_negative() == hull.negative[axis];
-                if !(inv[axis].is_finite() && o[axis].is_finite() && alike) {
-                    return None;
-                }
-                hull.origin_lo[axis] = hull.origin_lo[axis].min(o[axis]);
-                hull.origin_hi[axis] = hull.origin_hi[axis].max(o[axis]);
-                hull.inv_lo[axis] = hull.inv_lo[axis].min(inv[axis]);
-                hull.inv_hi[axis] = hull.inv_hi[axis].max(inv[axis]);
-            }
+        let negative = inv.is_negative_bitmask();
+        let (mut origin_lo, mut origin_hi, mut inv_lo, mut inv_hi) = (o, o, inv, inv);
+        let mut sound = (o.is_finite_mask() & inv.is_finite_mask()).all();
+        for (o, inv) in rays {
+            sound &= (o.is_finite_mask() & inv.is_finite_mask()).all();
+            sound &= inv.is_negative_bitmask() == negative;
+            origin_lo = origin_lo.min(o);
+            origin_hi = origin_hi.max(o);
+            inv_lo = inv_lo.min(inv);
+            inv_hi = inv_hi.max(inv);
         }
-        Some(hull)
+        sound.then_some(Hull {
+            origin_lo: origin_lo.to_array(),
+            origin_hi: origin_hi.to_array(),
+            inv_lo: inv_lo.to_array(),
+            inv_hi: inv_hi.to_array(),
+            negative: [0, 1, 2].map(|axis| negative & (1 << axis) != 0),
+        })
     }
 
     /// The slab test of box b for every ray at once, each ray searching [t_min, t_max] with
@@ -128,8 +133,6 @@ fn max(a: f64, b: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use glam::DVec3;
-
     use super::*;
     use crate::accel::aabb::SlabRay;
     use crate::trace::sampling::Rng;

@@ -260,9 +260,12 @@ pub struct Scene {
     /// Some object outside the BVH is tested behind its box: packets of rays then try each
     /// such box once against their hull (`packet_hull`).
     boxes_outside_bvh: bool,
-    /// No BVH, and every object a plain sphere or plane: a packet's rays, primary and shadow,
-    /// are tested four at a time (`intersect_in_lanes`, `occluded_in_lanes`).
-    plain: bool,
+    /// Some object, in the BVH or not, is tested behind its box: the searches find each ray's
+    /// 1/d once for all the boxes (`inv_dir`).
+    boxed_objects: bool,
+    /// No BVH: a packet's rays, primary, shadow and secondary, are tested four at a time
+    /// (`intersect_in_lanes`, `occluded_in_lanes`).
+    in_lanes: bool,
 }
 
 impl LeafSegments for Scene {
@@ -354,7 +357,8 @@ impl Scene {
             unbounded: vec![],
             flat_csg,
             boxes_outside_bvh: false,
-            plain: false,
+            boxed_objects: false,
+            in_lanes: false,
         };
         scene.transparent_objects = scene
             .leaves
@@ -406,36 +410,69 @@ impl Scene {
                     .collect(),
             );
         }
-        self.boxes_outside_bvh = self.unbounded.iter().any(|p| matches!(p, Probe::Object(_)));
-        self.plain = self.bounded.is_empty() && !self.boxes_outside_bvh;
+        let boxed = |probes: &[Probe]| probes.iter().any(|p| matches!(p, Probe::Object(_)));
+        self.boxes_outside_bvh = boxed(&self.unbounded);
+        self.boxed_objects = self.boxes_outside_bvh || boxed(&self.bounded);
+        self.in_lanes = self.bounded.is_empty();
     }
 
     /// Whether packets of rays test the objects four rays at a time (`intersect_in_lanes`).
     pub fn tests_in_lanes(&self) -> bool {
-        self.plain
+        self.in_lanes
     }
 
     /// The hull of a packet of rays, for the boxes of the objects outside the BVH (None where
     /// there are none, or the rays' directions differ in sign).
-    fn packet_hull(&self, rays: &[Ray]) -> Option<Hull> {
+    fn packet_hull(&self, rays: &[Ray], inv_dirs: &[DVec3]) -> Option<Hull> {
         if !self.boxes_outside_bvh {
             return None;
         }
         Hull::new(
             rays.iter()
-                .map(|r| (r.origin.to_array(), r.dir.recip().to_array())),
+                .zip(inv_dirs)
+                .map(|(r, inv)| (r.origin.to_array(), inv.to_array())),
         )
     }
 
-    /// Whether every ray of a packet misses an object's box within [0, its t_max] (each t_max
-    /// within `reach`), proved once on the packet's hull: then `boxed_object_hit` would skip
-    /// the object for every one of them.
-    fn missed_by_all(&self, hull: &Hull, probe: &Probe, reach: (f64, f64)) -> bool {
-        let Probe::Object(o) = probe else {
+    /// 1/d, which the boxes of the objects tested behind one need: found once per ray, not
+    /// once per box. Not at all in scenes without such objects (plain spheres and planes),
+    /// where a division per ray would buy nothing; there it is NaN, which no box test passes.
+    #[inline(always)]
+    fn inv_dir(&self, ray: &Ray) -> DVec3 {
+        if self.boxed_objects {
+            ray.dir.recip()
+        } else {
+            DVec3::NAN
+        }
+    }
+
+    /// `inv_dir` of every ray of a packet.
+    #[inline(always)]
+    fn inv_dirs(&self, rays: &[Ray]) -> [DVec3; PACKET] {
+        let mut inv = [DVec3::NAN; PACKET];
+        if self.boxed_objects {
+            for (inv, ray) in inv.iter_mut().zip(rays) {
+                *inv = ray.dir.recip();
+            }
+        }
+        inv
+    }
+
+    /// Whether every ray of a packet misses an object's box within [0, its t_max], proved
+    /// once on the packet's hull (when there is one): then `boxed_object_hit` would skip the
+    /// object for every one of them.
+    #[inline(always)]
+    fn missed_by_all(&self, hull: Option<&Hull>, probe: &Probe, t_max: &[f64]) -> bool {
+        let (Some(hull), Probe::Object(o)) = (hull, probe) else {
             return false;
         };
         let object = &self.objects[*o as usize];
         let boxed = self.csg_pruning || !matches!(object.geometry, Geometry::Csg(_));
+        let reach = t_max
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                (lo.min(t), hi.max(t))
+            });
         boxed && hull.classify(&object.bounds, 0.0, reach) == Verdict::AllMiss
     }
 
@@ -568,21 +605,19 @@ impl Scene {
     /// the nearest hit so far, skips the object (and all of a CSG tree's evaluation).
     /// `--no-csg-pruning` switches a CSG tree's boxes off, this one included.
     ///
-    /// Kept out of line, with 1/d computed here: inlined into the probe loops, the compiler
-    /// hoists 1/d out of them, and every ray paid three divisions, even in scenes of plain
-    /// spheres and planes that never test a box (Whitted peer scene, one thread: 7 % of the
-    /// time).
-    #[inline(never)]
+    /// Inlined: 1/d, passed out of line, went through memory and was read back as the box
+    /// test's first step, and that stall (store forwarding fails) cost more than the division.
+    #[inline(always)]
     fn boxed_object_hit(
         &self,
         o: u32,
         ray: &Ray,
+        inv_dir: DVec3,
         t_min: f64,
         t_max: f64,
         stats: &mut Stats,
     ) -> Option<Hit> {
         let object = &self.objects[o as usize];
-        let inv_dir = ray.dir.recip();
         let boxed = self.csg_pruning || !matches!(object.geometry, Geometry::Csg(_));
         if boxed && !object.bounds.hit(ray, inv_dir, t_min, t_max) {
             stats.bounds_skipped += 1;
@@ -666,6 +701,7 @@ impl Scene {
         &self,
         probe: &Probe,
         ray: &Ray,
+        inv_dir: DVec3,
         t_min: f64,
         t_max: f64,
         stats: &mut Stats,
@@ -703,7 +739,7 @@ impl Scene {
                 (t, objects[k], Surface::new(leaves[k], 0))
             }
             Probe::Object(o) => {
-                let h = self.boxed_object_hit(*o, ray, t_min, t_max, stats)?;
+                let h = self.boxed_object_hit(*o, ray, inv_dir, t_min, t_max, stats)?;
                 (h.t, h.object, h.surface)
             }
         };
@@ -718,6 +754,7 @@ impl Scene {
         &self,
         probe: &Probe,
         ray: &Ray,
+        inv_dir: DVec3,
         t_min: f64,
         t_max: f64,
         stats: &mut Stats,
@@ -728,7 +765,7 @@ impl Scene {
             leaves,
         } = probe
         else {
-            return self.probe_hit(probe, ray, t_min, t_max, stats);
+            return self.probe_hit(probe, ray, inv_dir, t_min, t_max, stats);
         };
         match group.first(ray, t_min, t_max) {
             Some((t, k)) => {
@@ -748,10 +785,12 @@ impl Scene {
 
     /// The nearest hit with t_min < t < t_max.
     pub fn intersect(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
-        let (mut best, limit) = self.nearest_unbounded(ray, t_min, t_max, stats);
+        let inv_dir = self.inv_dir(ray);
+        let (mut best, limit) = self.nearest_unbounded(ray, inv_dir, t_min, t_max, stats);
         if !self.bounded.is_empty() {
             let visits = self.bvh.closest(ray, t_min, limit, |item, limit| {
-                let h = self.probe_hit(&self.bounded[item as usize], ray, t_min, limit, stats)?;
+                let probe = &self.bounded[item as usize];
+                let h = self.probe_hit(probe, ray, inv_dir, t_min, limit, stats)?;
                 best = Some(h);
                 Some(h.t)
             });
@@ -765,13 +804,14 @@ impl Scene {
     fn nearest_unbounded(
         &self,
         ray: &Ray,
+        inv_dir: DVec3,
         t_min: f64,
         t_max: f64,
         stats: &mut Stats,
     ) -> (Option<Hit>, f64) {
         let (mut best, mut limit) = (None, t_max);
         for p in &self.unbounded {
-            if let Some(h) = self.probe_hit(p, ray, t_min, limit, stats) {
+            if let Some(h) = self.probe_hit(p, ray, inv_dir, t_min, limit, stats) {
                 limit = h.t;
                 best = Some(h);
             }
@@ -781,44 +821,16 @@ impl Scene {
 
     /// `intersect` (t_min = 0, t_max = ∞) for up to 16 rays at once: `hits[i]` is exactly what
     /// `intersect` answers for ray i, and the stats are those of tracing the rays one by one.
-    /// In a plain scene the rays go four at a time (`intersect_in_lanes`). Otherwise the rays
+    /// Without a BVH the rays go four at a time (`intersect_in_lanes`). Otherwise the rays
     /// that share the first one's direction signs go through the BVH as a packet (if there are
     /// at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
-        if self.plain {
-            for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
-                self.intersect_in_lanes(rays, hits, stats);
-            }
-            return;
-        }
-        if self.bounded.is_empty() {
-            let Some(hull) = self.packet_hull(rays) else {
-                // No BVH and no boxes: nothing to share.
-                for (ray, hit) in rays.iter().zip(hits) {
-                    *hit = self.intersect(ray, 0.0, f64::INFINITY, stats);
-                }
-                return;
-            };
-            // Object by object across the rays: each ray still meets the objects in order,
-            // as in `intersect`, so it gets the same hit and the same counts.
-            let mut limits = [f64::INFINITY; PACKET];
-            let limits = &mut limits[..rays.len()];
-            hits.fill(None);
-            for p in &self.unbounded {
-                let reach = limits
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
-                        (lo.min(t), hi.max(t))
-                    });
-                if self.missed_by_all(&hull, p, reach) {
-                    stats.bounds_skipped += rays.len() as u64;
-                    continue;
-                }
-                for (i, ray) in rays.iter().enumerate() {
-                    if let Some(h) = self.probe_hit(p, ray, 0.0, limits[i], stats) {
-                        (limits[i], hits[i]) = (h.t, Some(h));
-                    }
-                }
+        let inv_dirs = self.inv_dirs(rays);
+        if self.in_lanes {
+            let hull = self.packet_hull(rays, &inv_dirs);
+            for (k, (rays, hits)) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)).enumerate() {
+                let inv_dirs = &inv_dirs[k * LANES..];
+                self.intersect_in_lanes(rays, inv_dirs, hull.as_ref(), hits, stats);
             }
             return;
         }
@@ -831,11 +843,12 @@ impl Scene {
         }
         let one_by_one = alike.iter().filter(|&&a| a).count() < PACKET_MIN;
         let mut packet = [rays[0]; PACKET];
+        let mut packet_inv = [DVec3::NAN; PACKET];
         let mut lanes = [0usize; PACKET];
         let mut n = 0;
         for (i, ray) in rays.iter().enumerate() {
             if !one_by_one && alike[i] {
-                (packet[n], lanes[n]) = (*ray, i);
+                (packet[n], packet_inv[n], lanes[n]) = (*ray, inv_dirs[i], i);
                 n += 1;
             } else {
                 hits[i] = self.intersect(ray, 0.0, f64::INFINITY, stats);
@@ -846,14 +859,16 @@ impl Scene {
         }
         let mut limits = [f64::INFINITY; PACKET];
         for lane in 0..n {
-            let (hit, limit) = self.nearest_unbounded(&packet[lane], 0.0, f64::INFINITY, stats);
+            let (ray, inv) = (&packet[lane], packet_inv[lane]);
+            let (hit, limit) = self.nearest_unbounded(ray, inv, 0.0, f64::INFINITY, stats);
             (hits[lanes[lane]], limits[lane]) = (hit, limit);
         }
         let visits =
             self.bvh
                 .closest_packet(&packet[..n], 0.0, &mut limits, |lane, item, limit| {
                     let probe = &self.bounded[item as usize];
-                    let h = self.probe_hit(probe, &packet[lane], 0.0, limit, stats)?;
+                    let h =
+                        self.probe_hit(probe, &packet[lane], packet_inv[lane], 0.0, limit, stats)?;
                     hits[lanes[lane]] = Some(h);
                     Some(h.t)
                 });
@@ -862,16 +877,17 @@ impl Scene {
 
     /// Any hit with t_min < t < t_max (for shadow rays: the first blocker found).
     pub fn occluded(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        let inv_dir = self.inv_dir(ray);
         for p in &self.unbounded {
-            if let Some(h) = self.probe_blocker(p, ray, t_min, t_max, stats) {
+            if let Some(h) = self.probe_blocker(p, ray, inv_dir, t_min, t_max, stats) {
                 return Some(h);
             }
         }
         let mut blocker = None;
         if !self.bounded.is_empty() {
             let (_, visits) = self.bvh.any(ray, t_min, t_max, |item| {
-                blocker =
-                    self.probe_blocker(&self.bounded[item as usize], ray, t_min, t_max, stats);
+                let probe = &self.bounded[item as usize];
+                blocker = self.probe_blocker(probe, ray, inv_dir, t_min, t_max, stats);
                 blocker.is_some()
             });
             stats.bvh_nodes_visited += visits.nodes;
@@ -880,10 +896,17 @@ impl Scene {
     }
 
     /// Whether a blocker with 0 < t < t_max is among the objects in the BVH.
-    fn occluded_in_bvh(&self, ray: &Ray, t_max: f64, stats: &mut Stats) -> bool {
+    fn occluded_in_bvh(&self, ray: &Ray, inv_dir: DVec3, t_max: f64, stats: &mut Stats) -> bool {
         let (blocked, visits) = self.bvh.any(ray, 0.0, t_max, |item| {
-            self.probe_blocker(&self.bounded[item as usize], ray, 0.0, t_max, stats)
-                .is_some()
+            self.probe_blocker(
+                &self.bounded[item as usize],
+                ray,
+                inv_dir,
+                0.0,
+                t_max,
+                stats,
+            )
+            .is_some()
         });
         stats.bvh_nodes_visited += visits.nodes;
         blocked
@@ -891,65 +914,35 @@ impl Scene {
 
     /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < t_max[i]:
     /// bit i of the answer is set when ray i is blocked, and the stats are those of asking
-    /// `occluded` ray by ray. In a plain scene the rays go four at a time
-    /// (`occluded_in_lanes`). Otherwise rays that get past the objects outside the BVH search
-    /// it as a packet (any directions will do: an any-hit search visits the nodes in a fixed
-    /// order).
+    /// `occluded` ray by ray. Without a BVH the rays go four at a time (`occluded_in_lanes`).
+    /// Otherwise rays that get past the objects outside the BVH search it as a packet (any
+    /// directions will do: an any-hit search visits the nodes in a fixed order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
-        if self.plain {
+        let inv_dirs = self.inv_dirs(rays);
+        if self.in_lanes {
+            let hull = self.packet_hull(rays, &inv_dirs);
             let mut blocked = 0;
             for (k, (rays, t_max)) in rays.chunks(LANES).zip(t_max.chunks(LANES)).enumerate() {
-                blocked |= self.occluded_in_lanes(rays, t_max, stats) << (k * LANES);
+                let inv_dirs = &inv_dirs[k * LANES..];
+                blocked |= self.occluded_in_lanes(rays, inv_dirs, hull.as_ref(), t_max, stats)
+                    << (k * LANES);
             }
             return blocked;
         }
-        if let Some(hull) = self
-            .bounded
-            .is_empty()
-            .then(|| self.packet_hull(rays))
-            .flatten()
-        {
-            // No BVH: object by object across the rays still open, each ray meeting the
-            // objects in order until the first blocker, as in `occluded`.
-            let reach = t_max
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
-                    (lo.min(t), hi.max(t))
-                });
-            let all = (1u32 << rays.len()) - 1;
-            let mut open = all;
-            for p in &self.unbounded {
-                if open == 0 {
-                    break;
-                }
-                if self.missed_by_all(&hull, p, reach) {
-                    stats.bounds_skipped += open.count_ones() as u64;
-                    continue;
-                }
-                for (i, ray) in rays.iter().enumerate() {
-                    if open & (1 << i) != 0
-                        && self.probe_blocker(p, ray, 0.0, t_max[i], stats).is_some()
-                    {
-                        open &= !(1 << i);
-                    }
-                }
-            }
-            return all & !open;
-        }
         let mut blocked = 0u32;
         let mut packet = [Ray::UNUSED; PACKET];
+        let mut packet_inv = [DVec3::NAN; PACKET];
         let mut reach = [0.0; PACKET];
         let mut lanes = [0usize; PACKET];
         let mut n = 0;
         for (i, ray) in rays.iter().enumerate() {
-            if self
-                .unbounded
-                .iter()
-                .any(|p| self.probe_blocker(p, ray, 0.0, t_max[i], stats).is_some())
-            {
+            if self.unbounded.iter().any(|p| {
+                self.probe_blocker(p, ray, inv_dirs[i], 0.0, t_max[i], stats)
+                    .is_some()
+            }) {
                 blocked |= 1 << i;
             } else if !self.bounded.is_empty() {
-                (packet[n], reach[n], lanes[n]) = (*ray, t_max[i], i);
+                (packet[n], packet_inv[n], reach[n], lanes[n]) = (*ray, inv_dirs[i], t_max[i], i);
                 n += 1;
             }
         }
@@ -957,8 +950,9 @@ impl Scene {
             return blocked;
         }
         if n < PACKET_MIN {
-            for (ray, (&t, &i)) in packet.iter().zip(reach.iter().zip(&lanes)).take(n) {
-                if self.occluded_in_bvh(ray, t, stats) {
+            for k in 0..n {
+                if self.occluded_in_bvh(&packet[k], packet_inv[k], reach[k], stats) {
+                    let i = lanes[k];
                     blocked |= 1 << i;
                 }
             }
@@ -968,8 +962,15 @@ impl Scene {
             .bvh
             .any_packet(&packet[..n], 0.0, &reach, |lane, item| {
                 let probe = &self.bounded[item as usize];
-                self.probe_blocker(probe, &packet[lane], 0.0, reach[lane], stats)
-                    .is_some()
+                self.probe_blocker(
+                    probe,
+                    &packet[lane],
+                    packet_inv[lane],
+                    0.0,
+                    reach[lane],
+                    stats,
+                )
+                .is_some()
             });
         stats.bvh_nodes_visited += visits.nodes;
         for (k, &i) in lanes[..n].iter().enumerate() {
@@ -980,18 +981,32 @@ impl Scene {
         blocked
     }
 
-    /// `intersect` (t_min = 0, t_max = ∞) for up to four rays in a scene of plain spheres and
-    /// planes: each object is tested against all the rays at once, in `RayLanes`. Each ray
-    /// meets the objects in the same order as in `intersect`, with the same arithmetic and the
-    /// same shrinking limit, so it finds the same hit and counts the same tests.
-    fn intersect_in_lanes(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
+    /// `intersect` (t_min = 0, t_max = ∞) for up to four rays in a scene without a BVH: each
+    /// plain sphere or plane is tested against all the rays at once, in `RayLanes`, and any
+    /// other object ray by ray, behind its box (which the packet's `hull` may rule out for all
+    /// of them at once). Each ray meets the objects in the same order as in `intersect`, with
+    /// the same arithmetic and the same shrinking limit, so it finds the same hit and counts
+    /// the same tests.
+    fn intersect_in_lanes(
+        &self,
+        rays: &[Ray],
+        inv_dirs: &[DVec3],
+        hull: Option<&Hull>,
+        hits: &mut [Option<Hit>],
+        stats: &mut Stats,
+    ) {
         let lanes = RayLanes::new(rays);
         let used = (1u32 << rays.len()) - 1;
         let all = lane_mask(used);
         let mut limit = f64x4::splat(f64::INFINITY);
         hits.fill(None);
         // Lanes whose t lies in 0 < t < limit take it as their nearest hit so far.
-        let mut take = |t: f64x4, bits: u32, object: u32, leaf: u32, limit: &mut f64x4| {
+        let take = |hits: &mut [Option<Hit>],
+                    t: f64x4,
+                    bits: u32,
+                    object: u32,
+                    leaf: u32,
+                    limit: &mut f64x4| {
             let bits = bits & used;
             if bits == 0 {
                 return;
@@ -1020,7 +1035,7 @@ impl Scene {
                 } => {
                     stats.primitives_tested += n;
                     let (t, bits) = plane.hits_of_lanes(&lanes, 0.0, limit);
-                    take(t, bits, *object, *leaf, &mut limit);
+                    take(hits, t, bits, *object, *leaf, &mut limit);
                 }
                 Probe::Sphere {
                     sphere,
@@ -1030,7 +1045,7 @@ impl Scene {
                     stats.primitives_tested += n;
                     let r2 = sphere.radius * sphere.radius;
                     if let Some(t) = sphere_against_lanes(sphere.center, r2, &lanes, all, 0.0) {
-                        take(t, within(t, limit), *object, *leaf, &mut limit);
+                        take(hits, t, within(t, limit), *object, *leaf, &mut limit);
                     }
                 }
                 Probe::Spheres {
@@ -1041,20 +1056,42 @@ impl Scene {
                     stats.primitives_tested += group.len() as u64 * n;
                     for k in 0..group.len() {
                         if let Some(t) = group.sphere_against(k, &lanes, all, 0.0) {
-                            take(t, within(t, limit), objects[k], leaves[k], &mut limit);
+                            take(hits, t, within(t, limit), objects[k], leaves[k], &mut limit);
                         }
                     }
                 }
-                Probe::Object(_) => unreachable!("a plain scene has no boxed objects"),
+                Probe::Object(o) => {
+                    let mut t_max = limit.to_array();
+                    if self.missed_by_all(hull, p, &t_max[..rays.len()]) {
+                        stats.bounds_skipped += n;
+                        continue;
+                    }
+                    for (i, ray) in rays.iter().enumerate() {
+                        let inv = inv_dirs[i];
+                        if let Some(h) = self.boxed_object_hit(*o, ray, inv, 0.0, t_max[i], stats) {
+                            t_max[i] = h.t;
+                            hits[i] = Some(h);
+                        }
+                    }
+                    limit = f64x4::new(t_max);
+                }
             }
         }
     }
 
-    /// `occluded` (t_min = 0) for up to four shadow rays in a scene of plain spheres and planes:
-    /// each object is tested against all the rays still open at once, in `RayLanes`. Each ray
-    /// meets the objects in the same order as in `occluded`, with the same arithmetic, so it
-    /// is blocked by the same one and counts the same tests.
-    fn occluded_in_lanes(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+    /// `occluded` (t_min = 0) for up to four shadow rays in a scene without a BVH: each plain
+    /// sphere or plane is tested against all the rays still open at once, in `RayLanes`, and
+    /// any other object ray by ray, as in `intersect_in_lanes`. Each ray meets the objects in
+    /// the same order as in `occluded`, with the same arithmetic, so it is blocked by the same
+    /// one and counts the same tests.
+    fn occluded_in_lanes(
+        &self,
+        rays: &[Ray],
+        inv_dirs: &[DVec3],
+        hull: Option<&Hull>,
+        t_max: &[f64],
+        stats: &mut Stats,
+    ) -> u32 {
         let lanes = RayLanes::new(rays);
         let mut reach = [0.0; LANES];
         reach[..t_max.len()].copy_from_slice(t_max);
@@ -1095,7 +1132,21 @@ impl Scene {
                         }
                     }
                 }
-                Probe::Object(_) => unreachable!("a plain scene has no boxed objects"),
+                Probe::Object(o) => {
+                    if self.missed_by_all(hull, p, t_max) {
+                        stats.bounds_skipped += open.count_ones() as u64;
+                        continue;
+                    }
+                    for (i, ray) in rays.iter().enumerate() {
+                        if open & (1 << i) != 0 {
+                            let inv = inv_dirs[i];
+                            let h = self.boxed_object_hit(*o, ray, inv, 0.0, t_max[i], stats);
+                            if h.is_some() {
+                                open &= !(1 << i);
+                            }
+                        }
+                    }
+                }
             }
         }
         all & !open
