@@ -258,7 +258,7 @@ pub struct Scene {
     /// lists).
     flat_csg: Vec<Option<FlatCsg>>,
     /// Some object outside the BVH is tested behind its box: packets of rays then try each
-    /// such box once against their hull (`packet_hull`).
+    /// such box once against their hull (`packet_boxes`).
     boxes_outside_bvh: bool,
     /// Some object, in the BVH or not, is tested behind its box: the searches find each ray's
     /// 1/d once for all the boxes (`inv_dir`).
@@ -295,6 +295,15 @@ const PACKET_MIN: usize = 4;
 /// 1000 objects 15 ms vs 1.2 ms. (Brute force rejects most spheres in a few instructions, in a
 /// loop the processor predicts; shadow rays, which stop at the first blocker, favour it more.)
 const BVH_MIN_OBJECTS: usize = 16;
+
+/// What the boxes of the objects outside the BVH need from a packet of rays
+/// (`Scene::packet_boxes`).
+struct PacketBoxes {
+    /// Each ray's 1/d.
+    inv_dirs: [DVec3; PACKET],
+    /// The packet's hull: None when its rays' directions differ in sign.
+    hull: Option<Hull>,
+}
 
 impl Scene {
     #[allow(clippy::too_many_arguments)]
@@ -421,17 +430,22 @@ impl Scene {
         self.in_lanes
     }
 
-    /// The hull of a packet of rays, for the boxes of the objects outside the BVH (None where
-    /// there are none, or the rays' directions differ in sign).
-    fn packet_hull(&self, rays: &[Ray], inv_dirs: &[DVec3]) -> Option<Hull> {
+    /// What the boxes of the objects outside the BVH need from a packet of rays: each ray's
+    /// 1/d and the packet's hull. None where there are no such boxes (plain spheres and
+    /// planes), so that those scenes spend nothing on it.
+    fn packet_boxes(&self, rays: &[Ray]) -> Option<PacketBoxes> {
         if !self.boxes_outside_bvh {
             return None;
         }
-        Hull::new(
-            rays.iter()
-                .zip(inv_dirs)
-                .map(|(r, inv)| (r.origin.to_array(), inv.to_array())),
-        )
+        // Each 1/d goes into the hull as it is found: read back from the array, it waited
+        // for its own stores (store forwarding fails on the mixed widths).
+        let mut inv_dirs = [DVec3::NAN; PACKET];
+        let hull = Hull::new(rays.iter().zip(&mut inv_dirs).map(|(r, slot)| {
+            let inv = r.dir.recip();
+            *slot = inv;
+            (r.origin.to_array(), inv.to_array())
+        }));
+        Some(PacketBoxes { inv_dirs, hull })
     }
 
     /// 1/d, which the boxes of the objects tested behind one need: found once per ray, not
@@ -458,15 +472,15 @@ impl Scene {
         inv
     }
 
-    /// Whether every ray of a packet misses an object's box within [0, its t_max], proved
-    /// once on the packet's hull (when there is one): then `boxed_object_hit` would skip the
-    /// object for every one of them.
+    /// Whether every ray of a packet misses object o's box within [0, its t_max], proved once
+    /// on the packet's hull (when there is one): then `boxed_object_hit` would skip the object
+    /// for every one of them.
     #[inline(always)]
-    fn missed_by_all(&self, hull: Option<&Hull>, probe: &Probe, t_max: &[f64]) -> bool {
-        let (Some(hull), Probe::Object(o)) = (hull, probe) else {
+    fn missed_by_all(&self, hull: Option<&Hull>, o: u32, t_max: &[f64]) -> bool {
+        let Some(hull) = hull else {
             return false;
         };
-        let object = &self.objects[*o as usize];
+        let object = &self.objects[o as usize];
         let boxed = self.csg_pruning || !matches!(object.geometry, Geometry::Csg(_));
         let reach = t_max
             .iter()
@@ -474,6 +488,69 @@ impl Scene {
                 (lo.min(t), hi.max(t))
             });
         boxed && hull.classify(&object.bounds, 0.0, reach) == Verdict::AllMiss
+    }
+
+    /// Object o against up to four rays of a packet (its rays `first`, `first` + 1, …), one by
+    /// one behind its box, unless the packet's hull rules the box out for all of them: each
+    /// ray's nearest hit so far and its limit t_max are updated as `intersect` would.
+    /// Out of line, so that the lanes' loop over plain spheres and planes stays small.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn object_in_lanes(
+        &self,
+        o: u32,
+        rays: &[Ray],
+        boxes: &PacketBoxes,
+        first: usize,
+        t_max: &mut [f64; LANES],
+        hits: &mut [Option<Hit>],
+        stats: &mut Stats,
+    ) {
+        if self.missed_by_all(boxes.hull.as_ref(), o, &t_max[..rays.len()]) {
+            stats.bounds_skipped += rays.len() as u64;
+            return;
+        }
+        for (i, ray) in rays.iter().enumerate() {
+            let inv = boxes.inv_dirs[first + i];
+            if let Some(h) = self.boxed_object_hit(o, ray, inv, 0.0, t_max[i], stats) {
+                t_max[i] = h.t;
+                hits[i] = Some(h);
+            }
+        }
+    }
+
+    /// Object o against the shadow rays of a packet still `open` (bit i: its ray `first` + i),
+    /// one by one behind its box, unless the packet's hull rules the box out for all of them:
+    /// the bits of the rays it blocks.
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    fn object_blocks_lanes(
+        &self,
+        o: u32,
+        rays: &[Ray],
+        boxes: &PacketBoxes,
+        first: usize,
+        t_max: &[f64],
+        open: u32,
+        stats: &mut Stats,
+    ) -> u32 {
+        if self.missed_by_all(boxes.hull.as_ref(), o, t_max) {
+            stats.bounds_skipped += open.count_ones() as u64;
+            return 0;
+        }
+        let mut blocked = 0;
+        for (i, ray) in rays.iter().enumerate() {
+            if open & (1 << i) != 0 {
+                let inv = boxes.inv_dirs[first + i];
+                if self
+                    .boxed_object_hit(o, ray, inv, 0.0, t_max[i], stats)
+                    .is_some()
+                {
+                    blocked |= 1 << i;
+                }
+            }
+        }
+        blocked
     }
 
     /// How the hit searches test an object: directly for a plain sphere or plane.
@@ -825,15 +902,14 @@ impl Scene {
     /// that share the first one's direction signs go through the BVH as a packet (if there are
     /// at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
-        let inv_dirs = self.inv_dirs(rays);
         if self.in_lanes {
-            let hull = self.packet_hull(rays, &inv_dirs);
+            let boxes = self.packet_boxes(rays);
             for (k, (rays, hits)) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)).enumerate() {
-                let inv_dirs = &inv_dirs[k * LANES..];
-                self.intersect_in_lanes(rays, inv_dirs, hull.as_ref(), hits, stats);
+                self.intersect_in_lanes(rays, boxes.as_ref(), k * LANES, hits, stats);
             }
             return;
         }
+        let inv_dirs = self.inv_dirs(rays);
         let Some(first) = rays.first().map(signs) else {
             return;
         };
@@ -918,17 +994,16 @@ impl Scene {
     /// Otherwise rays that get past the objects outside the BVH search it as a packet (any
     /// directions will do: an any-hit search visits the nodes in a fixed order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
-        let inv_dirs = self.inv_dirs(rays);
         if self.in_lanes {
-            let hull = self.packet_hull(rays, &inv_dirs);
+            let boxes = self.packet_boxes(rays);
             let mut blocked = 0;
             for (k, (rays, t_max)) in rays.chunks(LANES).zip(t_max.chunks(LANES)).enumerate() {
-                let inv_dirs = &inv_dirs[k * LANES..];
-                blocked |= self.occluded_in_lanes(rays, inv_dirs, hull.as_ref(), t_max, stats)
+                blocked |= self.occluded_in_lanes(rays, boxes.as_ref(), k * LANES, t_max, stats)
                     << (k * LANES);
             }
             return blocked;
         }
+        let inv_dirs = self.inv_dirs(rays);
         let mut blocked = 0u32;
         let mut packet = [Ray::UNUSED; PACKET];
         let mut packet_inv = [DVec3::NAN; PACKET];
@@ -990,8 +1065,8 @@ impl Scene {
     fn intersect_in_lanes(
         &self,
         rays: &[Ray],
-        inv_dirs: &[DVec3],
-        hull: Option<&Hull>,
+        boxes: Option<&PacketBoxes>,
+        first: usize,
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
@@ -1061,18 +1136,9 @@ impl Scene {
                     }
                 }
                 Probe::Object(o) => {
+                    let boxes = boxes.expect("boxed objects get the packet's boxes");
                     let mut t_max = limit.to_array();
-                    if self.missed_by_all(hull, p, &t_max[..rays.len()]) {
-                        stats.bounds_skipped += n;
-                        continue;
-                    }
-                    for (i, ray) in rays.iter().enumerate() {
-                        let inv = inv_dirs[i];
-                        if let Some(h) = self.boxed_object_hit(*o, ray, inv, 0.0, t_max[i], stats) {
-                            t_max[i] = h.t;
-                            hits[i] = Some(h);
-                        }
-                    }
+                    self.object_in_lanes(*o, rays, boxes, first, &mut t_max, hits, stats);
                     limit = f64x4::new(t_max);
                 }
             }
@@ -1087,8 +1153,8 @@ impl Scene {
     fn occluded_in_lanes(
         &self,
         rays: &[Ray],
-        inv_dirs: &[DVec3],
-        hull: Option<&Hull>,
+        boxes: Option<&PacketBoxes>,
+        first: usize,
         t_max: &[f64],
         stats: &mut Stats,
     ) -> u32 {
@@ -1133,19 +1199,8 @@ impl Scene {
                     }
                 }
                 Probe::Object(o) => {
-                    if self.missed_by_all(hull, p, t_max) {
-                        stats.bounds_skipped += open.count_ones() as u64;
-                        continue;
-                    }
-                    for (i, ray) in rays.iter().enumerate() {
-                        if open & (1 << i) != 0 {
-                            let inv = inv_dirs[i];
-                            let h = self.boxed_object_hit(*o, ray, inv, 0.0, t_max[i], stats);
-                            if h.is_some() {
-                                open &= !(1 << i);
-                            }
-                        }
-                    }
+                    let boxes = boxes.expect("boxed objects get the packet's boxes");
+                    open &= !self.object_blocks_lanes(*o, rays, boxes, first, t_max, open, stats);
                 }
             }
         }
