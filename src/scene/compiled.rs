@@ -425,7 +425,7 @@ impl Scene {
         self.in_lanes = self.bounded.is_empty();
     }
 
-    /// Whether packets of rays test the objects four rays at a time (`intersect_in_lanes`).
+    /// Whether packets of rays go four at a time through the objects (no BVH: `intersect_in_lanes`).
     pub fn tests_in_lanes(&self) -> bool {
         self.in_lanes
     }
