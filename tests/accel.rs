@@ -271,16 +271,22 @@ proptest! {
     }
 }
 
+/// A peer scene of `benches/peers/` at 40×30, too small for a BVH.
+fn small_peer_scene(name: &str) -> Scene {
+    let yaml = std::fs::read_to_string(format!("benches/peers/{name}.yaml"))
+        .unwrap()
+        .replace("width: 800, height: 600", "width: 40, height: 30");
+    let scene = parse(&yaml, name, None, &Limits::default()).unwrap();
+    assert_eq!((scene.camera.width, scene.bvh_nodes()), (40, 0));
+    scene
+}
+
 /// The Whitted peer scene (plain spheres and a plane, mirror and glass), small: every pixel,
 /// traced in packets with its objects tested four rays at a time, is exactly its samples
 /// traced one by one.
 #[test]
 fn every_pixel_of_a_plain_scene_traced_in_lanes_is_traced_sample_by_sample() {
-    let yaml = std::fs::read_to_string("benches/peers/whitted.yaml")
-        .unwrap()
-        .replace("width: 800, height: 600", "width: 40, height: 30");
-    let scene = parse(&yaml, "whitted.yaml", None, &Limits::default()).unwrap();
-    assert_eq!(scene.camera.width, 40);
+    let scene = small_peer_scene("whitted");
     let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
     assert!(
         total.shadow_rays > 0 && total.reflection_rays > 0 && total.refraction_rays > 0,
@@ -293,11 +299,7 @@ fn every_pixel_of_a_plain_scene_traced_in_lanes_is_traced_sample_by_sample() {
 /// exactly its samples traced one by one.
 #[test]
 fn every_pixel_of_the_csg_scene_traced_in_lanes_is_traced_sample_by_sample() {
-    let yaml = std::fs::read_to_string("benches/peers/csg.yaml")
-        .unwrap()
-        .replace("width: 800, height: 600", "width: 40, height: 30");
-    let scene = parse(&yaml, "csg.yaml", None, &Limits::default()).unwrap();
-    assert_eq!((scene.camera.width, scene.bvh_nodes()), (40, 0));
+    let scene = small_peer_scene("csg");
     let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
     assert!(
         total.total_internal_reflections > 0 && total.csg_pruned > 0 && total.bounds_skipped > 0,
