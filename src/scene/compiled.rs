@@ -460,18 +460,6 @@ impl Scene {
         }
     }
 
-    /// `inv_dir` of every ray of a packet.
-    #[inline(always)]
-    fn inv_dirs(&self, rays: &[Ray]) -> [DVec3; PACKET] {
-        let mut inv = [DVec3::NAN; PACKET];
-        if self.boxed_objects {
-            for (inv, ray) in inv.iter_mut().zip(rays) {
-                *inv = ray.dir.recip();
-            }
-        }
-        inv
-    }
-
     /// Whether every ray of a packet misses object o's box within [0, its t_max], proved once
     /// on the packet's hull (when there is one): then `boxed_object_hit` would skip the object
     /// for every one of them.
@@ -909,7 +897,6 @@ impl Scene {
             }
             return;
         }
-        let inv_dirs = self.inv_dirs(rays);
         let Some(first) = rays.first().map(signs) else {
             return;
         };
@@ -924,7 +911,7 @@ impl Scene {
         let mut n = 0;
         for (i, ray) in rays.iter().enumerate() {
             if !one_by_one && alike[i] {
-                (packet[n], packet_inv[n], lanes[n]) = (*ray, inv_dirs[i], i);
+                (packet[n], packet_inv[n], lanes[n]) = (*ray, self.inv_dir(ray), i);
                 n += 1;
             } else {
                 hits[i] = self.intersect(ray, 0.0, f64::INFINITY, stats);
@@ -1003,7 +990,6 @@ impl Scene {
             }
             return blocked;
         }
-        let inv_dirs = self.inv_dirs(rays);
         let mut blocked = 0u32;
         let mut packet = [Ray::UNUSED; PACKET];
         let mut packet_inv = [DVec3::NAN; PACKET];
@@ -1011,13 +997,14 @@ impl Scene {
         let mut lanes = [0usize; PACKET];
         let mut n = 0;
         for (i, ray) in rays.iter().enumerate() {
+            let inv_dir = self.inv_dir(ray);
             if self.unbounded.iter().any(|p| {
-                self.probe_blocker(p, ray, inv_dirs[i], 0.0, t_max[i], stats)
+                self.probe_blocker(p, ray, inv_dir, 0.0, t_max[i], stats)
                     .is_some()
             }) {
                 blocked |= 1 << i;
             } else if !self.bounded.is_empty() {
-                (packet[n], packet_inv[n], reach[n], lanes[n]) = (*ray, inv_dirs[i], t_max[i], i);
+                (packet[n], packet_inv[n], reach[n], lanes[n]) = (*ray, inv_dir, t_max[i], i);
                 n += 1;
             }
         }
