@@ -635,3 +635,35 @@ fn csg_bounding_boxes_skip_work_but_never_change_the_image() {
     assert_eq!((without.bounds_skipped, without.csg_pruned), (0, 0));
     assert!(with.primitives_tested < without.primitives_tested);
 }
+
+/// A lens (the common part of two spheres) is bounded by the ball around its rim, far tighter
+/// than its spheres' boxes, and no tighter than the lens: rays along its axis just inside the
+/// rim still hit it, where the near sphere says.
+#[test]
+fn a_lens_is_bounded_by_its_rim_ball_and_still_hit_at_its_rim() {
+    let yaml = "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects:\n  - { name: lens, material: m, intersection: [ { sphere: { center: [0, 0, -1.2], radius: 1.6 } }, { sphere: { center: [0, 0, 1.2], radius: 1.6 } } ], transform: [ { rotate_y: 30 }, { translate: [-2.6, 1.3, 0] } ] }\n";
+    let scene = parse(yaml, "lens.yaml", None, &Limits::default()).unwrap();
+    let centre = DVec3::new(-2.6, 1.3, 0.0);
+    let axis = DVec3::new(30f64.to_radians().sin(), 0.0, 30f64.to_radians().cos());
+    // The rim's radius by Pythagoras: √(1.6² − 1.2²). The turn about y keeps the rim's top
+    // and bottom at y = 1.3 ± h, so the box's height is the rim's diameter (the spheres'
+    // boxes would give 3.2).
+    let h = (1.6f64 * 1.6 - 1.2 * 1.2).sqrt();
+    let bounds = scene.objects[0].bounds;
+    assert!(
+        (bounds.max.y - bounds.min.y - 2.0 * h).abs() < 1e-6,
+        "{bounds:?}"
+    );
+    for side in [1.0, -1.0] {
+        for rho in [0.5 * h, 0.999 * h] {
+            let origin = centre - 5.0 * axis + side * rho * DVec3::Y;
+            let ray = Ray { origin, dir: axis };
+            let hit = scene.intersect(&ray, 0.0, f64::INFINITY, &mut Stats::default());
+            // Along the axis the lens is [1.2 − s, s − 1.2] from its centre, s = √(1.6² − ρ²):
+            // it is entered through the far sphere's near side.
+            let s = (1.6f64 * 1.6 - rho * rho).sqrt();
+            let t = hit.expect("the lens is hit inside its rim").t;
+            assert!((t - (5.0 + 1.2 - s)).abs() < 1e-9, "ρ = {rho}: t = {t}");
+        }
+    }
+}

@@ -16,7 +16,8 @@ use smallvec::SmallVec;
 use wide::f64x4;
 
 use super::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
-use super::{Ray, Span, Surface};
+use super::sphere_group::{SphereGroup, LANES};
+use super::{Ray, Span, Sphere, Surface};
 use crate::accel::Aabb;
 
 /// At most this many primitives: the inside flags fit a mask, the ends sort quickly, and the
@@ -31,6 +32,9 @@ pub struct FlatCsg {
     /// that holds the root's box is met whenever the root's is (the slab test is monotone in
     /// the box's planes), so it is not tested again: None.
     leaves: SmallVec<[(u32, Option<Aabb>); 2]>,
+    /// The operands, when all are spheres in world space and fit one group: then their spans
+    /// are found side by side (the lens of the CSG peer scene).
+    spheres: Option<SphereGroup>,
 }
 
 /// The answer of `FlatCsg::nearest`.
@@ -51,7 +55,8 @@ impl FlatCsg {
     /// The flat form of a tree that is one ∪ or ∩ over up to sixteen primitives, or one
     /// difference A − B of two. Deeper trees, longer differences and complements keep the
     /// segment lists (their pruning depends on whole intermediate lists).
-    pub fn new(root: &CsgNode) -> Option<FlatCsg> {
+    /// `sphere` tells a leaf that is a sphere in world space.
+    pub fn new(root: &CsgNode, sphere: impl Fn(u32) -> Option<Sphere>) -> Option<FlatCsg> {
         let CsgNode::Op { op, children, .. } = root else {
             return None;
         };
@@ -72,7 +77,20 @@ impl FlatCsg {
                 CsgNode::Op { .. } => None,
             })
             .collect::<Option<SmallVec<_>>>()?;
-        fits.then_some(FlatCsg { op: *op, leaves })
+        let spheres = (leaves.len() <= LANES)
+            .then(|| {
+                leaves
+                    .iter()
+                    .map(|&(leaf, _)| sphere(leaf))
+                    .collect::<Option<Vec<_>>>()
+            })
+            .flatten()
+            .map(|s| SphereGroup::new(&s));
+        fits.then_some(FlatCsg {
+            op: *op,
+            leaves,
+            spheres,
+        })
     }
 
     /// Inside the result, given the inside flags of the operands (bit k: operand k).
@@ -96,51 +114,20 @@ impl FlatCsg {
     /// ends), the CSG peer scene ran 3–4 % slower, and 36 % slower with the spans returned by
     /// value.
     pub fn nearest(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
-        // Lists sized for the tree: most CSG objects have two operands, and room for sixteen
-        // cost them 5 % (the lens bench, 57.5 against 54.9 µs).
-        if self.leaves.len() <= 2 {
-            self.nearest_within::<2, 4>(env, r, work)
-        } else {
-            self.nearest_within::<MAX_LEAVES, { 2 * MAX_LEAVES }>(env, r, work)
+        // Most CSG objects have two operands: their spans stay in registers (held in a list,
+        // each was stored and at once read back, and the read stalled on store forwarding).
+        if self.leaves.len() == 2 {
+            return self.nearest_of_two(env, r, work);
         }
-    }
-
-    /// `nearest` with room for N operands and their E = 2N span ends.
-    #[inline(always)]
-    fn nearest_within<const N: usize, const E: usize>(
-        &self,
-        env: &impl LeafSpans,
-        r: &CsgRay,
-        work: &mut CsgWork,
-    ) -> Crossing {
-        let mut spans: ArrayVec<Option<Span>, N> = ArrayVec::new();
+        let grouped = self.spheres.as_ref().map(|g| g.spans(r.ray));
+        let mut spans: ArrayVec<Option<Span>, MAX_LEAVES> = ArrayVec::new();
         let mut done = CsgWork::default();
         // The intersection so far: [latest entry, earliest exit], empty once an operand is.
         let (mut latest_in, mut earliest_out) = (f64::NEG_INFINITY, f64::INFINITY);
         let mut empty = false;
-        // The operands' spans, in the tree's order, with its boxes and pruning rules.
-        for (k, &(leaf, bounds)) in self.leaves.iter().enumerate() {
-            // The notes' rule: once ∩'s operands so far, or −'s first one, are empty, so is
-            // the result: the rest need not be looked at.
-            let prunes = matches!(self.op, CsgOp::Intersection | CsgOp::Difference);
-            if k > 0 && r.prune && prunes && empty {
-                done.pruned += 1;
-                spans.push(None);
-                continue;
-            }
-            let missed = |b: Aabb| !b.hit(r.ray, r.inv_dir, r.t_min, r.t_max);
-            let span = if r.use_bounds && bounds.is_some_and(missed) {
-                done.pruned += 1;
-                None
-            } else {
-                done.leaves_tested += 1;
-                match env.leaf_span(leaf, r.ray) {
-                    // A span of NaN (overflow on absurd input) is no intersection.
-                    Some(s) if s.t_in.is_nan() || s.t_out.is_nan() => None,
-                    // Reversed ends: leave them to the sweep.
-                    Some(s) if s.t_in > s.t_out => return Crossing::Undecided,
-                    s => s,
-                }
+        for k in 0..self.leaves.len() {
+            let Ok(span) = self.operand_span(env, r, k, empty, &grouped, &mut done) else {
+                return Crossing::Undecided;
             };
             // Emptiness as the segment lists see it: the first operand's list is empty only
             // without a span; ∩ with more operands is empty unless its entry precedes its exit.
@@ -157,18 +144,9 @@ impl FlatCsg {
             spans.push(span);
         }
 
-        if let [a, b] = spans[..] {
-            let result = self.first_change_of_two(a, b, r);
-            if result != Crossing::Undecided {
-                work.pruned += done.pruned;
-                work.leaves_tested += done.leaves_tested;
-            }
-            return result;
-        }
-
         // The walk: inside flags just after t_min, and the span ends beyond it, in order.
         let mut inside = 0u32;
-        let mut ends: ArrayVec<(f64, usize, bool), E> = ArrayVec::new();
+        let mut ends: ArrayVec<(f64, usize, bool), { 2 * MAX_LEAVES }> = ArrayVec::new();
         let within = |t: f64| t > r.t_min && t < r.t_max && t.is_finite();
         for (k, s) in spans.iter().enumerate() {
             let Some(s) = s else { continue };
@@ -223,7 +201,59 @@ impl FlatCsg {
 }
 
 impl FlatCsg {
-    /// The walk of `nearest_within` for two operands, with all four span ends looked at at
+    /// Operand k's span, through its box and the notes' pruning rule: once ∩'s operands so
+    /// far, or −'s first one, are `empty`, so is the result, and the rest need not be looked
+    /// at. Err: reversed ends, which only the segment lists' sweep understands.
+    #[inline(always)]
+    fn operand_span(
+        &self,
+        env: &impl LeafSpans,
+        r: &CsgRay,
+        k: usize,
+        empty: bool,
+        grouped: &Option<[Option<Span>; LANES]>,
+        done: &mut CsgWork,
+    ) -> Result<Option<Span>, ()> {
+        let (leaf, bounds) = self.leaves[k];
+        let prunes = matches!(self.op, CsgOp::Intersection | CsgOp::Difference);
+        let missed = |b: Aabb| !b.hit(r.ray, r.inv_dir, r.t_min, r.t_max);
+        if (k > 0 && r.prune && prunes && empty) || (r.use_bounds && bounds.is_some_and(missed)) {
+            done.pruned += 1;
+            return Ok(None);
+        }
+        done.leaves_tested += 1;
+        let span = match grouped {
+            Some(spans) => spans[k],
+            None => env.leaf_span(leaf, r.ray),
+        };
+        match span {
+            // A span of NaN (overflow on absurd input) is no intersection.
+            Some(s) if s.t_in.is_nan() || s.t_out.is_nan() => Ok(None),
+            Some(s) if s.t_in > s.t_out => Err(()),
+            s => Ok(s),
+        }
+    }
+
+    /// `nearest` for two operands.
+    #[inline(always)]
+    fn nearest_of_two(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
+        let grouped = self.spheres.as_ref().map(|g| g.spans(r.ray));
+        let mut done = CsgWork::default();
+        let Ok(a) = self.operand_span(env, r, 0, false, &grouped, &mut done) else {
+            return Crossing::Undecided;
+        };
+        let Ok(b) = self.operand_span(env, r, 1, a.is_none(), &grouped, &mut done) else {
+            return Crossing::Undecided;
+        };
+        let result = self.first_change_of_two(a, b, r);
+        if result != Crossing::Undecided {
+            work.pruned += done.pruned;
+            work.leaves_tested += done.leaves_tested;
+        }
+        result
+    }
+
+    /// The walk of `nearest` for two operands, with all four span ends looked at at
     /// once instead of sorted and visited in order (the commonest CSG object, and there the
     /// walk cost as much as both spans).
     ///
@@ -237,7 +267,7 @@ impl FlatCsg {
     fn first_change_of_two(&self, a: Option<Span>, b: Option<Span>, r: &CsgRay) -> Crossing {
         let ends = |s: Option<Span>| s.map_or((f64::NAN, f64::NAN), |s| (s.t_in, s.t_out));
         let ((a_in, a_out), (b_in, b_out)) = (ends(a), ends(b));
-        let t = f64x4::new([a_in, a_out, b_in, b_out]);
+        let t = lanes(a_in, a_out, b_in, b_out);
         let inside = |t_in: f64, t_out: f64| {
             let (t_in, t_out) = (f64x4::splat(t_in), f64x4::splat(t_out));
             let before = t_in.simd_lt(t) & t.simd_le(t_out);
@@ -279,6 +309,24 @@ impl FlatCsg {
     }
 }
 
+/// Four numbers as one vector, put together in registers. `f64x4::new` goes through memory,
+/// and there the one wide load of four narrow stores stalled on store forwarding: a fifth of
+/// the samples of `object_hit` in the CSG peer scene, and 5 % of its time.
+#[inline(always)]
+fn lanes(a: f64, b: f64, c: f64, d: f64) -> f64x4 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    {
+        use std::arch::x86_64::{__m256d, _mm256_setr_pd};
+        // SAFETY: the target has AVX (checked at compile time), and with AVX an f64x4 is one
+        // __m256d (the transmute checks the sizes).
+        unsafe { std::mem::transmute::<__m256d, f64x4>(_mm256_setr_pd(a, b, c, d)) }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    {
+        f64x4::new([a, b, c, d])
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -295,17 +343,20 @@ mod tests {
 
     fn flat(op: CsgOp, n: u32) -> FlatCsg {
         let everything = Aabb::everything();
-        FlatCsg::new(&CsgNode::Op {
-            op,
-            name: "t".into(),
-            children: (0..n)
-                .map(|leaf| CsgNode::Leaf {
-                    leaf,
-                    bounds: everything,
-                })
-                .collect(),
-            bounds: everything,
-        })
+        FlatCsg::new(
+            &CsgNode::Op {
+                op,
+                name: "t".into(),
+                children: (0..n)
+                    .map(|leaf| CsgNode::Leaf {
+                        leaf,
+                        bounds: everything,
+                    })
+                    .collect(),
+                bounds: everything,
+            },
+            |_| None,
+        )
         .unwrap()
     }
 

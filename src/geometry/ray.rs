@@ -51,6 +51,23 @@ pub struct RayLanes {
 }
 
 impl RayLanes {
+    /// One ray in every lane.
+    #[inline(always)]
+    pub fn splat(ray: &Ray) -> RayLanes {
+        let DVec3 {
+            x: dx,
+            y: dy,
+            z: dz,
+        } = ray.dir;
+        let o = ray.origin;
+        RayLanes {
+            origin: [o.x, o.y, o.z].map(f64x4::splat),
+            dir: [dx, dy, dz].map(f64x4::splat),
+            // As `Sphere::hit` computes d·d.
+            a: f64x4::splat(dx * dx + dy * dy + dz * dz),
+        }
+    }
+
     /// The rays in lanes 0, 1, …; lanes beyond them hold `Ray::UNUSED`.
     pub fn new(rays: &[Ray]) -> RayLanes {
         assert!(rays.len() <= LANES);

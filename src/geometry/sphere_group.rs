@@ -12,7 +12,7 @@ use wide::f64x4;
 
 use super::ray::RayLanes;
 use super::sphere::{MISS_MARGIN, MISS_TEST_FLOOR, TANGENT_TOLERANCE};
-use super::{Ray, Sphere};
+use super::{Ray, Span, Sphere};
 
 /// Spheres per group: four f64 lanes fill one 256-bit (AVX) vector.
 pub const LANES: usize = 4;
@@ -88,20 +88,24 @@ impl SphereGroup {
     /// does so before the divisions and the square root (most rays, for most groups).
     #[inline(always)]
     fn candidates(&self, ray: &Ray, t_min: f64) -> Option<[f64; LANES]> {
-        let DVec3 {
-            x: dx,
-            y: dy,
-            z: dz,
-        } = ray.dir;
-        let a = f64x4::splat(dx * dx + dy * dy + dz * dz);
-        let o = ray.origin;
-        let rays = RayLanes {
-            origin: [o.x, o.y, o.z].map(f64x4::splat),
-            dir: [dx, dy, dz].map(f64x4::splat),
-            a,
-        };
         let spheres = [self.cx, self.cy, self.cz];
-        Some(crossings(&rays, spheres, self.r2, self.used, t_min)?.to_array())
+        Some(crossings(&RayLanes::splat(ray), spheres, self.r2, self.used, t_min)?.to_array())
+    }
+
+    /// Each sphere's span along the whole line of the ray: bit for bit what `Sphere::span`
+    /// gives, one sphere after another.
+    #[inline(always)]
+    pub fn spans(&self, ray: &Ray) -> [Option<Span>; LANES] {
+        let spheres = [self.cx, self.cy, self.cz];
+        let Some((t_in, t_out, crossed)) =
+            lane_spans(&RayLanes::splat(ray), spheres, self.r2, self.used, false)
+        else {
+            return [None; LANES];
+        };
+        let (t_in, t_out, crossed) = (t_in.to_array(), t_out.to_array(), crossed.to_bitmask());
+        std::array::from_fn(|k| {
+            (crossed & (1 << k) != 0).then(|| Span::new(t_in[k], 0, t_out[k], 0))
+        })
     }
 
     /// Sphere k of the group against every ray of `rays` (the lanes in `open`): each lane's
@@ -148,6 +152,24 @@ fn crossings(
     open: f64x4,
     t_min: f64,
 ) -> Option<f64x4> {
+    let (t_in, t_out, crossed) = lane_spans(rays, centre, r2, open, t_min >= 0.0)?;
+    let t = t_in.simd_gt(f64x4::splat(t_min)).bitselect(t_in, t_out);
+    Some(crossed.bitselect(t, f64x4::splat(f64::NAN)))
+}
+
+/// The steps of `Sphere::span` (and of `Sphere::hit` up to its choice of root, which also
+/// leaves out lines starting outside and moving `away` when asked) for four (ray, sphere)
+/// pairs: each lane's entry and exit, and all ones in the lanes of `open` whose line crosses
+/// its sphere. None when no lane of `open` does, found before the divisions and the square
+/// root.
+#[inline(always)]
+fn lane_spans(
+    rays: &RayLanes,
+    centre: [f64x4; 3],
+    r2: f64x4,
+    open: f64x4,
+    away: bool,
+) -> Option<(f64x4, f64x4, f64x4)> {
     let [dx, dy, dz] = rays.dir;
     let a = rays.a;
     let zero = f64x4::ZERO;
@@ -159,7 +181,7 @@ fn crossings(
     let b = dx * ox + dy * oy + dz * oz;
     let c = oc2 - r2;
     // Outside and moving away; a line that clearly passes by.
-    let away = if t_min >= 0.0 {
+    let away = if away {
         c.simd_gt(zero) & b.simd_gt(zero)
     } else {
         zero
@@ -187,8 +209,7 @@ fn crossings(
     let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
     let t_in = q0.bitselect(zero, tangent.bitselect(x, x.min(y)));
     let t_out = q0.bitselect(zero, tangent.bitselect(x, x.max(y)));
-    let t = t_in.simd_gt(f64x4::splat(t_min)).bitselect(t_in, t_out);
-    Some((open & !no_root).bitselect(t, f64x4::splat(f64::NAN)))
+    Some((t_in, t_out, open & !no_root))
 }
 
 #[cfg(test)]

@@ -13,7 +13,7 @@ use super::format::{
     AntialiasMode, Bias, CameraSpec, FilterKind, LightSpec, LobeSpec, MaterialSpec, ObjectSpec,
     SceneFile, TransformStep, Triple,
 };
-use crate::accel::Aabb;
+use crate::accel::{Aabb, Ball};
 use crate::geometry::csg::{CsgNode, CsgOp};
 use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
 use crate::render::antialias::{Antialias, Filter, DEFAULT_THRESHOLD};
@@ -796,12 +796,36 @@ impl Builder<'_> {
             CsgOp::Difference => nodes[0].bounds(),
             CsgOp::Complement => Aabb::everything(),
         };
+        // Spheres' common parts are bounded far more tightly by a ball than by their boxes.
+        let bounds = match self.ball(op, &nodes) {
+            Some(ball) => bounds.intersection(&ball.bounds()),
+            None => bounds,
+        };
         Ok(CsgNode::Op {
             op,
             name,
             children: nodes,
             bounds,
         })
+    }
+
+    /// A ball around an operation's result, when one is known: spheres in world space, and
+    /// what intersections and differences keep of them.
+    fn ball(&self, op: CsgOp, children: &[CsgNode]) -> Option<Ball> {
+        let ball = |node: &CsgNode| match node {
+            CsgNode::Leaf { leaf, .. } => self.leaves[*leaf as usize]
+                .world_sphere()
+                .map(|s| Ball::new(s.center, s.radius)),
+            CsgNode::Op { op, children, .. } => self.ball(*op, children),
+        };
+        match op {
+            CsgOp::Intersection => children
+                .iter()
+                .filter_map(ball)
+                .reduce(|a, b| a.around_common(&b)),
+            CsgOp::Difference => ball(&children[0]),
+            CsgOp::Union | CsgOp::Complement => None,
+        }
     }
 }
 

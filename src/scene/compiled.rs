@@ -37,6 +37,14 @@ pub struct Leaf {
 }
 
 impl Leaf {
+    /// The leaf as a sphere in world space, if it is one.
+    pub fn world_sphere(&self) -> Option<&Sphere> {
+        match (&self.shape, &self.transform) {
+            (Shape::Sphere(s), None) => Some(s),
+            _ => None,
+        }
+    }
+
     pub fn span(&self, ray: &Ray) -> Option<Span> {
         match &self.transform {
             Some(tf) => self.shape.span(&tf.ray_to_local(ray)),
@@ -336,7 +344,9 @@ impl Scene {
         let flat_csg = objects
             .iter()
             .map(|o| match &o.geometry {
-                Geometry::Csg(root) => FlatCsg::new(root),
+                Geometry::Csg(root) => {
+                    FlatCsg::new(root, |leaf| leaves[leaf as usize].world_sphere().cloned())
+                }
                 Geometry::Leaf(_) => None,
             })
             .collect();
