@@ -307,8 +307,6 @@ const BVH_MIN_OBJECTS: usize = 16;
 /// What the boxes of the objects outside the BVH need from a packet of rays
 /// (`Scene::packet_boxes`).
 struct PacketBoxes {
-    /// Each ray's 1/d.
-    inv_dirs: [DVec3; PACKET],
     /// The packet's hull: None when its rays' directions differ in sign.
     hull: Option<Hull>,
 }
@@ -447,15 +445,8 @@ impl Scene {
         if !self.boxes_outside_bvh {
             return None;
         }
-        // Each 1/d goes into the hull as it is found: read back from the array, it waited
-        // for its own stores (store forwarding fails on the mixed widths).
-        let mut inv_dirs = [DVec3::NAN; PACKET];
-        let hull = Hull::new(rays.iter().zip(&mut inv_dirs).map(|(r, slot)| {
-            let inv = r.dir.recip();
-            *slot = inv;
-            (r.origin.to_array(), inv.to_array())
-        }));
-        Some(PacketBoxes { inv_dirs, hull })
+        let hull = Hull::from_directions(rays);
+        Some(PacketBoxes { hull })
     }
 
     /// 1/d, which the boxes of the objects tested behind one need: found once per ray, not
@@ -499,7 +490,6 @@ impl Scene {
         o: u32,
         rays: &[Ray],
         boxes: &PacketBoxes,
-        first: usize,
         t_max: &mut [f64; LANES],
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
@@ -509,7 +499,7 @@ impl Scene {
             return;
         }
         for (i, ray) in rays.iter().enumerate() {
-            let inv = boxes.inv_dirs[first + i];
+            let inv = ray.dir.recip();
             if let Some(h) = self.boxed_object_hit(o, ray, inv, 0.0, t_max[i], stats) {
                 t_max[i] = h.t;
                 hits[i] = Some(h);
@@ -527,7 +517,6 @@ impl Scene {
         o: u32,
         rays: &[Ray],
         boxes: &PacketBoxes,
-        first: usize,
         t_max: &[f64],
         open: u32,
         stats: &mut Stats,
@@ -539,7 +528,7 @@ impl Scene {
         let mut blocked = 0;
         for (i, ray) in rays.iter().enumerate() {
             if open & (1 << i) != 0 {
-                let inv = boxes.inv_dirs[first + i];
+                let inv = ray.dir.recip();
                 if self
                     .boxed_object_hit(o, ray, inv, 0.0, t_max[i], stats)
                     .is_some()
@@ -902,8 +891,8 @@ impl Scene {
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
         if self.in_lanes {
             let boxes = self.packet_boxes(rays);
-            for (k, (rays, hits)) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)).enumerate() {
-                self.intersect_in_lanes(rays, boxes.as_ref(), k * LANES, hits, stats);
+            for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
+                self.intersect_in_lanes(rays, boxes.as_ref(), hits, stats);
             }
             return;
         }
@@ -995,8 +984,8 @@ impl Scene {
             let boxes = self.packet_boxes(rays);
             let mut blocked = 0;
             for (k, (rays, t_max)) in rays.chunks(LANES).zip(t_max.chunks(LANES)).enumerate() {
-                blocked |= self.occluded_in_lanes(rays, boxes.as_ref(), k * LANES, t_max, stats)
-                    << (k * LANES);
+                blocked |=
+                    self.occluded_in_lanes(rays, boxes.as_ref(), t_max, stats) << (k * LANES);
             }
             return blocked;
         }
@@ -1063,7 +1052,6 @@ impl Scene {
         &self,
         rays: &[Ray],
         boxes: Option<&PacketBoxes>,
-        first: usize,
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
@@ -1135,7 +1123,7 @@ impl Scene {
                 Probe::Object(o) => {
                     let boxes = boxes.expect("boxed objects get the packet's boxes");
                     let mut t_max = limit.to_array();
-                    self.object_in_lanes(*o, rays, boxes, first, &mut t_max, hits, stats);
+                    self.object_in_lanes(*o, rays, boxes, &mut t_max, hits, stats);
                     limit = f64x4::new(t_max);
                 }
             }
@@ -1151,7 +1139,6 @@ impl Scene {
         &self,
         rays: &[Ray],
         boxes: Option<&PacketBoxes>,
-        first: usize,
         t_max: &[f64],
         stats: &mut Stats,
     ) -> u32 {
@@ -1197,7 +1184,7 @@ impl Scene {
                 }
                 Probe::Object(o) => {
                     let boxes = boxes.expect("boxed objects get the packet's boxes");
-                    open &= !self.object_blocks_lanes(*o, rays, boxes, first, t_max, open, stats);
+                    open &= !self.object_blocks_lanes(*o, rays, boxes, t_max, open, stats);
                 }
             }
         }
