@@ -250,12 +250,78 @@ fn csg_ray() -> impl Strategy<Value = Ray> {
         .prop_map(|(origin, dir)| Ray { origin, dir })
 }
 
+/// The nearest hit of a flat CSG object, read off its primitives' spans, is the first
+/// crossing of its segment list inside the window, to the bit, with the same surface; the
+/// pruning counted is the same, with CSG boxes and pruning on or off.
+fn assert_flat_hit_is_the_lists_first_crossing(
+    object: &str,
+    r: &Ray,
+    t_min: f64,
+    t_max: f64,
+    pruning: bool,
+) -> Result<(), TestCaseError> {
+    let yaml = format!(
+        "camera: {{ eye: [0, 0, -10], look_at: [0, 0, 0] }}\nmaterials: {{ m: {{ kd: 1 }} }}\nobjects:\n  - {object}\n"
+    );
+    let mut scene = parse(&yaml, "flat.yaml", None, &Limits::default()).unwrap();
+    scene.csg_pruning = pruning;
+    let mut reference = Stats::default();
+    let boxed = !pruning || scene.objects[0].bounds.hit(r, r.dir.recip(), t_min, t_max);
+    let expected = boxed
+        .then(|| {
+            let list = scene.object_segments(0, r, t_min, t_max, &mut reference);
+            let (t, surface) = raytree::geometry::first_crossing(&list, t_min)?;
+            (t > t_min && t < t_max && t.is_finite()).then_some((t.to_bits(), surface))
+        })
+        .flatten();
+    let mut stats = Stats::default();
+    let hit = scene.intersect(r, t_min, t_max, &mut stats);
+    prop_assert_eq!(
+        hit.map(|h| (h.t.to_bits(), h.surface)),
+        expected,
+        "{}",
+        object
+    );
+    prop_assert_eq!(stats.csg_pruned, reference.csg_pruned, "{}", object);
+    let blocker = scene.occluded(r, t_min, t_max, &mut Stats::default());
+    prop_assert_eq!(blocker, hit);
+    Ok(())
+}
+
+/// Two overlapping spheres (or one inside the other, or apart), and a ray from a point of
+/// one sphere's surface, or from anywhere, in any direction: rays that leave a lens outward,
+/// pass it by or cross it.
+fn lens_and_ray() -> impl Strategy<Value = (String, Ray)> {
+    (
+        prop::array::uniform3(-1.0..1.0f64),
+        0.3..1.5f64,
+        prop::array::uniform3(-1.0..1.0f64),
+        0.3..1.5f64,
+        prop::array::uniform3(-1.0..1.0f64).prop_filter_map("direction", unit),
+        prop::array::uniform3(-1.0..1.0f64).prop_filter_map("direction", unit),
+        prop::bool::ANY,
+    )
+        .prop_map(|(a, ra, b, rb, at, dir, on_surface)| {
+            let (a, b) = (DVec3::from_array(a), DVec3::from_array(b));
+            let sphere = |c: DVec3, r: f64| {
+                format!(
+                    "{{ sphere: {{ center: [{}, {}, {}], radius: {r} }} }}",
+                    c.x, c.y, c.z
+                )
+            };
+            let object = format!(
+                "{{ name: lens, material: m, intersection: [ {}, {} ] }}",
+                sphere(a, ra),
+                sphere(b, rb)
+            );
+            let origin = if on_surface { a + ra * at } else { 3.0 * at };
+            (object, Ray { origin, dir })
+        })
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 3000, ..ProptestConfig::default() })]
 
-    /// The nearest hit of a flat CSG object, read off its primitives' spans, is the first
-    /// crossing of its segment list inside the window, to the bit, with the same surface; the
-    /// pruning counted is the same, with CSG boxes and pruning on or off.
     #[test]
     fn flat_csg_hits_are_the_segment_lists_first_crossings(
         object in flat_csg(),
@@ -264,26 +330,18 @@ proptest! {
         t_max in prop::sample::select(vec![f64::INFINITY, 3.0]),
         pruning in prop::bool::ANY,
     ) {
-        let yaml = format!(
-            "camera: {{ eye: [0, 0, -10], look_at: [0, 0, 0] }}\nmaterials: {{ m: {{ kd: 1 }} }}\nobjects:\n  - {object}\n"
-        );
-        let mut scene = parse(&yaml, "flat.yaml", None, &Limits::default()).unwrap();
-        scene.csg_pruning = pruning;
-        let mut reference = Stats::default();
-        let boxed = !pruning || scene.objects[0].bounds.hit(&r, r.dir.recip(), t_min, t_max);
-        let expected = boxed
-            .then(|| {
-                let list = scene.object_segments(0, &r, t_min, t_max, &mut reference);
-                let (t, surface) = raytree::geometry::first_crossing(&list, t_min)?;
-                (t > t_min && t < t_max && t.is_finite()).then_some((t.to_bits(), surface))
-            })
-            .flatten();
-        let mut stats = Stats::default();
-        let hit = scene.intersect(&r, t_min, t_max, &mut stats);
-        prop_assert_eq!(hit.map(|h| (h.t.to_bits(), h.surface)), expected, "{}", object);
-        prop_assert_eq!(stats.csg_pruned, reference.csg_pruned);
-        let blocker = scene.occluded(&r, t_min, t_max, &mut Stats::default());
-        prop_assert_eq!(blocker, hit);
+        assert_flat_hit_is_the_lists_first_crossing(&object, &r, t_min, t_max, pruning)?;
+    }
+
+    /// The same for lenses, whose two spheres are tested side by side and which are left
+    /// early where one sphere is missed or lies behind the ray.
+    #[test]
+    fn lens_hits_are_the_segment_lists_first_crossings(
+        (object, r) in lens_and_ray(),
+        t_min in prop::sample::select(vec![0.0, 1e-9, 0.5]),
+        pruning in prop::bool::ANY,
+    ) {
+        assert_flat_hit_is_the_lists_first_crossing(&object, &r, t_min, f64::INFINITY, pruning)?;
     }
 }
 

@@ -237,7 +237,25 @@ impl FlatCsg {
     /// `nearest` for two operands.
     #[inline(always)]
     fn nearest_of_two(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
-        let grouped = self.spheres.as_ref().map(|g| g.spans(r.ray));
+        // Two spheres' common part, searched from t = 0 on, is missed as soon as one sphere
+        // is: passed by, or met only behind the origin (a ray leaving the lens outward). The
+        // group says so before its square roots, and the count is the operands' own: the
+        // second is pruned where the first has no span.
+        let unboxed = !r.use_bounds || self.leaves.iter().all(|(_, bounds)| bounds.is_none());
+        let common = self.op == CsgOp::Intersection && r.t_min >= 0.0 && unboxed;
+        let grouped = match &self.spheres {
+            Some(group) if common => match group.common_spans(r.ray) {
+                Ok(spans) => Some(spans),
+                Err(empty) => {
+                    let pruned = (r.prune && empty & 1 != 0) as u64;
+                    work.pruned += pruned;
+                    work.leaves_tested += 2 - pruned;
+                    return Crossing::Miss;
+                }
+            },
+            Some(group) => Some(group.spans(r.ray)),
+            None => None,
+        };
         let mut done = CsgWork::default();
         let Ok(a) = self.operand_span(env, r, 0, false, &grouped, &mut done) else {
             return Crossing::Undecided;

@@ -97,15 +97,40 @@ impl SphereGroup {
     #[inline(always)]
     pub fn spans(&self, ray: &Ray) -> [Option<Span>; LANES] {
         let spheres = [self.cx, self.cy, self.cz];
-        let Some((t_in, t_out, crossed)) =
-            lane_spans(&RayLanes::splat(ray), spheres, self.r2, self.used, false)
-        else {
+        let Ok((t_in, t_out, crossed)) = lane_spans(
+            &RayLanes::splat(ray),
+            spheres,
+            self.r2,
+            self.used,
+            false,
+            false,
+        ) else {
             return [None; LANES];
         };
         let (t_in, t_out, crossed) = (t_in.to_array(), t_out.to_array(), crossed.to_bitmask());
         std::array::from_fn(|k| {
             (crossed & (1 << k) != 0).then(|| Span::new(t_in[k], 0, t_out[k], 0))
         })
+    }
+
+    /// `spans`, for the spheres' common part searched from t = 0 on: Err when it is surely
+    /// missed there (a sphere passed by, without a root, or met only behind the origin),
+    /// found before the square roots, with bit k set where sphere k has no span.
+    #[inline(always)]
+    pub fn common_spans(&self, ray: &Ray) -> Result<[Option<Span>; LANES], u32> {
+        let spheres = [self.cx, self.cy, self.cz];
+        let (t_in, t_out, crossed) = lane_spans(
+            &RayLanes::splat(ray),
+            spheres,
+            self.r2,
+            self.used,
+            true,
+            true,
+        )?;
+        let (t_in, t_out, crossed) = (t_in.to_array(), t_out.to_array(), crossed.to_bitmask());
+        Ok(std::array::from_fn(|k| {
+            (crossed & (1 << k) != 0).then(|| Span::new(t_in[k], 0, t_out[k], 0))
+        }))
     }
 
     /// Sphere k of the group against every ray of `rays` (the lanes in `open`): each lane's
@@ -152,7 +177,7 @@ fn crossings(
     open: f64x4,
     t_min: f64,
 ) -> Option<f64x4> {
-    let (t_in, t_out, crossed) = lane_spans(rays, centre, r2, open, t_min >= 0.0)?;
+    let (t_in, t_out, crossed) = lane_spans(rays, centre, r2, open, t_min >= 0.0, false).ok()?;
     let t = t_in.simd_gt(f64x4::splat(t_min)).bitselect(t_in, t_out);
     Some(crossed.bitselect(t, f64x4::splat(f64::NAN)))
 }
@@ -160,8 +185,12 @@ fn crossings(
 /// The steps of `Sphere::span` (and of `Sphere::hit` up to its choice of root, which also
 /// leaves out lines starting outside and moving `away` when asked) for four (ray, sphere)
 /// pairs: each lane's entry and exit, and all ones in the lanes of `open` whose line crosses
-/// its sphere. None when no lane of `open` does, found before the divisions and the square
+/// its sphere. Err when no lane of `open` does, found before the divisions and the square
 /// root.
+///
+/// With `common` (and `away`), the spheres' common part is what counts: Err as soon as one
+/// lane's line passes its sphere by, has no root, or meets it only behind the origin, before
+/// the square root and the last divisions, with bit k set where lane k has no span.
 #[inline(always)]
 fn lane_spans(
     rays: &RayLanes,
@@ -169,7 +198,8 @@ fn lane_spans(
     r2: f64x4,
     open: f64x4,
     away: bool,
-) -> Option<(f64x4, f64x4, f64x4)> {
+    common: bool,
+) -> Result<(f64x4, f64x4, f64x4), u32> {
     let [dx, dy, dz] = rays.dir;
     let a = rays.a;
     let zero = f64x4::ZERO;
@@ -190,15 +220,29 @@ fn lane_spans(
     let d = b * b - a * c;
     let passes = scale.simd_gt(f64x4::splat(MISS_TEST_FLOOR))
         & d.simd_lt(f64x4::splat(-MISS_MARGIN) * scale);
-    let open = open & !(away | passes);
-    if open.to_bitmask() == 0 {
-        return None;
+    // (The common part stops at the first lane behind the origin, below; a span behind the
+    // origin is still a span.)
+    let crossing = open & !(if common { passes } else { away | passes });
+    if !common && crossing.to_bitmask() == 0 {
+        return Err((open & passes).to_bitmask());
     }
     // disc = r² − ℓ², ℓ the distance from the centre to the line.
     let s = b / a;
     let (lx, ly, lz) = (ox - s * dx, oy - s * dy, oz - s * dz);
     let disc = r2 - (lx * lx + ly * ly + lz * lz);
     let no_root = disc.simd_lt(f64x4::splat(-TANGENT_TOLERANCE) * r2);
+    if common {
+        // Whether a lane has a span is known now, and `Sphere::span`'s ends are finite and in
+        // order where a, b and c are finite: a lane behind the origin then lies before t = 0.
+        let infinity = f64x4::splat(f64::INFINITY);
+        let finite =
+            a.abs().simd_lt(infinity) & b.abs().simd_lt(infinity) & c.abs().simd_lt(infinity);
+        let empty = open & (passes | no_root);
+        let all_finite = (open & !finite).to_bitmask() == 0;
+        if all_finite && (empty | (open & away)).to_bitmask() != 0 {
+            return Err(empty.to_bitmask());
+        }
+    }
     let disc = disc.simd_lt(zero).bitselect(zero, disc);
     // q = −(b + sign(b)·√disc), t = q/a and c/q. (sign(b) for a NaN b does not matter:
     // q is NaN either way.)
@@ -209,7 +253,7 @@ fn lane_spans(
     let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
     let t_in = q0.bitselect(zero, tangent.bitselect(x, x.min(y)));
     let t_out = q0.bitselect(zero, tangent.bitselect(x, x.max(y)));
-    Some((t_in, t_out, open & !no_root))
+    Ok((t_in, t_out, crossing & !no_root))
 }
 
 #[cfg(test)]
