@@ -528,8 +528,9 @@ impl<'s> Tracer<'s> {
 
     /// `secondary` for every surface of a packet (where no material draws random numbers, so
     /// the order rays are traced in changes nothing): all their reflection rays are traced
-    /// together as one packet, then all their refraction rays as another, and each surface
-    /// sums kr·I_r + kt·I_t as `secondary` does.
+    /// together as one packet, then all their refraction rays (or, past the limiting angle,
+    /// the mirror rays that stay inside) as another, and each surface sums kr·I_r + kt·I_t as
+    /// `secondary` does.
     fn secondary_packet<L: Lanes + ?Sized>(
         &self,
         tasks: &L,
@@ -559,18 +560,15 @@ impl<'s> Tracer<'s> {
                 Transmission::Ray(child) => {
                     transmitted.add(i, child, self.stopped(child, stats).is_none())
                 }
-                Transmission::TotalInternalReflection { mirror, indices } => {
-                    let color = self.total_internal_reflection(
-                        &task,
-                        si,
-                        *mirror,
-                        c.kt,
-                        *indices,
-                        &mut NoRecorder,
-                        rng,
-                        stats,
-                    );
-                    transmitted.settle(i, color);
+                // The mirror ray joins the refraction rays' packet: traced one by one, the
+                // rays bouncing inside a glass were a large share of the CSG scene's rays.
+                Transmission::TotalInternalReflection { mirror, .. } => {
+                    let child = self.mirror_inside(&task, si, *mirror, c.kt);
+                    let traced = self.stopped(&child, stats).is_none();
+                    if traced {
+                        stats.total_internal_reflections += 1;
+                    }
+                    transmitted.add(i, &child, traced);
                 }
             }
         }
@@ -841,7 +839,17 @@ impl<'s> Tracer<'s> {
             coefficient: kt,
         });
         rec.indices(Indices { n1, n2 });
-        let child = Task {
+        let child = self.mirror_inside(task, si, mirror, kt);
+        let color = self.child(&child, rec, rng, stats);
+        rec.end(color, Some(Termination::TotalInternalReflection));
+        color
+    }
+
+    /// The mirror ray of a total internal reflection, which carries the transmitted share kt
+    /// and stays inside. (The cut-off refraction ray `total_internal_reflection` records has
+    /// its depth and weight: the depth limit and the adaptive threshold stop both alike.)
+    fn mirror_inside(&self, task: &Task, si: &Interaction, mirror: DVec3, kt: f64) -> Task {
+        Task {
             ray: self.spawn(si, mirror, task),
             kind: RayKind::Reflection,
             depth: task.depth + 1,
@@ -850,10 +858,7 @@ impl<'s> Tracer<'s> {
             media: task.media,
             indices: None,
             split: task.split,
-        };
-        let color = self.child(&child, rec, rng, stats);
-        rec.end(color, Some(Termination::TotalInternalReflection));
-        color
+        }
     }
 
     /// Traces a secondary ray unless the depth limit or the adaptive threshold stops it.
