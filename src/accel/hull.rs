@@ -14,11 +14,9 @@
 //! with an infinite 1/d is not built, and such packets are tested ray by ray.
 
 use glam::DVec3;
-use wide::f64x4;
 
 use super::aabb::overlaps;
 use super::Aabb;
-use crate::geometry::Ray;
 
 /// What the hull says about every ray of the packet and one box.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,66 +64,6 @@ impl Hull {
         sound.then_some(Hull {
             origin_lo: origin_lo.to_array(),
             origin_hi: origin_hi.to_array(),
-            inv_lo: inv_lo.to_array(),
-            inv_hi: inv_hi.to_array(),
-            negative: [0, 1, 2].map(|axis| negative & (1 << axis) != 0),
-        })
-    }
-
-    /// The same hull from the rays' directions, for packets whose rays need no 1/d of their
-    /// own unless the hull fails to decide: two divisions per axis instead of one per ray and
-    /// axis (three divisions per ray were 5 ns, and on a scene of a floor and one CSG object
-    /// a third of what the object cost the rays that miss it).
-    ///
-    /// 1/d falls as d rises on either side of zero, and so does its rounding (correctly
-    /// rounded division is monotone), so the rays' 1/d range from 1/d_hi to 1/d_lo: the very
-    /// bounds `new` finds among them.
-    #[inline]
-    pub fn from_directions(rays: &[Ray]) -> Option<Hull> {
-        // A ray's six numbers in two vectors, [o.x, o.y, o.z, d.x] and [d.x, d.y, d.z, d.z]:
-        // bounds, signs and finiteness for all six at once, ray after ray.
-        let lanes = |r: &Ray| {
-            let (o, d) = (r.origin, r.dir);
-            (
-                f64x4::new([o.x, o.y, o.z, d.x]),
-                f64x4::new([d.x, d.y, d.z, d.z]),
-            )
-        };
-        let (a, b) = lanes(rays.first()?);
-        let (mut lo, mut hi) = ((a, b), (a, b));
-        // Sign bits: set in `all` where every ray's is, in `any` where some ray's is.
-        let (mut all, mut any) = (b, b);
-        let infinity = f64x4::splat(f64::INFINITY);
-        let mut finite = a.abs().simd_lt(infinity) & b.abs().simd_lt(infinity);
-        for r in &rays[1..] {
-            let (a, b) = lanes(r);
-            lo = (lo.0.fast_min(a), lo.1.fast_min(b));
-            hi = (hi.0.fast_max(a), hi.1.fast_max(b));
-            (all, any) = (all & b, any | b);
-            finite = finite & a.abs().simd_lt(infinity) & b.abs().simd_lt(infinity);
-        }
-        let negative = all.to_bitmask();
-        if finite.to_bitmask() != 0b1111 || negative != any.to_bitmask() {
-            return None;
-        }
-        let (lo_o, lo_d, hi_o, hi_d) = (
-            lo.0.to_array(),
-            lo.1.to_array(),
-            hi.0.to_array(),
-            hi.1.to_array(),
-        );
-        let (dir_lo, dir_hi) = (
-            DVec3::new(lo_d[0], lo_d[1], lo_d[2]),
-            DVec3::new(hi_d[0], hi_d[1], hi_d[2]),
-        );
-        let (inv_lo, inv_hi) = (dir_hi.recip(), dir_lo.recip());
-        // An infinite 1/d (a zero or tiny d) is infinite at one of the bounds.
-        if !(inv_lo.is_finite() && inv_hi.is_finite()) {
-            return None;
-        }
-        Some(Hull {
-            origin_lo: [lo_o[0], lo_o[1], lo_o[2]],
-            origin_hi: [hi_o[0], hi_o[1], hi_o[2]],
             inv_lo: inv_lo.to_array(),
             inv_hi: inv_hi.to_array(),
             negative: [0, 1, 2].map(|axis| negative & (1 << axis) != 0),
@@ -230,12 +168,6 @@ mod tests {
                 rays.iter()
                     .map(|(o, d)| (o.to_array(), d.recip().to_array())),
             );
-            // Found from the directions, the hull is the same to the last bit.
-            let packet: Vec<Ray> = rays
-                .iter()
-                .map(|&(origin, dir)| Ray { origin, dir })
-                .collect();
-            assert_eq!(Hull::from_directions(&packet), hull);
             let Some(hull) = hull else {
                 continue;
             };
@@ -292,23 +224,5 @@ mod tests {
         ])
         .is_none());
         assert!(Hull::new([(o, [1.0, 2.0, 1.0]), (o, [3.0, 0.5, 1.0])]).is_some());
-        // The same from directions: a zero (of either sign) or a d so tiny that 1/d
-        // overflows, and directions of both signs on an axis.
-        let hull = |dirs: &[DVec3]| {
-            let rays: Vec<Ray> = dirs
-                .iter()
-                .map(|&dir| Ray {
-                    origin: DVec3::ZERO,
-                    dir,
-                })
-                .collect();
-            Hull::from_directions(&rays)
-        };
-        assert!(hull(&[DVec3::new(1.0, 0.0, 1.0)]).is_none());
-        assert!(hull(&[DVec3::new(1.0, -0.0, 1.0)]).is_none());
-        assert!(hull(&[DVec3::new(1.0, 1e-310, 1.0)]).is_none());
-        assert!(hull(&[DVec3::new(1.0, 0.5, 1.0), DVec3::new(1.0, -0.5, 1.0)]).is_none());
-        assert!(hull(&[DVec3::new(1.0, 0.5, 1.0), DVec3::new(1.0, f64::NAN, 1.0)]).is_none());
-        assert!(hull(&[DVec3::new(1.0, 0.5, 1.0), DVec3::new(3.0, 2.0, 1.0)]).is_some());
     }
 }

@@ -5,7 +5,6 @@ mod ball;
 pub mod bvh;
 mod hull;
 
-pub use aabb::Aabb;
+pub use aabb::{Aabb, SlabLanes};
 pub use ball::Ball;
 pub use bvh::Bvh;
-pub(crate) use hull::{Hull, Verdict};

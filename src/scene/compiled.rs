@@ -7,7 +7,7 @@ use glam::DVec3;
 use wide::f64x4;
 
 use crate::accel::bvh::{signs, PACKET};
-use crate::accel::{Aabb, Bvh, Hull, Verdict};
+use crate::accel::{Aabb, Bvh, SlabLanes};
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use crate::geometry::sphere_group::{sphere_against_lanes, LANES};
@@ -265,8 +265,8 @@ pub struct Scene {
     /// Per object: its CSG tree's flat form, when it has one (nearest hits without segment
     /// lists).
     flat_csg: Vec<Option<FlatCsg>>,
-    /// Some object outside the BVH is tested behind its box: packets of rays then try each
-    /// such box once against their hull (`packet_boxes`).
+    /// Some object outside the BVH is tested behind its box: packets of rays tested in lanes
+    /// then find their 1/d in lanes, for each such box's test of four rays at once.
     boxes_outside_bvh: bool,
     /// Some object, in the BVH or not, is tested behind its box: the searches find each ray's
     /// 1/d once for all the boxes (`inv_dir`).
@@ -303,13 +303,6 @@ const PACKET_MIN: usize = 4;
 /// 1000 objects 15 ms vs 1.2 ms. (Brute force rejects most spheres in a few instructions, in a
 /// loop the processor predicts; shadow rays, which stop at the first blocker, favour it more.)
 const BVH_MIN_OBJECTS: usize = 16;
-
-/// What the boxes of the objects outside the BVH need from a packet of rays
-/// (`Scene::packet_boxes`).
-struct PacketBoxes {
-    /// The packet's hull: None when its rays' directions differ in sign.
-    hull: Option<Hull>,
-}
 
 impl Scene {
     #[allow(clippy::too_many_arguments)]
@@ -438,17 +431,6 @@ impl Scene {
         self.in_lanes
     }
 
-    /// What the boxes of the objects outside the BVH need from a packet of rays: each ray's
-    /// 1/d and the packet's hull. None where there are no such boxes (plain spheres and
-    /// planes), so that those scenes spend nothing on it.
-    fn packet_boxes(&self, rays: &[Ray]) -> Option<PacketBoxes> {
-        if !self.boxes_outside_bvh {
-            return None;
-        }
-        let hull = Hull::from_directions(rays);
-        Some(PacketBoxes { hull })
-    }
-
     /// 1/d, which the boxes of the objects tested behind one need: found once per ray, not
     /// once per box. Not at all in scenes without such objects (plain spheres and planes),
     /// where a division per ray would buy nothing; there it is NaN, which no box test passes.
@@ -461,83 +443,74 @@ impl Scene {
         }
     }
 
-    /// Whether every ray of a packet misses object o's box within [0, its t_max], proved once
-    /// on the packet's hull (when there is one): then `boxed_object_hit` would skip the object
-    /// for every one of them.
-    #[inline(always)]
-    fn missed_by_all(&self, hull: Option<&Hull>, o: u32, t_max: &[f64]) -> bool {
-        let Some(hull) = hull else {
-            return false;
-        };
-        let object = &self.objects[o as usize];
-        let boxed = self.csg_pruning || !matches!(object.geometry, Geometry::Csg(_));
-        let reach = t_max
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
-                (lo.min(t), hi.max(t))
-            });
-        boxed && hull.classify(&object.bounds, 0.0, reach) == Verdict::AllMiss
-    }
-
-    /// Object o against up to four rays of a packet (its rays `first`, `first` + 1, …), one by
-    /// one behind its box, unless the packet's hull rules the box out for all of them: each
-    /// ray's nearest hit so far and its limit t_max are updated as `intersect` would.
+    /// Object o against up to four rays of a packet, behind its box: the box is tried
+    /// against all of them at once, then the object ray by ray where it passed, and each ray's
+    /// nearest hit so far and its limit t_max are updated as `intersect` would.
     /// Out of line, so that the lanes' loop over plain spheres and planes stays small.
     #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
     fn object_in_lanes(
         &self,
         o: u32,
         rays: &[Ray],
-        boxes: &PacketBoxes,
+        slabs: &SlabLanes,
         t_max: &mut [f64; LANES],
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
-        if self.missed_by_all(boxes.hull.as_ref(), o, &t_max[..rays.len()]) {
-            stats.bounds_skipped += rays.len() as u64;
-            return;
-        }
-        for (i, ray) in rays.iter().enumerate() {
-            let inv = ray.dir.recip();
-            if let Some(h) = self.boxed_object_hit(o, ray, inv, 0.0, t_max[i], stats) {
+        let used = (1 << rays.len()) - 1;
+        let passed = self.box_passed_by(o, used, slabs, f64x4::new(*t_max), stats);
+        for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
+            if let Some(h) = self.object_hit(o, &rays[i], slabs.inv_dir(i), 0.0, t_max[i], stats) {
                 t_max[i] = h.t;
                 hits[i] = Some(h);
             }
         }
     }
 
-    /// Object o against the shadow rays of a packet still `open` (bit i: its ray `first` + i),
-    /// one by one behind its box, unless the packet's hull rules the box out for all of them:
-    /// the bits of the rays it blocks.
+    /// Object o against the shadow rays of a packet still `open` (bit i: ray i), behind its
+    /// box tried against all of them at once: the bits of the rays it blocks.
     #[inline(never)]
-    #[allow(clippy::too_many_arguments)]
     fn object_blocks_lanes(
         &self,
         o: u32,
         rays: &[Ray],
-        boxes: &PacketBoxes,
-        t_max: &[f64],
+        slabs: &SlabLanes,
+        t_max: f64x4,
         open: u32,
         stats: &mut Stats,
     ) -> u32 {
-        if self.missed_by_all(boxes.hull.as_ref(), o, t_max) {
-            stats.bounds_skipped += open.count_ones() as u64;
-            return 0;
-        }
+        let passed = self.box_passed_by(o, open, slabs, t_max, stats);
         let mut blocked = 0;
-        for (i, ray) in rays.iter().enumerate() {
-            if open & (1 << i) != 0 {
-                let inv = ray.dir.recip();
-                if self
-                    .boxed_object_hit(o, ray, inv, 0.0, t_max[i], stats)
-                    .is_some()
-                {
-                    blocked |= 1 << i;
-                }
+        for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
+            let ray = &rays[i];
+            if self
+                .object_hit(o, ray, slabs.inv_dir(i), 0.0, t_max.to_array()[i], stats)
+                .is_some()
+            {
+                blocked |= 1 << i;
             }
         }
         blocked
+    }
+
+    /// Which of the rays in `lanes` (bit i: lane i) pass through object o's box within
+    /// [0, t_max] (all of them where the object is not tested behind its box), with the others
+    /// counted as skipped, as `boxed_object_hit` counts them ray by ray.
+    #[inline(always)]
+    fn box_passed_by(
+        &self,
+        o: u32,
+        lanes: u32,
+        slabs: &SlabLanes,
+        t_max: f64x4,
+        stats: &mut Stats,
+    ) -> u32 {
+        if !self.tested_behind_box(o) {
+            return lanes;
+        }
+        let passed = lanes & self.objects[o as usize].bounds.hit_lanes(slabs, 0.0, t_max);
+        stats.bounds_skipped += (lanes & !passed).count_ones() as u64;
+        passed
     }
 
     /// How the hit searches test an object: directly for a plain sphere or plane.
@@ -681,13 +654,22 @@ impl Scene {
         t_max: f64,
         stats: &mut Stats,
     ) -> Option<Hit> {
-        let object = &self.objects[o as usize];
-        let boxed = self.csg_pruning || !matches!(object.geometry, Geometry::Csg(_));
-        if boxed && !object.bounds.hit(ray, inv_dir, t_min, t_max) {
+        if self.tested_behind_box(o)
+            && !self.objects[o as usize]
+                .bounds
+                .hit(ray, inv_dir, t_min, t_max)
+        {
             stats.bounds_skipped += 1;
             return None;
         }
         self.object_hit(o, ray, inv_dir, t_min, t_max, stats)
+    }
+
+    /// Whether object o is tested behind its box: always, but for CSG objects with their boxes
+    /// switched off (`--no-csg-pruning`).
+    #[inline(always)]
+    fn tested_behind_box(&self, o: u32) -> bool {
+        self.csg_pruning || !matches!(self.objects[o as usize].geometry, Geometry::Csg(_))
     }
 
     /// Nearest crossing of one object's surface with t_min < t < t_max. Kept out of line: its
@@ -890,9 +872,8 @@ impl Scene {
     /// at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
         if self.in_lanes {
-            let boxes = self.packet_boxes(rays);
             for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
-                self.intersect_in_lanes(rays, boxes.as_ref(), hits, stats);
+                self.intersect_in_lanes(rays, hits, stats);
             }
             return;
         }
@@ -981,11 +962,9 @@ impl Scene {
     /// directions will do: an any-hit search visits the nodes in a fixed order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
         if self.in_lanes {
-            let boxes = self.packet_boxes(rays);
             let mut blocked = 0;
             for (k, (rays, t_max)) in rays.chunks(LANES).zip(t_max.chunks(LANES)).enumerate() {
-                blocked |=
-                    self.occluded_in_lanes(rays, boxes.as_ref(), t_max, stats) << (k * LANES);
+                blocked |= self.occluded_in_lanes(rays, t_max, stats) << (k * LANES);
             }
             return blocked;
         }
@@ -1048,14 +1027,9 @@ impl Scene {
     /// of them at once). Each ray meets the objects in the same order as in `intersect`, with
     /// the same arithmetic and the same shrinking limit, so it finds the same hit and counts
     /// the same tests.
-    fn intersect_in_lanes(
-        &self,
-        rays: &[Ray],
-        boxes: Option<&PacketBoxes>,
-        hits: &mut [Option<Hit>],
-        stats: &mut Stats,
-    ) {
+    fn intersect_in_lanes(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
         let lanes = RayLanes::new(rays);
+        let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
         let used = (1u32 << rays.len()) - 1;
         let all = lane_mask(used);
         let mut limit = f64x4::splat(f64::INFINITY);
@@ -1121,9 +1095,9 @@ impl Scene {
                     }
                 }
                 Probe::Object(o) => {
-                    let boxes = boxes.expect("boxed objects get the packet's boxes");
+                    let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
                     let mut t_max = limit.to_array();
-                    self.object_in_lanes(*o, rays, boxes, &mut t_max, hits, stats);
+                    self.object_in_lanes(*o, rays, slabs, &mut t_max, hits, stats);
                     limit = f64x4::new(t_max);
                 }
             }
@@ -1135,14 +1109,9 @@ impl Scene {
     /// any other object ray by ray, as in `intersect_in_lanes`. Each ray meets the objects in
     /// the same order as in `occluded`, with the same arithmetic, so it is blocked by the same
     /// one and counts the same tests.
-    fn occluded_in_lanes(
-        &self,
-        rays: &[Ray],
-        boxes: Option<&PacketBoxes>,
-        t_max: &[f64],
-        stats: &mut Stats,
-    ) -> u32 {
+    fn occluded_in_lanes(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
         let lanes = RayLanes::new(rays);
+        let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
         let mut reach = [0.0; LANES];
         reach[..t_max.len()].copy_from_slice(t_max);
         let reach = f64x4::new(reach);
@@ -1183,8 +1152,8 @@ impl Scene {
                     }
                 }
                 Probe::Object(o) => {
-                    let boxes = boxes.expect("boxed objects get the packet's boxes");
-                    open &= !self.object_blocks_lanes(*o, rays, boxes, t_max, open, stats);
+                    let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
+                    open &= !self.object_blocks_lanes(*o, rays, slabs, reach, open, stats);
                 }
             }
         }
