@@ -279,24 +279,11 @@ mod tests {
     fn lanes_hit_miss_graze_and_stop_short() {
         let b = Aabb::new(-DVec3::ONE, DVec3::ONE);
         let z = DVec3::new(0.0, 0.0, 1.0);
-        let rays = [
-            Ray {
-                origin: DVec3::new(0.0, 0.0, -5.0),
-                dir: z,
-            },
-            Ray {
-                origin: DVec3::new(2.0, 0.0, -5.0),
-                dir: z,
-            },
-            Ray {
-                origin: DVec3::new(1.0, 0.0, -5.0),
-                dir: z,
-            },
-            Ray {
-                origin: DVec3::new(0.0, 0.0, -5.0),
-                dir: z,
-            },
-        ];
+        // From x = 0 (through), x = 2 (beside), x = 1 (in the face x = 1), x = 0 again.
+        let rays = [0.0, 2.0, 1.0, 0.0].map(|x| Ray {
+            origin: DVec3::new(x, 0.0, -5.0),
+            dir: z,
+        });
         let slabs = SlabLanes::new(&RayLanes::new(&rays));
         let t_max = f64x4::new([f64::INFINITY, f64::INFINITY, f64::INFINITY, 3.9]);
         assert_eq!(b.hit_lanes(&slabs, 0.0, t_max), 0b0101);
