@@ -1023,8 +1023,7 @@ impl Scene {
 
     /// `intersect` (t_min = 0, t_max = ∞) for up to four rays in a scene without a BVH: each
     /// plain sphere or plane is tested against all the rays at once, in `RayLanes`, and any
-    /// other object ray by ray, behind its box (which the packet's `hull` may rule out for all
-    /// of them at once). Each ray meets the objects in the same order as in `intersect`, with
+    /// other object ray by ray, behind its box (tested against all the rays at once). Each ray meets the objects in the same order as in `intersect`, with
     /// the same arithmetic and the same shrinking limit, so it finds the same hit and counts
     /// the same tests.
     fn intersect_in_lanes(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
