@@ -480,11 +480,11 @@ impl Scene {
         stats: &mut Stats,
     ) -> u32 {
         let passed = self.box_passed_by(o, open, slabs, t_max, stats);
+        let reach = t_max.to_array();
         let mut blocked = 0;
         for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
-            let ray = &rays[i];
             if self
-                .object_hit(o, ray, slabs.inv_dir(i), 0.0, t_max.to_array()[i], stats)
+                .object_hit(o, &rays[i], slabs.inv_dir(i), 0.0, reach[i], stats)
                 .is_some()
             {
                 blocked |= 1 << i;
@@ -1023,9 +1023,9 @@ impl Scene {
 
     /// `intersect` (t_min = 0, t_max = ∞) for up to four rays in a scene without a BVH: each
     /// plain sphere or plane is tested against all the rays at once, in `RayLanes`, and any
-    /// other object ray by ray, behind its box (tested against all the rays at once). Each ray meets the objects in the same order as in `intersect`, with
-    /// the same arithmetic and the same shrinking limit, so it finds the same hit and counts
-    /// the same tests.
+    /// other object ray by ray, behind its box (tested against all the rays at once). Each
+    /// ray meets the objects in the same order as in `intersect`, with the same arithmetic and
+    /// the same shrinking limit, so it finds the same hit and counts the same tests.
     fn intersect_in_lanes(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
         let lanes = RayLanes::new(rays);
         let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
