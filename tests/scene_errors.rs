@@ -59,3 +59,45 @@ fn a_good_scene_parses() {
     let text = format!("{CAMERA}materials: {{ m: {{ kd: 1 }} }}\nobjects: [ {{ name: s, sphere: {{ center: [0, 0, 0], radius: 1 }}, material: m }} ]");
     parse(&text, "good.yaml", None, &Limits::default()).unwrap();
 }
+
+/// A large file's object list parses in pieces on several threads (`scene/split.rs`); its
+/// mistakes are still reported where they are, and the last of its mistakes too (in the last
+/// piece), whatever the thread count.
+#[test]
+fn a_mistake_deep_in_a_large_file_names_its_line_and_column() {
+    let mut text = format!("{CAMERA}materials: {{ m: {{ kd: 1 }} }}\nobjects:\n");
+    for i in 0..4000 {
+        text +=
+            &format!("  - {{ sphere: {{ center: [{i}, 0, 0], radius: 0.25 }}, material: m }}\n");
+    }
+    assert!(text.len() > 128 * 1024, "large enough to be cut");
+    // (item, its mistake, what is reported where): the compiler points at a bad number, the
+    // parser at an unknown key.
+    for (i, mistake, pointed_at) in [
+        (3, "radius: -0.25", "-0.25"),
+        (2500, "radius: -0.25", "-0.25"),
+        (3999, "radious: 0.25", "radious"),
+    ] {
+        let at = format!("center: [{i}, 0, 0], ");
+        let spoiled = text.replacen(&format!("{at}radius: 0.25"), &format!("{at}{mistake}"), 1);
+        let line = 4 + i;
+        let shown = spoiled.lines().nth(line - 1).unwrap();
+        assert!(shown.contains(mistake));
+        let column = shown.find(pointed_at).unwrap() + 1;
+        for threads in [1, 2, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let e = pool
+                .install(|| parse(&spoiled, "big.yaml", None, &Limits::default()))
+                .err()
+                .unwrap_or_else(|| panic!("{mistake} at {i} accepted"));
+            assert_eq!(
+                (e.line, e.column),
+                (line as u64, column as u64),
+                "{threads} threads: {e}"
+            );
+        }
+    }
+}

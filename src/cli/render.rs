@@ -79,7 +79,11 @@ fn strip(frames: &[crate::render::Image]) -> crate::render::Image {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let mut scene = a.scene.load()?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(a.threads.unwrap_or(0))
+        .build()?;
+    // Large scene files parse on the pool's threads too (and only on those).
+    let mut scene = pool.install(|| a.scene.load())?;
     let same = |p: &std::path::Path| p.canonicalize().ok();
     if a.output.exists() && same(&a.output) == same(&a.scene.scene) {
         return Err(Failure(format!(
@@ -115,10 +119,6 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         seed: a.seed,
         antialias: antialias(&scene, a.aa, a.aa_threshold)?,
     };
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(a.threads.unwrap_or(0))
-        .build()?;
-
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(h as u64);
         bar.set_style(

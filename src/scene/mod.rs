@@ -5,10 +5,14 @@ mod compile;
 mod compiled;
 mod error;
 pub mod format;
+mod split;
 
 pub use format::Integrator;
 
 use std::path::Path;
+
+use rayon::prelude::*;
+use serde_saphyr::Spanned;
 
 pub use compile::Limits;
 pub use compiled::{Accel, Features, Geometry, Hit, Interaction, Leaf, Object, Scene};
@@ -71,18 +75,7 @@ pub fn parse(
             message: "empty scene file".into(),
         });
     }
-    let parsed: format::SceneFile = serde_saphyr::from_str_with_options(text, parse_options())
-        .map_err(|e| {
-            let (line, column) = e
-                .location()
-                .map_or((1, 1), |l| (l.line().max(1), l.column().max(1)));
-            SceneError {
-                file: file.into(),
-                line,
-                column,
-                message: parser_message(&e.to_string()),
-            }
-        })?;
+    let parsed = parse_yaml(text, file)?;
     compile::compile(parsed, path.map(Path::to_path_buf), limits)
         .map_err(|e| empty_camera(text, e))
         .map_err(|e| SceneError {
@@ -91,6 +84,53 @@ pub fn parse(
             column: e.pos.column,
             message: e.message,
         })
+}
+
+/// Parses the YAML of a scene file: large files on all threads (see `split`).
+fn parse_yaml(text: &str, file: &str) -> Result<format::SceneFile, SceneError> {
+    match split::split(text, rayon::current_num_threads()) {
+        Some(split) => parse_split(split, file),
+        None => from_yaml(text, file),
+    }
+}
+
+/// Parses a file's pieces in parallel and joins their objects in order.
+fn parse_split(split: split::Split, file: &str) -> Result<format::SceneFile, SceneError> {
+    let (head, pieces) = rayon::join(
+        || from_yaml::<format::SceneFile>(&split.head, file),
+        || {
+            let pieces = split.pieces.par_iter();
+            pieces
+                .map(|p| from_yaml::<Vec<Spanned<format::ObjectSpec>>>(p, file))
+                .collect::<Vec<_>>()
+        },
+    );
+    // Reading the file in one go would stop at its first error.
+    let errors = head.as_ref().err().into_iter();
+    let errors = errors.chain(pieces.iter().filter_map(|p| p.as_ref().err()));
+    if let Some(first) = errors.min_by_key(|e| (e.line, e.column)) {
+        return Err(first.clone());
+    }
+    let mut scene = head?;
+    for piece in pieces {
+        scene.objects.extend(piece?);
+    }
+    Ok(scene)
+}
+
+/// Deserialises YAML text, with the parser's errors said for a scene's author.
+fn from_yaml<T: serde::de::DeserializeOwned>(text: &str, file: &str) -> Result<T, SceneError> {
+    serde_saphyr::from_str_with_options(text, parse_options()).map_err(|e| {
+        let (line, column) = e
+            .location()
+            .map_or((1, 1), |l| (l.line().max(1), l.column().max(1)));
+        SceneError {
+            file: file.into(),
+            line,
+            column,
+            message: parser_message(&e.to_string()),
+        }
+    })
 }
 
 /// `camera:` with nothing after it parses as no camera at all; point at the empty key.
