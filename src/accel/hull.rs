@@ -18,6 +18,7 @@ use wide::f64x4;
 
 use super::aabb::overlaps;
 use super::Aabb;
+use crate::geometry::lane_mask;
 
 /// What the hull says about every ray of the packet and one box.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -66,20 +67,12 @@ impl Hull {
             inv_lo = inv_lo.min(inv);
             inv_hi = inv_hi.max(inv);
         }
-        let all_ones = f64::from_bits(u64::MAX);
-        let mask = [0, 1, 2].map(|axis| {
-            if negative & (1 << axis) != 0 {
-                all_ones
-            } else {
-                0.0
-            }
-        });
         sound.then_some(Hull {
             origin_lo: lanes(origin_lo),
             origin_hi: lanes(origin_hi),
             inv_lo: lanes(inv_lo),
             inv_hi: lanes(inv_hi),
-            negative: lanes(DVec3::from_array(mask)),
+            negative: lane_mask(negative),
         })
     }
 

@@ -96,13 +96,15 @@ fn parse_yaml(text: &str, file: &str) -> Result<format::SceneFile, SceneError> {
 
 /// Parses a file's pieces in parallel and joins their objects in order.
 fn parse_split(split: split::Split, file: &str) -> Result<format::SceneFile, SceneError> {
-    let (head, pieces) = rayon::join(
+    type Objects = Vec<Spanned<format::ObjectSpec>>;
+    let (head, pieces): (_, Vec<_>) = rayon::join(
         || from_yaml::<format::SceneFile>(&split.head, file),
         || {
-            let pieces = split.pieces.par_iter();
-            pieces
-                .map(|p| from_yaml::<Vec<Spanned<format::ObjectSpec>>>(p, file))
-                .collect::<Vec<_>>()
+            split
+                .pieces
+                .par_iter()
+                .map(|p| from_yaml::<Objects>(p, file))
+                .collect()
         },
     );
     // Reading the file in one go would stop at its first error.
