@@ -8,7 +8,7 @@ use wide::f64x4;
 
 use crate::accel::bvh::{signs, PACKET};
 use crate::accel::{Aabb, Bvh, SlabLanes};
-use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
+use crate::geometry::csg::{CsgNode, CsgOp, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use crate::geometry::sphere_group::{sphere_against_lanes, LANES};
 use crate::geometry::{
@@ -17,7 +17,7 @@ use crate::geometry::{
 };
 use crate::geometry::{lane_mask, RayLanes};
 use crate::render::Camera;
-use crate::shading::{Light, Material};
+use crate::shading::{Light, LightKind, Material};
 use crate::trace::Stats;
 
 /// A primitive in the scene: a plain object, or a leaf of a CSG tree.
@@ -274,6 +274,9 @@ pub struct Scene {
     /// No BVH: a packet's rays, primary, shadow and secondary, are tested four at a time
     /// (`intersect_in_lanes`, `occluded_in_lanes`).
     in_lanes: bool,
+    /// Per object and light (`object · lights + light`): the object is a bounded convex solid
+    /// and the light lies outside it, so a shadow ray from a point inside it is blocked by it.
+    hides_light_inside: Vec<bool>,
 }
 
 impl LeafSegments for Scene {
@@ -369,6 +372,7 @@ impl Scene {
             boxes_outside_bvh: false,
             boxed_objects: false,
             in_lanes: false,
+            hides_light_inside: vec![],
         };
         scene.transparent_objects = scene
             .leaves
@@ -381,8 +385,67 @@ impl Scene {
                 }
                 v
             });
+        scene.hides_light_inside = (0..scene.objects.len() as u32)
+            .flat_map(|o| (0..scene.lights.len()).map(move |k| (o, k)))
+            .map(|(o, k)| scene.is_bounded_convex(o) && scene.light_outside(o, k))
+            .collect();
         scene.set_accel(Accel::Bvh);
         scene
+    }
+
+    /// Whether a shadow ray toward light k from a point inside object o is surely blocked by
+    /// o: a bounded convex solid holds the whole segment between any two of its points, so
+    /// the segment from a point inside it to a light outside it must cross its surface.
+    #[inline]
+    pub fn hides_light_inside(&self, object: u32, light: usize) -> bool {
+        self.hides_light_inside[object as usize * self.lights.len() + light]
+    }
+
+    /// A bounded convex solid: a sphere, box, cylinder or cone (moved as a transform says),
+    /// or a CSG intersection of such solids.
+    fn is_bounded_convex(&self, object: u32) -> bool {
+        fn convex(scene: &Scene, node: &CsgNode) -> bool {
+            match node {
+                CsgNode::Leaf { leaf, .. } => scene.leaves[*leaf as usize].shape.is_convex_solid(),
+                CsgNode::Op { op, children, .. } => {
+                    *op == CsgOp::Intersection && children.iter().all(|c| convex(scene, c))
+                }
+            }
+        }
+        let o = &self.objects[object as usize];
+        o.bounds.is_finite()
+            && match &o.geometry {
+                Geometry::Leaf(leaf) => self.leaves[*leaf as usize].shape.is_convex_solid(),
+                Geometry::Csg(root) => convex(self, root),
+            }
+    }
+
+    /// Whether light k lies wholly outside object o: a point light not in it, any
+    /// directional light (a bounded object cannot hold infinity), an area light whose box
+    /// does not meet the object's.
+    fn light_outside(&self, object: u32, light: usize) -> bool {
+        let bounds = &self.objects[object as usize].bounds;
+        let apart = |b: Aabb| bounds.intersection(&b).is_empty();
+        match &self.lights[light].kind {
+            LightKind::Directional { .. } => true,
+            LightKind::Point { position, .. } => {
+                let probe = Ray {
+                    origin: *position,
+                    dir: DVec3::Y,
+                };
+                apart(Aabb::point(*position))
+                    || !self.contains(object, &probe, &mut Stats::default())
+            }
+            LightKind::Rect { corner, u, v, .. } => apart(
+                Aabb::point(*corner)
+                    .grow(*corner + *u)
+                    .grow(*corner + *v)
+                    .grow(*corner + *u + *v),
+            ),
+            LightKind::Sphere { center, radius, .. } => {
+                apart(Aabb::new(*center - *radius, *center + *radius))
+            }
+        }
     }
 
     /// Is the probe ray's origin inside the object? (Inside a segment of its list; for a mesh,

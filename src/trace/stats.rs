@@ -12,6 +12,9 @@ pub struct Stats {
     pub shadow_skipped_backfacing: u64,
     /// Shadow rays not cast because the light has zero intensity.
     pub shadow_skipped_dark: u64,
+    /// Shadow rays not cast because they start inside a convex solid the light is outside
+    /// of: the solid itself blocks them.
+    pub shadow_skipped_inside: u64,
     /// Secondary rays not cast because the path reached the maximum depth.
     pub max_depth_cutoffs: u64,
     /// Secondary rays not cast because their weight fell below the adaptive threshold.
@@ -44,6 +47,7 @@ impl Stats {
         self.refraction_rays += o.refraction_rays;
         self.shadow_skipped_backfacing += o.shadow_skipped_backfacing;
         self.shadow_skipped_dark += o.shadow_skipped_dark;
+        self.shadow_skipped_inside += o.shadow_skipped_inside;
         self.max_depth_cutoffs += o.max_depth_cutoffs;
         self.adaptive_cutoffs += o.adaptive_cutoffs;
         self.total_internal_reflections += o.total_internal_reflections;
@@ -71,6 +75,10 @@ impl Stats {
             self.shadow_skipped_backfacing,
         );
         line("skipped: shadow rays, dark light", self.shadow_skipped_dark);
+        line(
+            "skipped: shadow rays inside convex solids",
+            self.shadow_skipped_inside,
+        );
         line(
             "skipped: secondary rays at max depth",
             self.max_depth_cutoffs,

@@ -377,8 +377,8 @@ impl<'s> Tracer<'s> {
         let v = -task.ray.dir;
         let mut color = ambient(m, scene.ambient);
         let mut terms = Vec::new();
-        for light in &scene.lights {
-            let (sample, lit, skipped) = self.light_share(m, &si, v, light, R::ACTIVE, stats);
+        for (k, light) in scene.lights.iter().enumerate() {
+            let (sample, lit, skipped) = self.light_share(m, &si, v, k, R::ACTIVE, stats);
             let s = match skipped {
                 Some(_) => 0.0,
                 None => self.shadow_factor(
@@ -460,7 +460,7 @@ impl<'s> Tracer<'s> {
                 }
             }
         }
-        for light in &scene.lights {
+        for (k, light) in scene.lights.iter().enumerate() {
             let single = light.shadow_rays() == 1 && self.options.shadows;
             let mut terms = [DVec3::ZERO; PACKET];
             let mut shadow_rays = [Ray::UNUSED; PACKET];
@@ -471,7 +471,7 @@ impl<'s> Tracer<'s> {
                 let Some(si) = &shaded[i] else { continue };
                 let m = scene.material(si.material);
                 let (sample, lit, skipped) =
-                    self.light_share(m, si, -tasks.ray(i).dir, light, false, stats);
+                    self.light_share(m, si, -tasks.ray(i).dir, k, false, stats);
                 terms[i] = lit.diffuse + lit.specular;
                 if skipped.is_some() {
                     out[i] += 0.0 * terms[i];
@@ -611,18 +611,20 @@ impl<'s> Tracer<'s> {
         }
     }
 
-    /// One light's diffuse and specular terms at a shaded point, before the shadow factor,
-    /// and why no shadow ray is needed, if none is. `shows`: the terms go into a recorded tree.
+    /// Light k's diffuse and specular terms at a shaded point, before the shadow factor,
+    /// and why no shadow ray is needed, if none is (then the shadow factor is 0).
+    /// `shows`: the terms go into a recorded tree.
     #[inline(always)]
     fn light_share(
         &self,
         m: &Material,
         si: &Interaction,
         v: DVec3,
-        light: &Light,
+        k: usize,
         shows: bool,
         stats: &mut Stats,
     ) -> (LightSample, LightTerms, Option<&'static str>) {
+        let light = &self.scene.lights[k];
         let sample = light.sample(si.point);
         let lit = light_terms(
             m,
@@ -638,6 +640,11 @@ impl<'s> Tracer<'s> {
         } else if light.is_dark() {
             stats.shadow_skipped_dark += 1;
             Some("light has zero intensity")
+        } else if si.inside && self.options.shadows && self.scene.hides_light_inside(si.object, k) {
+            // The ray travels inside a convex solid (a glass lens, say): the way to a light
+            // outside leaves the solid, whose surface is in the way.
+            stats.shadow_skipped_inside += 1;
+            Some("inside a convex solid the light is outside of: the solid blocks it")
         } else {
             None
         };
