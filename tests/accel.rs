@@ -271,6 +271,77 @@ proptest! {
     }
 }
 
+/// A lens (A ∩ B) whose spheres sit on a coarse grid, so that they are often equal, tangent,
+/// concentric or one inside the other, with a plane behind it (so that rays that miss it have
+/// a limit), and rays from grid points, from points on either sphere (rays leaving the lens, or
+/// bouncing inside it) and a pixel's samples.
+fn lens_scene_and_rays() -> impl Strategy<Value = (Scene, Vec<Ray>)> {
+    let grid = || (-4i32..=4).prop_map(|k| k as f64 * 0.5);
+    let sphere = move || {
+        (
+            grid(),
+            grid(),
+            grid(),
+            prop::sample::select(vec![0.5, 1.0, 1.5, 2.0]),
+        )
+            .prop_map(|(x, y, z, r)| (DVec3::new(x, y, z), r))
+    };
+    let ray = move || {
+        (
+            (grid(), grid(), grid()),
+            prop::array::uniform3(-2i8..=2),
+            0..3usize,
+            prop::array::uniform3(-1.0..1.0f64),
+        )
+    };
+    (sphere(), sphere(), prop::collection::vec(ray(), 1..=16)).prop_map(|(a, b, rays)| {
+        let yaml = format!(
+            "camera: {{ eye: [0, 0, -30], look_at: [0, 0, 0] }}
+lights: [ {{ point: [10, 20, -20] }} ]
+materials: {{ m: {{ kd: 0.6 }} }}
+objects:
+  - {{ name: back, plane: {{ point: [0, 0, 6], normal: [0, 0, -1] }}, material: m }}
+  - {{ name: lens, material: m, intersection: [ {{ sphere: {{ center: [{}, {}, {}], radius: {} }} }}, {{ sphere: {{ center: [{}, {}, {}], radius: {} }} }} ] }}
+",
+            a.0.x, a.0.y, a.0.z, a.1, b.0.x, b.0.y, b.0.z, b.1
+        );
+        let scene = parse(&yaml, "lens.yaml", None, &Limits::default()).unwrap();
+        let rays = rays
+            .into_iter()
+            .map(|((x, y, z), d, from, at)| {
+                let d = DVec3::from_array(d.map(f64::from)).try_normalize().unwrap_or(DVec3::Z);
+                let on = |(c, r): (DVec3, f64)| {
+                    c + r * DVec3::from_array(at).try_normalize().unwrap_or(DVec3::X)
+                };
+                let origin = [DVec3::new(x, y, z), on(a), on(b)][from];
+                Ray::new(origin, d)
+            })
+            .collect();
+        (scene, rays)
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 600, ..ProptestConfig::default() })]
+
+    /// A lens tested four rays at a time (`Lens::hits`) finds what each ray's own CSG
+    /// evaluation finds, to the last bit of t and on the same sphere, and counts the same
+    /// tests and pruning; with the CSG boxes and pruning on or off; for nearest hits and for
+    /// shadow rays of any reach.
+    #[test]
+    fn a_lens_in_lanes_finds_what_its_rays_find_one_by_one(
+        (scene, rays) in lens_scene_and_rays(),
+        pruning in prop::bool::ANY,
+        reach in prop::sample::select(vec![0.0, 0.5, 1.0, 2.75, f64::INFINITY]),
+    ) {
+        let mut scene = scene;
+        scene.csg_pruning = pruning;
+        assert_packet_is_one_by_one(&scene, &rays)?;
+        let reach = vec![reach; rays.len()];
+        assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
+    }
+}
+
 /// A peer scene of `benches/peers/` at 40×30, too small for a BVH.
 fn small_peer_scene(name: &str) -> Scene {
     let yaml = std::fs::read_to_string(format!("benches/peers/{name}.yaml"))

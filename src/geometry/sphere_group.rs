@@ -182,6 +182,88 @@ fn crossings(
     Some(crossed.bitselect(t, f64x4::splat(f64::NAN)))
 }
 
+/// The quadratic a·t² + 2b·t + c = 0 of four (ray, sphere) pairs (lane i pairs ray lane i
+/// with sphere lane i), and the tests `Sphere::span` and `Sphere::hit` make before any
+/// division: the steps of `Quadratic::new` and `clearly_misses`, in the same order.
+#[derive(Clone, Copy)]
+pub(crate) struct LaneQuadratic {
+    a: f64x4,
+    b: f64x4,
+    c: f64x4,
+    /// o − centre.
+    oc: [f64x4; 3],
+    dir: [f64x4; 3],
+    r2: f64x4,
+    /// All ones where the line clearly passes the sphere by.
+    pub passes: f64x4,
+    /// All ones where the ray starts outside and moves away.
+    pub away: f64x4,
+    /// All ones where a, b and c are finite (then a span's ends are finite and in order).
+    pub finite: f64x4,
+}
+
+impl LaneQuadratic {
+    #[inline(always)]
+    pub(crate) fn new(rays: &RayLanes, centre: [f64x4; 3], r2: f64x4) -> LaneQuadratic {
+        let [dx, dy, dz] = rays.dir;
+        let a = rays.a;
+        let zero = f64x4::ZERO;
+        let ox = rays.origin[0] - centre[0];
+        let oy = rays.origin[1] - centre[1];
+        let oz = rays.origin[2] - centre[2];
+        let oc2 = ox * ox + oy * oy + oz * oz;
+        let b = dx * ox + dy * oy + dz * oz;
+        let c = oc2 - r2;
+        let scale = b * b + a * (oc2 + r2);
+        let d = b * b - a * c;
+        let infinity = f64x4::splat(f64::INFINITY);
+        LaneQuadratic {
+            a,
+            b,
+            c,
+            oc: [ox, oy, oz],
+            dir: rays.dir,
+            r2,
+            passes: scale.simd_gt(f64x4::splat(MISS_TEST_FLOOR))
+                & d.simd_lt(f64x4::splat(-MISS_MARGIN) * scale),
+            away: c.simd_gt(zero) & b.simd_gt(zero),
+            finite: a.abs().simd_lt(infinity)
+                & b.abs().simd_lt(infinity)
+                & c.abs().simd_lt(infinity),
+        }
+    }
+
+    /// disc = r² − ℓ² (ℓ the distance from the centre to the line), and all ones where it
+    /// says the line has no root: the first division.
+    #[inline(always)]
+    pub(crate) fn disc(&self) -> (f64x4, f64x4) {
+        let [ox, oy, oz] = self.oc;
+        let [dx, dy, dz] = self.dir;
+        let s = self.b / self.a;
+        let (lx, ly, lz) = (ox - s * dx, oy - s * dy, oz - s * dz);
+        let disc = self.r2 - (lx * lx + ly * ly + lz * lz);
+        let no_root = disc.simd_lt(f64x4::splat(-TANGENT_TOLERANCE) * self.r2);
+        (disc, no_root)
+    }
+
+    /// The entry and exit t from `disc`: the square root and the last divisions.
+    #[inline(always)]
+    pub(crate) fn roots(&self, disc: f64x4) -> (f64x4, f64x4) {
+        let (a, b, c, zero) = (self.a, self.b, self.c, f64x4::ZERO);
+        let disc = disc.simd_lt(zero).bitselect(zero, disc);
+        // q = −(b + sign(b)·√disc), t = q/a and c/q. (sign(b) for a NaN b does not matter:
+        // q is NaN either way.)
+        let root = (a * disc).sqrt();
+        let sign = (b & f64x4::splat(-0.0)) | f64x4::ONE;
+        let q = -(b + sign * root);
+        let (x, y) = (q / a, c / q);
+        let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
+        let t_in = q0.bitselect(zero, tangent.bitselect(x, x.min(y)));
+        let t_out = q0.bitselect(zero, tangent.bitselect(x, x.max(y)));
+        (t_in, t_out)
+    }
+}
+
 /// The steps of `Sphere::span` (and of `Sphere::hit` up to its choice of root, which also
 /// leaves out lines starting outside and moving `away` when asked) for four (ray, sphere)
 /// pairs: each lane's entry and exit, and all ones in the lanes of `open` whose line crosses
@@ -200,59 +282,25 @@ fn lane_spans(
     away: bool,
     common: bool,
 ) -> Result<(f64x4, f64x4, f64x4), u32> {
-    let [dx, dy, dz] = rays.dir;
-    let a = rays.a;
-    let zero = f64x4::ZERO;
-    // a·t² + 2b·t + c = 0 with oc = o − centre.
-    let ox = rays.origin[0] - centre[0];
-    let oy = rays.origin[1] - centre[1];
-    let oz = rays.origin[2] - centre[2];
-    let oc2 = ox * ox + oy * oy + oz * oz;
-    let b = dx * ox + dy * oy + dz * oz;
-    let c = oc2 - r2;
-    // Outside and moving away; a line that clearly passes by.
-    let away = if away {
-        c.simd_gt(zero) & b.simd_gt(zero)
-    } else {
-        zero
-    };
-    let scale = b * b + a * (oc2 + r2);
-    let d = b * b - a * c;
-    let passes = scale.simd_gt(f64x4::splat(MISS_TEST_FLOOR))
-        & d.simd_lt(f64x4::splat(-MISS_MARGIN) * scale);
+    let q = LaneQuadratic::new(rays, centre, r2);
+    let away = if away { q.away } else { f64x4::ZERO };
     // (The common part stops at the first lane behind the origin, below; a span behind the
     // origin is still a span.)
-    let crossing = open & !(if common { passes } else { away | passes });
+    let crossing = open & !(if common { q.passes } else { away | q.passes });
     if !common && crossing.to_bitmask() == 0 {
-        return Err((open & passes).to_bitmask());
+        return Err((open & q.passes).to_bitmask());
     }
-    // disc = r² − ℓ², ℓ the distance from the centre to the line.
-    let s = b / a;
-    let (lx, ly, lz) = (ox - s * dx, oy - s * dy, oz - s * dz);
-    let disc = r2 - (lx * lx + ly * ly + lz * lz);
-    let no_root = disc.simd_lt(f64x4::splat(-TANGENT_TOLERANCE) * r2);
+    let (disc, no_root) = q.disc();
     if common {
         // Whether a lane has a span is known now, and `Sphere::span`'s ends are finite and in
         // order where a, b and c are finite: a lane behind the origin then lies before t = 0.
-        let infinity = f64x4::splat(f64::INFINITY);
-        let finite =
-            a.abs().simd_lt(infinity) & b.abs().simd_lt(infinity) & c.abs().simd_lt(infinity);
-        let empty = open & (passes | no_root);
-        let all_finite = (open & !finite).to_bitmask() == 0;
+        let empty = open & (q.passes | no_root);
+        let all_finite = (open & !q.finite).to_bitmask() == 0;
         if all_finite && (empty | (open & away)).to_bitmask() != 0 {
             return Err(empty.to_bitmask());
         }
     }
-    let disc = disc.simd_lt(zero).bitselect(zero, disc);
-    // q = −(b + sign(b)·√disc), t = q/a and c/q. (sign(b) for a NaN b does not matter:
-    // q is NaN either way.)
-    let root = (a * disc).sqrt();
-    let sign = (b & f64x4::splat(-0.0)) | f64x4::ONE;
-    let q = -(b + sign * root);
-    let (x, y) = (q / a, c / q);
-    let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
-    let t_in = q0.bitselect(zero, tangent.bitselect(x, x.min(y)));
-    let t_out = q0.bitselect(zero, tangent.bitselect(x, x.max(y)));
+    let (t_in, t_out) = q.roots(disc);
     Ok((t_in, t_out, crossing & !no_root))
 }
 

@@ -12,8 +12,8 @@ use crate::geometry::csg::{CsgNode, CsgOp, CsgRay, CsgTrace, CsgWork, LeafSegmen
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use crate::geometry::sphere_group::{sphere_against_lanes, LANES};
 use crate::geometry::{
-    first_crossing, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, SphereGroup, Surface,
-    Transform,
+    first_crossing, LensHits, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, SphereGroup,
+    Surface, Transform,
 };
 use crate::geometry::{lane_mask, RayLanes};
 use crate::render::Camera;
@@ -122,6 +122,24 @@ pub struct Hit {
     pub t: f64,
     pub object: u32,
     pub surface: Surface,
+}
+
+/// A lens's hits for four rays, with the leaves of its two spheres.
+struct LensInLanes {
+    hits: LensHits,
+    leaves: [u32; 2],
+}
+
+impl LensInLanes {
+    /// The hit of ray i at t, on the sphere the lens's walk found.
+    fn hit(&self, object: u32, i: usize, t: f64) -> Hit {
+        let on_b = self.hits.on_b & (1 << i) != 0;
+        Hit {
+            t,
+            object,
+            surface: Surface::new(self.leaves[on_b as usize], 0),
+        }
+    }
 }
 
 /// How the hit searches test one object. Plain (untransformed) spheres and planes are tested
@@ -510,18 +528,28 @@ impl Scene {
     /// against all of them at once, then the object ray by ray where it passed, and each ray's
     /// nearest hit so far and its limit t_max are updated as `intersect` would.
     /// Out of line, so that the lanes' loop over plain spheres and planes stays small.
+    #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     fn object_in_lanes(
         &self,
         o: u32,
         rays: &[Ray],
+        lanes: &RayLanes,
         slabs: &SlabLanes,
         t_max: &mut [f64; LANES],
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
         let used = (1 << rays.len()) - 1;
-        let passed = self.box_passed_by(o, used, slabs, f64x4::new(*t_max), stats);
+        let mut passed = self.box_passed_by(o, used, slabs, f64x4::new(*t_max), stats);
+        if let Some(lens) = self.lens_in_lanes(o, lanes, passed, f64x4::new(*t_max), stats) {
+            let t = lens.hits.t.to_array();
+            for i in (0..rays.len()).filter(|i| lens.hits.hit & (1 << i) != 0) {
+                t_max[i] = t[i];
+                hits[i] = Some(lens.hit(o, i, t[i]));
+            }
+            passed = lens.hits.undecided;
+        }
         for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
             if let Some(h) = self.object_hit(o, &rays[i], slabs.inv_dir(i), 0.0, t_max[i], stats) {
                 t_max[i] = h.t;
@@ -532,19 +560,25 @@ impl Scene {
 
     /// Object o against the shadow rays of a packet still `open` (bit i: ray i), behind its
     /// box tried against all of them at once: the bits of the rays it blocks.
+    #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     fn object_blocks_lanes(
         &self,
         o: u32,
         rays: &[Ray],
+        lanes: &RayLanes,
         slabs: &SlabLanes,
         t_max: f64x4,
         open: u32,
         stats: &mut Stats,
     ) -> u32 {
-        let passed = self.box_passed_by(o, open, slabs, t_max, stats);
+        let mut passed = self.box_passed_by(o, open, slabs, t_max, stats);
         let reach = t_max.to_array();
         let mut blocked = 0;
+        if let Some(lens) = self.lens_in_lanes(o, lanes, passed, t_max, stats) {
+            blocked = lens.hits.hit;
+            passed = lens.hits.undecided;
+        }
         for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
             if self
                 .object_hit(o, &rays[i], slabs.inv_dir(i), 0.0, reach[i], stats)
@@ -574,6 +608,25 @@ impl Scene {
         let passed = lanes & self.objects[o as usize].bounds.hit_lanes(slabs, 0.0, t_max);
         stats.bounds_skipped += (lanes & !passed).count_ones() as u64;
         passed
+    }
+
+    /// Object o, if it is a lens (A ∩ B of two spheres), against the rays in `lanes` whose bits
+    /// are set in `open`, four at a time, counted as `object_hit` counts them ray by ray; the
+    /// rays it leaves undecided are for `object_hit`.
+    #[inline(always)]
+    fn lens_in_lanes(
+        &self,
+        o: u32,
+        lanes: &RayLanes,
+        open: u32,
+        t_max: f64x4,
+        stats: &mut Stats,
+    ) -> Option<LensInLanes> {
+        let (lens, leaves) = self.flat_csg[o as usize].as_ref()?.lens()?;
+        let hits = lens.hits(lanes, open, t_max, self.csg_pruning);
+        stats.primitives_tested += (open & !hits.undecided).count_ones() as u64;
+        stats.csg_pruned += hits.pruned.count_ones() as u64;
+        Some(LensInLanes { hits, leaves })
     }
 
     /// How the hit searches test an object: directly for a plain sphere or plane.
@@ -1159,7 +1212,7 @@ impl Scene {
                 Probe::Object(o) => {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
                     let mut t_max = limit.to_array();
-                    self.object_in_lanes(*o, rays, slabs, &mut t_max, hits, stats);
+                    self.object_in_lanes(*o, rays, &lanes, slabs, &mut t_max, hits, stats);
                     limit = f64x4::new(t_max);
                 }
             }
@@ -1215,7 +1268,7 @@ impl Scene {
                 }
                 Probe::Object(o) => {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
-                    open &= !self.object_blocks_lanes(*o, rays, slabs, reach, open, stats);
+                    open &= !self.object_blocks_lanes(*o, rays, &lanes, slabs, reach, open, stats);
                 }
             }
         }
