@@ -17,7 +17,7 @@ use wide::f64x4;
 
 use super::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
 use super::sphere_group::{SphereGroup, LANES};
-use super::{Lens, Ray, Span, Sphere, Surface};
+use super::{Ray, Span, Sphere, Surface};
 use crate::accel::Aabb;
 
 /// At most this many primitives: the inside flags fit a mask, the ends sort quickly, and the
@@ -35,9 +35,6 @@ pub struct FlatCsg {
     /// The operands, when all are spheres in world space and fit one group: then their spans
     /// are found side by side (the lens of the CSG peer scene).
     spheres: Option<SphereGroup>,
-    /// A ∩ B of two such spheres, with no box of their own to test: a lens, which packets of
-    /// rays can test four at a time.
-    lens: Option<Lens>,
 }
 
 /// The answer of `FlatCsg::nearest`.
@@ -79,7 +76,7 @@ impl FlatCsg {
                 }
                 CsgNode::Op { .. } => None,
             })
-            .collect::<Option<SmallVec<[(u32, Option<Aabb>); 2]>>>()?;
+            .collect::<Option<SmallVec<_>>>()?;
         let spheres = (leaves.len() <= LANES)
             .then(|| {
                 leaves
@@ -87,27 +84,22 @@ impl FlatCsg {
                     .map(|&(leaf, _)| sphere(leaf))
                     .collect::<Option<Vec<_>>>()
             })
-            .flatten();
-        let lens = match spheres.as_deref() {
-            Some([a, b])
-                if *op == CsgOp::Intersection && leaves.iter().all(|(_, b)| b.is_none()) =>
-            {
-                Some(Lens::new(a, b))
-            }
-            _ => None,
-        };
+            .flatten()
+            .map(|s| SphereGroup::new(&s));
         fits.then_some(FlatCsg {
             op: *op,
             leaves,
-            spheres: spheres.map(|s| SphereGroup::new(&s)),
-            lens,
+            spheres,
         })
     }
 
-    /// The object as a lens, with the leaves of its two spheres, when it is one.
-    pub fn lens(&self) -> Option<(&Lens, [u32; 2])> {
-        let lens = self.lens.as_ref()?;
-        Some((lens, [self.leaves[0].0, self.leaves[1].0]))
+    pub fn op(&self) -> CsgOp {
+        self.op
+    }
+
+    /// The operands in the tree's order: leaf, and the box worth testing before it.
+    pub fn operands(&self) -> &[(u32, Option<Aabb>)] {
+        &self.leaves
     }
 
     /// Inside the result, given the inside flags of the operands (bit k: operand k).

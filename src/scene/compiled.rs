@@ -10,9 +10,10 @@ use crate::accel::bvh::{signs, PACKET};
 use crate::accel::{Aabb, Bvh, SlabLanes};
 use crate::geometry::csg::{CsgNode, CsgOp, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
+use crate::geometry::csg_lanes::{CsgLanes, Operand};
 use crate::geometry::sphere_group::{sphere_against_lanes, LANES};
 use crate::geometry::{
-    first_crossing, LensHits, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, SphereGroup,
+    first_crossing, LanesHits, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, SphereGroup,
     Surface, Transform,
 };
 use crate::geometry::{lane_mask, RayLanes};
@@ -122,24 +123,6 @@ pub struct Hit {
     pub t: f64,
     pub object: u32,
     pub surface: Surface,
-}
-
-/// A lens's hits for four rays, with the leaves of its two spheres.
-struct LensInLanes {
-    hits: LensHits,
-    leaves: [u32; 2],
-}
-
-impl LensInLanes {
-    /// The hit of ray i at t, on the sphere the lens's walk found.
-    fn hit(&self, object: u32, i: usize, t: f64) -> Hit {
-        let on_b = self.hits.on_b & (1 << i) != 0;
-        Hit {
-            t,
-            object,
-            surface: Surface::new(self.leaves[on_b as usize], 0),
-        }
-    }
 }
 
 /// How the hit searches test one object. Plain (untransformed) spheres and planes are tested
@@ -283,6 +266,9 @@ pub struct Scene {
     /// Per object: its CSG tree's flat form, when it has one (nearest hits without segment
     /// lists).
     flat_csg: Vec<Option<FlatCsg>>,
+    /// Per object: its flat form of two operands the lanes can test (spheres and boxes), when
+    /// it has one (`csg_in_lanes`).
+    csg_lanes: Vec<Option<CsgLanes>>,
     /// Some object outside the BVH is tested behind its box: packets of rays tested in lanes
     /// then find their 1/d in lanes, for each such box's test of four rays at once.
     boxes_outside_bvh: bool,
@@ -386,6 +372,7 @@ impl Scene {
             bvh: Bvh::default(),
             bounded: vec![],
             unbounded: vec![],
+            csg_lanes: vec![],
             flat_csg,
             boxes_outside_bvh: false,
             boxed_objects: false,
@@ -403,12 +390,41 @@ impl Scene {
                 }
                 v
             });
+        scene.csg_lanes = scene
+            .flat_csg
+            .iter()
+            .map(|f| scene.lanes_form(f.as_ref()?))
+            .collect();
         scene.hides_light_inside = (0..scene.objects.len() as u32)
             .flat_map(|o| (0..scene.lights.len()).map(move |k| (o, k)))
             .map(|(o, k)| scene.is_bounded_convex(o) && scene.light_outside(o, k))
             .collect();
         scene.set_accel(Accel::Bvh);
         scene
+    }
+
+    /// The flat CSG object in the form `csg_in_lanes` tests, if it is one: two operands, each a
+    /// sphere in world space or a box (turned and moved as its transform says).
+    fn lanes_form(&self, flat: &FlatCsg) -> Option<CsgLanes> {
+        let [(a, a_box), (b, b_box)] = flat.operands() else {
+            return None;
+        };
+        let operand = |leaf: u32| {
+            let l = &self.leaves[leaf as usize];
+            match (&l.shape, &l.transform) {
+                (Shape::Sphere(s), None) => Some(CsgLanes::sphere(s)),
+                (Shape::Box(b), tf) => {
+                    Some(Operand::Box(b.clone(), tf.as_ref().map(|t| t.to_local)))
+                }
+                _ => None,
+            }
+        };
+        CsgLanes::new(
+            flat.op(),
+            [operand(*a), operand(*b)],
+            [*a, *b],
+            [*a_box, *b_box],
+        )
     }
 
     /// Whether a shadow ray toward light k from a point inside object o is surely blocked by
@@ -542,13 +558,19 @@ impl Scene {
     ) {
         let used = (1 << rays.len()) - 1;
         let mut passed = self.box_passed_by(o, used, slabs, f64x4::new(*t_max), stats);
-        if let Some(lens) = self.lens_in_lanes(o, lanes, passed, f64x4::new(*t_max), stats) {
-            let t = lens.hits.t.to_array();
-            for i in (0..rays.len()).filter(|i| lens.hits.hit & (1 << i) != 0) {
+        if let Some((csg, found)) =
+            self.csg_in_lanes(o, lanes, slabs, passed, f64x4::new(*t_max), stats)
+        {
+            let t = found.t.to_array();
+            for i in (0..rays.len()).filter(|i| found.hit & (1 << i) != 0) {
                 t_max[i] = t[i];
-                hits[i] = Some(lens.hit(o, i, t[i]));
+                hits[i] = Some(Hit {
+                    t: t[i],
+                    object: o,
+                    surface: csg.surface(&found, i),
+                });
             }
-            passed = lens.hits.undecided;
+            passed = found.undecided;
         }
         for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
             if let Some(h) = self.object_hit(o, &rays[i], slabs.inv_dir(i), 0.0, t_max[i], stats) {
@@ -575,9 +597,9 @@ impl Scene {
         let mut passed = self.box_passed_by(o, open, slabs, t_max, stats);
         let reach = t_max.to_array();
         let mut blocked = 0;
-        if let Some(lens) = self.lens_in_lanes(o, lanes, passed, t_max, stats) {
-            blocked = lens.hits.hit;
-            passed = lens.hits.undecided;
+        if let Some((_, found)) = self.csg_in_lanes(o, lanes, slabs, passed, t_max, stats) {
+            blocked = found.hit;
+            passed = found.undecided;
         }
         for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
             if self
@@ -610,23 +632,31 @@ impl Scene {
         passed
     }
 
-    /// Object o, if it is a lens (A ∩ B of two spheres), against the rays in `lanes` whose bits
-    /// are set in `open`, four at a time, counted as `object_hit` counts them ray by ray; the
-    /// rays it leaves undecided are for `object_hit`.
+    /// Object o, if it is a flat CSG object the lanes can test (two spheres or boxes), against
+    /// the rays whose bits are set in `open`, four at a time, counted as `object_hit` counts
+    /// them ray by ray; the rays it leaves undecided are for `object_hit`.
     #[inline(always)]
-    fn lens_in_lanes(
+    fn csg_in_lanes(
         &self,
         o: u32,
         lanes: &RayLanes,
+        slabs: &SlabLanes,
         open: u32,
         t_max: f64x4,
         stats: &mut Stats,
-    ) -> Option<LensInLanes> {
-        let (lens, leaves) = self.flat_csg[o as usize].as_ref()?.lens()?;
-        let hits = lens.hits(lanes, open, t_max, self.csg_pruning);
-        stats.primitives_tested += (open & !hits.undecided).count_ones() as u64;
-        stats.csg_pruned += hits.pruned.count_ones() as u64;
-        Some(LensInLanes { hits, leaves })
+    ) -> Option<(&CsgLanes, LanesHits)> {
+        let csg = self.csg_lanes[o as usize].as_ref()?;
+        let found = csg.hits(
+            lanes,
+            slabs,
+            open,
+            t_max,
+            self.csg_pruning,
+            self.csg_pruning,
+        );
+        stats.primitives_tested += (open & !found.undecided).count_ones() as u64;
+        stats.csg_pruned += found.pruned;
+        Some((csg, found))
     }
 
     /// How the hit searches test an object: directly for a plain sphere or plane.

@@ -1,0 +1,392 @@
+//! Flat CSG objects of two operands (spheres and boxes) against four rays at once.
+//!
+//! A lens (A ∩ B of two spheres) or a box with a spherical hole (A − B) is met by many rays:
+//! a glass lens's own refraction and reflection rays bounce inside it. Ray by ray, each test
+//! is a call into the CSG evaluation (`FlatCsg::nearest`). Here the same steps run for four
+//! rays side by side in `f64x4` lanes, one ray per lane: the operands' boxes and the notes'
+//! pruning rule, both operands' spans (the arithmetic of `Sphere::span` and `Aabox::span` to
+//! the last bit), and the walk along the four span ends that finds where the operation's rule
+//! first changes its answer. Where that walk meets ends that coincide, or spans that are
+//! reversed or not finite, the ray is left `undecided`, for the ray-by-ray evaluation to
+//! settle as the segment lists do.
+
+use glam::{DAffine3, DVec3};
+use wide::f64x4;
+
+use super::csg::CsgOp;
+use super::sphere_group::LaneQuadratic;
+use super::{lane_mask, Aabox, RayLanes, Sphere, Surface};
+use crate::accel::{Aabb, SlabLanes};
+
+/// An operand the lanes can test.
+#[derive(Clone, Debug)]
+pub enum Operand {
+    /// A sphere in world space: centre and r².
+    Sphere(DVec3, f64),
+    /// A box in its own space, and the transform that carries rays there (if any).
+    Box(Aabox, Option<DAffine3>),
+}
+
+/// A flat CSG object of two operands, ready to be tested four rays at a time.
+#[derive(Clone, Debug)]
+pub struct CsgLanes {
+    op: CsgOp,
+    operands: [Operand; 2],
+    /// The operands' leaves in the scene.
+    leaves: [u32; 2],
+    /// Each operand's box, where it is worth testing (`FlatCsg` leaves out a box that holds
+    /// the object's).
+    bounds: [Option<Aabb>; 2],
+}
+
+/// What `CsgLanes::hits` finds for four rays (bit i and lane i: ray i).
+#[derive(Clone, Copy, Debug)]
+pub struct LanesHits {
+    /// The rays that hit the object within their window.
+    pub hit: u32,
+    /// Each hit's t.
+    pub t: f64x4,
+    /// The hits on B's surface (the others are on A's).
+    pub on_b: u32,
+    /// Each hit's face of its operand.
+    pub face: f64x4,
+    /// The rays to be evaluated one by one: coinciding span ends, or spans that are reversed
+    /// or not finite.
+    pub undecided: u32,
+    /// Operands pruned (box missed, or made irrelevant by an empty one) in the decided rays:
+    /// what `FlatCsg::nearest` counts in `CsgWork::pruned`.
+    pub pruned: u64,
+}
+
+impl LanesHits {
+    const NONE: LanesHits = LanesHits {
+        hit: 0,
+        t: f64x4::ZERO,
+        on_b: 0,
+        face: f64x4::ZERO,
+        undecided: 0,
+        pruned: 0,
+    };
+}
+
+/// Four rays' spans through one operand: the ends (NaN where a ray has no span) and faces.
+#[derive(Clone, Copy)]
+struct SpanLanes {
+    t_in: f64x4,
+    t_out: f64x4,
+    face_in: f64x4,
+    face_out: f64x4,
+}
+
+impl SpanLanes {
+    /// The spans in `lanes` (all ones), none elsewhere.
+    fn only(self, lanes: f64x4) -> SpanLanes {
+        let none = f64x4::splat(f64::NAN);
+        SpanLanes {
+            t_in: lanes.bitselect(self.t_in, none),
+            t_out: lanes.bitselect(self.t_out, none),
+            ..self
+        }
+    }
+
+    /// All ones where there is a span (neither end NaN: a NaN span is no span).
+    fn exists(&self) -> f64x4 {
+        self.t_in.simd_eq(self.t_in) & self.t_out.simd_eq(self.t_out)
+    }
+}
+
+impl CsgLanes {
+    /// The object `op` over two operands, when the lanes can test it.
+    pub fn new(
+        op: CsgOp,
+        operands: [Option<Operand>; 2],
+        leaves: [u32; 2],
+        bounds: [Option<Aabb>; 2],
+    ) -> Option<CsgLanes> {
+        let [Some(a), Some(b)] = operands else {
+            return None;
+        };
+        (op != CsgOp::Complement).then_some(CsgLanes {
+            op,
+            operands: [a, b],
+            leaves,
+            bounds,
+        })
+    }
+
+    pub fn sphere(s: &Sphere) -> Operand {
+        Operand::Sphere(s.center, s.radius * s.radius)
+    }
+
+    /// The surface of ray i's hit.
+    pub fn surface(&self, hits: &LanesHits, i: usize) -> Surface {
+        let on_b = hits.on_b & (1 << i) != 0;
+        let surface = Surface::new(self.leaves[on_b as usize], hits.face.to_array()[i] as u32);
+        // B's surfaces bound a difference from the other side.
+        if on_b && self.op == CsgOp::Difference {
+            surface.flipped()
+        } else {
+            surface
+        }
+    }
+
+    /// The nearest crossing of the object's surface with 0 < t < t_max for each ray in
+    /// `open`, exactly as `FlatCsg::nearest` finds it ray by ray (t_min = 0), with the
+    /// operands' boxes tested when `use_bounds` and the notes' pruning rule when `prune`.
+    #[inline(always)]
+    pub fn hits(
+        &self,
+        rays: &RayLanes,
+        slabs: &SlabLanes,
+        open: u32,
+        t_max: f64x4,
+        use_bounds: bool,
+        prune: bool,
+    ) -> LanesHits {
+        if open == 0 {
+            return LanesHits::NONE;
+        }
+        if let Some((a, b)) = self.lens() {
+            return lens_hits(rays, a, b, open, t_max, prune);
+        }
+        let open = lane_mask(open);
+        let box_missed = |k: usize| match &self.bounds[k] {
+            Some(b) if use_bounds => open & !lane_mask(b.hit_lanes(slabs, 0.0, t_max)),
+            _ => f64x4::ZERO,
+        };
+        // Operand A, behind its box.
+        let a_pruned = box_missed(0);
+        let a = self.span(0, rays).only(open & !a_pruned);
+        let a_empty = open & !a.exists();
+        // Operand B: not needed where A is empty and the rule makes it irrelevant (∩, −),
+        // else behind its box.
+        let b_irrelevant = if prune && self.op != CsgOp::Union {
+            a_empty
+        } else {
+            f64x4::ZERO
+        };
+        let b_pruned = b_irrelevant | box_missed(1);
+        let b = self.span(1, rays).only(open & !b_pruned);
+        let reversed = a.t_in.simd_gt(a.t_out) | b.t_in.simd_gt(b.t_out);
+
+        let walk = walk(self.op, [a.t_in, a.t_out, b.t_in, b.t_out], t_max);
+        let found = open & !reversed & walk.first.simd_lt(f64x4::splat(f64::INFINITY));
+        let hit = found & !walk.tie;
+        let undecided = (open & reversed) | (found & walk.tie);
+        let decided = open & !undecided;
+        let faces = [a.face_in, a.face_out, b.face_in, b.face_out];
+        let mut face = f64x4::ZERO;
+        for (at, f) in walk.at_first.iter().zip(faces) {
+            face = at.bitselect(f, face);
+        }
+        LanesHits {
+            hit: hit.to_bitmask(),
+            t: walk.first,
+            on_b: (hit & (walk.at_first[2] | walk.at_first[3])).to_bitmask(),
+            face,
+            undecided: undecided.to_bitmask(),
+            pruned: (a_pruned & decided).to_bitmask().count_ones() as u64
+                + (b_pruned & decided).to_bitmask().count_ones() as u64,
+        }
+    }
+
+    /// A ∩ B of two spheres without boxes of their own: a lens, whose evaluation leaves the
+    /// spheres' common part early (`SphereGroup::common_spans`).
+    fn lens(&self) -> Option<((DVec3, f64), (DVec3, f64))> {
+        match (&self.operands, self.op, self.bounds) {
+            (
+                [Operand::Sphere(ca, ra), Operand::Sphere(cb, rb)],
+                CsgOp::Intersection,
+                [None, None],
+            ) => Some(((*ca, *ra), (*cb, *rb))),
+            _ => None,
+        }
+    }
+
+    /// Operand k's spans along the four rays.
+    #[inline(always)]
+    fn span(&self, k: usize, rays: &RayLanes) -> SpanLanes {
+        match &self.operands[k] {
+            Operand::Sphere(centre, r2) => {
+                let q = quadratic(rays, *centre, *r2);
+                let (disc, no_root) = q.disc();
+                let (t_in, t_out) = q.roots(disc);
+                SpanLanes {
+                    t_in,
+                    t_out,
+                    face_in: f64x4::ZERO,
+                    face_out: f64x4::ZERO,
+                }
+                .only(!(q.passes | no_root))
+            }
+            Operand::Box(shape, None) => box_span(shape, rays),
+            Operand::Box(shape, Some(to_local)) => box_span(shape, &to_local_lanes(rays, to_local)),
+        }
+    }
+}
+
+fn quadratic(rays: &RayLanes, centre: DVec3, r2: f64) -> LaneQuadratic {
+    LaneQuadratic::new(rays, centre.to_array().map(f64x4::splat), f64x4::splat(r2))
+}
+
+/// The lens's evaluation: the steps of `FlatCsg::nearest_of_two` for the spheres' common part
+/// searched from t = 0 (`SphereGroup::common_spans`, then the walk).
+#[inline(always)]
+fn lens_hits(
+    rays: &RayLanes,
+    (ca, ra2): (DVec3, f64),
+    (cb, rb2): (DVec3, f64),
+    open: u32,
+    t_max: f64x4,
+    prune: bool,
+) -> LanesHits {
+    let (a, b) = (quadratic(rays, ca, ra2), quadratic(rays, cb, rb2));
+    let ((a_disc, a_no_root), (b_disc, b_no_root)) = (a.disc(), b.disc());
+    let open = lane_mask(open);
+    let finite = a.finite & b.finite;
+    // The common part searched from t = 0 is missed as soon as one sphere is passed by, has
+    // no root, or is met only behind the origin; B counts as pruned where A has no span.
+    let a_empty = a.passes | a_no_root;
+    let missed = open & finite & (a_empty | b.passes | b_no_root | a.away | b.away);
+    let pruned = if prune {
+        (missed & a_empty).to_bitmask().count_ones() as u64
+    } else {
+        0
+    };
+    let rest = open & !missed;
+    if rest.to_bitmask() == 0 {
+        return LanesHits {
+            pruned,
+            ..LanesHits::NONE
+        };
+    }
+    let (a_in, a_out) = a.roots(a_disc);
+    let (b_in, b_out) = b.roots(b_disc);
+    // Both spans exist here; NaN ends or reversed ones are for the segment lists.
+    let live = rest & finite & a_in.simd_le(a_out) & b_in.simd_le(b_out);
+    let walk = walk(CsgOp::Intersection, [a_in, a_out, b_in, b_out], t_max);
+    let found = live & walk.first.simd_lt(f64x4::splat(f64::INFINITY));
+    let hit = found & !walk.tie;
+    LanesHits {
+        hit: hit.to_bitmask(),
+        t: walk.first,
+        on_b: (hit & (walk.at_first[2] | walk.at_first[3])).to_bitmask(),
+        // A sphere has one face.
+        face: f64x4::ZERO,
+        undecided: (rest & !live).to_bitmask() | (found & walk.tie).to_bitmask(),
+        pruned,
+    }
+}
+
+/// Where the rule first changes along four rays.
+struct Walk {
+    /// The first end in the window (0, t_max) where the rule's answer changes (∞: none).
+    first: f64x4,
+    /// All ones where end k (A in, A out, B in, B out) lies at `first`.
+    at_first: [f64x4; 4],
+    /// Another end at the same t: left to the segment lists.
+    tie: f64x4,
+}
+
+/// The walk of `first_change_of_two`, four rays at a time: at each end t, each operand's
+/// inside flag just before and just after it (an end at t enters before it leaves), and the
+/// first end in the window where the rule's answer differs between the two. NaN ends (no
+/// span) are never inside and never in the window.
+#[inline(always)]
+fn walk(op: CsgOp, ends: [f64x4; 4], t_max: f64x4) -> Walk {
+    let [a_in, a_out, b_in, b_out] = ends;
+    let inside = |t_in: f64x4, t_out: f64x4, t: f64x4| {
+        let before = t_in.simd_lt(t) & t.simd_le(t_out);
+        let after = t_in.simd_le(t) & t.simd_lt(t_out);
+        (before, after)
+    };
+    let rule = |a: f64x4, b: f64x4| match op {
+        CsgOp::Union => a | b,
+        CsgOp::Intersection => a & b,
+        CsgOp::Difference => a & !b,
+        CsgOp::Complement => unreachable!("complements stay trees"),
+    };
+    let infinity = f64x4::splat(f64::INFINITY);
+    let within =
+        ends.map(|t| t.simd_gt(f64x4::ZERO) & t.simd_lt(t_max) & t.abs().simd_lt(infinity));
+    let mut first = infinity;
+    for (&t, &within) in ends.iter().zip(&within) {
+        let (a_before, a_after) = inside(a_in, a_out, t);
+        let (b_before, b_after) = inside(b_in, b_out, t);
+        let changes = (rule(a_before, b_before) ^ rule(a_after, b_after)) & within;
+        first = changes.bitselect(first.fast_min(t), first);
+    }
+    let at_first: [f64x4; 4] = std::array::from_fn(|k| within[k] & ends[k].simd_eq(first));
+    let mut tie = f64x4::ZERO;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            tie |= at_first[i] & at_first[j];
+        }
+    }
+    Walk {
+        first,
+        at_first,
+        tie,
+    }
+}
+
+/// `Aabox::span` for four rays: the overlap of three slabs, each entered through its near face
+/// (the sign of d says which); a ray parallel to a slab is inside it everywhere or nowhere.
+#[inline(always)]
+fn box_span(shape: &Aabox, rays: &RayLanes) -> SpanLanes {
+    let zero = f64x4::ZERO;
+    let (mut t_in, mut t_out) = (f64x4::splat(f64::NEG_INFINITY), f64x4::splat(f64::INFINITY));
+    let (mut face_in, mut face_out) = (zero, zero);
+    let mut outside = zero;
+    for axis in 0..3 {
+        let (o, d) = (rays.origin[axis], rays.dir[axis]);
+        let (lo, hi) = (f64x4::splat(shape.min[axis]), f64x4::splat(shape.max[axis]));
+        let parallel = d.simd_eq(zero);
+        outside |= parallel & (o.simd_lt(lo) | o.simd_gt(hi));
+        let (t0, t1) = ((lo - o) / d, (hi - o) / d);
+        let (f0, f1) = (
+            f64x4::splat(2.0 * axis as f64),
+            f64x4::splat(2.0 * axis as f64 + 1.0),
+        );
+        let negative = d.simd_lt(zero);
+        let (t0, t1, f0, f1) = (
+            negative.bitselect(t1, t0),
+            negative.bitselect(t0, t1),
+            negative.bitselect(f1, f0),
+            negative.bitselect(f0, f1),
+        );
+        let enters = !parallel & t0.simd_gt(t_in);
+        (t_in, face_in) = (enters.bitselect(t0, t_in), enters.bitselect(f0, face_in));
+        let leaves = !parallel & t1.simd_lt(t_out);
+        (t_out, face_out) = (leaves.bitselect(t1, t_out), leaves.bitselect(f1, face_out));
+    }
+    SpanLanes {
+        t_in,
+        t_out,
+        face_in,
+        face_out,
+    }
+    .only(!outside & t_in.simd_le(t_out))
+}
+
+/// `Transform::ray_to_local` for four rays: the same products and sums as glam's
+/// `transform_point3` and `transform_vector3`, in the same order.
+#[inline(always)]
+fn to_local_lanes(rays: &RayLanes, m: &DAffine3) -> RayLanes {
+    let column = |v: DVec3| v.to_array().map(f64x4::splat);
+    let (x, y, z) = (
+        column(m.matrix3.x_axis),
+        column(m.matrix3.y_axis),
+        column(m.matrix3.z_axis),
+    );
+    let t = column(m.translation);
+    let [ox, oy, oz] = rays.origin;
+    let [dx, dy, dz] = rays.dir;
+    let origin: [f64x4; 3] = std::array::from_fn(|c| x[c] * ox + y[c] * oy + z[c] * oz + t[c]);
+    let dir: [f64x4; 3] = std::array::from_fn(|c| x[c] * dx + y[c] * dy + z[c] * dz);
+    RayLanes {
+        origin,
+        dir,
+        a: dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2],
+    }
+}
