@@ -39,6 +39,7 @@ impl SlabRay {
 #[derive(Clone, Copy, Debug)]
 pub struct SlabLanes {
     origin: [f64x4; 3],
+    dir: [f64x4; 3],
     /// 1/d per component, as `DVec3::recip` finds it ray by ray.
     inv_dir: [f64x4; 3],
     /// All ones where 1/d is negative (`SlabRay::negative`).
@@ -50,9 +51,16 @@ impl SlabLanes {
         let inv_dir = rays.dir.map(|d| f64x4::ONE / d);
         SlabLanes {
             origin: rays.origin,
+            dir: rays.dir,
             inv_dir,
             negative: inv_dir.map(f64x4::is_sign_negative),
         }
+    }
+
+    /// The rays themselves, as `RayLanes::new` gave them.
+    #[inline(always)]
+    pub fn rays(&self) -> RayLanes {
+        RayLanes::from_lanes(self.origin, self.dir)
     }
 
     /// The 1/d of the ray in one lane, bit for bit `ray.dir.recip()`.

@@ -136,7 +136,6 @@ impl CsgLanes {
     #[inline(always)]
     pub fn hits(
         &self,
-        rays: &RayLanes,
         slabs: &SlabLanes,
         open: u32,
         t_max: f64x4,
@@ -146,6 +145,7 @@ impl CsgLanes {
         if open == 0 {
             return LanesHits::NONE;
         }
+        let rays = &slabs.rays();
         if let Some((a, b)) = self.lens() {
             return lens_hits(rays, a, b, open, t_max, prune);
         }

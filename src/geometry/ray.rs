@@ -77,8 +77,14 @@ impl RayLanes {
         }
         let axis = |v: &[DVec3; LANES], i: usize| f64x4::new(v.map(|p| p[i]));
         let dir = [axis(&d, 0), axis(&d, 1), axis(&d, 2)];
+        RayLanes::from_lanes([axis(&o, 0), axis(&o, 1), axis(&o, 2)], dir)
+    }
+
+    /// Rays already in lanes: origins and directions, axis by axis.
+    #[inline(always)]
+    pub fn from_lanes(origin: [f64x4; 3], dir: [f64x4; 3]) -> RayLanes {
         RayLanes {
-            origin: [axis(&o, 0), axis(&o, 1), axis(&o, 2)],
+            origin,
             dir,
             a: dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2],
         }

@@ -550,7 +550,6 @@ impl Scene {
         &self,
         o: u32,
         rays: &[Ray],
-        lanes: &RayLanes,
         slabs: &SlabLanes,
         t_max: &mut [f64; LANES],
         hits: &mut [Option<Hit>],
@@ -558,9 +557,7 @@ impl Scene {
     ) {
         let used = (1 << rays.len()) - 1;
         let mut passed = self.box_passed_by(o, used, slabs, f64x4::new(*t_max), stats);
-        if let Some((csg, found)) =
-            self.csg_in_lanes(o, lanes, slabs, passed, f64x4::new(*t_max), stats)
-        {
+        if let Some((csg, found)) = self.csg_in_lanes(o, slabs, passed, f64x4::new(*t_max), stats) {
             let t = found.t.to_array();
             for i in (0..rays.len()).filter(|i| found.hit & (1 << i) != 0) {
                 t_max[i] = t[i];
@@ -588,7 +585,6 @@ impl Scene {
         &self,
         o: u32,
         rays: &[Ray],
-        lanes: &RayLanes,
         slabs: &SlabLanes,
         t_max: f64x4,
         open: u32,
@@ -597,7 +593,7 @@ impl Scene {
         let mut passed = self.box_passed_by(o, open, slabs, t_max, stats);
         let reach = t_max.to_array();
         let mut blocked = 0;
-        if let Some((_, found)) = self.csg_in_lanes(o, lanes, slabs, passed, t_max, stats) {
+        if let Some((_, found)) = self.csg_in_lanes(o, slabs, passed, t_max, stats) {
             blocked = found.hit;
             passed = found.undecided;
         }
@@ -639,21 +635,13 @@ impl Scene {
     fn csg_in_lanes(
         &self,
         o: u32,
-        lanes: &RayLanes,
         slabs: &SlabLanes,
         open: u32,
         t_max: f64x4,
         stats: &mut Stats,
     ) -> Option<(&CsgLanes, LanesHits)> {
         let csg = self.csg_lanes[o as usize].as_ref()?;
-        let found = csg.hits(
-            lanes,
-            slabs,
-            open,
-            t_max,
-            self.csg_pruning,
-            self.csg_pruning,
-        );
+        let found = csg.hits(slabs, open, t_max, self.csg_pruning, self.csg_pruning);
         stats.primitives_tested += (open & !found.undecided).count_ones() as u64;
         stats.csg_pruned += found.pruned;
         Some((csg, found))
@@ -1242,7 +1230,7 @@ impl Scene {
                 Probe::Object(o) => {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
                     let mut t_max = limit.to_array();
-                    self.object_in_lanes(*o, rays, &lanes, slabs, &mut t_max, hits, stats);
+                    self.object_in_lanes(*o, rays, slabs, &mut t_max, hits, stats);
                     limit = f64x4::new(t_max);
                 }
             }
@@ -1298,7 +1286,7 @@ impl Scene {
                 }
                 Probe::Object(o) => {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
-                    open &= !self.object_blocks_lanes(*o, rays, &lanes, slabs, reach, open, stats);
+                    open &= !self.object_blocks_lanes(*o, rays, slabs, reach, open, stats);
                 }
             }
         }
