@@ -271,8 +271,9 @@ proptest! {
     }
 }
 
-/// A CSG object of two operands, spheres or boxes on a coarse grid (so that they are often
-/// equal, tangent, concentric, one inside the other, or share faces), under ∪, ∩ or −, and
+/// A CSG object of two operands, spheres, boxes, cylinders or cones on a coarse grid (so that
+/// they are often equal, tangent, concentric, one inside the other, or share faces; the
+/// cylinders and cones along an axis or tilted), under ∪, ∩ or −, and
 /// sometimes turned and moved; with a plane behind it, so that rays that miss it have a limit.
 /// Rays from grid points, from points on either operand's surface (rays leaving it, or
 /// bouncing inside it), or a pixel's samples.
@@ -284,9 +285,10 @@ fn csg_pair_scene_and_rays() -> impl Strategy<Value = (Scene, Vec<Ray>)> {
             grid(),
             grid(),
             prop::sample::select(vec![0.5, 1.0, 1.5, 2.0]),
-            prop::bool::ANY,
+            0..4u8,
+            prop::sample::select(vec![DVec3::Y, DVec3::X, DVec3::new(1.0, 1.0, 0.0)]),
         )
-            .prop_map(|(x, y, z, r, is_box)| (DVec3::new(x, y, z), r, is_box))
+            .prop_map(|(x, y, z, r, kind, axis)| (DVec3::new(x, y, z), r, kind, axis))
     };
     let ray = move || {
         (
@@ -307,18 +309,23 @@ fn csg_pair_scene_and_rays() -> impl Strategy<Value = (Scene, Vec<Ray>)> {
         prop::collection::vec(ray(), 1..=16),
     )
         .prop_map(|(a, b, op, transform, rays)| {
-            let yaml_of = |(c, r, is_box): (DVec3, f64, bool)| {
-                if is_box {
-                    let (lo, hi) = (c - r, c + r);
-                    format!(
-                        "{{ box: {{ min: [{}, {}, {}], max: [{}, {}, {}] }} }}",
-                        lo.x, lo.y, lo.z, hi.x, hi.y, hi.z
-                    )
-                } else {
-                    format!(
-                        "{{ sphere: {{ center: [{}, {}, {}], radius: {r} }} }}",
-                        c.x, c.y, c.z
-                    )
+            let yaml_of = |(c, r, kind, axis): (DVec3, f64, u8, DVec3)| {
+                let v = |p: DVec3| format!("[{}, {}, {}]", p.x, p.y, p.z);
+                let (lo, hi) = (c - r * axis, c + r * axis);
+                match kind {
+                    0 => format!("{{ sphere: {{ center: {}, radius: {r} }} }}", v(c)),
+                    1 => format!("{{ box: {{ min: {}, max: {} }} }}", v(c - r), v(c + r)),
+                    2 => format!(
+                        "{{ cylinder: {{ base: {}, top: {}, radius: {} }} }}",
+                        v(lo),
+                        v(hi),
+                        0.75 * r
+                    ),
+                    _ => format!(
+                        "{{ cone: {{ apex: {}, base: {}, radius: {r} }} }}",
+                        v(hi),
+                        v(lo)
+                    ),
                 }
             };
             let yaml = format!(
@@ -340,7 +347,7 @@ objects:
                         .try_normalize()
                         .unwrap_or(DVec3::Z);
                     // A point of the operand's surface (of its ball, for a box: on its faces or inside).
-                    let on = |(c, r, _): (DVec3, f64, bool)| {
+                    let on = |(c, r, _, _): (DVec3, f64, u8, DVec3)| {
                         c + r * DVec3::from_array(at).try_normalize().unwrap_or(DVec3::X)
                     };
                     let origin = [DVec3::new(x, y, z), on(a), on(b)][from];
@@ -354,7 +361,8 @@ objects:
 proptest! {
     #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
 
-    /// A CSG object of two spheres or boxes tested four rays at a time (`CsgLanes::hits`)
+    /// A CSG object of two spheres, boxes, cylinders or cones tested four rays at a time
+    /// (`CsgLanes::hits`)
     /// finds what each ray's own evaluation finds, to the last bit of t and on the same face
     /// of the same operand, and counts the same tests and pruning; with the CSG boxes and
     /// pruning on or off; for nearest hits and for shadow rays of any reach.

@@ -22,7 +22,7 @@ impl Cone {
         (self.base - self.apex).normalize()
     }
 
-    fn cos2(&self) -> f64 {
+    pub(crate) fn cos2(&self) -> f64 {
         let h2 = (self.base - self.apex).length_squared();
         h2 / (h2 + self.radius * self.radius)
     }

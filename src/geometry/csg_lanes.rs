@@ -1,21 +1,23 @@
-//! Flat CSG objects of two operands (spheres and boxes) against four rays at once.
+//! Flat CSG objects of two operands (spheres, boxes, cylinders, cones) against four rays at
+//! once.
 //!
 //! A lens (A ∩ B of two spheres) or a box with a spherical hole (A − B) is met by many rays:
 //! a glass lens's own refraction and reflection rays bounce inside it. Ray by ray, each test
 //! is a call into the CSG evaluation (`FlatCsg::nearest`). Here the same steps run for four
 //! rays side by side in `f64x4` lanes, one ray per lane: the operands' boxes and the notes'
-//! pruning rule, both operands' spans (the arithmetic of `Sphere::span` and `Aabox::span` to
-//! the last bit), and the walk along the four span ends that finds where the operation's rule
+//! pruning rule, both operands' spans (`span_lanes`: each primitive's own arithmetic, to the
+//! last bit), and the walk along the four span ends that finds where the operation's rule
 //! first changes its answer. Where that walk meets ends that coincide, or spans that are
-//! reversed or not finite, the ray is left `undecided`, for the ray-by-ray evaluation to
-//! settle as the segment lists do.
+//! reversed or odd, the ray is left `undecided`, for the ray-by-ray evaluation to settle as
+//! the segment lists do.
 
 use glam::{DAffine3, DVec3};
 use wide::f64x4;
 
 use super::csg::CsgOp;
+use super::span_lanes::{self, SpanLanes};
 use super::sphere_group::LaneQuadratic;
-use super::{lane_mask, Aabox, RayLanes, Sphere, Surface};
+use super::{lane_mask, RayLanes, Shape, Sphere, Surface};
 use crate::accel::{Aabb, SlabLanes};
 
 /// An operand the lanes can test.
@@ -23,8 +25,9 @@ use crate::accel::{Aabb, SlabLanes};
 pub enum Operand {
     /// A sphere in world space: centre and r².
     Sphere(DVec3, f64),
-    /// A box in its own space, and the transform that carries rays there (if any).
-    Box(Aabox, Option<DAffine3>),
+    /// A box, cylinder or cone in its own space, and the transform that carries rays there
+    /// (if any).
+    Solid(Shape, Option<DAffine3>),
 }
 
 /// A flat CSG object of two operands, ready to be tested four rays at a time.
@@ -69,32 +72,6 @@ impl LanesHits {
     };
 }
 
-/// Four rays' spans through one operand: the ends (NaN where a ray has no span) and faces.
-#[derive(Clone, Copy)]
-struct SpanLanes {
-    t_in: f64x4,
-    t_out: f64x4,
-    face_in: f64x4,
-    face_out: f64x4,
-}
-
-impl SpanLanes {
-    /// The spans in `lanes` (all ones), none elsewhere.
-    fn only(self, lanes: f64x4) -> SpanLanes {
-        let none = f64x4::splat(f64::NAN);
-        SpanLanes {
-            t_in: lanes.bitselect(self.t_in, none),
-            t_out: lanes.bitselect(self.t_out, none),
-            ..self
-        }
-    }
-
-    /// All ones where there is a span (neither end NaN: a NaN span is no span).
-    fn exists(&self) -> f64x4 {
-        self.t_in.simd_eq(self.t_in) & self.t_out.simd_eq(self.t_out)
-    }
-}
-
 impl CsgLanes {
     /// The object `op` over two operands, when the lanes can test it.
     pub fn new(
@@ -116,6 +93,12 @@ impl CsgLanes {
 
     pub fn sphere(s: &Sphere) -> Operand {
         Operand::Sphere(s.center, s.radius * s.radius)
+    }
+
+    /// A solid the lanes can carry to its own space and test there.
+    pub fn solid(shape: &Shape, to_local: Option<DAffine3>) -> Option<Operand> {
+        matches!(shape, Shape::Box(_) | Shape::Cylinder(_) | Shape::Cone(_))
+            .then(|| Operand::Solid(shape.clone(), to_local))
     }
 
     /// The surface of ray i's hit.
@@ -168,11 +151,12 @@ impl CsgLanes {
         let b_pruned = b_irrelevant | box_missed(1);
         let b = self.span(1, rays).only(open & !b_pruned);
         let reversed = a.t_in.simd_gt(a.t_out) | b.t_in.simd_gt(b.t_out);
+        let odd = (!a_pruned & a.odd) | (!b_pruned & b.odd);
 
         let walk = walk(self.op, [a.t_in, a.t_out, b.t_in, b.t_out], t_max);
-        let found = open & !reversed & walk.first.simd_lt(f64x4::splat(f64::INFINITY));
+        let found = open & !reversed & !odd & walk.first.simd_lt(f64x4::splat(f64::INFINITY));
         let hit = found & !walk.tie;
-        let undecided = (open & reversed) | (found & walk.tie);
+        let undecided = (open & (reversed | odd)) | (found & walk.tie);
         let decided = open & !undecided;
         let faces = [a.face_in, a.face_out, b.face_in, b.face_out];
         let mut face = f64x4::ZERO;
@@ -207,20 +191,23 @@ impl CsgLanes {
     #[inline(always)]
     fn span(&self, k: usize, rays: &RayLanes) -> SpanLanes {
         match &self.operands[k] {
-            Operand::Sphere(centre, r2) => {
-                let q = quadratic(rays, *centre, *r2);
-                let (disc, no_root) = q.disc();
-                let (t_in, t_out) = q.roots(disc);
-                SpanLanes {
-                    t_in,
-                    t_out,
-                    face_in: f64x4::ZERO,
-                    face_out: f64x4::ZERO,
+            Operand::Sphere(centre, r2) => span_lanes::sphere(rays, *centre, *r2),
+            Operand::Solid(shape, to_local) => {
+                let local;
+                let rays = match to_local {
+                    Some(m) => {
+                        local = span_lanes::to_local(rays, m);
+                        &local
+                    }
+                    None => rays,
+                };
+                match shape {
+                    Shape::Box(b) => span_lanes::aabox(b, rays),
+                    Shape::Cylinder(c) => span_lanes::cylinder(c, rays),
+                    Shape::Cone(c) => span_lanes::cone(c, rays),
+                    _ => unreachable!("only boxes, cylinders and cones are solid operands"),
                 }
-                .only(!(q.passes | no_root))
             }
-            Operand::Box(shape, None) => box_span(shape, rays),
-            Operand::Box(shape, Some(to_local)) => box_span(shape, &to_local_lanes(rays, to_local)),
         }
     }
 }
@@ -327,66 +314,5 @@ fn walk(op: CsgOp, ends: [f64x4; 4], t_max: f64x4) -> Walk {
         first,
         at_first,
         tie,
-    }
-}
-
-/// `Aabox::span` for four rays: the overlap of three slabs, each entered through its near face
-/// (the sign of d says which); a ray parallel to a slab is inside it everywhere or nowhere.
-#[inline(always)]
-fn box_span(shape: &Aabox, rays: &RayLanes) -> SpanLanes {
-    let zero = f64x4::ZERO;
-    let (mut t_in, mut t_out) = (f64x4::splat(f64::NEG_INFINITY), f64x4::splat(f64::INFINITY));
-    let (mut face_in, mut face_out) = (zero, zero);
-    let mut outside = zero;
-    for axis in 0..3 {
-        let (o, d) = (rays.origin[axis], rays.dir[axis]);
-        let (lo, hi) = (f64x4::splat(shape.min[axis]), f64x4::splat(shape.max[axis]));
-        let parallel = d.simd_eq(zero);
-        outside |= parallel & (o.simd_lt(lo) | o.simd_gt(hi));
-        let (t0, t1) = ((lo - o) / d, (hi - o) / d);
-        let (f0, f1) = (
-            f64x4::splat(2.0 * axis as f64),
-            f64x4::splat(2.0 * axis as f64 + 1.0),
-        );
-        let negative = d.simd_lt(zero);
-        let (t0, t1, f0, f1) = (
-            negative.bitselect(t1, t0),
-            negative.bitselect(t0, t1),
-            negative.bitselect(f1, f0),
-            negative.bitselect(f0, f1),
-        );
-        let enters = !parallel & t0.simd_gt(t_in);
-        (t_in, face_in) = (enters.bitselect(t0, t_in), enters.bitselect(f0, face_in));
-        let leaves = !parallel & t1.simd_lt(t_out);
-        (t_out, face_out) = (leaves.bitselect(t1, t_out), leaves.bitselect(f1, face_out));
-    }
-    SpanLanes {
-        t_in,
-        t_out,
-        face_in,
-        face_out,
-    }
-    .only(!outside & t_in.simd_le(t_out))
-}
-
-/// `Transform::ray_to_local` for four rays: the same products and sums as glam's
-/// `transform_point3` and `transform_vector3`, in the same order.
-#[inline(always)]
-fn to_local_lanes(rays: &RayLanes, m: &DAffine3) -> RayLanes {
-    let column = |v: DVec3| v.to_array().map(f64x4::splat);
-    let (x, y, z) = (
-        column(m.matrix3.x_axis),
-        column(m.matrix3.y_axis),
-        column(m.matrix3.z_axis),
-    );
-    let t = column(m.translation);
-    let [ox, oy, oz] = rays.origin;
-    let [dx, dy, dz] = rays.dir;
-    let origin: [f64x4; 3] = std::array::from_fn(|c| x[c] * ox + y[c] * oy + z[c] * oz + t[c]);
-    let dir: [f64x4; 3] = std::array::from_fn(|c| x[c] * dx + y[c] * dy + z[c] * dz);
-    RayLanes {
-        origin,
-        dir,
-        a: dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2],
     }
 }

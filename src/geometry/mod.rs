@@ -11,6 +11,7 @@ mod plane;
 mod ray;
 mod segment;
 mod shape;
+pub mod span_lanes;
 mod sphere;
 pub mod sphere_group;
 mod transform;

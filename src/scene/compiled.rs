@@ -10,7 +10,7 @@ use crate::accel::bvh::{signs, PACKET};
 use crate::accel::{Aabb, Bvh, SlabLanes};
 use crate::geometry::csg::{CsgNode, CsgOp, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::csg_crossing::{Crossing, FlatCsg, LeafSpans};
-use crate::geometry::csg_lanes::{CsgLanes, Operand};
+use crate::geometry::csg_lanes::CsgLanes;
 use crate::geometry::sphere_group::{sphere_against_lanes, LANES};
 use crate::geometry::{
     first_crossing, LanesHits, Plane, Ray, Segment, SegmentList, Shape, Span, Sphere, SphereGroup,
@@ -413,10 +413,7 @@ impl Scene {
             let l = &self.leaves[leaf as usize];
             match (&l.shape, &l.transform) {
                 (Shape::Sphere(s), None) => Some(CsgLanes::sphere(s)),
-                (Shape::Box(b), tf) => {
-                    Some(Operand::Box(b.clone(), tf.as_ref().map(|t| t.to_local)))
-                }
-                _ => None,
+                (shape, tf) => CsgLanes::solid(shape, tf.as_ref().map(|t| t.to_local)),
             }
         };
         CsgLanes::new(
