@@ -122,7 +122,7 @@ impl Bare<'_> {
         let m = scene.material(si.material);
         let v = -ray.dir;
         let mut color = ambient(m, scene.ambient);
-        for light in &scene.lights {
+        for (k, light) in scene.lights.iter().enumerate() {
             let sample = light.sample(si.point);
             let lit = light_terms(
                 m,
@@ -137,6 +137,9 @@ impl Bare<'_> {
                 0.0
             } else if light.is_dark() {
                 stats.shadow_skipped_dark += 1;
+                0.0
+            } else if si.inside && scene.hides_light_inside(si.object, k) {
+                stats.shadow_skipped_inside += 1;
                 0.0
             } else {
                 self.shadow(&si, sample.l, sample.distance, light, stats)
