@@ -54,7 +54,7 @@ pub struct LanesHits {
     /// Each hit's face of its operand.
     pub face: f64x4,
     /// The rays to be evaluated one by one: coinciding span ends, or spans that are reversed
-    /// or not finite.
+    /// or odd (`SpanLanes::odd`).
     pub undecided: u32,
     /// Operands pruned (box missed, or made irrelevant by an empty one) in the decided rays:
     /// what `FlatCsg::nearest` counts in `CsgWork::pruned`.
