@@ -238,7 +238,7 @@ fn the_rule_holds_for_bounded_convex_solids_with_the_light_outside_only() {
 }
 
 /// The rule is visible in the stats: a glass ball's inside hits cast no shadow rays toward a
-/// light outside, and the image is the one the shadow rays gave (they were all blocked).
+/// light outside. (That each skipped ray would have been blocked is the proptest above.)
 #[test]
 fn inside_hits_of_a_glass_ball_cast_no_shadow_rays() {
     let s = scene(

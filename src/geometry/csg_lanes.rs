@@ -16,7 +16,6 @@ use wide::f64x4;
 
 use super::csg::CsgOp;
 use super::span_lanes::{self, SpanLanes};
-use super::sphere_group::LaneQuadratic;
 use super::{lane_mask, RayLanes, Shape, Sphere, Surface};
 use crate::accel::{Aabb, SlabLanes};
 
@@ -149,29 +148,23 @@ impl CsgLanes {
             f64x4::ZERO
         };
         let b_pruned = b_irrelevant | box_missed(1);
-        let b = self.span(1, rays).only(open & !b_pruned);
+        let b_lanes = open & !b_pruned;
+        let b = if b_lanes.to_bitmask() == 0 {
+            SpanLanes::none()
+        } else {
+            self.span(1, rays).only(b_lanes)
+        };
         let reversed = a.t_in.simd_gt(a.t_out) | b.t_in.simd_gt(b.t_out);
         let odd = (!a_pruned & a.odd) | (!b_pruned & b.odd);
+        let left = open & (reversed | odd);
 
         let walk = walk(self.op, [a.t_in, a.t_out, b.t_in, b.t_out], t_max);
-        let found = open & !reversed & !odd & walk.first.simd_lt(f64x4::splat(f64::INFINITY));
-        let hit = found & !walk.tie;
-        let undecided = (open & (reversed | odd)) | (found & walk.tie);
-        let decided = open & !undecided;
         let faces = [a.face_in, a.face_out, b.face_in, b.face_out];
-        let mut face = f64x4::ZERO;
-        for (at, f) in walk.at_first.iter().zip(faces) {
-            face = at.bitselect(f, face);
-        }
-        LanesHits {
-            hit: hit.to_bitmask(),
-            t: walk.first,
-            on_b: (hit & (walk.at_first[2] | walk.at_first[3])).to_bitmask(),
-            face,
-            undecided: undecided.to_bitmask(),
-            pruned: (a_pruned & decided).to_bitmask().count_ones() as u64
-                + (b_pruned & decided).to_bitmask().count_ones() as u64,
-        }
+        let mut found = walk.hits(open & !left, faces, left);
+        let decided = open.to_bitmask() & !found.undecided;
+        found.pruned = (a_pruned.to_bitmask() & decided).count_ones() as u64
+            + (b_pruned.to_bitmask() & decided).count_ones() as u64;
+        found
     }
 
     /// A ∩ B of two spheres without boxes of their own: a lens, whose evaluation leaves the
@@ -212,10 +205,6 @@ impl CsgLanes {
     }
 }
 
-fn quadratic(rays: &RayLanes, centre: DVec3, r2: f64) -> LaneQuadratic {
-    LaneQuadratic::new(rays, centre.to_array().map(f64x4::splat), f64x4::splat(r2))
-}
-
 /// The lens's evaluation: the steps of `FlatCsg::nearest_of_two` for the spheres' common part
 /// searched from t = 0 (`SphereGroup::common_spans`, then the walk).
 #[inline(always)]
@@ -227,7 +216,8 @@ fn lens_hits(
     t_max: f64x4,
     prune: bool,
 ) -> LanesHits {
-    let (a, b) = (quadratic(rays, ca, ra2), quadratic(rays, cb, rb2));
+    let a = span_lanes::sphere_quadratic(rays, ca, ra2);
+    let b = span_lanes::sphere_quadratic(rays, cb, rb2);
     let ((a_disc, a_no_root), (b_disc, b_no_root)) = (a.disc(), b.disc());
     let open = lane_mask(open);
     let finite = a.finite & b.finite;
@@ -252,17 +242,9 @@ fn lens_hits(
     // Both spans exist here; NaN ends or reversed ones are for the segment lists.
     let live = rest & finite & a_in.simd_le(a_out) & b_in.simd_le(b_out);
     let walk = walk(CsgOp::Intersection, [a_in, a_out, b_in, b_out], t_max);
-    let found = live & walk.first.simd_lt(f64x4::splat(f64::INFINITY));
-    let hit = found & !walk.tie;
-    LanesHits {
-        hit: hit.to_bitmask(),
-        t: walk.first,
-        on_b: (hit & (walk.at_first[2] | walk.at_first[3])).to_bitmask(),
-        // A sphere has one face.
-        face: f64x4::ZERO,
-        undecided: (rest & !live).to_bitmask() | (found & walk.tie).to_bitmask(),
-        pruned,
-    }
+    // A sphere has one face.
+    let found = walk.hits(live, [f64x4::ZERO; 4], rest & !live);
+    LanesHits { pruned, ..found }
 }
 
 /// Where the rule first changes along four rays.
@@ -273,6 +255,28 @@ struct Walk {
     at_first: [f64x4; 4],
     /// Another end at the same t: left to the segment lists.
     tie: f64x4,
+}
+
+impl Walk {
+    /// The hits of the rays in `live` where the walk found a change; `left` are rays already
+    /// left to the one-ray path, joined by those whose first change ties with another end.
+    /// Each hit's face is the one of its end among `faces` (A in, A out, B in, B out).
+    fn hits(&self, live: f64x4, faces: [f64x4; 4], left: f64x4) -> LanesHits {
+        let found = live & self.first.simd_lt(f64x4::splat(f64::INFINITY));
+        let hit = found & !self.tie;
+        let mut face = f64x4::ZERO;
+        for (at, f) in self.at_first.iter().zip(faces) {
+            face = at.bitselect(f, face);
+        }
+        LanesHits {
+            hit: hit.to_bitmask(),
+            t: self.first,
+            on_b: (hit & (self.at_first[2] | self.at_first[3])).to_bitmask(),
+            face,
+            undecided: (left | (found & self.tie)).to_bitmask(),
+            pruned: 0,
+        }
+    }
 }
 
 /// The walk of `first_change_of_two`, four rays at a time: at each end t, each operand's

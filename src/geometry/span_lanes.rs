@@ -24,6 +24,18 @@ pub struct SpanLanes {
 }
 
 impl SpanLanes {
+    /// No span for any ray.
+    pub fn none() -> SpanLanes {
+        let none = f64x4::splat(f64::NAN);
+        SpanLanes {
+            t_in: none,
+            t_out: none,
+            face_in: f64x4::ZERO,
+            face_out: f64x4::ZERO,
+            odd: f64x4::ZERO,
+        }
+    }
+
     /// The spans in `lanes` (all ones), none elsewhere.
     pub fn only(self, lanes: f64x4) -> SpanLanes {
         let none = f64x4::splat(f64::NAN);
@@ -118,10 +130,16 @@ fn dot(u: [f64x4; 3], v: [f64x4; 3]) -> f64x4 {
     u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 }
 
+/// The quadratic of the sphere (centre, r²) along the four rays.
+#[inline(always)]
+pub(crate) fn sphere_quadratic(rays: &RayLanes, centre: DVec3, r2: f64) -> LaneQuadratic {
+    LaneQuadratic::new(rays, splat3(centre), f64x4::splat(r2))
+}
+
 /// `Sphere::span` of the sphere (centre, r²).
 #[inline(always)]
 pub fn sphere(rays: &RayLanes, centre: DVec3, r2: f64) -> SpanLanes {
-    let q = LaneQuadratic::new(rays, splat3(centre), f64x4::splat(r2));
+    let q = sphere_quadratic(rays, centre, r2);
     let (disc, no_root) = q.disc();
     let (t_in, t_out) = q.roots(disc);
     SpanLanes {

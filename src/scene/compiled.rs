@@ -266,8 +266,8 @@ pub struct Scene {
     /// Per object: its CSG tree's flat form, when it has one (nearest hits without segment
     /// lists).
     flat_csg: Vec<Option<FlatCsg>>,
-    /// Per object: its flat form of two operands the lanes can test (spheres and boxes), when
-    /// it has one (`csg_in_lanes`).
+    /// Per object: its flat form of two operands the lanes can test (spheres, boxes, cylinders,
+    /// cones), when it has one (`csg_in_lanes`).
     csg_lanes: Vec<Option<CsgLanes>>,
     /// Some object outside the BVH is tested behind its box: packets of rays tested in lanes
     /// then find their 1/d in lanes, for each such box's test of four rays at once.
@@ -404,7 +404,8 @@ impl Scene {
     }
 
     /// The flat CSG object in the form `csg_in_lanes` tests, if it is one: two operands, each a
-    /// sphere in world space or a box (turned and moved as its transform says).
+    /// sphere in world space or a box, cylinder or cone (turned and moved as its transform
+    /// says).
     fn lanes_form(&self, flat: &FlatCsg) -> Option<CsgLanes> {
         let [(a, a_box), (b, b_box)] = flat.operands() else {
             return None;
@@ -553,8 +554,9 @@ impl Scene {
         stats: &mut Stats,
     ) {
         let used = (1 << rays.len()) - 1;
-        let mut passed = self.box_passed_by(o, used, slabs, f64x4::new(*t_max), stats);
-        if let Some((csg, found)) = self.csg_in_lanes(o, slabs, passed, f64x4::new(*t_max), stats) {
+        let limit = f64x4::new(*t_max);
+        let mut passed = self.box_passed_by(o, used, slabs, limit, stats);
+        if let Some((csg, found)) = self.csg_in_lanes(o, slabs, passed, limit, stats) {
             let t = found.t.to_array();
             for i in (0..rays.len()).filter(|i| found.hit & (1 << i) != 0) {
                 t_max[i] = t[i];
@@ -625,7 +627,7 @@ impl Scene {
         passed
     }
 
-    /// Object o, if it is a flat CSG object the lanes can test (two spheres or boxes), against
+    /// Object o, if it is a flat CSG object the lanes can test (`lanes_form`), against
     /// the rays whose bits are set in `open`, four at a time, counted as `object_hit` counts
     /// them ray by ray; the rays it leaves undecided are for `object_hit`.
     #[inline(always)]
