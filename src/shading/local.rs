@@ -90,9 +90,28 @@ fn highlight_power(cos: f64, m: f64) -> f64 {
     if cos == 0.0 && m > 0.0 {
         0.0
     } else if m.fract() == 0.0 && (0.0..=1024.0).contains(&m) {
-        cos.powi(m as i32)
+        powi_by_squaring(cos, m as u32)
     } else {
         cos.powf(m)
+    }
+}
+
+/// aᵉ by repeated squaring: a, a², a⁴, … multiplied in where e has a one bit. The same
+/// multiplications in the same order as `f64::powi` (compiler-builtins' `__powidf2`, so images
+/// do not change), written out so that the compiler inlines them: the call cost 2 % of the
+/// Whitted peer scene's instructions.
+#[inline]
+fn powi_by_squaring(mut a: f64, mut e: u32) -> f64 {
+    let mut product = 1.0;
+    loop {
+        if e & 1 != 0 {
+            product *= a;
+        }
+        e >>= 1;
+        if e == 0 {
+            return product;
+        }
+        a *= a;
     }
 }
 
@@ -118,5 +137,20 @@ mod tests {
         }
         assert_eq!(highlight_power(0.0, 40.0), 0.0);
         assert_eq!(highlight_power(0.7, 0.0), 1.0);
+    }
+
+    /// Squaring by hand multiplies as `powi` does, to the last bit.
+    #[test]
+    fn powi_by_squaring_is_powi() {
+        for e in 0..=1024u32 {
+            for k in 0..=200 {
+                let a = k as f64 / 200.0 + 1e-3 * (e as f64).sin();
+                assert_eq!(
+                    powi_by_squaring(a, e).to_bits(),
+                    a.powi(e as i32).to_bits(),
+                    "{a}^{e}"
+                );
+            }
+        }
     }
 }
