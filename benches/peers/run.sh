@@ -22,16 +22,20 @@ out=$(mktemp -d)
 wall() { /usr/bin/time -f %e "$@" 2>&1 >/dev/null | tail -1; }
 median() { sort -n | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 # Rays per second count every ray, as the speed target does: primary, shadow, reflection and
-# refraction. POV-Ray's own statistics give its rays and its shadow-ray tests (one per light
-# and shaded point, as raytree's shadow rays), so both sides are counted alike; each count is
-# divided by that side's median wall time. POV-Ray's rate is the machine's yardstick: the
+# refraction. POV-Ray's are the rays and shadow-ray tests of its own statistics (the issue
+# counts it that way), raytree's those of `--stats`, taken from the warm-up runs; each count
+# is divided by that side's median wall time. POV-Ray's rate is the machine's yardstick: the
 # target's 60 M rays/s was set where POV-Ray did 12–15 M.
+rate() { awk -v rays="$1" -v s="$2" 'BEGIN {printf "%.1f", rays / s / 1e6}'; }
 printf "%-8s %12s %12s %8s %14s %14s %14s\n" scene "POV-Ray s" "raytree s" ratio "ratio range" \
     "POV-Ray Mray/s" "raytree Mray/s"
 for scene in ${scenes[*]}; do
     pov=(povray -D -V "+I$peers/$scene.pov" "+O$out/$scene-pov.png" +FN +W800 +H600 +A0.0 +AM1 +R4 -J +WT2)
     ray=("$raytree" render "$scene.yaml" -o "$out/$scene-raytree.png" --spp 16 --threads 2)
-    wall "${pov[@]}" >/dev/null; wall "${ray[@]}" >/dev/null   # warm-up
+    # Warm-up, counting the rays (every run traces the same ones).
+    pov_rays=$("${pov[@]}" 2>&1 |
+        awk '/^Rays:/ {r = $2} /^Shadow Ray Tests:/ {s = $4} END {print r + s}')
+    ray_rays=$("${ray[@]}" --stats 2>&1 | awk '/^rays traced/ {print $3}')
     : > "$out/p"; : > "$out/r"
     for _ in $(seq "$runs"); do
         wall "${pov[@]}" >> "$out/p"
@@ -41,10 +45,10 @@ for scene in ${scenes[*]}; do
     paste "$out/r" "$out/p" | awk '{print $1 / $2}' > "$out/ratios"
     ratio=$(median < "$out/ratios")
     range=$(sort -n "$out/ratios" | awk 'NR == 1 {lo = $1} {hi = $1} END {printf "%.3f–%.3f", lo, hi}')
-    pov_rays=$("${pov[@]/#-V/+V}" 2>&1 |
+    # Warm-up, counting the rays (every run traces the same ones).
+    pov_rays=$("${pov[@]}" 2>&1 |
         awk '/^Rays:/ {r = $2} /^Shadow Ray Tests:/ {s = $4} END {print r + s}')
     ray_rays=$("${ray[@]}" --stats 2>&1 | awk '/^rays traced/ {print $3}')
-    rate() { awk -v rays="$1" -v s="$2" 'BEGIN {printf "%.1f", rays / s / 1e6}'; }
     printf "%-8s %12s %12s %8.3f %14s %14s %14s\n" "$scene" "$p" "$r" "$ratio" "$range" \
         "$(rate "$pov_rays" "$p")" "$(rate "$ray_rays" "$r")"
 done
