@@ -2,10 +2,11 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;
-use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, SphereGroup, Triangle};
+use raytree::fast::{sphere_hit, FastScene, SphereGroup};
+use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
 use raytree::render::{render_simple, RenderOptions};
-use raytree::scene::{parse, Accel, Limits, Scene};
-use raytree::trace::Stats;
+use raytree::scene::{parse, Accel, Limits, Scene, Search};
+use raytree::stats::Stats;
 use std::hint::black_box;
 
 fn rays(n: usize) -> Vec<Ray> {
@@ -104,7 +105,7 @@ fn sphere_group(c: &mut Criterion) {
                 .filter(|r| {
                     let mut limit = f64::INFINITY;
                     for s in &spheres {
-                        if let Some(t) = s.hit(black_box(r), 0.0, limit) {
+                        if let Some(t) = sphere_hit(s, black_box(r), 0.0, limit) {
                             limit = t;
                         }
                     }
@@ -161,7 +162,7 @@ fn bvh(c: &mut Criterion) {
                 b.iter(|| {
                     let mut stats = Stats::default();
                     rs.iter()
-                        .filter(|r| scene.intersect(r, 0.0, f64::INFINITY, &mut stats).is_some())
+                        .filter(|r| scene.nearest(r, 0.0, f64::INFINITY, &mut stats).is_some())
                         .count()
                 })
             });
@@ -170,13 +171,14 @@ fn bvh(c: &mut Criterion) {
     g.finish();
 }
 
-/// Packets of 16 rays in a plain scene (8 spheres, brute force): tested one ray at a time, and
-/// four rays at a time in lanes (`intersect_packet`, `occluded_packet`).
+/// Packets of 16 rays in a plain scene (8 spheres, brute force): tested one ray at a time by the
+/// fast search, and four rays at a time in lanes (`intersect_packet`, `occluded_packet`).
 fn lanes(c: &mut Criterion) {
-    let mut scene = spheres(8);
-    scene.set_accel(Accel::None);
+    let mut core = spheres(8);
+    core.set_accel(Accel::None);
+    let scene = FastScene::new(&core);
     assert!(scene.tests_in_lanes());
-    let cam = scene.camera.clone();
+    let cam = core.camera.clone();
     let rs: Vec<Ray> = (0..48)
         .flat_map(|y| (0..64).map(move |x| (x, y)))
         .map(|(x, y)| cam.pixel_ray(x, y))
@@ -187,7 +189,7 @@ fn lanes(c: &mut Criterion) {
         b.iter(|| {
             let mut stats = Stats::default();
             rs.iter()
-                .filter(|r| scene.intersect(r, 0.0, f64::INFINITY, &mut stats).is_some())
+                .filter(|r| scene.nearest(r, 0.0, f64::INFINITY, &mut stats).is_some())
                 .count()
         })
     });
@@ -207,7 +209,7 @@ fn lanes(c: &mut Criterion) {
         b.iter(|| {
             let mut stats = Stats::default();
             rs.iter()
-                .filter(|r| scene.occluded(r, 0.0, f64::INFINITY, &mut stats).is_some())
+                .filter(|r| scene.blocker(r, 0.0, f64::INFINITY, &mut stats).is_some())
                 .count()
         })
     });
@@ -256,7 +258,7 @@ fn csg(c: &mut Criterion) {
                 rs.iter()
                     .filter(|r| {
                         scene
-                            .intersect(black_box(r), 0.0, f64::INFINITY, &mut stats)
+                            .nearest(black_box(r), 0.0, f64::INFINITY, &mut stats)
                             .is_some()
                     })
                     .count()

@@ -9,13 +9,12 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use glam::DVec3;
 use raytree::geometry::Ray;
-use raytree::scene::{Interaction, Scene};
+use raytree::scene::{Interaction, Scene, Search};
 use raytree::shading::local::{ambient, light_terms};
 use raytree::shading::optics::{reflect, refract, schlick};
 use raytree::shading::Fresnel;
-use raytree::trace::sampling::Rng;
-use raytree::trace::tracer::shadow_reach;
-use raytree::trace::{Stats, Tracer};
+use raytree::stats::Stats;
+use raytree::trace::{shadow_reach, Tracer};
 use std::hint::black_box;
 
 const SCENE: &str = "lessons/examples/showcase.yaml";
@@ -49,12 +48,12 @@ fn render_counting(
     (pixels, stats)
 }
 
-/// The render through the tracer. Its random numbers (for glossy surfaces, which this scene
-/// lacks) come from one generator for the whole image, as the renderer makes one per pixel:
-/// none is made per ray.
-fn traced(scene: &Scene, tracer: &Tracer) -> (Vec<DVec3>, Stats) {
-    let mut rng = Rng::for_pixel(0, 0, 0);
-    render_counting(scene, |r, s| tracer.radiance_with(r, &mut rng, s))
+/// The render through the tracer (one for the whole image, as the renderer keeps one per row:
+/// none is made per ray).
+fn traced(scene: &Scene) -> (Vec<DVec3>, Stats) {
+    let mut tracer = Tracer::new(scene);
+    let pixels = render(scene, |r, _| tracer.radiance(r));
+    (pixels, tracer.stats)
 }
 
 /// The Whitted recursion with nothing but the arithmetic and the statistics (which are not the
@@ -115,7 +114,7 @@ impl Bare<'_> {
         stats: &mut Stats,
     ) -> (DVec3, f64) {
         let scene = self.scene;
-        let Some(hit) = scene.intersect(ray, 0.0, f64::INFINITY, stats) else {
+        let Some(hit) = scene.nearest(ray, 0.0, f64::INFINITY, stats) else {
             return (scene.background, f64::INFINITY);
         };
         let si = scene.interaction(ray, &hit);
@@ -138,7 +137,7 @@ impl Bare<'_> {
             } else if light.is_dark() {
                 stats.shadow_skipped_dark += 1;
                 0.0
-            } else if si.inside && scene.hides_light_inside(si.object, k) {
+            } else if si.inside && scene.features.hides_light_inside(si.object, k) {
                 stats.shadow_skipped_inside += 1;
                 0.0
             } else {
@@ -272,7 +271,7 @@ impl Bare<'_> {
             let (from, moved) = self.scene.offset(si, dir, si.point);
             let t_max = shadow_reach(dist, moved);
             let ray = Ray { origin: from, dir };
-            if self.scene.occluded(&ray, 0.0, t_max, stats).is_none() {
+            if self.scene.blocker(&ray, 0.0, t_max, stats).is_none() {
                 visible += 1;
             }
         }
@@ -290,12 +289,11 @@ impl Bare<'_> {
 fn recorder(c: &mut Criterion) {
     let scene = scene();
     assert!(
-        scene.transparent_objects.len() <= 1,
+        scene.features.transparent_objects.len() <= 1,
         "the replica skips media probing"
     );
-    let tracer = Tracer::new(&scene);
     let bare = Bare { scene: &scene };
-    let (with, counted) = traced(&scene, &tracer);
+    let (with, counted) = traced(&scene);
     let (without, replica_counted) = render_counting(&scene, |r, s| bare.radiance(r, s));
     assert_eq!(
         counted, replica_counted,
@@ -307,12 +305,12 @@ fn recorder(c: &mut Criterion) {
             .all(|(a, b)| a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits)),
         "the replica must compute the tracer's pixels exactly"
     );
-    alternating_ratio(&scene, &tracer, &bare);
+    alternating_ratio(&scene, &bare);
     let mut g = c.benchmark_group("recorder");
     g.sample_size(30);
     g.measurement_time(std::time::Duration::from_secs(8));
     g.bench_function("tracer_with_no_recorder", |b| {
-        b.iter(|| traced(black_box(&scene), &tracer).0)
+        b.iter(|| traced(black_box(&scene)).0)
     });
     g.bench_function("replica_without_recorder", |b| {
         b.iter(|| render(black_box(&scene), |r, s| bare.radiance(r, s)))
@@ -322,13 +320,13 @@ fn recorder(c: &mut Criterion) {
 
 /// Criterion times one variant after the other; on a shared, noisy machine the honest ratio
 /// comes from alternating them: the median over rounds of (tracer time / replica time).
-fn alternating_ratio(scene: &Scene, tracer: &Tracer, bare: &Bare) {
+fn alternating_ratio(scene: &Scene, bare: &Bare) {
     let time = |f: &dyn Fn() -> Vec<DVec3>| {
         let start = std::time::Instant::now();
         black_box(f());
         start.elapsed().as_secs_f64()
     };
-    let with = || traced(black_box(scene), tracer).0;
+    let with = || traced(black_box(scene)).0;
     let without = || render(black_box(scene), |r, s| bare.radiance(r, s));
     // Which goes first alternates too (ABBA), so a warm-up or clock effect favours neither.
     let mut ratios: Vec<f64> = (0..41)

@@ -1,13 +1,30 @@
 //! raytree: a step-by-step Whitted ray tracer whose every pixel can be inspected as a ray tree.
+//!
+//! The modules form layers; each imports only from the layers below it
+//! (`tests/architecture.rs` keeps it so, `docs/architecture.md` maps each concept of the
+//! lecture notes to its file):
+//!
+//! 1. `sampling`, `stats`: random numbers and the counters of work;
+//! 2. `accel`: bounding volumes and the BVH;
+//! 3. `geometry`: rays, shapes, transforms, segment lists, CSG;
+//! 4. `shading`: materials, lights, the local model, optics;
+//! 5. `scene`: the scene file, its compilation, the hit search;
+//! 6. `trace`: the Whitted recursion (the textbook core), the path tracer, ray trees;
+//! 7. `fast`: the fast wing, an optimisation of the core that equals it bit for bit;
+//! 8. `render`: images from many rays, in parallel;
+//! 9. `lessons`, `bench`, `tui`, `cli`: what users run.
 
 pub mod accel;
 pub mod bench;
 pub mod cli;
+pub mod fast;
 pub mod geometry;
 pub mod lessons;
 mod plot_font;
 pub mod render;
+pub mod sampling;
 pub mod scene;
 pub mod shading;
+pub mod stats;
 pub mod trace;
 pub mod tui;

@@ -4,11 +4,10 @@
 use std::sync::atomic::AtomicBool;
 
 use glam::DVec3;
-use raytree::render::antialias::{Antialias, Filter};
 use raytree::render::film::Film;
 use raytree::render::{render, render_simple, Image, RenderOptions};
 use raytree::scene::{parse, Limits, Scene};
-use raytree::trace::Stats;
+use raytree::scene::{Antialias, Filter};
 
 fn scene(yaml: &str) -> Scene {
     parse(yaml, "aa.yaml", None, &Limits::default()).unwrap()
@@ -158,7 +157,7 @@ fn a_lone_pixel_equals_the_rendered_one_in_every_mode() {
         let film = Film::new(&s, o);
         for y in 0..s.camera.height {
             for x in 0..s.camera.width {
-                let lone = film.lone_pixel(x, y, &mut Stats::default());
+                let lone = film.lone_pixel(&mut film.tracer(), x, y);
                 assert_eq!(lone, image.pixels[(y * s.camera.width + x) as usize]);
             }
         }

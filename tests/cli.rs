@@ -222,16 +222,13 @@ fn check_hints_at_the_forgotten_shadow_term() {
         .lights
         .iter()
         .any(|l| l.shadow == 0.0 && l.n_dot_l > 0.0));
-    let options = raytree::trace::tracer::TraceOptions {
+    let options = raytree::trace::TraceOptions {
         max_depth: w.depth,
         shadows: false,
     };
-    let tracer = raytree::trace::Tracer {
-        scene: &w.scene,
-        options,
-    };
-    let unshadowed = tracer
-        .inspect(&w.ray, &mut raytree::trace::Stats::default())
+    let unshadowed = raytree::trace::Tracer::new(&w.scene)
+        .with_options(options)
+        .inspect(&w.ray)
         .local
         .unwrap()
         .total()

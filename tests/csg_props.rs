@@ -4,8 +4,9 @@
 use glam::DVec3;
 use proptest::prelude::*;
 use raytree::geometry::Ray;
+use raytree::scene::Search;
 use raytree::scene::{parse, Limits};
-use raytree::trace::Stats;
+use raytree::stats::Stats;
 
 /// A random solid, written as scene YAML and tested for membership independently.
 #[derive(Clone, Debug)]
@@ -137,7 +138,7 @@ proptest! {
             prop_assert_eq!(covered, depth > 0.0, "t = {} depth = {} list = {:?}", t, depth, list);
         }
         // The nearest hit the renderer uses is the first crossing of the full list.
-        let hit = scene.intersect(&r, 0.0, f64::INFINITY, &mut Stats::default());
+        let hit = scene.nearest(&r, 0.0, f64::INFINITY, &mut Stats::default());
         let first = list.iter().flat_map(|g| [g.t_in, g.t_out]).find(|&t| t > 0.0 && t.is_finite());
         match (hit, first) {
             (Some(h), Some(t)) => prop_assert!((h.t - t).abs() < 1e-9, "{} vs {}", h.t, t),

@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use raytree::render::preview::ColorMode;
 use raytree::render::{render_simple, RenderOptions};
-use raytree::trace::{RayKind, Stats, Tracer};
+use raytree::trace::{RayKind, Tracer};
 use raytree::tui::app::{Focus, Screen};
 use raytree::tui::{input, ui, update, App, Msg};
 
@@ -78,9 +78,7 @@ fn root_color(app: &App) -> glam::DVec3 {
 fn traced_color(app: &App, depth: u32) -> glam::DVec3 {
     let scene = app.scene.as_ref().unwrap();
     let ray = scene.camera.pixel_ray(app.cursor.0, app.cursor.1);
-    Tracer::with_depth(scene, depth)
-        .inspect(&ray, &mut Stats::default())
-        .color
+    Tracer::new(scene).with_depth(depth).inspect(&ray).color
 }
 
 // ---------------------------------------------------------------------------------------
@@ -965,7 +963,7 @@ fn a_glossy_cone_is_folded_under_its_mean_until_opened() {
     // The cone's rays are the renderer's own for this pixel: the root is the rendered value.
     let scene = app.scene.clone().unwrap();
     let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
-    assert_eq!(tree.color, film.lone_pixel(20, 26, &mut Stats::default()));
+    assert_eq!(tree.color, film.lone_pixel(&mut film.tracer(), 20, 26));
     let cone = tree.children.iter().position(|c| c.samples == Some(4));
     let cone = cone.expect("the floor's reflection is a cone of 4 rays");
     // Folded: the cone is one line, its 4 sampled rays hidden.
@@ -988,7 +986,7 @@ fn a_supersampled_pixel_shows_its_rendered_value_above_the_centre_ray() {
     update(&mut app, Msg::Pick(1, 1));
     let scene = app.scene.clone().unwrap();
     let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
-    let rendered = film.lone_pixel(1, 1, &mut Stats::default());
+    let rendered = film.lone_pixel(&mut film.tracer(), 1, 1);
     let (value, how) = app.pixel_value.clone().expect("16 spp, adaptive");
     assert_eq!(value, rendered);
     assert!(how.contains("adaptive"), "{how}");

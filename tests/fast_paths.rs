@@ -1,12 +1,650 @@
-//! Fast paths must give exactly what the full routines give: the nearest-hit tests of spheres and
-//! planes against their spans, and the scene's direct sphere/plane probes against the general
-//! object → leaf → shape route (forced by giving every leaf an identity transform).
+//! The fast wing's contract: everything it computes equals, bit for bit, what the textbook
+//! core computes, and so do the counters of work.
+//!
+//! - Whole images: every lesson scene and peer scene rendered by both engines.
+//! - Pixels traced as packets against the core tracing their samples one by one, on scenes
+//!   built to reach every branch of the packet code (BVH and lanes, every kind of light, nested
+//!   glass, total internal reflection, the adaptive threshold, glossy surfaces).
+//! - The searches: the fast one-ray search, the packet search (BVH packets and SIMD lanes) and
+//!   the flat-CSG shortcut against the core's `Scene::nearest` and `Scene::blocker`, and the
+//!   direct sphere and plane tests against their shapes' spans, under property tests.
 
-use glam::{DAffine3, DMat3, DQuat, DVec3};
+mod common;
+
+use glam::DVec3;
 use proptest::prelude::*;
-use raytree::geometry::{Aabox, Cone, Cylinder, Plane, Ray, Shape, Sphere, Transform, Triangle};
-use raytree::scene::{parse, Accel, Hit, Limits, Scene};
-use raytree::trace::Stats;
+use raytree::fast::{plane_hit, sphere_hit, FastScene};
+use raytree::geometry::{Plane, Ray, Sphere};
+use raytree::render::film::Film;
+use raytree::render::{render_simple, Engine, RenderOptions};
+use raytree::scene::{parse, Accel, Hit, Limits, Scene, Search};
+use raytree::stats::Stats;
+use raytree::trace::Tracer;
+
+// --- Whole images ---
+
+/// Renders the scene with both engines: the same pixels to the last bit, the same counters.
+fn assert_engines_agree(name: &str, scene: &Scene, spp: u32) {
+    let fast = RenderOptions {
+        spp,
+        ..RenderOptions::of(scene)
+    };
+    let core = RenderOptions {
+        engine: Engine::Core,
+        ..fast
+    };
+    let (a, sa) = render_simple(scene, fast);
+    let (b, sb) = render_simple(scene, core);
+    for (i, (p, q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+        assert_eq!(
+            p.to_array().map(f64::to_bits),
+            q.to_array().map(f64::to_bits),
+            "{name} at {spp} spp: pixel {} differs: fast {p} core {q}",
+            i
+        );
+    }
+    assert_eq!(sa, sb, "{name} at {spp} spp: counters differ");
+}
+
+/// Every scene of every lesson, small, at 1 and 16 samples per pixel (and the scene's own).
+#[test]
+fn every_lesson_scene_renders_the_same_with_both_engines() {
+    let mut count = 0;
+    for path in common::lesson_scene_files() {
+        let mut scene = raytree::scene::load(&path, &Limits::default()).unwrap();
+        let (w, h) = (scene.camera.width.min(48), scene.camera.height.min(36));
+        scene.camera = scene.camera.resized(w, h);
+        let name = path.display().to_string();
+        for spp in [1, 16, scene.spp] {
+            assert_engines_agree(&name, &scene, spp);
+        }
+        count += 1;
+    }
+    assert!(count >= 40, "only {count} lesson scenes found");
+}
+
+/// The peer scenes of `benches/peers/` (mirror and glass spheres; CSG; 10 000 spheres in a
+/// BVH), small.
+#[test]
+fn every_peer_scene_renders_the_same_with_both_engines() {
+    for name in ["whitted", "csg"] {
+        let scene = common::scene_file_resized(&format!("benches/peers/{name}.yaml"), 64, 48);
+        for spp in [1, 16] {
+            assert_engines_agree(name, &scene, spp);
+        }
+    }
+    let many = common::scene(&common::many_spheres(10_000));
+    let many = Scene {
+        camera: many.camera.resized(32, 24),
+        ..many
+    };
+    assert!(many.bvh_nodes() > 0);
+    for spp in [1, 4] {
+        assert_engines_agree("many", &many, spp);
+    }
+}
+
+// --- Pixels traced as packets ---
+
+/// Pixels whose grid samples the fast wing traces as packets (their nearest hits, then every
+/// light's terms and shadow rays for all of them, then their secondary rays in waves) get
+/// exactly the value and the counters of the core tracing their samples one at a time, in
+/// order, from the pixel's random numbers (glossy surfaces draw from them, so the order in
+/// which samples are shaded matters too).
+fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) -> Stats {
+    let fast = Film::new(scene, RenderOptions::of(scene));
+    let core = Film::new(
+        scene,
+        RenderOptions {
+            engine: Engine::Core,
+            ..RenderOptions::of(scene)
+        },
+    );
+    let no_corners = |_: &mut Tracer, _: u32, _: u32| -> DVec3 { unreachable!("grid sampling") };
+    let mut total = Stats::default();
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    for (x, y) in (0..h).flat_map(|y| (0..w).map(move |x| (x, y))) {
+        let (mut packed, mut one_by_one) = (fast.tracer(), core.tracer());
+        let value = fast.pixel(&mut packed, x, y, &no_corners);
+        let expected = core.pixel(&mut one_by_one, x, y, &no_corners);
+        assert_eq!(
+            value.to_array().map(f64::to_bits),
+            expected.to_array().map(f64::to_bits),
+            "pixel ({x}, {y})"
+        );
+        assert_eq!(packed.stats, one_by_one.stats, "pixel ({x}, {y})");
+        total.add(&one_by_one.stats);
+    }
+    total
+}
+
+/// In a BVH scene: the primary rays and the shadow rays search it as packets.
+#[test]
+fn every_pixel_traced_in_packets_is_traced_sample_by_sample() {
+    let mut yaml = String::from(
+        "camera: { eye: [0, 0, -30], look_at: [0, 0, 0], width: 24, height: 18 }\nspp: 16\nmax_depth: 3\nlights: [ { point: [10, 20, -20] } ]\nmaterials: { m: { ka: 0.2, kd: 0.6, kr: 0.3, glossy: { spread: 8, samples: 3 } } }\nobjects:\n  - { name: floor, plane: { point: [0, -12, 0], normal: [0, 1, 0] }, material: m }\n",
+    );
+    for i in 0..40 {
+        let (x, y, z) = (
+            (i % 8) as f64 * 3.0 - 10.5,
+            (i / 8) as f64 * 3.0 - 6.0,
+            (i % 3) as f64,
+        );
+        yaml.push_str(&format!(
+            "  - {{ name: s{i}, sphere: {{ center: [{x}, {y}, {z}], radius: 1.3 }}, material: m }}\n"
+        ));
+    }
+    let scene = parse(&yaml, "packets.yaml", None, &Limits::default()).unwrap();
+    assert!(scene.bvh_nodes() > 0);
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    // The pixels did meet the BVH and glossy surfaces, and cast shadow rays.
+    assert!(
+        total.glossy_rays > 0 && total.bvh_nodes_visited > 0 && total.shadow_rays > 0,
+        "{total:?}"
+    );
+}
+
+/// Without a BVH, and with every kind of light: point, directional, an area light (its grid of
+/// shadow rays goes one point at a time), a dark one and one behind most surfaces, over glass,
+/// a mirror and a CSG object.
+#[test]
+fn every_pixel_under_every_kind_of_light_traced_in_packets_is_traced_sample_by_sample() {
+    let yaml = [
+        "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 20, height: 15 }
+spp: 9
+ambient: 0.2
+max_depth: 4
+",
+        EVERY_KIND_OF_LIGHT,
+        "materials:
+  floor: { color: 0.6, ka: 0.2, kd: 0.8 }
+",
+        SPHERES_ON_A_FLOOR,
+        "  - name: lens
+    intersection:
+      - { sphere: { center: [0, 0, 0.5], radius: 1 } }
+      - { sphere: { center: [0, 0, -0.5], radius: 1 } }
+    transform: [ { translate: [0, 2.6, 0] } ]
+    material: glass
+",
+    ]
+    .concat();
+    let scene = parse(&yaml, "lights.yaml", None, &Limits::default()).unwrap();
+    assert_eq!(scene.bvh_nodes(), 0);
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.shadow_skipped_dark > 0
+            && total.shadow_skipped_backfacing > 0
+            && total.refraction_rays > 0
+            && total.reflection_rays > 0,
+        "{total:?}"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
+
+    /// Shadow rays from anywhere, in any directions, with any reach: the packet's answer is
+    /// every ray's own `occluded`, and so are the counters.
+    #[test]
+    fn shadow_rays_in_a_packet_are_blocked_as_one_by_one(
+        objs in common::objects(),
+        rays in prop::collection::vec(
+            (prop::array::uniform3(-15.0..15.0f64), prop::array::uniform3(-1.0..1.0f64), 0.0..40.0f64),
+            1..=16,
+        ),
+        directional in any::<bool>(),
+    ) {
+        let scene = common::random_scene(&objs);
+        let (rays, reach): (Vec<Ray>, Vec<f64>) = rays
+            .iter()
+            .map(|(o, d, t)| {
+                let d = DVec3::from_array(*d).try_normalize().unwrap_or(DVec3::Y);
+                let t = if directional { f64::INFINITY } else { *t };
+                (Ray::new(DVec3::from_array(*o), d), t)
+            })
+            .unzip();
+        assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
+    }
+}
+
+/// A peer scene of `benches/peers/` at 40×30, too small for a BVH.
+fn small_peer_scene(name: &str) -> Scene {
+    let yaml = std::fs::read_to_string(format!("benches/peers/{name}.yaml"))
+        .unwrap()
+        .replace("width: 800, height: 600", "width: 40, height: 30");
+    let scene = parse(&yaml, name, None, &Limits::default()).unwrap();
+    assert_eq!((scene.camera.width, scene.bvh_nodes()), (40, 0));
+    scene
+}
+
+/// The Whitted peer scene (plain spheres and a plane, mirror and glass), small: every pixel,
+/// traced in packets with its objects tested four rays at a time, is exactly its samples
+/// traced one by one.
+#[test]
+fn every_pixel_of_a_plain_scene_traced_in_lanes_is_traced_sample_by_sample() {
+    let scene = small_peer_scene("whitted");
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.shadow_rays > 0 && total.reflection_rays > 0 && total.refraction_rays > 0,
+        "{total:?}"
+    );
+}
+
+/// The CSG peer scene (a glass lens, a box carved by a sphere, a cylinder under a cone, on a
+/// plane), small: its CSG objects are tested ray by ray inside the lanes, and every pixel is
+/// exactly its samples traced one by one.
+#[test]
+fn every_pixel_of_the_csg_scene_traced_in_lanes_is_traced_sample_by_sample() {
+    let scene = small_peer_scene("csg");
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.total_internal_reflections > 0 && total.csg_pruned > 0 && total.bounds_skipped > 0,
+        "{total:?}"
+    );
+}
+
+/// Every kind of light: point (attenuated), directional, an area light (its grid of shadow rays
+/// goes one point at a time), a dark one, and one below most surfaces.
+const EVERY_KIND_OF_LIGHT: &str = "lights:
+  - { name: key, point: [-4, 6, -5], intensity: 0.8, attenuation: [1, 0.05, 0] }
+  - { name: sun, direction: [0.3, -1, 0.4], intensity: 0.4 }
+  - { name: panel, rect: { corner: [1, 5, -2], u: [1, 0, 0], v: [0, 0, 1] }, intensity: 0.5, samples: 2 }
+  - { name: off, point: [0, 8, 0], intensity: 0 }
+  - { name: below, point: [0, -5, 0], intensity: 0.3 }
+";
+
+/// The end of a `materials:` list (red Phong, mirror, Schlick glass) and the start of an
+/// `objects:` list that uses them: a floor and three spheres on it.
+const SPHERES_ON_A_FLOOR: &str = "  red: { color: [0.8, 0.1, 0.1], ka: 0.1, kd: 0.8, ks: 0.4, shininess: 40, highlight: phong }
+  mirror: { color: 0.1, kd: 0.1, ks: 0.6, shininess: 200, kr: 0.8 }
+  glass: { color: 1, kd: 0.05, ks: 0.6, shininess: 200, kr: 0.1, kt: 0.9, ior: 1.5, fresnel: schlick }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { name: red, sphere: { center: [-1.8, 1, 0.5], radius: 1 }, material: red }
+  - { name: mirror, sphere: { center: [0, 1, 1.5], radius: 1 }, material: mirror }
+  - { name: glass, sphere: { center: [1.6, 1, -0.5], radius: 1 }, material: glass }
+";
+
+/// A plain scene with everything the secondary rays' waves must get right: Fresnel, glass
+/// nested in glass (n1/n2 from the geometry), an air bubble inside glass (total internal
+/// reflection), distance attenuation of secondary rays, the adaptive threshold and the depth
+/// limit, under every kind of light. Every pixel is exactly its samples traced one by one.
+#[test]
+fn every_pixel_of_a_plain_scene_with_nested_glass_traced_in_waves_is_traced_sample_by_sample() {
+    let yaml = [
+        "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 24, height: 18 }
+spp: 9
+ambient: 0.2
+max_depth: 6
+adaptive_threshold: 0.01
+secondary_attenuation: [1, 0.05, 0]
+",
+        EVERY_KIND_OF_LIGHT,
+        "materials:
+  floor: { color: 0.6, ka: 0.2, kd: 0.8, kr: 0.1 }
+  air: { color: 1, kt: 1, kr: 0.2, ior: 1.0 }
+  diamond: { color: 1, kd: 0.02, kr: 0.2, kt: 0.8, ior: 2.4 }
+",
+        SPHERES_ON_A_FLOOR,
+        "  - { name: bubble, sphere: { center: [1.7, 1.1, -0.6], radius: 0.45 }, material: air }
+  - { name: diamond, sphere: { center: [-0.6, 0.5, -1.5], radius: 0.5 }, material: diamond }
+",
+    ]
+    .concat();
+    let scene = parse(&yaml, "nested.yaml", None, &Limits::default()).unwrap();
+    assert!(FastScene::new(&scene).tests_in_lanes());
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.total_internal_reflections > 0
+            && total.adaptive_cutoffs > 0
+            && total.max_depth_cutoffs > 0
+            && total.shadow_skipped_dark > 0
+            && total.shadow_skipped_backfacing > 0,
+        "{total:?}"
+    );
+}
+
+/// Exact ties: pairs of boxes that share their +x face, one shallow and one deep, so the
+/// tree can part them along x. A ray through a shared face meets both at the same t, and the
+/// one-ray search keeps whichever it visits first, nearer side first by the ray's own signs. In
+/// each packet the first ray points the other way along x: a packet that ordered every ray's
+/// visits by that one's signs would keep the other box.
+#[test]
+fn a_packet_breaks_ties_as_the_one_ray_search_does() {
+    let mut yaml = String::from(
+        "camera: { eye: [30, 0, 0], look_at: [0, 0, 0] }\nlights: [ { point: [30, 0, 0] } ]\nmaterials: { m: { kd: 1 } }\nobjects:\n",
+    );
+    for i in 0..24 {
+        let (y, z) = ((i % 6) as f64 * 2.5 - 6.25, (i / 6) as f64 * 2.5 - 3.75);
+        for (name, back) in [("shallow", 0.5), ("deep", -3.0 - i as f64)] {
+            yaml.push_str(&format!(
+                "  - {{ name: {name}{i}, box: {{ min: [{back}, {}, {}], max: [1.5, {}, {}] }}, material: m }}\n",
+                y - 1.0,
+                z - 1.0,
+                y + 1.0,
+                z + 1.0
+            ));
+        }
+    }
+    let scene = parse(&yaml, "ties.yaml", None, &Limits::default()).unwrap();
+    assert!(scene.bvh_nodes() > 0);
+    let mut ties = 0;
+    for k in 0..64 {
+        let rays: Vec<Ray> = (0..16)
+            .map(|j| {
+                let a = (k * 16 + j) as f64 * 0.618_033_988_75;
+                let b = (k * 16 + j) as f64 * 0.414_213_562_37;
+                let x = if j == 0 { 1.0 } else { -1.0 };
+                let d = DVec3::new(x, 0.5 * (a.fract() - 0.5), 0.3 * (b.fract() - 0.5));
+                Ray::new(DVec3::new(30.0, 0.0, 0.0), d.normalize())
+            })
+            .collect();
+        assert_packet_is_one_by_one(&scene, &rays).unwrap();
+        ties += rays
+            .iter()
+            .filter(|r| {
+                let hit = scene.nearest(r, 0.0, f64::INFINITY, &mut Stats::default());
+                hit.is_some_and(|h| (r.origin + h.t * r.dir).x == 1.5)
+            })
+            .count();
+    }
+    assert!(ties > 100, "only {ties} rays met a shared face");
+}
+
+// --- Searches: packets ---
+
+/// The fast wing's packet search answers every ray exactly as the core's one-ray search does,
+/// hit for hit and counter for counter, also for rays whose signs differ from the first ray's.
+fn assert_packet_is_one_by_one(scene: &Scene, rays: &[Ray]) -> Result<(), TestCaseError> {
+    let fast = FastScene::new(scene);
+    let mut packet_stats = Stats::default();
+    let mut hits = vec![None; rays.len()];
+    fast.intersect_packet(rays, &mut hits, &mut packet_stats);
+    let mut single_stats = Stats::default();
+    for (ray, hit) in rays.iter().zip(&hits) {
+        let single = scene.nearest(ray, 0.0, f64::INFINITY, &mut single_stats);
+        prop_assert_eq!(*hit, single, "{:?}", ray);
+    }
+    prop_assert_eq!(packet_stats, single_stats);
+    Ok(())
+}
+
+/// The packet's shadow rays are blocked exactly as the core's `blocker` says ray by ray, and
+/// the counters are those of asking ray by ray.
+fn assert_shadow_packet_is_one_by_one(
+    scene: &Scene,
+    rays: &[Ray],
+    reach: &[f64],
+) -> Result<(), TestCaseError> {
+    let fast = FastScene::new(scene);
+    let mut packet_stats = Stats::default();
+    let blocked = fast.occluded_packet(rays, reach, &mut packet_stats);
+    let mut single_stats = Stats::default();
+    for (i, (ray, t)) in rays.iter().zip(reach).enumerate() {
+        let single = scene.blocker(ray, 0.0, *t, &mut single_stats).is_some();
+        prop_assert_eq!(blocked & (1 << i) != 0, single, "ray {}: {:?}", i, ray);
+    }
+    prop_assert_eq!(blocked >> rays.len(), 0);
+    prop_assert_eq!(packet_stats, single_stats);
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_packet_finds_what_its_rays_find_one_by_one(
+        objs in common::objects(),
+        origin in prop::array::uniform3(-15.0..15.0f64),
+        aim in prop::array::uniform3(-1.0..1.0f64),
+        spread in prop::sample::select(vec![1e-3, 0.05, 2.0]),
+        offsets in prop::collection::vec(prop::array::uniform3(-1.0..1.0f64), 1..=16),
+    ) {
+        let scene = common::random_scene(&objs);
+        prop_assume!(scene.bvh_nodes() > 0);
+        // A pixel's samples (a small spread) up to rays in every direction (a large one).
+        let rays: Vec<Ray> = offsets
+            .iter()
+            .map(|o| {
+                let d = DVec3::from_array(aim) + spread * DVec3::from_array(*o);
+                Ray::new(DVec3::from_array(origin), d.try_normalize().unwrap_or(DVec3::Z))
+            })
+            .collect();
+        assert_packet_is_one_by_one(&scene, &rays)?;
+    }
+}
+
+/// A scene too small for a BVH: packets test each plain sphere and plane against four rays at
+/// a time (`RayLanes`), and other objects ray by ray behind their boxes. Coordinates on a
+/// coarse grid, so that tangents, shared centres and rays through centres come up. A plane
+/// after sphere k (`planes_after`) breaks the run of spheres there: runs become groups of up
+/// to four, a lone sphere its own probe. An object after sphere k (`boxed_after`), centred on
+/// it, is one of: a box minus a sphere, a turned box, a cylinder, a lens (∩ of two spheres).
+fn scene_without_bvh(
+    spheres: &[([i8; 3], u8)],
+    planes_after: &[usize],
+    boxed_after: &[usize],
+) -> Scene {
+    let mut yaml = String::from(
+        "camera: { eye: [0, 0, -30], look_at: [0, 0, 0], width: 8, height: 6 }\nlights: [ { point: [10, 20, -20] } ]\nmaterials: { m: { kd: 0.6 } }\nobjects:\n",
+    );
+    for (i, ([x, y, z], r)) in spheres.iter().enumerate() {
+        let r = [0.5, 1.0, 1.5, 2.0][*r as usize % 4];
+        yaml.push_str(&format!(
+            "  - {{ name: s{i}, sphere: {{ center: [{x}, {y}, {z}], radius: {r} }}, material: m }}\n"
+        ));
+        if planes_after.contains(&i) {
+            let (n, h) = [("[0, 1, 0]", -4), ("[1, 0, 0]", 6), ("[0.6, 0, 0.8]", 0)][i % 3];
+            yaml.push_str(&format!(
+                "  - {{ name: p{i}, plane: {{ point: [0, {h}, 0], normal: {n} }}, material: m }}\n"
+            ));
+        }
+        if boxed_after.contains(&i) {
+            let object = match i % 4 {
+                0 => "difference: [ { box: { min: [-1, -1, -1], max: [1, 1, 1] } }, { sphere: { center: [0, 0, 0], radius: 1.3 } } ]",
+                1 => "box: { min: [-1, -0.5, -1], max: [1, 0.5, 1] }",
+                2 => "cylinder: { base: [0, -1, 0], top: [0, 1, 0], radius: 0.75 }",
+                _ => "intersection: [ { sphere: { center: [0, 0, -0.5], radius: 1 } }, { sphere: { center: [0, 0, 0.5], radius: 1 } } ]",
+            };
+            // Turned about y (the box no longer lines up with the axes), then moved.
+            yaml.push_str(&format!(
+                "  - {{ name: b{i}, {object}, transform: [ {{ rotate_y: 35 }}, {{ translate: [{x}, {y}, {z}] }} ], material: m }}\n"
+            ));
+        }
+    }
+    let scene = parse(&yaml, "lanes.yaml", None, &Limits::default()).unwrap();
+    assert_eq!(scene.bvh_nodes(), 0);
+    scene
+}
+
+type ObjectsWithoutBvh = (Vec<([i8; 3], u8)>, Vec<usize>, Vec<usize>);
+
+fn objects_without_bvh() -> impl Strategy<Value = ObjectsWithoutBvh> {
+    (
+        // Up to 15 bounded objects: 16 would get a BVH.
+        prop::collection::vec((prop::array::uniform3(-4i8..=4), any::<u8>()), 1..12),
+        prop::collection::vec(0usize..12, 0..4),
+        prop::collection::vec(0usize..12, 0..4),
+    )
+}
+
+/// Rays on the same coarse grid: from points on it, in directions through grid points; or a
+/// pixel's samples, alike enough for the packet's hull to rule boxes out for all of them.
+fn grid_rays() -> impl Strategy<Value = Vec<Ray>> {
+    let scattered = prop::collection::vec(
+        (
+            prop::array::uniform3(-6i8..=6),
+            prop::array::uniform3(-2i8..=2),
+        ),
+        1..=16,
+    )
+    .prop_map(|rays| {
+        rays.into_iter()
+            .map(|(o, d)| {
+                let d = DVec3::from_array(d.map(f64::from));
+                let d = d.try_normalize().unwrap_or(DVec3::Z);
+                Ray::new(DVec3::from_array(o.map(|c| f64::from(c) * 0.5)), d)
+            })
+            .collect()
+    });
+    let alike = (
+        prop::array::uniform3(-6i8..=6),
+        prop::array::uniform3(-2i8..=2),
+        prop::sample::select(vec![0.001, 0.05]),
+        1..=16usize,
+    )
+        .prop_map(|(o, d, spread, n)| {
+            let origin = DVec3::from_array(o.map(|c| f64::from(c) * 0.5));
+            let aim = DVec3::from_array(d.map(f64::from)) + DVec3::new(0.013, 0.007, 0.011);
+            (0..n)
+                .map(|k| {
+                    let (u, v) = ((k % 4) as f64 - 1.5, (k / 4) as f64 - 1.5);
+                    Ray::new(origin, aim + spread * DVec3::new(u, v, 0.5 * u - v))
+                })
+                .collect()
+        });
+    prop_oneof![scattered, alike]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// Scenes without a BVH: the packet's nearest hits, tested four rays at a time, are every
+    /// ray's own, to the last bit of t, and so are the counters.
+    #[test]
+    fn a_packet_of_rays_in_lanes_finds_what_they_find_one_by_one(
+        (spheres, planes, boxed) in objects_without_bvh(),
+        rays in grid_rays(),
+    ) {
+        let scene = scene_without_bvh(&spheres, &planes, &boxed);
+        assert_packet_is_one_by_one(&scene, &rays)?;
+    }
+
+    /// Scenes without a BVH: shadow rays tested four at a time are blocked as one by one, with
+    /// any reach, and count the same tests.
+    #[test]
+    fn shadow_rays_in_lanes_are_blocked_as_one_by_one(
+        (spheres, planes, boxed) in objects_without_bvh(),
+        rays in grid_rays(),
+        reach in prop::sample::select(vec![0.0, 0.5, 3.0, 7.25, f64::INFINITY]),
+    ) {
+        let scene = scene_without_bvh(&spheres, &planes, &boxed);
+        let reach = vec![reach; rays.len()];
+        assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
+    }
+}
+
+/// A CSG object of two operands, spheres, boxes, cylinders or cones on a coarse grid (so that
+/// they are often equal, tangent, concentric, one inside the other, or share faces; the
+/// cylinders and cones along an axis or tilted), under ∪, ∩ or −, and
+/// sometimes turned and moved; with a plane behind it, so that rays that miss it have a limit.
+/// Rays from grid points, from points on either operand's surface (rays leaving it, or
+/// bouncing inside it), or a pixel's samples.
+fn csg_pair_scene_and_rays() -> impl Strategy<Value = (Scene, Vec<Ray>)> {
+    let grid = || (-4i32..=4).prop_map(|k| k as f64 * 0.5);
+    let operand = move || {
+        (
+            grid(),
+            grid(),
+            grid(),
+            prop::sample::select(vec![0.5, 1.0, 1.5, 2.0]),
+            0..4u8,
+            prop::sample::select(vec![DVec3::Y, DVec3::X, DVec3::new(1.0, 1.0, 0.0)]),
+        )
+            .prop_map(|(x, y, z, r, kind, axis)| (DVec3::new(x, y, z), r, kind, axis))
+    };
+    let ray = move || {
+        (
+            (grid(), grid(), grid()),
+            prop::array::uniform3(-2i8..=2),
+            0..3usize,
+            prop::array::uniform3(-1.0..1.0f64),
+        )
+    };
+    (
+        operand(),
+        operand(),
+        prop::sample::select(vec!["intersection", "union", "difference"]),
+        prop::sample::select(vec![
+            "",
+            ", transform: [ { rotate_y: 35 }, { translate: [0.5, 0, -0.5] } ]",
+        ]),
+        prop::collection::vec(ray(), 1..=16),
+    )
+        .prop_map(|(a, b, op, transform, rays)| {
+            let yaml_of = |(c, r, kind, axis): (DVec3, f64, u8, DVec3)| {
+                let v = |p: DVec3| format!("[{}, {}, {}]", p.x, p.y, p.z);
+                let (lo, hi) = (c - r * axis, c + r * axis);
+                match kind {
+                    0 => format!("{{ sphere: {{ center: {}, radius: {r} }} }}", v(c)),
+                    1 => format!("{{ box: {{ min: {}, max: {} }} }}", v(c - r), v(c + r)),
+                    2 => format!(
+                        "{{ cylinder: {{ base: {}, top: {}, radius: {} }} }}",
+                        v(lo),
+                        v(hi),
+                        0.75 * r
+                    ),
+                    _ => format!(
+                        "{{ cone: {{ apex: {}, base: {}, radius: {r} }} }}",
+                        v(hi),
+                        v(lo)
+                    ),
+                }
+            };
+            let yaml = format!(
+                "camera: {{ eye: [0, 0, -30], look_at: [0, 0, 0] }}
+lights: [ {{ point: [10, 20, -20] }} ]
+materials: {{ m: {{ kd: 0.6 }} }}
+objects:
+  - {{ name: back, plane: {{ point: [0, 0, 6], normal: [0, 0, -1] }}, material: m }}
+  - {{ name: pair, material: m, {op}: [ {}, {} ]{transform} }}
+",
+                yaml_of(a),
+                yaml_of(b)
+            );
+            let scene = parse(&yaml, "pair.yaml", None, &Limits::default()).unwrap();
+            let rays = rays
+                .into_iter()
+                .map(|((x, y, z), d, from, at)| {
+                    let d = DVec3::from_array(d.map(f64::from))
+                        .try_normalize()
+                        .unwrap_or(DVec3::Z);
+                    // A point of the operand's surface (of its ball, for a box: on its faces or inside).
+                    let on = |(c, r, _, _): (DVec3, f64, u8, DVec3)| {
+                        c + r * DVec3::from_array(at).try_normalize().unwrap_or(DVec3::X)
+                    };
+                    let origin = [DVec3::new(x, y, z), on(a), on(b)][from];
+                    Ray::new(origin, d)
+                })
+                .collect();
+            (scene, rays)
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, ..ProptestConfig::default() })]
+
+    /// A CSG object of two spheres, boxes, cylinders or cones tested four rays at a time
+    /// (`CsgLanes::hits`)
+    /// finds what each ray's own evaluation finds, to the last bit of t and on the same face
+    /// of the same operand, and counts the same tests and pruning; with the CSG boxes and
+    /// pruning on or off; for nearest hits and for shadow rays of any reach.
+    #[test]
+    fn a_csg_pair_in_lanes_finds_what_its_rays_find_one_by_one(
+        (scene, rays) in csg_pair_scene_and_rays(),
+        pruning in prop::bool::ANY,
+        reach in prop::sample::select(vec![0.0, 0.5, 1.0, 2.75, f64::INFINITY]),
+    ) {
+        let mut scene = scene;
+        scene.csg_pruning = pruning;
+        assert_packet_is_one_by_one(&scene, &rays)?;
+        let reach = vec![reach; rays.len()];
+        assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
+    }
+}
+
+// --- Searches: one ray ---
 
 /// What a nearest-hit search takes from a span: its first finite end inside (t_min, t_max).
 fn from_span(span: Option<(f64, f64)>, t_min: f64, t_max: f64) -> Option<f64> {
@@ -69,7 +707,7 @@ proptest! {
         for r in rays {
             let span = s.span(&r).map(|s| (s.t_in, s.t_out));
             prop_assert_eq!(
-                bits(s.hit(&r, t_min, t_max)),
+                bits(sphere_hit(&s, &r, t_min, t_max)),
                 bits(from_span(span, t_min, t_max)),
                 "{:?} {:?}", s, r
             );
@@ -94,13 +732,13 @@ proptest! {
             let p = Plane { point: DVec3::from_array(point), normal: n };
             let r = Ray { origin: DVec3::from_array(origin), dir: d };
             let span = p.span(&r).map(|s| (s.t_in, s.t_out));
-            prop_assert_eq!(bits(p.hit(&r, t_min, t_max)), bits(from_span(span, t_min, t_max)));
+            prop_assert_eq!(bits(plane_hit(&p, &r, t_min, t_max)), bits(from_span(span, t_min, t_max)));
             return Ok(());
         }
         let p = Plane { point: DVec3::from_array(point), normal: n };
         let r = Ray { origin: DVec3::from_array(origin), dir: d };
         let span = p.span(&r).map(|s| (s.t_in, s.t_out));
-        prop_assert_eq!(bits(p.hit(&r, t_min, t_max)), bits(from_span(span, t_min, t_max)));
+        prop_assert_eq!(bits(plane_hit(&p, &r, t_min, t_max)), bits(from_span(span, t_min, t_max)));
     }
 }
 
@@ -121,27 +759,15 @@ fn scene(objects: &[([f64; 3], f64)], planes: &[[f64; 3]]) -> Scene {
     parse(&yaml, "fast.yaml", None, &Limits::default()).unwrap()
 }
 
-/// The same scene with every leaf given an identity transform: the scene then tests every
-/// object through the general route (carry the ray to object space, take the shape's span),
-/// with the same arithmetic.
-fn through_general_route(s: &Scene) -> Scene {
-    let mut slow = s.clone();
-    for leaf in &mut slow.leaves {
-        leaf.transform = Some(Transform::new(DAffine3::IDENTITY));
-    }
-    slow
-}
-
-/// The hits, and how many objects were looked at: tested, or skipped by their bounding box
-/// (the general route checks an object's box first; the direct probes need none).
-fn hits(s: &Scene, rays: &[Ray]) -> Vec<(Option<Hit>, Option<Hit>, u64)> {
-    let mut stats = Stats::default();
+/// The hits, and how many objects were looked at: tested, or skipped by their bounding box.
+fn hits(s: &dyn Search, rays: &[Ray]) -> Vec<(Option<Hit>, Option<Hit>, Stats)> {
     rays.iter()
         .map(|r| {
+            let mut stats = Stats::default();
             (
-                s.intersect(r, 0.0, f64::INFINITY, &mut stats),
-                s.occluded(r, 0.0, 25.0, &mut stats),
-                stats.primitives_tested + stats.bounds_skipped,
+                s.nearest(r, 0.0, f64::INFINITY, &mut stats),
+                s.blocker(r, 0.0, 25.0, &mut stats),
+                stats,
             )
         })
         .collect()
@@ -150,8 +776,10 @@ fn hits(s: &Scene, rays: &[Ray]) -> Vec<(Option<Hit>, Option<Hit>, u64)> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
 
+    /// Spheres (tested directly, and in groups of four) and planes: the fast search finds the
+    /// core's hits and counts the same work, with and without a BVH.
     #[test]
-    fn scene_probes_find_the_general_routes_hits(
+    fn the_fast_search_finds_the_cores_hits(
         spheres in prop::collection::vec((prop::array::uniform3(-10.0..10.0f64), 0.2..3.0f64), 1..40),
         planes in prop::collection::vec(prop::array::uniform3(-1.0..1.0f64), 0..3),
         rays in prop::collection::vec((prop::array::uniform3(-15.0..15.0f64), prop::array::uniform3(-1.0..1.0f64)), 60),
@@ -162,11 +790,10 @@ proptest! {
             .filter_map(|(o, d)| Some(Ray { origin: DVec3::from_array(*o), dir: unit(*d)? }))
             .collect();
         for accel in [Accel::None, Accel::Bvh] {
-            let mut fast = scene(&spheres, &planes);
-            fast.set_accel(accel);
-            let mut slow = through_general_route(&fast);
-            slow.set_accel(accel);
-            prop_assert_eq!(hits(&fast, &rays), hits(&slow, &rays));
+            let mut core = scene(&spheres, &planes);
+            core.set_accel(accel);
+            let fast = FastScene::new(&core);
+            prop_assert_eq!(hits(&fast, &rays), hits(&core, &rays));
         }
     }
 }
@@ -250,9 +877,10 @@ fn csg_ray() -> impl Strategy<Value = Ray> {
         .prop_map(|(origin, dir)| Ray { origin, dir })
 }
 
-/// The nearest hit of a flat CSG object, read off its primitives' spans, is the first
-/// crossing of its segment list inside the window, to the bit, with the same surface; the
-/// pruning counted is the same, with CSG boxes and pruning on or off.
+/// The fast search's nearest hit of a flat CSG object, read off its primitives' spans, is the
+/// core's (the first crossing of its segment list inside the window), to the bit, with the
+/// same surface and the same pruning counted, with CSG boxes and pruning on or off; and so is
+/// its blocker.
 fn assert_flat_hit_is_the_lists_first_crossing(
     object: &str,
     r: &Ray,
@@ -265,26 +893,22 @@ fn assert_flat_hit_is_the_lists_first_crossing(
     );
     let mut scene = parse(&yaml, "flat.yaml", None, &Limits::default()).unwrap();
     scene.csg_pruning = pruning;
-    let mut reference = Stats::default();
-    let boxed = !pruning || scene.objects[0].bounds.hit(r, r.dir.recip(), t_min, t_max);
-    let expected = boxed
-        .then(|| {
-            let list = scene.object_segments(0, r, t_min, t_max, &mut reference);
-            let (t, surface) = raytree::geometry::first_crossing(&list, t_min)?;
-            (t > t_min && t < t_max && t.is_finite()).then_some((t.to_bits(), surface))
-        })
-        .flatten();
-    let mut stats = Stats::default();
-    let hit = scene.intersect(r, t_min, t_max, &mut stats);
+    let fast = FastScene::new(&scene);
+    let (mut core_stats, mut fast_stats) = (Stats::default(), Stats::default());
+    let expected = scene.nearest(r, t_min, t_max, &mut core_stats);
+    let hit = fast.nearest(r, t_min, t_max, &mut fast_stats);
     prop_assert_eq!(
         hit.map(|h| (h.t.to_bits(), h.surface)),
-        expected,
+        expected.map(|h| (h.t.to_bits(), h.surface)),
         "{}",
         object
     );
-    prop_assert_eq!(stats.csg_pruned, reference.csg_pruned, "{}", object);
-    let blocker = scene.occluded(r, t_min, t_max, &mut Stats::default());
-    prop_assert_eq!(blocker, hit);
+    prop_assert_eq!(fast_stats, core_stats, "{}", object);
+    let blocker = fast.blocker(r, t_min, t_max, &mut Stats::default());
+    prop_assert_eq!(
+        blocker,
+        scene.blocker(r, t_min, t_max, &mut Stats::default())
+    );
     Ok(())
 }
 
@@ -342,157 +966,5 @@ proptest! {
         pruning in prop::bool::ANY,
     ) {
         assert_flat_hit_is_the_lists_first_crossing(&object, &r, t_min, f64::INFINITY, pruning)?;
-    }
-}
-
-/// A box around c, at least 0.1 from it on every side.
-fn box_around(c: DVec3, e: DVec3) -> Shape {
-    let e = e.abs() + 0.1;
-    Shape::Box(Aabox {
-        min: c - e,
-        max: c + e,
-    })
-}
-
-/// A shape, and a transform of the kind it keeps (or any transform, for `keeps = false`).
-fn moved_case() -> impl Strategy<Value = (Shape, DAffine3, bool)> {
-    let v = |r: f64| prop::array::uniform3(-r..r).prop_map(DVec3::from_array);
-    let turn = (v(1.0), -3.2..3.2f64).prop_filter_map("axis", |(a, angle)| {
-        Some(DQuat::from_axis_angle(a.try_normalize()?, angle))
-    });
-    let similarity = (turn, 0.1..10.0f64, prop::bool::ANY, v(5.0)).prop_map(|(q, s, mirror, t)| {
-        let m = if mirror { -1.0 } else { 1.0 };
-        DAffine3::from_scale_rotation_translation(DVec3::new(m * s, s, s), q, t)
-    });
-    let axis_scale = (v(3.0), v(5.0)).prop_filter_map("scale", |(s, t)| {
-        (s.abs().min_element() > 0.05)
-            .then(|| DAffine3::from_scale_rotation_translation(s, DQuat::IDENTITY, t))
-    });
-    let any = (v(2.0), v(2.0), v(2.0), v(5.0)).prop_filter_map("invertible", |(a, b, c, t)| {
-        let m = DAffine3::from_mat3_translation(DMat3::from_cols(a, b, c), t);
-        (m.matrix3.determinant().abs() > 0.1).then_some(m)
-    });
-    let round =
-        (v(2.0), 0.2..2.0f64, v(2.0)).prop_filter("axis", |(a, _, b)| (*a - *b).length() > 0.2);
-    prop_oneof![
-        (v(2.0), 0.2..2.0f64, similarity.clone()).prop_map(|(c, r, m)| (
-            Shape::Sphere(Sphere {
-                center: c,
-                radius: r
-            }),
-            m,
-            true
-        )),
-        (round.clone(), similarity.clone()).prop_map(|((a, r, b), m)| (
-            Shape::Cylinder(Cylinder {
-                base: a,
-                top: b,
-                radius: r
-            }),
-            m,
-            true
-        )),
-        (round, similarity.clone()).prop_map(|((a, r, b), m)| (
-            Shape::Cone(Cone {
-                apex: a,
-                base: b,
-                radius: r
-            }),
-            m,
-            true
-        )),
-        (v(2.0), v(1.0), axis_scale).prop_map(|(c, e, m)| (box_around(c, e), m, true)),
-        (v(2.0), v(1.0), any.clone()).prop_filter_map("normal", |(p, n, m)| {
-            Some((
-                Shape::Plane(Plane {
-                    point: p,
-                    normal: n.try_normalize()?,
-                }),
-                m,
-                true,
-            ))
-        }),
-        (v(2.0), v(2.0), v(2.0), any.clone()).prop_filter_map("triangle", |(a, b, c, m)| {
-            ((b - a).cross(c - a).length() > 0.1).then_some((
-                Shape::Triangle(Triangle { a, b, c }),
-                m,
-                m.matrix3.determinant() > 0.0,
-            ))
-        }),
-        (v(2.0), 0.2..2.0f64, any.clone()).prop_map(|(c, r, m)| {
-            (
-                Shape::Sphere(Sphere {
-                    center: c,
-                    radius: r,
-                }),
-                m,
-                false,
-            )
-        }),
-        (v(2.0), v(1.0), any).prop_map(|(c, e, m)| (box_around(c, e), m, false)),
-    ]
-}
-
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
-
-    /// A shape carried to world space (`Shape::moved`) is the shape seen through its
-    /// transform: the same span along every ray (t to 1e−9 relative) and the same outward
-    /// normals; and the shapes a transform would not keep of their kind are left alone.
-    #[test]
-    fn shapes_moved_to_world_space_are_the_transformed_shapes(
-        (shape, m, keeps) in moved_case(),
-        origin in prop::array::uniform3(-12.0..12.0f64),
-        aim in prop::array::uniform3(-1.0..1.0f64),
-    ) {
-        let tf = Transform::new(m);
-        let moved = shape.moved(&tf);
-        if !keeps {
-            // A general transform turns spheres into ellipsoids and boxes into parallelepipeds.
-            // Rarely, a random one is close enough to a similarity or a scaling to be kept.
-            let kept_of_kind = tf.similarity_scale().is_some()
-                || matches!(shape, Shape::Box(_)) && m.matrix3 == DMat3::from_diagonal(DVec3::new(m.matrix3.x_axis.x, m.matrix3.y_axis.y, m.matrix3.z_axis.z));
-            prop_assert_eq!(moved.is_some(), kept_of_kind);
-            return Ok(());
-        }
-        let moved = moved.expect("kept of its kind");
-        let origin = DVec3::from_array(origin);
-        // Aim near the shape (most rays at a random point would miss it).
-        let b = shape.bounds();
-        let anchor = match &shape {
-            Shape::Plane(p) => p.point,
-            _ => (b.min + b.max) / 2.0,
-        };
-        let target = m.transform_point3(anchor + DVec3::from_array(aim));
-        let Some(dir) = (target - origin).try_normalize() else {
-            return Ok(());
-        };
-        let ray = Ray { origin, dir };
-        let world = moved.span(&ray);
-        let local = shape.span(&tf.ray_to_local(&ray));
-        match (world, local) {
-            (Some(w), Some(l)) => {
-                let scale = 1.0 + l.t_in.abs().min(1e6) + l.t_out.abs().min(1e6);
-                let close = |a: f64, b: f64| a == b || (a - b).abs() <= 1e-9 * scale;
-                prop_assert!(close(w.t_in, l.t_in) && close(w.t_out, l.t_out), "{:?} vs {:?}", w, l);
-                // Normals where the ray enters and leaves (faces may differ only at edges,
-                // where the two ends' t nearly tie with another face's).
-                for (t, wf, lf) in [(w.t_in, w.face_in, l.face_in), (w.t_out, w.face_out, l.face_out)] {
-                    if !t.is_finite() || wf != lf {
-                        continue;
-                    }
-                    let p = ray.at(t);
-                    let n_world = moved.normal(p, wf as u32);
-                    let n_local = tf.normal_to_world(shape.normal(tf.to_local.transform_point3(p), lf as u32));
-                    prop_assert!((n_world - n_local).length() < 1e-7, "{} vs {}", n_world, n_local);
-                }
-            }
-            (None, None) => {}
-            // A ray that grazes the surface may be a tangent on one side and a miss on the other.
-            (w, l) => {
-                let width = w.or(l).map(|s| (s.t_out - s.t_in).abs()).unwrap();
-                prop_assert!(width < 1e-6 * (1.0 + w.or(l).unwrap().t_in.abs()), "{:?} vs {:?}", w, l);
-            }
-        }
     }
 }

@@ -4,11 +4,12 @@
 use glam::DVec3;
 use raytree::geometry::Ray;
 use raytree::render::{render_simple, RenderOptions};
+use raytree::sampling::Rng;
 use raytree::scene::{parse, Limits, Scene};
+use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
-use raytree::trace::sampling::Rng;
 use raytree::trace::tree::{RayKind, RayNode};
-use raytree::trace::{Stats, Tracer};
+use raytree::trace::Tracer;
 
 fn scene(yaml: &str) -> Scene {
     parse(yaml, "glossy.yaml", None, &Limits::default()).unwrap()
@@ -45,13 +46,10 @@ fn glossy_noise_falls_as_one_over_root_n_about_the_right_mean() {
     let runs = 600;
     for n in [4u32, 16, 64] {
         let s = half_wall(n);
-        let tracer = Tracer::new(&s);
         let values: Vec<f64> = (0..runs)
             .map(|seed| {
-                let mut rng = Rng::for_pixel(seed, 0, 0);
-                tracer
-                    .radiance_with(&down_ray(), &mut rng, &mut Stats::default())
-                    .x
+                let rng = Rng::for_pixel(seed, 0, 0);
+                Tracer::new(&s).with_rng(rng).radiance(&down_ray()).x
             })
             .collect();
         let mean = values.iter().sum::<f64>() / runs as f64;
@@ -197,7 +195,7 @@ fn a_sphere_light_half_hidden_gives_a_shadow_factor_of_one_half() {
             origin: DVec3::new(0.0, 1.0, -1.0),
             dir: DVec3::new(0.0, -1.0, 1.0).normalize(),
         };
-        let tree = Tracer::new(&s).inspect(&ray, &mut Stats::default());
+        let tree = Tracer::new(&s).inspect(&ray);
         let s_factor = tree.local.as_ref().unwrap().lights[0].shadow;
         assert_eq!(s_factor, 0.5, "{samples} × {samples} rays");
         // Far from the blocker's edge: fully lit, or fully in its shadow.
@@ -206,7 +204,7 @@ fn a_sphere_light_half_hidden_gives_a_shadow_factor_of_one_half() {
                 origin: DVec3::new(x, 1.0, -1.0),
                 dir: DVec3::new(0.0, -1.0, 1.0).normalize(),
             };
-            let tree = Tracer::new(&s).inspect(&ray, &mut Stats::default());
+            let tree = Tracer::new(&s).inspect(&ray);
             assert_eq!(
                 tree.local.as_ref().unwrap().lights[0].shadow,
                 expected,

@@ -9,8 +9,9 @@ use std::cell::Cell;
 use proptest::prelude::*;
 use proptest::test_runner::TestRunner;
 use raytree::geometry::Ray;
+use raytree::scene::Search;
 use raytree::scene::{parse, Limits, Scene};
-use raytree::trace::Stats;
+use raytree::stats::Stats;
 
 fn scene(object: &str, light: &str) -> Scene {
     let yaml = format!(
@@ -118,11 +119,11 @@ fn a_shadow_ray_from_inside_a_convex_solid_is_blocked_wherever_the_rule_skips_it
             dir: DVec3::Y,
         };
         if s.contains(0, &light_ray, &mut stats) {
-            prop_assert!(!s.hides_light_inside(0, 0));
+            prop_assert!(!s.features.hides_light_inside(0, 0));
             return Ok(());
         }
         prop_assert!(
-            s.hides_light_inside(0, 0),
+            s.features.hides_light_inside(0, 0),
             "a convex solid with the light outside"
         );
         for (at, dir) in &starts {
@@ -145,7 +146,7 @@ fn a_shadow_ray_from_inside_a_convex_solid_is_blocked_wherever_the_rule_skips_it
                 origin,
                 dir: (across + 0.3 * dir).normalize(),
             };
-            let Some(hit) = s.intersect(&ray, 0.0, f64::INFINITY, &mut stats) else {
+            let Some(hit) = s.nearest(&ray, 0.0, f64::INFINITY, &mut stats) else {
                 continue;
             };
             let si = s.interaction(&ray, &hit);
@@ -165,7 +166,7 @@ fn a_shadow_ray_from_inside_a_convex_solid_is_blocked_wherever_the_rule_skips_it
                 dir: l,
             };
             prop_assert!(
-                s.occluded(&shadow, 0.0, reach, &mut stats).is_some(),
+                s.blocker(&shadow, 0.0, reach, &mut stats).is_some(),
                 "the shadow ray from {from} toward {light} escaped {object}"
             );
             checked.set(checked.get() + 1);
@@ -230,7 +231,7 @@ fn the_rule_holds_for_bounded_convex_solids_with_the_light_outside_only() {
     for (object, light, expected) in cases {
         let s = scene(object, &light);
         assert_eq!(
-            s.hides_light_inside(0, 0),
+            s.features.hides_light_inside(0, 0),
             expected,
             "{object} under {light}"
         );
@@ -245,15 +246,15 @@ fn inside_hits_of_a_glass_ball_cast_no_shadow_rays() {
         "{ name: ball, material: glass, sphere: { center: [0, 0, 0], radius: 3 } }",
         "{ point: [4, 10, -20] }",
     );
-    let tracer = raytree::trace::Tracer::new(&s);
-    let mut stats = Stats::default();
+    let mut tracer = raytree::trace::Tracer::new(&s);
     for k in 0..50 {
         let y = -2.5 + 0.1 * k as f64;
         let ray = Ray {
             origin: DVec3::new(0.3, y, -30.0),
             dir: DVec3::Z,
         };
-        tracer.radiance(&ray, &mut stats);
+        tracer.radiance(&ray);
     }
+    let stats = tracer.stats;
     assert!(stats.shadow_skipped_inside > 0, "{stats:?}");
 }

@@ -158,11 +158,8 @@ fn path_traced_tolerances_hold_for_other_seeds() {
                 if let Some(d) = ex.depth {
                     options.max_depth = d;
                 }
-                let v = Film::new(&scene, options).lone_pixel(
-                    x,
-                    y,
-                    &mut raytree::trace::Stats::default(),
-                );
+                let film = Film::new(&scene, options);
+                let v = film.lone_pixel(&mut film.tracer(), x, y);
                 assert!(
                     (v.x - want).abs() <= ex.tolerance,
                     "{}/{} seed {seed}: {} is not within {} of {want}",

@@ -5,10 +5,10 @@ use std::path::Path;
 
 use glam::DVec3;
 use raytree::render::{render_simple, Image, RenderOptions};
+use raytree::sampling::Rng;
 use raytree::scene::{load, parse, Limits, Scene};
+use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
-use raytree::trace::sampling::Rng;
-use raytree::trace::Stats;
 
 fn scene(yaml: &str) -> Scene {
     parse(yaml, "mc.yaml", None, &Limits::default()).unwrap()
@@ -21,10 +21,9 @@ fn mean(img: &Image) -> DVec3 {
 /// Average radiance over the image with the given integrator switches.
 fn estimate(s: &Scene, spp: u32, next_event: bool, roulette: bool, seed: u64) -> Image {
     let tracer = PathTracer {
-        scene: s,
-        max_depth: s.max_depth,
         next_event,
         roulette,
+        ..PathTracer::new(s, s.max_depth)
     };
     let cam = &s.camera;
     let mut img = Image::new(cam.width, cam.height);

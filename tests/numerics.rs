@@ -5,9 +5,11 @@
 use glam::DVec3;
 use proptest::prelude::*;
 use raytree::geometry::{Aabox, Ray, Shape, Sphere};
+use raytree::scene::Search;
 use raytree::scene::{parse, Limits, Scene};
 use raytree::shading::optics::{refract, schlick};
-use raytree::trace::{RayKind, Stats, Tracer};
+use raytree::stats::Stats;
+use raytree::trace::{RayKind, Tracer};
 
 fn scene(yaml: &str) -> Scene {
     parse(yaml, "n.yaml", None, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
@@ -42,10 +44,10 @@ proptest! {
         let t = n.any_orthonormal_vector();
         let inward = Ray::new(p, -(a.cos() * n) + a.sin() * t);
         let bias = s.bias(p, p);
-        let hit = s.intersect(&inward, bias, f64::INFINITY, &mut Stats::default()).expect("crosses to the far side");
+        let hit = s.nearest(&inward, bias, f64::INFINITY, &mut Stats::default()).expect("crosses to the far side");
         prop_assert!((hit.t - 4.0 * a.cos()).abs() < 1e-9, "{} vs {}", hit.t, 4.0 * a.cos());
         let outward = Ray::new(p, a.cos() * n + a.sin() * t);
-        prop_assert!(s.intersect(&outward, bias, f64::INFINITY, &mut Stats::default()).is_none());
+        prop_assert!(s.nearest(&outward, bias, f64::INFINITY, &mut Stats::default()).is_none());
     }
 
     /// Snell's law holds to rounding for every angle below the critical angle, the direction
@@ -122,10 +124,7 @@ fn nested_dielectrics_keep_the_right_indices() {
     let s = scene(
         "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmax_depth: 8\nmaterials:\n  glass: { kt: 1, ior: 1.5 }\n  water: { kt: 1, ior: 1.33 }\nobjects:\n  - { name: glass, sphere: { center: [0, 0, 0], radius: 3 }, material: glass }\n  - { name: water, sphere: { center: [0, 0, 0], radius: 1 }, material: water }\n",
     );
-    let tree = Tracer::new(&s).inspect(
-        &Ray::new(DVec3::new(0.0, 0.0, -10.0), DVec3::Z),
-        &mut Stats::default(),
-    );
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 0.0, -10.0), DVec3::Z));
     let mut indices = vec![];
     let mut node = &tree;
     while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
@@ -148,10 +147,7 @@ fn touching_slabs_refract_as_one_stack() {
         "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmax_depth: 8\nmaterials:\n  a: { kt: 1, ior: 1.5 }\n  b: { kt: 1, ior: 1.2 }\nobjects:\n  - { name: A, box: { min: [-50, -50, 0], max: [50, 50, 1] }, material: a }\n  - { name: B, box: { min: [-50, -50, 1], max: [50, 50, 2] }, material: b }\n",
     );
     let d = DVec3::new(0.3, 0.1, 1.0).normalize();
-    let tree = Tracer::new(&s).inspect(
-        &Ray::new(DVec3::new(0.0, 0.0, -5.0), d),
-        &mut Stats::default(),
-    );
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 0.0, -5.0), d));
     let mut node = &tree;
     while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
         node = next;
@@ -213,10 +209,7 @@ fn a_hollow_glass_sphere_is_entered_and_left_twice() {
     let s = scene(
         "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmax_depth: 8\nmaterials:\n  glass: { kt: 1, ior: 1.5 }\nobjects:\n  - name: shell\n    difference:\n      - { name: outer, sphere: { center: [0, 0, 0], radius: 2 } }\n      - { name: cavity, sphere: { center: [0, 0, 0], radius: 1 } }\n    material: glass\n",
     );
-    let tree = Tracer::new(&s).inspect(
-        &Ray::new(DVec3::new(0.0, 0.0, -10.0), DVec3::Z),
-        &mut Stats::default(),
-    );
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 0.0, -10.0), DVec3::Z));
     let mut steps = vec![];
     let mut node = &tree;
     while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {

@@ -4,8 +4,10 @@ use std::path::Path;
 
 use glam::DVec3;
 use raytree::geometry::Ray;
+use raytree::scene::Search;
 use raytree::scene::{parse, Limits, Scene};
-use raytree::trace::{text, Stats, Tracer};
+use raytree::stats::Stats;
+use raytree::trace::{text, Tracer};
 
 fn scene(yaml: &str) -> Scene {
     parse(yaml, "test.yaml", None, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
@@ -77,7 +79,7 @@ fn seed_004_tangent_ray_is_a_double_root() {
     );
     let ray = Ray::new(DVec3::new(-3.0, 1.0, 0.0), DVec3::new(0.8, -0.6, 0.0));
     let hit = s
-        .intersect(&ray, 0.0, f64::INFINITY, &mut Stats::default())
+        .nearest(&ray, 0.0, f64::INFINITY, &mut Stats::default())
         .expect("tangent hit");
     assert!((hit.t - 3.0).abs() < 1e-12);
     let p = ray.at(hit.t);
@@ -117,14 +119,14 @@ fn inspected_root_equals_rendered_pixel_in_every_lesson() {
             }
             s.spp = 1;
             // One centre ray per pixel: adaptive antialiasing would average the corners.
-            s.antialias = raytree::render::antialias::Antialias::Grid;
+            s.antialias = raytree::scene::Antialias::Grid;
             let small = s
                 .camera
                 .resized(s.camera.width.min(40), s.camera.height.min(30));
             s.camera = small;
             let (image, _) =
                 raytree::render::render_simple(&s, raytree::render::RenderOptions::of(&s));
-            let tracer = Tracer::new(&s);
+            let mut tracer = Tracer::new(&s);
             for y in (0..s.camera.height).step_by(3) {
                 for x in (0..s.camera.width).step_by(3) {
                     let tree = tracer.inspect_pixel(x, y).tree;

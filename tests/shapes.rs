@@ -1,9 +1,10 @@
 //! Every shape against hand-derived answers: a hit, a miss, a tangent, a ray starting inside,
 //! and a shape behind the ray. Plus the lighting terms and attenuation.
 
-use glam::DVec3;
-use raytree::geometry::{Aabox, Cone, Cylinder, Plane, Ray, Shape, Sphere, Triangle};
-use raytree::scene::{parse, Limits};
+use glam::{DAffine3, DMat3, DQuat, DVec3};
+use proptest::prelude::*;
+use raytree::geometry::{Aabox, Cone, Cylinder, Plane, Ray, Shape, Sphere, Transform, Triangle};
+use raytree::scene::{parse, Limits, Search};
 use raytree::shading::local::{ambient, light_terms};
 use raytree::shading::{Highlight, Material};
 
@@ -254,11 +255,11 @@ fn transforms_keep_t_and_turn_normals_by_the_inverse_transpose() {
     .unwrap();
     let r = ray([0.0, 0.0, 0.0], [0.0, 0.0, 1.0]);
     let h = s
-        .intersect(
+        .nearest(
             &r,
             0.0,
             f64::INFINITY,
-            &mut raytree::trace::Stats::default(),
+            &mut raytree::stats::Stats::default(),
         )
         .unwrap();
     assert!((h.t - 9.0).abs() < E, "t is a world distance");
@@ -332,4 +333,156 @@ fn point_light_attenuation_is_one_over_the_quadratic() {
     assert_eq!(s.distance, 5.0);
     assert!((s.attenuation - 1.0 / 9.75).abs() < E);
     assert!((s.l - DVec3::new(0.0, 0.8, 0.6)).length() < E);
+}
+
+/// A box around c, at least 0.1 from it on every side.
+fn box_around(c: DVec3, e: DVec3) -> Shape {
+    let e = e.abs() + 0.1;
+    Shape::Box(Aabox {
+        min: c - e,
+        max: c + e,
+    })
+}
+
+/// A shape, and a transform of the kind it keeps (or any transform, for `keeps = false`).
+fn moved_case() -> impl Strategy<Value = (Shape, DAffine3, bool)> {
+    let v = |r: f64| prop::array::uniform3(-r..r).prop_map(DVec3::from_array);
+    let turn = (v(1.0), -3.2..3.2f64).prop_filter_map("axis", |(a, angle)| {
+        Some(DQuat::from_axis_angle(a.try_normalize()?, angle))
+    });
+    let similarity = (turn, 0.1..10.0f64, prop::bool::ANY, v(5.0)).prop_map(|(q, s, mirror, t)| {
+        let m = if mirror { -1.0 } else { 1.0 };
+        DAffine3::from_scale_rotation_translation(DVec3::new(m * s, s, s), q, t)
+    });
+    let axis_scale = (v(3.0), v(5.0)).prop_filter_map("scale", |(s, t)| {
+        (s.abs().min_element() > 0.05)
+            .then(|| DAffine3::from_scale_rotation_translation(s, DQuat::IDENTITY, t))
+    });
+    let any = (v(2.0), v(2.0), v(2.0), v(5.0)).prop_filter_map("invertible", |(a, b, c, t)| {
+        let m = DAffine3::from_mat3_translation(DMat3::from_cols(a, b, c), t);
+        (m.matrix3.determinant().abs() > 0.1).then_some(m)
+    });
+    let round =
+        (v(2.0), 0.2..2.0f64, v(2.0)).prop_filter("axis", |(a, _, b)| (*a - *b).length() > 0.2);
+    prop_oneof![
+        (v(2.0), 0.2..2.0f64, similarity.clone()).prop_map(|(c, r, m)| (
+            Shape::Sphere(Sphere {
+                center: c,
+                radius: r
+            }),
+            m,
+            true
+        )),
+        (round.clone(), similarity.clone()).prop_map(|((a, r, b), m)| (
+            Shape::Cylinder(Cylinder {
+                base: a,
+                top: b,
+                radius: r
+            }),
+            m,
+            true
+        )),
+        (round, similarity.clone()).prop_map(|((a, r, b), m)| (
+            Shape::Cone(Cone {
+                apex: a,
+                base: b,
+                radius: r
+            }),
+            m,
+            true
+        )),
+        (v(2.0), v(1.0), axis_scale).prop_map(|(c, e, m)| (box_around(c, e), m, true)),
+        (v(2.0), v(1.0), any.clone()).prop_filter_map("normal", |(p, n, m)| {
+            Some((
+                Shape::Plane(Plane {
+                    point: p,
+                    normal: n.try_normalize()?,
+                }),
+                m,
+                true,
+            ))
+        }),
+        (v(2.0), v(2.0), v(2.0), any.clone()).prop_filter_map("triangle", |(a, b, c, m)| {
+            ((b - a).cross(c - a).length() > 0.1).then_some((
+                Shape::Triangle(Triangle { a, b, c }),
+                m,
+                m.matrix3.determinant() > 0.0,
+            ))
+        }),
+        (v(2.0), 0.2..2.0f64, any.clone()).prop_map(|(c, r, m)| {
+            (
+                Shape::Sphere(Sphere {
+                    center: c,
+                    radius: r,
+                }),
+                m,
+                false,
+            )
+        }),
+        (v(2.0), v(1.0), any).prop_map(|(c, e, m)| (box_around(c, e), m, false)),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    /// A shape carried to world space (`Shape::moved`) is the shape seen through its
+    /// transform: the same span along every ray (t to 1e−9 relative) and the same outward
+    /// normals; and the shapes a transform would not keep of their kind are left alone.
+    #[test]
+    fn shapes_moved_to_world_space_are_the_transformed_shapes(
+        (shape, m, keeps) in moved_case(),
+        origin in prop::array::uniform3(-12.0..12.0f64),
+        aim in prop::array::uniform3(-1.0..1.0f64),
+    ) {
+        let tf = Transform::new(m);
+        let moved = shape.moved(&tf);
+        if !keeps {
+            // A general transform turns spheres into ellipsoids and boxes into parallelepipeds.
+            // Rarely, a random one is close enough to a similarity or a scaling to be kept.
+            let kept_of_kind = tf.similarity_scale().is_some()
+                || matches!(shape, Shape::Box(_)) && m.matrix3 == DMat3::from_diagonal(DVec3::new(m.matrix3.x_axis.x, m.matrix3.y_axis.y, m.matrix3.z_axis.z));
+            prop_assert_eq!(moved.is_some(), kept_of_kind);
+            return Ok(());
+        }
+        let moved = moved.expect("kept of its kind");
+        let origin = DVec3::from_array(origin);
+        // Aim near the shape (most rays at a random point would miss it).
+        let b = shape.bounds();
+        let anchor = match &shape {
+            Shape::Plane(p) => p.point,
+            _ => (b.min + b.max) / 2.0,
+        };
+        let target = m.transform_point3(anchor + DVec3::from_array(aim));
+        let Some(dir) = (target - origin).try_normalize() else {
+            return Ok(());
+        };
+        let ray = Ray { origin, dir };
+        let world = moved.span(&ray);
+        let local = shape.span(&tf.ray_to_local(&ray));
+        match (world, local) {
+            (Some(w), Some(l)) => {
+                let scale = 1.0 + l.t_in.abs().min(1e6) + l.t_out.abs().min(1e6);
+                let close = |a: f64, b: f64| a == b || (a - b).abs() <= 1e-9 * scale;
+                prop_assert!(close(w.t_in, l.t_in) && close(w.t_out, l.t_out), "{:?} vs {:?}", w, l);
+                // Normals where the ray enters and leaves (faces may differ only at edges,
+                // where the two ends' t nearly tie with another face's).
+                for (t, wf, lf) in [(w.t_in, w.face_in, l.face_in), (w.t_out, w.face_out, l.face_out)] {
+                    if !t.is_finite() || wf != lf {
+                        continue;
+                    }
+                    let p = ray.at(t);
+                    let n_world = moved.normal(p, wf as u32);
+                    let n_local = tf.normal_to_world(shape.normal(tf.to_local.transform_point3(p), lf as u32));
+                    prop_assert!((n_world - n_local).length() < 1e-7, "{} vs {}", n_world, n_local);
+                }
+            }
+            (None, None) => {}
+            // A ray that grazes the surface may be a tangent on one side and a miss on the other.
+            (w, l) => {
+                let width = w.or(l).map(|s| (s.t_out - s.t_in).abs()).unwrap();
+                prop_assert!(width < 1e-6 * (1.0 + w.or(l).unwrap().t_in.abs()), "{:?} vs {:?}", w, l);
+            }
+        }
+    }
 }

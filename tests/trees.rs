@@ -108,7 +108,7 @@ fn transformed_lens_segments() {
 fn a_ray_through_the_lens_enters_and_leaves_the_glass() {
     let s = scene("lessons/examples/csg.yaml");
     let ray = Ray::new(DVec3::new(0.0, 1.3, -8.0), DVec3::Z);
-    let tree = Tracer::new(&s).inspect(&ray, &mut raytree::trace::Stats::default());
+    let tree = Tracer::new(&s).inspect(&ray);
     let hit = tree.hit.as_ref().unwrap();
     assert_eq!(hit.object, "lens");
     assert!(!hit.csg_path.is_empty());

@@ -1,9 +1,6 @@
 //! Axis-aligned bounding boxes: the cheap test that lets a ray skip everything inside.
 
 use glam::{DAffine3, DVec3};
-use wide::f64x4;
-
-use crate::geometry::{Ray, RayLanes};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
@@ -32,40 +29,6 @@ impl SlabRay {
                 inv_dir.z.is_sign_negative(),
             ],
         }
-    }
-}
-
-/// Four rays in lanes prepared for slab tests: `SlabRay` four at a time.
-#[derive(Clone, Copy, Debug)]
-pub struct SlabLanes {
-    origin: [f64x4; 3],
-    dir: [f64x4; 3],
-    /// 1/d per component, as `DVec3::recip` finds it ray by ray.
-    inv_dir: [f64x4; 3],
-    /// All ones where 1/d is negative (`SlabRay::negative`).
-    negative: [f64x4; 3],
-}
-
-impl SlabLanes {
-    pub fn new(rays: &RayLanes) -> SlabLanes {
-        let inv_dir = rays.dir.map(|d| f64x4::ONE / d);
-        SlabLanes {
-            origin: rays.origin,
-            dir: rays.dir,
-            inv_dir,
-            negative: inv_dir.map(f64x4::is_sign_negative),
-        }
-    }
-
-    /// The rays themselves, as `RayLanes::new` gave them.
-    #[inline(always)]
-    pub fn rays(&self) -> RayLanes {
-        RayLanes::from_lanes(self.origin, self.dir)
-    }
-
-    /// The 1/d of the ray in one lane, bit for bit `ray.dir.recip()`.
-    pub fn inv_dir(&self, lane: usize) -> DVec3 {
-        DVec3::from_array(self.inv_dir.map(|axis| axis.to_array()[lane]))
     }
 }
 
@@ -151,8 +114,8 @@ impl Aabb {
     /// Slab test: does the ray pass through the box for some t in [t_min, t_max]?
     /// `inv_dir` is 1/d per component (±∞ for zero components).
     #[inline]
-    pub fn hit(&self, ray: &Ray, inv_dir: DVec3, t_min: f64, t_max: f64) -> bool {
-        self.hit_slabs(&SlabRay::new(ray.origin, inv_dir), t_min, t_max)
+    pub fn hit(&self, origin: DVec3, inv_dir: DVec3, t_min: f64, t_max: f64) -> bool {
+        self.hit_slabs(&SlabRay::new(origin, inv_dir), t_min, t_max)
     }
 
     /// The slab test for a ray prepared once for many boxes (Williams et al. 2005): the
@@ -170,27 +133,6 @@ impl Aabb {
             );
         }
         overlaps(enter, exit)
-    }
-
-    /// `hit_slabs` for four rays at once, each lane with its own t_max: the bits of the lanes
-    /// whose ray passes through the box. Lane by lane the very arithmetic and comparisons of
-    /// `slab` and `overlaps`, so each bit is what the ray's own test answers.
-    #[inline(always)]
-    pub fn hit_lanes(&self, r: &SlabLanes, t_min: f64, t_max: f64x4) -> u32 {
-        let (mut enter, mut exit) = (f64x4::splat(t_min), t_max);
-        for axis in 0..3 {
-            let (lo, hi) = (f64x4::splat(self.min[axis]), f64x4::splat(self.max[axis]));
-            let negative = r.negative[axis];
-            let (near, far) = (negative.bitselect(hi, lo), negative.bitselect(lo, hi));
-            let inv = r.inv_dir[axis];
-            let t_near = (near - r.origin[axis]) * inv;
-            let t_far = (far - r.origin[axis]) * inv;
-            // As `slab`: a NaN compares false and leaves the interval as it was.
-            enter = t_near.simd_gt(enter).bitselect(t_near, enter);
-            exit = t_far.simd_lt(exit).bitselect(t_far, exit);
-        }
-        let slack = exit.abs() * f64x4::splat(4.0) * f64x4::splat(f64::EPSILON);
-        enter.simd_le(exit + slack).to_bitmask()
     }
 }
 
@@ -223,77 +165,4 @@ pub fn slab(
 #[inline(always)]
 pub fn overlaps(enter: f64, exit: f64) -> bool {
     enter <= exit + exit.abs() * 4.0 * f64::EPSILON
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use proptest::prelude::*;
-
-    /// A coordinate that often sits exactly on a box's face (−1 or 1), at zero, or anywhere.
-    fn coordinate() -> impl Strategy<Value = f64> {
-        prop_oneof![Just(-1.0), Just(1.0), Just(0.0), Just(-0.0), -3.0..3.0f64]
-    }
-
-    /// A direction component that is often zero (of either sign: a ray parallel to a slab),
-    /// tiny, or anything.
-    fn component() -> impl Strategy<Value = f64> {
-        prop_oneof![Just(0.0), Just(-0.0), Just(1e-300), -1.0..1.0f64]
-    }
-
-    fn ray() -> impl Strategy<Value = Ray> {
-        (
-            [coordinate(), coordinate(), coordinate()],
-            [component(), component(), component()],
-        )
-            .prop_map(|(o, d)| Ray {
-                origin: DVec3::from_array(o),
-                dir: DVec3::from_array(d),
-            })
-    }
-
-    fn reach() -> impl Strategy<Value = f64> {
-        prop_oneof![Just(f64::INFINITY), Just(0.0), 0.0..5.0f64]
-    }
-
-    proptest! {
-        /// Each lane's bit is its own ray's slab test, for rays that start on a face, run
-        /// parallel to a slab (0 · ∞ is NaN there) or along an edge, and each lane's 1/d is
-        /// the ray's own `recip` to the last bit.
-        #[test]
-        fn each_lanes_bit_is_its_rays_own_slab_test(
-            rays in proptest::collection::vec(ray(), 1..=4),
-            t_max in [reach(), reach(), reach(), reach()],
-            flat in any::<bool>(),
-        ) {
-            // The box [−1, 1]³, or a flat one (a face with no thickness along y).
-            let max = if flat { DVec3::new(1.0, -1.0, 1.0) } else { DVec3::ONE };
-            let b = Aabb::new(-DVec3::ONE, max);
-            let slabs = SlabLanes::new(&RayLanes::new(&rays));
-            let bits = b.hit_lanes(&slabs, 0.0, f64x4::new(t_max));
-            for (i, r) in rays.iter().enumerate() {
-                let inv = r.dir.recip();
-                prop_assert_eq!(slabs.inv_dir(i).to_array().map(f64::to_bits), inv.to_array().map(f64::to_bits));
-                let alone = b.hit(r, inv, 0.0, t_max[i]);
-                prop_assert_eq!(bits & (1 << i) != 0, alone, "lane {} of {:?}", i, r);
-            }
-        }
-    }
-
-    /// The cases the lanes must get right, named: a ray through the box, one beside it, one
-    /// lying in a face's plane and parallel to it (NaN, which must not reject), and one whose
-    /// box lies beyond its t_max.
-    #[test]
-    fn lanes_hit_miss_graze_and_stop_short() {
-        let b = Aabb::new(-DVec3::ONE, DVec3::ONE);
-        let z = DVec3::new(0.0, 0.0, 1.0);
-        // From x = 0 (through), x = 2 (beside), x = 1 (in the face x = 1), x = 0 again.
-        let rays = [0.0, 2.0, 1.0, 0.0].map(|x| Ray {
-            origin: DVec3::new(x, 0.0, -5.0),
-            dir: z,
-        });
-        let slabs = SlabLanes::new(&RayLanes::new(&rays));
-        let t_max = f64x4::new([f64::INFINITY, f64::INFINITY, f64::INFINITY, 3.9]);
-        assert_eq!(b.hit_lanes(&slabs, 0.0, t_max), 0b0101);
-    }
 }

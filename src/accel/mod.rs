@@ -1,10 +1,12 @@
-//! Acceleration: bounding boxes and the bounding volume hierarchy.
+//! Acceleration: bounding volumes (boxes, balls) and the bounding volume hierarchy, the
+//! structures that let a ray skip everything it cannot hit (seed 002, "fewer ray-object
+//! intersections"). They know points, vectors and boxes only, so the shapes can describe their
+//! extent with them.
 
-mod aabb;
+pub mod aabb;
 mod ball;
 pub mod bvh;
-mod hull;
 
-pub use aabb::{Aabb, SlabLanes};
+pub use aabb::{Aabb, SlabRay};
 pub use ball::Ball;
-pub use bvh::Bvh;
+pub use bvh::{Bvh, Visits};

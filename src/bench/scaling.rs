@@ -57,7 +57,7 @@ pub fn mesh(subdivisions: u32) -> String {
     format!("{HEADER}  - {{ icosphere: {{ subdivisions: {subdivisions} }}, material: m, transform: [ {{ scale: 10 }} ] }}\n")
 }
 
-fn time_per_ray(scene: &Scene) -> (f64, crate::trace::Stats) {
+fn time_per_ray(scene: &Scene) -> (f64, crate::stats::Stats) {
     let start = Instant::now();
     let (_, stats) = render_simple(
         scene,
@@ -66,6 +66,7 @@ fn time_per_ray(scene: &Scene) -> (f64, crate::trace::Stats) {
             spp: 1,
             seed: 0,
             antialias: Default::default(),
+            engine: Default::default(),
         },
     );
     (

@@ -2,8 +2,8 @@
 
 use std::time::Instant;
 
-use crate::render::antialias::Antialias;
 use crate::render::{render_simple, RenderOptions};
+use crate::scene::Antialias;
 use crate::scene::Scene;
 
 /// The knob a run-time-against-error sweep turns.

@@ -4,9 +4,10 @@ use std::process::ExitCode;
 
 use super::args::{depth, Format, SceneArgs, Target};
 use super::Failure;
-use crate::trace::sampling::Rng;
+use crate::sampling::Rng;
+use crate::stats::Stats;
 use crate::trace::tree::Inspection;
-use crate::trace::{text, Stats, Tracer};
+use crate::trace::{text, Tracer};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -41,7 +42,8 @@ fn paths(a: &Args, scene: &crate::scene::Scene) -> Result<ExitCode, Failure> {
     };
     // The pixel's value as rendered (seed 0), and its first samples replayed with the same
     // random numbers, so the paths shown are the ones that went into it.
-    let estimate = Film::new(scene, options).lone_pixel(x, y, &mut Stats::default());
+    let film = Film::new(scene, options);
+    let estimate = film.lone_pixel(&mut film.tracer(), x, y);
     let spp = options.spp.max(1);
     let offsets = grid_offsets(spp);
     let cell = cell(offsets.len());
@@ -94,13 +96,15 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         return paths(&a, &scene);
     }
     let ray = a.target.ray(&scene)?;
-    let tracer = Tracer::with_depth(&scene, depth(&scene, a.depth)?);
     // A pixel's glossy and frosted rays come from its own generator, as in the renderer.
-    let mut rng = match a.target.pixel {
+    let rng = match a.target.pixel {
         Some([x, y]) => Rng::for_pixel(0, x, y),
         None => Rng::for_pixel(0, 0, 0),
     };
-    let tree = tracer.inspect_with(&ray, &mut rng, &mut Stats::default());
+    let tree = Tracer::new(&scene)
+        .with_depth(depth(&scene, a.depth)?)
+        .with_rng(rng)
+        .inspect(&ray);
     let inspection = Inspection {
         pixel: a.target.pixel,
         color: tree.color,

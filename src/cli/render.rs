@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use super::args::{depth, SceneArgs};
 use super::Failure;
-use crate::render::antialias::Antialias;
-use crate::render::{render, Encoding, RenderOptions};
+use crate::render::{render, Encoding, Engine, RenderOptions};
+use crate::scene::Antialias;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Gamma {
@@ -59,6 +59,16 @@ pub struct Args {
     /// Encoding of the output: sRGB, or the lecture's raw linear values.
     #[arg(long, value_enum, default_value_t = Gamma::Srgb)]
     gamma: Gamma,
+    /// Which code renders: the fast wing, or the textbook core alone (`src/trace/whitted.rs`,
+    /// one ray at a time). The image is the same bit for bit; the core is slower.
+    #[arg(long, value_enum, default_value_t = EngineArg::Fast)]
+    engine: EngineArg,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum EngineArg {
+    Fast,
+    Core,
 }
 
 /// Images side by side, separated by a white gap of 4 pixels.
@@ -118,6 +128,10 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         spp,
         seed: a.seed,
         antialias: antialias(&scene, a.aa, a.aa_threshold)?,
+        engine: match a.engine {
+            EngineArg::Fast => Engine::Fast,
+            EngineArg::Core => Engine::Core,
+        },
     };
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(h as u64);
@@ -147,7 +161,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 )));
             }
             let mut frames = Vec::new();
-            let mut total = crate::trace::Stats::default();
+            let mut total = crate::stats::Stats::default();
             for depth in 1..=n {
                 let o = RenderOptions {
                     max_depth: depth,
@@ -217,7 +231,7 @@ pub fn antialias(
 ) -> Result<Antialias, Failure> {
     let scene_threshold = match scene.antialias {
         Antialias::Adaptive { threshold } => threshold,
-        _ => crate::render::antialias::DEFAULT_THRESHOLD,
+        _ => crate::scene::DEFAULT_THRESHOLD,
     };
     let threshold_given = threshold.is_some();
     let threshold = match threshold {

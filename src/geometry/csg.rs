@@ -141,7 +141,7 @@ impl CsgNode {
         work: &mut CsgWork,
         out: &mut Vec<CsgTrace>,
     ) -> SegmentList {
-        if r.use_bounds && !self.bounds().hit(r.ray, r.inv_dir, r.t_min, r.t_max) {
+        if r.use_bounds && !self.bounds().hit(r.ray.origin, r.inv_dir, r.t_min, r.t_max) {
             work.pruned += 1;
             if TRACE {
                 out.push(self.skipped(env, Pruned::Bounds));

@@ -92,13 +92,15 @@ impl Mesh {
     /// The nearest triangle hit with t_min < t < t_max: (t, triangle).
     pub fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> (Option<(f64, u32)>, Visits) {
         let mut best = None;
-        let visits = self.bvh.closest(ray, t_min, t_max, |i, limit| {
-            let h = self.triangle(i).intersect(ray)?;
-            (h.t > t_min && h.t < limit).then(|| {
-                best = Some((h.t, i));
-                h.t
-            })
-        });
+        let visits = self
+            .bvh
+            .closest(ray.origin, ray.dir, t_min, t_max, |i, limit| {
+                let h = self.triangle(i).intersect(ray)?;
+                (h.t > t_min && h.t < limit).then(|| {
+                    best = Some((h.t, i));
+                    h.t
+                })
+            });
         (best, visits)
     }
 
@@ -124,13 +126,18 @@ impl Mesh {
     /// Every crossing of the ray's line with the surface, in order (for segment-list views).
     pub fn crossings(&self, ray: &Ray) -> Vec<(f64, u32)> {
         let mut all = vec![];
-        self.bvh
-            .closest(ray, f64::NEG_INFINITY, f64::INFINITY, |i, _| {
+        self.bvh.closest(
+            ray.origin,
+            ray.dir,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            |i, _| {
                 if let Some(h) = self.triangle(i).intersect(ray) {
                     all.push((h.t, i));
                 }
                 None
-            });
+            },
+        );
         all.sort_by(|a, b| a.0.total_cmp(&b.0));
         // A ray through a shared edge or vertex may be reported by every triangle that meets
         // there (the watertight test never misses, but can answer twice): one crossing.

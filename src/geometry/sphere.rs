@@ -13,7 +13,7 @@ pub struct Sphere {
 /// Relative tolerance under which a slightly negative discriminant counts as a tangent. The
 /// lecture's tangent example (P = (−3, 1), d = (0.8, −0.6)) lands 2e−16 below zero in floating
 /// point; without this it would be reported as a miss.
-pub(super) const TANGENT_TOLERANCE: f64 = 1e-12;
+pub(crate) const TANGENT_TOLERANCE: f64 = 1e-12;
 
 impl Sphere {
     /// Substituting p(t) = o + t·d gives a·t² + 2b·t + c = 0 with a = d·d, b = d·(o − c),
@@ -29,26 +29,6 @@ impl Sphere {
         Some(Span::new(t0, 0, t1, 0))
     }
 
-    /// The nearest crossing with t_min < t < t_max: the same arithmetic as `span` (so the same
-    /// t to the last bit), but most misses are rejected before any division or square root:
-    /// a ray that starts outside and moves away, and a line that clearly passes the sphere by.
-    /// Inlined into the scene's probe loop: most calls are misses, over in a few dozen
-    /// instructions, where a call would be a large share.
-    #[inline(always)]
-    pub fn hit(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<f64> {
-        let q = Quadratic::new(self, ray);
-        if q.c > 0.0 && q.b > 0.0 && t_min >= 0.0 {
-            // Outside and moving away: both roots are behind the origin.
-            return None;
-        }
-        if q.clearly_misses() {
-            return None;
-        }
-        let (t_in, t_out) = q.roots()?;
-        let t = if t_in > t_min { t_in } else { t_out };
-        (t > t_min && t < t_max).then_some(t)
-    }
-
     pub fn normal(&self, p: DVec3) -> DVec3 {
         (p - self.center) / self.radius
     }
@@ -58,26 +38,27 @@ impl Sphere {
 /// moves those terms by ~1e−15 of their size, so anything the test rejects is missed by a factor
 /// of ~10⁹ more than the exact test's tangent tolerance needs: it never rejects a ray `span`
 /// would accept.
-pub(super) const MISS_MARGIN: f64 = 1e-6;
+pub(crate) const MISS_MARGIN: f64 = 1e-6;
 
 /// Below this size of terms, products may be subnormal and lose their relative accuracy: the
 /// miss test stands aside and the exact arithmetic decides.
-pub(super) const MISS_TEST_FLOOR: f64 = 1e-250;
+pub(crate) const MISS_TEST_FLOOR: f64 = 1e-250;
 
-/// The ray–sphere quadratic a·t² + 2b·t + c = 0, with the terms both `span` and `hit` need.
-struct Quadratic {
+/// The ray–sphere quadratic a·t² + 2b·t + c = 0, with the terms `span` needs (and the fast
+/// wing's nearest-hit test, which must give the same t to the last bit).
+pub(crate) struct Quadratic {
     oc: DVec3,
     dir: DVec3,
     a: f64,
-    b: f64,
-    c: f64,
+    pub(crate) b: f64,
+    pub(crate) c: f64,
     oc2: f64,
     r2: f64,
 }
 
 impl Quadratic {
     #[inline]
-    fn new(s: &Sphere, ray: &Ray) -> Quadratic {
+    pub(crate) fn new(s: &Sphere, ray: &Ray) -> Quadratic {
         let oc = ray.origin - s.center;
         let r2 = s.radius * s.radius;
         let oc2 = oc.length_squared();
@@ -96,7 +77,7 @@ impl Quadratic {
     /// it only rejects when it is negative by far more than its rounding error (bounded by a
     /// few ulps of b² + a·(|oc|² + r²)); everything else goes to the exact `roots`.
     #[inline]
-    fn clearly_misses(&self) -> bool {
+    pub(crate) fn clearly_misses(&self) -> bool {
         let scale = self.b * self.b + self.a * (self.oc2 + self.r2);
         let d = self.b * self.b - self.a * self.c;
         scale > MISS_TEST_FLOOR && d < -MISS_MARGIN * scale
@@ -107,7 +88,7 @@ impl Quadratic {
     /// which does not cancel catastrophically for far-away rays; the roots use the stable form
     /// q = −(b + sign(b)·√disc), t = q/a and c/q.
     #[inline]
-    fn roots(&self) -> Option<(f64, f64)> {
+    pub(crate) fn roots(&self) -> Option<(f64, f64)> {
         let (a, b, r2) = (self.a, self.b, self.r2);
         let closest = self.oc - (b / a) * self.dir;
         let mut disc = r2 - closest.length_squared();

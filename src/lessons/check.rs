@@ -6,14 +6,16 @@ use glam::DVec3;
 use super::answer::{parse_answer, Answer};
 use super::exercise::{Ask, Exercise, Lesson};
 use crate::geometry::{Ray, Shape};
-use crate::render::antialias::{self, Antialias, Square, Step};
+use crate::render::antialias::{self, Square, Step};
 use crate::render::film::Film;
-use crate::render::{render_simple, Projection, RenderOptions};
+use crate::render::{render_simple, RenderOptions};
+use crate::scene::{Antialias, Projection};
 use crate::scene::{Integrator, Limits, Scene};
 use crate::shading::optics::{reflect, refract};
 use crate::shading::Highlight;
-use crate::trace::tracer::TraceOptions;
-use crate::trace::{text, RayKind, RayNode, Stats, Termination, Tracer};
+use crate::stats::Stats;
+use crate::trace::TraceOptions;
+use crate::trace::{text, RayKind, RayNode, Termination, Tracer};
 
 /// Everything the exercise is about, computed.
 pub struct Worked {
@@ -83,7 +85,7 @@ fn exercise_ray(scene: &Scene, ex: &Exercise) -> Result<Ray, String> {
 }
 
 fn trace(scene: &Scene, ray: &Ray, options: TraceOptions) -> RayNode {
-    Tracer { scene, options }.inspect(ray, &mut Stats::default())
+    Tracer::new(scene).with_options(options).inspect(ray)
 }
 
 /// The tree node an exercise asks about.
@@ -112,7 +114,6 @@ fn rendered(
     ex: &Exercise,
     options: RenderOptions,
 ) -> Result<(DVec3, Stats), String> {
-    let mut stats = Stats::default();
     match ex.pixel {
         Some([x, y]) => {
             if x >= scene.camera.width || y >= scene.camera.height {
@@ -121,8 +122,10 @@ fn rendered(
                     ex.id
                 ));
             }
-            let value = Film::new(scene, options).lone_pixel(x, y, &mut stats);
-            Ok((value, stats))
+            let film = Film::new(scene, options);
+            let mut t = film.tracer();
+            let value = film.lone_pixel(&mut t, x, y);
+            Ok((value, t.stats))
         }
         None if ex.ask == Ask::PixelValue => {
             Err(format!("exercise `{}`: pixel_value needs a pixel", ex.id))
@@ -898,8 +901,9 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                 ));
                 for py in 0..nr {
                     for px in 0..nc {
-                        let mut s = Stats::default();
-                        film.lone_pixel(px, py, &mut s);
+                        let mut t = film.tracer();
+                        film.lone_pixel(&mut t, px, py);
+                        let s = t.stats;
                         if s.aa_splits > 0 {
                             out.push(format!(
                                 "pixel ({px}, {py}): {} square{} split",
@@ -932,7 +936,7 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
         x + 1,
         y + 1
     ));
-    let mut stats = Stats::default();
+    let mut t = film.tracer();
     let value = match aa {
         Antialias::Grid | Antialias::Jittered => {
             let n = (spp as f64).sqrt().round() as u32;
@@ -944,7 +948,7 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                 _ => "jittered: one ray at a random point of each cell of the grid".to_string(),
             };
             out.push(format!("{} antialiasing, spp {spp}: {pattern}", aa.name()));
-            let samples = film.own_samples(x, y, &mut stats);
+            let samples = film.own_samples(&mut t, x, y);
             for smp in samples.iter().take(16) {
                 out.push(format!(
                     "{} through (u, v) = ({}, {}): {}",
@@ -979,7 +983,7 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                 ));
             }
             if film.splats() {
-                let splatted = film.lone_pixel(x, y, &mut Stats::default());
+                let splatted = film.lone_pixel(&mut film.tracer(), x, y);
                 out.push(format!(
                     "the Gaussian filter (Mitsuba's: f(d) = e^(−d²/2σ²) − e^(−r²/2σ²), σ = 0.5 px, r = 2 px) then mixes in the samples of the pixels around: pixel = Σ w·L / Σ w over the samples of the 5 × 5 pixels around, w = f(dx)·f(dy) = {}",
                     text::color(splatted)
@@ -996,10 +1000,10 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                 side = 1u32 << levels
             ));
             let corners = [
-                film.corner(x, y, &mut stats),
-                film.corner(x + 1, y, &mut stats),
-                film.corner(x, y + 1, &mut stats),
-                film.corner(x + 1, y + 1, &mut stats),
+                film.corner(&mut t, x, y),
+                film.corner(&mut t, x + 1, y),
+                film.corner(&mut t, x, y + 1),
+                film.corner(&mut t, x + 1, y + 1),
             ];
             out.push(format!(
                 "corners (shared with the neighbours): top-left {}, top-right {}, bottom-left {}, bottom-right {}",
@@ -1008,7 +1012,7 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
                 text::color(corners[2]),
                 text::color(corners[3])
             ));
-            film.adaptive(x, y, corners, &mut stats, &mut |step| {
+            film.adaptive(&mut t, x, y, corners, &mut |step| {
                 out.push(adaptive_line(step, threshold))
             })
         }
@@ -1020,8 +1024,9 @@ fn explain_render(w: &Worked, ex: &Exercise, out: &mut Vec<String>) -> Result<()
         ));
     }
     if ex.ask != Ask::PixelValue {
-        let mut lone = Stats::default();
-        film.lone_pixel(x, y, &mut lone);
+        let mut t = film.tracer();
+        film.lone_pixel(&mut t, x, y);
+        let lone = t.stats;
         let corners = if matches!(aa, Antialias::Adaptive { .. }) {
             "4 corners + "
         } else {

@@ -9,33 +9,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::trace::sampling::Rng;
-
-/// How a pixel's primary rays are placed.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
-pub enum Antialias {
-    #[default]
-    Grid,
-    Jittered,
-    /// Split a square while its corners differ by more than `threshold` (the sum of the
-    /// absolute differences of r, g and b, on values clamped to [0, 1]).
-    Adaptive {
-        threshold: f64,
-    },
-}
-
-/// POV-Ray's default antialiasing threshold.
-pub const DEFAULT_THRESHOLD: f64 = 0.3;
-
-impl Antialias {
-    pub fn name(self) -> &'static str {
-        match self {
-            Antialias::Grid => "grid",
-            Antialias::Jittered => "jittered",
-            Antialias::Adaptive { .. } => "adaptive",
-        }
-    }
-}
+use crate::sampling::Rng;
 
 /// Sample positions inside a pixel, in [0, 1)². A square count is a regular n × n grid (seed
 /// 004's supersampling); any other count uses the R2 low-discrepancy sequence.
@@ -67,18 +41,6 @@ pub fn jitter(o: DVec2, cell: f64, rng: &mut Rng) -> DVec2 {
 /// The side of a jitter cell for `spp` samples.
 pub fn cell(spp: usize) -> f64 {
     1.0 / (spp as f64).sqrt().ceil()
-}
-
-/// The pixel reconstruction filter of supersampling.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Filter {
-    /// A pixel is the mean of its own samples.
-    #[default]
-    Box,
-    /// Mitsuba's default: every sample is splatted onto the pixels around it with weight
-    /// f(dx)·f(dy), f(x) = e^(−x²/2σ²) − e^(−r²/2σ²), σ = 0.5 px, r = 2 px; a pixel is the
-    /// weighted mean of the samples that reach it.
-    Gaussian,
 }
 
 /// The Gaussian filter's radius in pixels: a sample reaches pixels whose centres lie closer

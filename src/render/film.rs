@@ -4,20 +4,22 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::antialias::{
-    adaptive_levels, adaptive_pixel_observed, cell, gaussian_weight, grid_offsets, jitter,
-    Antialias, Filter, Step, GAUSS_RADIUS,
+    adaptive_levels, adaptive_pixel_observed, cell, gaussian_weight, grid_offsets, jitter, Step,
+    GAUSS_RADIUS,
 };
 use super::Image;
-use crate::accel::bvh::PACKET;
+use crate::fast::{trace_packet, FastScene, PACKET};
 use crate::geometry::Ray;
-use crate::scene::{Integrator, Scene};
+use crate::sampling::Rng;
+use crate::scene::{Antialias, Filter, Integrator, Scene, Search};
+use crate::stats::Stats;
 use crate::trace::path::PathTracer;
-use crate::trace::sampling::Rng;
-use crate::trace::{Stats, Tracer};
+use crate::trace::Tracer;
 
 #[derive(Clone, Copy, Debug)]
 pub struct RenderOptions {
@@ -26,6 +28,18 @@ pub struct RenderOptions {
     /// Seed of the random numbers (jittered samples, glossy rays, paths).
     pub seed: u64,
     pub antialias: Antialias,
+    pub engine: Engine,
+}
+
+/// Which code computes the image. Both give the same image, bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Engine {
+    /// The fast wing: packets of rays, SIMD lanes, fast searches.
+    #[default]
+    Fast,
+    /// The textbook core alone: every ray traced by `trace::whitted` (or the path tracer) with
+    /// the scene's own search, one after another.
+    Core,
 }
 
 impl RenderOptions {
@@ -35,6 +49,7 @@ impl RenderOptions {
             spp: scene.spp,
             seed: 0,
             antialias: scene.antialias,
+            engine: Engine::Fast,
         }
     }
 }
@@ -53,11 +68,12 @@ pub struct Sample {
     pub value: DVec3,
 }
 
-/// Everything needed to compute one pixel: the integrator and the antialiasing pattern.
+/// Everything needed to compute one pixel: the integrator, the antialiasing pattern, and (for
+/// the fast engine) the fast wing's search, which the film's tracers find their hits with.
 pub struct Film<'s> {
     scene: &'s Scene,
+    fast: Option<FastScene<'s>>,
     options: RenderOptions,
-    whitted: Tracer<'s>,
     path: Option<PathTracer<'s>>,
     offsets: Vec<DVec2>,
 }
@@ -66,11 +82,26 @@ impl<'s> Film<'s> {
     pub fn new(scene: &'s Scene, options: RenderOptions) -> Film<'s> {
         Film {
             scene,
+            fast: (options.engine == Engine::Fast).then(|| FastScene::new(scene)),
             options,
-            whitted: Tracer::with_depth(scene, options.max_depth),
             path: (scene.integrator == Integrator::Path)
                 .then(|| PathTracer::new(scene, options.max_depth)),
             offsets: grid_offsets(options.spp.max(1)),
+        }
+    }
+
+    /// A tracer of this film's rays. Each thread takes its own: it carries the random numbers
+    /// and the counters of work.
+    pub fn tracer(&self) -> Tracer<'_> {
+        Tracer::new(self.scene)
+            .with_search(self.search())
+            .with_depth(self.options.max_depth)
+    }
+
+    fn search(&self) -> &dyn Search {
+        match &self.fast {
+            Some(fast) => fast,
+            None => self.scene,
         }
     }
 
@@ -90,78 +121,68 @@ impl<'s> Film<'s> {
     }
 
     /// The value seen through image point (px, py) (pixel (x, y) covers [x, x+1) × [y, y+1)).
-    pub fn sample(&self, px: f64, py: f64, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
+    pub fn sample(&self, t: &mut Tracer, px: f64, py: f64) -> DVec3 {
         let ray = self.scene.camera.ray(px, py);
         match &self.path {
-            None => self.whitted.radiance_with(&ray, rng, stats),
-            Some(pt) => pt.radiance(&ray, rng, stats),
+            None => t.radiance(&ray),
+            Some(pt) => pt
+                .with_search(t.search)
+                .radiance(&ray, &mut t.rng, &mut t.stats),
         }
     }
 
     /// The value at the image corner (i, j) (adaptive antialiasing shares these).
-    pub fn corner(&self, i: u32, j: u32, stats: &mut Stats) -> DVec3 {
-        let mut rng = Rng::for_pixel(self.options.seed ^ CORNER_STREAM, i, j);
-        self.sample(i as f64, j as f64, &mut rng, stats)
+    pub fn corner(&self, t: &mut Tracer, i: u32, j: u32) -> DVec3 {
+        t.rng = Rng::for_pixel(self.options.seed ^ CORNER_STREAM, i, j);
+        self.sample(t, i as f64, j as f64)
     }
 
     /// The grid or jittered samples of pixel (x, y), in order, from the pixel's generator.
-    pub fn own_samples(&self, x: u32, y: u32, stats: &mut Stats) -> Vec<Sample> {
+    pub fn own_samples(&self, t: &mut Tracer, x: u32, y: u32) -> Vec<Sample> {
         let mut out = Vec::with_capacity(self.offsets.len());
-        self.for_each_own_sample(x, y, stats, &mut |s| out.push(s));
+        self.for_each_own_sample(t, x, y, &mut |s| out.push(s));
         out
     }
 
     /// `own_samples` without collecting them (the render loop allocates nothing per pixel).
-    fn for_each_own_sample(
-        &self,
-        x: u32,
-        y: u32,
-        stats: &mut Stats,
-        visit: &mut dyn FnMut(Sample),
-    ) {
-        let mut rng = Rng::for_pixel(self.options.seed, x, y);
+    fn for_each_own_sample(&self, t: &mut Tracer, x: u32, y: u32, visit: &mut dyn FnMut(Sample)) {
+        t.rng = Rng::for_pixel(self.options.seed, x, y);
         let (fx, fy) = (x as f64, y as f64);
         let jittered = self.antialias() == Antialias::Jittered;
         let packets = self.offsets.len() > 1;
-        if !jittered && self.path.is_none() && packets {
-            self.grid_in_packets(fx, fy, &mut rng, stats, visit);
+        if let (false, None, true, Some(fast)) = (jittered, &self.path, packets, &self.fast) {
+            self.grid_in_packets(t, fast, fx, fy, visit);
             return;
         }
         let cell = cell(self.offsets.len());
         for o in &self.offsets {
             let uv = if jittered {
-                jitter(*o, cell, &mut rng)
+                jitter(*o, cell, &mut t.rng)
             } else {
                 *o
             };
-            let value = self.sample(fx + uv.x, fy + uv.y, &mut rng, stats);
+            let value = self.sample(t, fx + uv.x, fy + uv.y);
             visit(Sample { uv, value });
         }
     }
 
-    /// The grid samples of the pixel at (fx, fy), as `for_each_own_sample` takes them, with
-    /// their primary rays' nearest hits in the BVH found together, a packet at a time
-    /// (`Scene::intersect_packet`): a regular grid's rays are all known before any is traced.
+    /// The grid samples of the pixel at (fx, fy), as `for_each_own_sample` takes them, traced
+    /// as packets by the fast wing: a regular grid's rays are all known before any is traced.
     fn grid_in_packets(
         &self,
+        t: &mut Tracer,
+        fast: &FastScene,
         fx: f64,
         fy: f64,
-        rng: &mut Rng,
-        stats: &mut Stats,
         visit: &mut dyn FnMut(Sample),
     ) {
         for chunk in self.offsets.chunks(PACKET) {
-            let mut rays = [Ray::UNUSED; PACKET];
-            for (r, o) in rays.iter_mut().zip(chunk) {
-                *r = self.scene.camera.ray(fx + o.x, fy + o.y);
-            }
-            let n = chunk.len();
-            let mut hits = [None; PACKET];
-            self.scene
-                .intersect_packet(&rays[..n], &mut hits[..n], stats);
+            let rays: ArrayVec<Ray, PACKET> = chunk
+                .iter()
+                .map(|o| self.scene.camera.ray(fx + o.x, fy + o.y))
+                .collect();
             let mut values = [DVec3::ZERO; PACKET];
-            self.whitted
-                .radiance_packet(&rays[..n], &hits[..n], rng, stats, &mut values[..n]);
+            trace_packet(t, fast, &rays, &mut values[..rays.len()]);
             for (o, value) in chunk.iter().zip(values) {
                 visit(Sample { uv: *o, value });
             }
@@ -173,25 +194,25 @@ impl<'s> Film<'s> {
     /// for a single pixel).
     pub fn pixel(
         &self,
+        t: &mut Tracer,
         x: u32,
         y: u32,
-        corner: &dyn Fn(u32, u32, &mut Stats) -> DVec3,
-        stats: &mut Stats,
+        corner: &dyn Fn(&mut Tracer, u32, u32) -> DVec3,
     ) -> DVec3 {
         match self.antialias() {
             Antialias::Grid | Antialias::Jittered => {
                 let mut sum = DVec3::ZERO;
-                self.for_each_own_sample(x, y, stats, &mut |s| sum += s.value);
+                self.for_each_own_sample(t, x, y, &mut |s| sum += s.value);
                 sum / self.offsets.len() as f64
             }
             Antialias::Adaptive { .. } => {
                 let corners = [
-                    corner(x, y, stats),
-                    corner(x + 1, y, stats),
-                    corner(x, y + 1, stats),
-                    corner(x + 1, y + 1, stats),
+                    corner(t, x, y),
+                    corner(t, x + 1, y),
+                    corner(t, x, y + 1),
+                    corner(t, x + 1, y + 1),
                 ];
-                self.adaptive(x, y, corners, stats, &mut |_| {})
+                self.adaptive(t, x, y, corners, &mut |_| {})
             }
         }
     }
@@ -200,28 +221,26 @@ impl<'s> Film<'s> {
     /// (the lessons' explanations listen; the renderer does not).
     pub fn adaptive(
         &self,
+        t: &mut Tracer,
         x: u32,
         y: u32,
         corners: [DVec3; 4],
-        stats: &mut Stats,
         observe: &mut dyn FnMut(&Step),
     ) -> DVec3 {
         let Antialias::Adaptive { threshold } = self.antialias() else {
             return corners.iter().sum::<DVec3>() / 4.0;
         };
         let levels = adaptive_levels(self.options.spp);
-        let mut rng = Rng::for_pixel(self.options.seed, x, y);
+        t.rng = Rng::for_pixel(self.options.seed, x, y);
         let (fx, fy) = (x as f64, y as f64);
-        let mut inner = Stats::default();
         let (value, splits) = adaptive_pixel_observed(
             corners,
             levels,
             threshold,
-            &mut |u, v| self.sample(fx + u, fy + v, &mut rng, &mut inner),
+            &mut |u, v| self.sample(t, fx + u, fy + v),
             observe,
         );
-        stats.add(&inner);
-        stats.aa_splits += splits as u64;
+        t.stats.aa_splits += splits as u64;
         value
     }
 
@@ -231,9 +250,9 @@ impl<'s> Film<'s> {
     /// accumulate through this, so they add the same numbers in the same order.
     fn splats_of_row(
         &self,
+        t: &mut Tracer,
         sy: u32,
         columns: std::ops::RangeInclusive<i64>,
-        stats: &mut Stats,
         visit: &mut dyn FnMut(i64, i64, f64, DVec3),
     ) {
         let w = self.scene.camera.width as i64;
@@ -241,7 +260,7 @@ impl<'s> Film<'s> {
             if sx < 0 || sx >= w {
                 continue;
             }
-            self.for_each_own_sample(sx as u32, sy, stats, &mut |s| {
+            self.for_each_own_sample(t, sx as u32, sy, &mut |s| {
                 let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
                 for dy in -SPLAT_REACH..=SPLAT_REACH {
                     let wy = gaussian_weight((sy as i64 + dy) as f64 + 0.5 - py);
@@ -260,19 +279,19 @@ impl<'s> Film<'s> {
     }
 
     /// What row `sy`'s samples add to rows sy − 2 … sy + 2.
-    fn splat_row(&self, sy: u32, stats: &mut Stats) -> Band {
+    fn splat_row(&self, t: &mut Tracer, sy: u32) -> Band {
         let w = self.scene.camera.width;
         let mut band = Band::new(w);
-        self.splats_of_row(sy, 0..=w as i64 - 1, stats, &mut |dy, tx, weight, value| {
+        self.splats_of_row(t, sy, 0..=w as i64 - 1, &mut |dy, tx, weight, value| {
             band.add((dy + SPLAT_REACH) as usize, tx as usize, weight, value)
         });
         band
     }
 
     /// A single pixel computed on its own: equal, bit for bit, to the rendered pixel.
-    pub fn lone_pixel(&self, x: u32, y: u32, stats: &mut Stats) -> DVec3 {
+    pub fn lone_pixel(&self, t: &mut Tracer, x: u32, y: u32) -> DVec3 {
         if !self.splats() {
-            return self.pixel(x, y, &|i, j, s| self.corner(i, j, s), stats);
+            return self.pixel(t, x, y, &|t, i, j| self.corner(t, i, j));
         }
         // The rows whose samples reach this pixel, each summed on its own and then added in
         // row order, as `render` adds its bands.
@@ -282,7 +301,7 @@ impl<'s> Film<'s> {
         for sy in (y - SPLAT_REACH).max(0)..=(y + SPLAT_REACH).min(h - 1) {
             let mut row = Splat::default();
             let columns = (x - SPLAT_REACH)..=(x + SPLAT_REACH);
-            self.splats_of_row(sy as u32, columns, stats, &mut |dy, tx, weight, value| {
+            self.splats_of_row(t, sy as u32, columns, &mut |dy, tx, weight, value| {
                 if sy + dy == y && tx == x {
                     row.add(weight, weight * value);
                 }
@@ -368,9 +387,9 @@ fn per_pixel(
                 .into_par_iter()
                 .with_max_len(1)
                 .map(|j| {
-                    let mut stats = Stats::default();
-                    let row = (0..=w).map(|i| film.corner(i, j, &mut stats)).collect();
-                    (row, stats)
+                    let mut t = film.tracer();
+                    let row = (0..=w).map(|i| film.corner(&mut t, i, j)).collect();
+                    (row, t.stats)
                 })
                 .collect();
             let mut stats = Stats::default();
@@ -383,7 +402,7 @@ fn per_pixel(
         }
         _ => (vec![], Stats::default()),
     };
-    let corner = |i: u32, j: u32, _: &mut Stats| corners[(j * (w + 1) + i) as usize];
+    let corner = |_: &mut Tracer, i: u32, j: u32| corners[(j * (w + 1) + i) as usize];
     let mut image = Image::new(w, h);
     // One row per job (`with_max_len(1)`, here and in the loops above and below). Left to
     // itself, rayon cuts the rows into a few long runs, about four per thread, and cuts only
@@ -399,15 +418,15 @@ fn per_pixel(
         .with_max_len(1)
         .enumerate()
         .map(|(y, row)| {
-            let mut stats = Stats::default();
+            let mut t = film.tracer();
             if cancel.load(Ordering::Relaxed) {
-                return stats;
+                return t.stats;
             }
             for (x, px) in row.iter_mut().enumerate() {
-                *px = film.pixel(x as u32, y as u32, &corner, &mut stats);
+                *px = film.pixel(&mut t, x as u32, y as u32, &corner);
             }
             on_row(y as u32);
-            stats
+            t.stats
         })
         .reduce(Stats::default, |mut a, b| {
             a.add(&b);
@@ -431,13 +450,13 @@ fn splatted(
         .into_par_iter()
         .with_max_len(1)
         .map(|sy| {
-            let mut stats = Stats::default();
+            let mut t = film.tracer();
             if cancel.load(Ordering::Relaxed) {
-                return (Band::new(w), stats);
+                return (Band::new(w), t.stats);
             }
-            let band = film.splat_row(sy, &mut stats);
+            let band = film.splat_row(&mut t, sy);
             on_row(sy);
-            (band, stats)
+            (band, t.stats)
         })
         .collect();
     let mut totals = vec![Splat::default(); (w * h) as usize];

@@ -7,17 +7,18 @@ use std::path::PathBuf;
 use glam::{DAffine3, DVec3};
 use serde_saphyr::Spanned;
 
-use super::compiled::{Geometry, Leaf, Object, Scene};
 use super::error::{invalid, Invalid, Pos};
 use super::format::{
     AntialiasMode, Bias, CameraSpec, FilterKind, LightSpec, LobeSpec, MaterialSpec, ObjectSpec,
     SceneFile, TransformStep, Triple,
 };
+use super::objects::{Geometry, Leaf, Object};
+use super::{
+    Antialias, Camera, Features, Filter, Projection, Scene, SearchIndex, DEFAULT_THRESHOLD,
+};
 use crate::accel::{Aabb, Ball};
 use crate::geometry::csg::{CsgNode, CsgOp};
 use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
-use crate::render::antialias::{Antialias, Filter, DEFAULT_THRESHOLD};
-use crate::render::{Camera, Projection};
 use crate::shading::{Fresnel, Highlight, Light, LightKind, Lobe, LobeShape, Material};
 
 /// Limits that protect against absurd input.
@@ -260,28 +261,32 @@ pub fn compile(
         AntialiasMode::Jittered => Antialias::Jittered,
         AntialiasMode::Adaptive => Antialias::Adaptive { threshold },
     };
-    let mut scene = Scene::assemble(
-        source,
-        camera,
-        file.background.map_or(DVec3::ZERO, |t| t.0),
-        file.ambient.map_or(DVec3::ZERO, |t| t.0),
-        max_depth,
-        adaptive_threshold,
-        shadow_bias,
-        spp,
-        secondary_attenuation,
-        lights,
-        materials,
-        builder.leaves,
-        objects,
-    );
-    scene.integrator = integrator;
-    scene.antialias = antialias;
-    scene.filter = match file.filter.unwrap_or_default() {
+    let filter = match file.filter.unwrap_or_default() {
         FilterKind::Box => Filter::Box,
         FilterKind::Gaussian => Filter::Gaussian,
     };
-    Ok(scene)
+    let scene = Scene {
+        source,
+        camera,
+        background: file.background.map_or(DVec3::ZERO, |t| t.0),
+        ambient: file.ambient.map_or(DVec3::ZERO, |t| t.0),
+        lights,
+        materials,
+        leaves: builder.leaves,
+        objects,
+        max_depth,
+        adaptive_threshold,
+        shadow_bias,
+        secondary_attenuation,
+        csg_pruning: true,
+        spp,
+        integrator,
+        antialias,
+        filter,
+        features: Features::default(),
+        index: SearchIndex::default(),
+    };
+    Ok(scene.prepared())
 }
 
 fn nonzero(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {

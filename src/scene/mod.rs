@@ -1,196 +1,99 @@
-//! Scenes: the YAML file format, its compilation into a runtime scene, and errors that name
-//! file, line and column.
+//! Scenes: the YAML file format, its compilation into the runtime `Scene`, the hit search over
+//! its objects, and errors that name file, line and column.
+//!
+//! A `Scene` is the description a student wrote (camera, lights, materials, objects and the
+//! settings of the recursion), validated and with transforms inverted and bounds computed, plus
+//! two things derived from it: the `Features` it uses and the `SearchIndex` its rays are
+//! searched through.
 
+mod camera;
 mod compile;
-mod compiled;
 mod error;
+mod features;
 pub mod format;
+mod hit;
+mod load;
+mod objects;
+mod search;
+mod segments;
+mod settings;
 mod split;
 
-pub use format::Integrator;
+use std::path::PathBuf;
 
-use std::path::Path;
+use glam::DVec3;
 
-use rayon::prelude::*;
-use serde_saphyr::Spanned;
-
+pub use camera::{Camera, Projection};
 pub use compile::Limits;
-pub use compiled::{Accel, Features, Geometry, Hit, Interaction, Leaf, Object, Scene};
 pub use error::SceneError;
+pub use features::Features;
+pub use format::Integrator;
+pub use hit::{Hit, Interaction};
+pub use load::{load, parse};
+pub use objects::{Geometry, Leaf, Object};
+pub use search::{Accel, Search, SearchIndex};
+pub use settings::{Antialias, Filter, DEFAULT_THRESHOLD};
 
-/// Parser limits against alias bombs and absurd nesting.
-fn parse_options() -> serde_saphyr::Options {
-    let mut options = serde_saphyr::Options::default();
-    options.with_snippet = false;
-    options.non_finite_float_policy = serde_saphyr::NonFiniteFloatPolicy::Reject;
-    // Scenes with 100 000 objects are legitimate (the BVH scaling sweep); the default budget
-    // stops at 250 000 YAML nodes. Alias bombs and nesting stay bounded by the other limits
-    // (50 000 aliases, depth 64, 256 MiB of input).
-    let mut budget = serde_saphyr::Budget::default();
-    budget.max_nodes = 20_000_000;
-    budget.max_events = 50_000_000;
-    options.budget = Some(budget);
-    options
+use crate::shading::{Light, Material};
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The file the scene was read from, if any.
+    pub source: Option<PathBuf>,
+
+    // What is seen, and from where.
+    pub camera: Camera,
+    pub background: DVec3,
+    pub ambient: DVec3,
+    pub lights: Vec<Light>,
+    pub materials: Vec<Material>,
+    /// Every primitive: the plain objects and the leaves of CSG trees.
+    pub leaves: Vec<Leaf>,
+    pub objects: Vec<Object>,
+
+    // How the recursion runs.
+    /// Rays per path, primary included: 1 traces primary rays only.
+    pub max_depth: u32,
+    /// A secondary ray whose weight (the product of kr and kt along its path) falls below
+    /// this is not traced.
+    pub adaptive_threshold: f64,
+    /// Offset of secondary-ray origins; None = automatic, scaled to the hit point.
+    pub shadow_bias: Option<f64>,
+    /// I_r and I_t divided by c0 + c1·d + c2·d² (d = length of the child ray), when set.
+    pub secondary_attenuation: Option<[f64; 3]>,
+    /// CSG bounding boxes and pruning (on; off only to measure what they save).
+    pub csg_pruning: bool,
+
+    // How the image is sampled.
+    pub spp: u32,
+    pub integrator: Integrator,
+    /// Where a pixel's primary rays go (`spp` of them).
+    pub antialias: Antialias,
+    /// The reconstruction filter of jittered (Monte Carlo) sampling.
+    pub filter: Filter,
+
+    // Derived from all of the above.
+    pub features: Features,
+    pub index: SearchIndex,
 }
 
-/// Reads and compiles a scene file.
-pub fn load(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
-    let file = path.display().to_string();
-    let fail = |message: String| SceneError {
-        file: file.clone(),
-        line: 1,
-        column: 1,
-        message,
-    };
-    if path.is_dir() {
-        return Err(fail("is a directory, not a scene file".into()));
-    }
-    let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let before = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-        let line = before.iter().filter(|&&b| b == b'\n').count() as u64 + 1;
-        let column = before.iter().rev().take_while(|&&b| b != b'\n').count() as u64 + 1;
-        SceneError {
-            file: file.clone(),
-            line,
-            column,
-            message: "not valid UTF-8 text".into(),
-        }
-    })?;
-    parse(&text, &file, Some(path), limits)
-}
-
-/// Parses and compiles scene text; `file` names it in errors.
-pub fn parse(
-    text: &str,
-    file: &str,
-    path: Option<&Path>,
-    limits: &Limits,
-) -> Result<Scene, SceneError> {
-    if text.trim().is_empty() {
-        return Err(SceneError {
-            file: file.into(),
-            line: 1,
-            column: 1,
-            message: "empty scene file".into(),
-        });
-    }
-    let parsed = parse_yaml(text, file)?;
-    compile::compile(parsed, path.map(Path::to_path_buf), limits)
-        .map_err(|e| empty_camera(text, e))
-        .map_err(|e| SceneError {
-            file: file.into(),
-            line: e.pos.line,
-            column: e.pos.column,
-            message: e.message,
-        })
-}
-
-/// Parses the YAML of a scene file: large files on all threads (see `split`).
-fn parse_yaml(text: &str, file: &str) -> Result<format::SceneFile, SceneError> {
-    match split::split(text, rayon::current_num_threads()) {
-        Some(split) => parse_split(split, file),
-        None => from_yaml(text, file),
-    }
-}
-
-/// Parses a file's pieces in parallel and joins their objects in order.
-fn parse_split(split: split::Split, file: &str) -> Result<format::SceneFile, SceneError> {
-    type Objects = Vec<Spanned<format::ObjectSpec>>;
-    let (head, pieces): (_, Vec<_>) = rayon::join(
-        || from_yaml::<format::SceneFile>(&split.head, file),
-        || {
-            split
-                .pieces
-                .par_iter()
-                .map(|p| from_yaml::<Objects>(p, file))
-                .collect()
-        },
-    );
-    // Reading the file in one go would stop at its first error.
-    let errors = head.as_ref().err().into_iter();
-    let errors = errors.chain(pieces.iter().filter_map(|p| p.as_ref().err()));
-    if let Some(first) = errors.min_by_key(|e| (e.line, e.column)) {
-        return Err(first.clone());
-    }
-    let mut scene = head?;
-    for piece in pieces {
-        scene.objects.extend(piece?);
-    }
-    Ok(scene)
-}
-
-/// Deserialises YAML text, with the parser's errors said for a scene's author.
-fn from_yaml<T: serde::de::DeserializeOwned>(text: &str, file: &str) -> Result<T, SceneError> {
-    serde_saphyr::from_str_with_options(text, parse_options()).map_err(|e| {
-        let (line, column) = e
-            .location()
-            .map_or((1, 1), |l| (l.line().max(1), l.column().max(1)));
-        SceneError {
-            file: file.into(),
-            line,
-            column,
-            message: parser_message(&e.to_string()),
-        }
-    })
-}
-
-/// `camera:` with nothing after it parses as no camera at all; point at the empty key.
-fn empty_camera(text: &str, e: error::Invalid) -> error::Invalid {
-    if !e.message.starts_with("missing `camera`") {
-        return e;
-    }
-    for (i, line) in text.lines().enumerate() {
-        if let Some(rest) = line.strip_prefix("camera:") {
-            let column = line.len() - rest.trim_start().len() + 1;
-            return error::Invalid {
-                pos: error::Pos {
-                    line: i as u64 + 1,
-                    column: column as u64,
-                },
-                message: "`camera` is empty: give eye and look_at, or the window model".into(),
-            };
-        }
-    }
-    e
-}
-
-/// The parser's message on one line, without the position it repeats.
-fn parser_message(raw: &str) -> String {
-    let first = raw.lines().next().unwrap_or(raw).trim();
-    let stripped = first.strip_prefix("error: ").unwrap_or(first);
-    // "line 3 column 7: unknown field" → "unknown field"
-    let stripped = match stripped.strip_prefix("line ") {
-        Some(rest) => rest.split_once(": ").map_or(stripped, |(_, msg)| msg),
-        None => stripped,
-    };
-    // A trailing "at line 2, column 1": the position is reported separately.
-    let stripped = match stripped.rfind(" at line ") {
-        Some(i) if stripped[i..].contains(", column ") && !stripped[i..].contains('(') => {
-            &stripped[..i]
-        }
-        _ => stripped,
-    };
-    // Messages written for programmers using the parser, said for the scene's author.
-    if let Some(key) = stripped.strip_prefix("duplicate mapping key: ") {
-        let key = key.split(',').next().unwrap_or(key).trim();
-        return format!("duplicate key `{key}`: each key may appear once in a mapping");
-    }
-    if stripped.starts_with("multiple YAML documents") {
-        return "multiple YAML documents (a `---` line): a scene file holds one".into();
-    }
-    if stripped.starts_with("budget breached") {
-        return if stripped.contains("Depth") {
-            "nested more than 64 levels deep (CSG trees and lists must be shallower)".into()
-        } else if stripped.contains("Anchor") || stripped.contains("Alias") {
-            "YAML aliases expand too far (an alias bomb?): refused".into()
-        } else {
-            "the file is too large for the parser's limits (nodes, events or bytes)".into()
-        };
-    }
-    if stripped == "expected string scalar" {
-        return "expected a single value here (a number or a name), not a list or a mapping".into();
+impl Scene {
+    /// The scene with its features found and its search index built, once its description is
+    /// complete.
+    pub fn prepared(mut self) -> Scene {
+        self.features = Features::of(&self);
+        self.set_accel(Accel::Bvh);
+        self
     }
 
-    stripped.to_string()
+    pub fn material(&self, index: u32) -> &Material {
+        &self.materials[index as usize]
+    }
+
+    pub fn object_index(&self, name: &str) -> Option<u32> {
+        self.objects
+            .iter()
+            .position(|o| o.name == name)
+            .map(|i| i as u32)
+    }
 }

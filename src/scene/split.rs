@@ -160,7 +160,7 @@ fn content(line: &str) -> &str {
 mod tests {
     use super::*;
     use crate::scene::format::{ObjectSpec, SceneFile};
-    use crate::scene::{from_yaml, parse_split};
+    use crate::scene::load::{from_yaml, parse_split};
     use proptest::prelude::*;
     use serde_saphyr::Spanned;
 

@@ -140,7 +140,7 @@ impl Light {
                 let (a, b) = (((k % n) as f64 + 0.5) * step, ((k / n) as f64 + 0.5) * step);
                 let (dx, dy) = concentric_disc(a, b);
                 let axis = (*center - p).try_normalize().unwrap_or(DVec3::Z);
-                let (t, bt) = crate::trace::sampling::basis(axis);
+                let (t, bt) = crate::sampling::basis(axis);
                 Some(*center + *radius * (dx * t + dy * bt))
             }
             LightKind::Rect {
@@ -224,7 +224,7 @@ impl Light {
             LightKind::Rect { corner, u, v, .. } => {
                 let normal = u.cross(*v);
                 let area = normal.length();
-                let q = crate::trace::sampling::rectangle(*corner, *u, *v, u1, u2);
+                let q = crate::sampling::rectangle(*corner, *u, *v, u1, u2);
                 let to = q - p;
                 let distance = to.length();
                 let wi = to / distance;
@@ -245,7 +245,7 @@ impl Light {
                 let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
                 let phi = 2.0 * std::f64::consts::PI * u2;
                 let axis = to / d;
-                let (t, b) = crate::trace::sampling::basis(axis);
+                let (t, b) = crate::sampling::basis(axis);
                 let wi = (sin_theta * phi.cos() * t + sin_theta * phi.sin() * b + cos_theta * axis)
                     .normalize();
                 // Where that direction meets the sphere (the near root).
@@ -298,7 +298,7 @@ fn concentric_disc(a: f64, b: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::sampling::{basis, Rng};
+    use crate::sampling::{basis, Rng};
 
     fn ball() -> Light {
         Light {
@@ -347,7 +347,7 @@ mod tests {
             let j = ((phi / (2.0 * std::f64::consts::PI) * np as f64) as usize).min(np - 1);
             counts[i * np + j] += 1.0;
         }
-        let chi2 = crate::trace::sampling::chi_square_uniform(&counts);
+        let chi2 = crate::sampling::chi_square_uniform(&counts);
         // 119 degrees of freedom: the 99.9 % point is about 172.
         assert!(chi2 < 172.0, "chi² = {chi2}");
     }

@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use crate::trace::sampling::basis;
+use crate::sampling::basis;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LobeShape {
@@ -90,7 +90,7 @@ pub fn pdf(shape: LobeShape, axis: DVec3, w: DVec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::sampling::Rng;
+    use crate::sampling::Rng;
 
     /// Chi-square goodness of fit, the way pbrt-v4 and Mitsuba test their samplers: bin the
     /// sampled directions in (θ, φ) and compare with the density integrated over each bin

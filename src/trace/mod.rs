@@ -1,13 +1,16 @@
-//! Tracing: the recursive tracer, its recorders, the ray tree and statistics.
+//! Tracing: the Whitted recursion (`whitted.rs`, the textbook core), the path tracer, the
+//! recorders that watch them, and the ray tree they record.
 
+mod media;
 pub mod path;
 pub mod recorder;
-pub mod sampling;
-mod stats;
+mod task;
 pub mod text;
-pub mod tracer;
 pub mod tree;
+pub mod whitted;
 
-pub use stats::Stats;
-pub use tracer::Tracer;
+pub use media::Media;
+pub use task::Task;
 pub use tree::{Inspection, RayKind, RayNode, Termination};
+pub(crate) use whitted::Transmission;
+pub use whitted::{shadow_reach, TraceOptions, Tracer};

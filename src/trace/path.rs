@@ -10,16 +10,19 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use super::sampling::{cosine_hemisphere, cosine_pdf, Rng};
-use super::Stats;
 use crate::geometry::Ray;
-use crate::scene::{Interaction, Scene};
+use crate::sampling::{cosine_hemisphere, cosine_pdf, Rng};
+use crate::scene::{Interaction, Scene, Search};
 use crate::shading::lobe::spread;
 use crate::shading::optics::{reflect, refract, schlick};
 use crate::shading::Light;
+use crate::stats::Stats;
 
+#[derive(Clone, Copy)]
 pub struct PathTracer<'s> {
     pub scene: &'s Scene,
+    /// Where rays find their hits: the scene's own search, or the fast wing's.
+    pub search: &'s dyn Search,
     /// Path segments at most (the primary ray counts).
     pub max_depth: u32,
     /// Sample the lights directly at diffuse hits (off only to test that it changes nothing).
@@ -68,10 +71,16 @@ impl<'s> PathTracer<'s> {
     pub fn new(scene: &'s Scene, max_depth: u32) -> PathTracer<'s> {
         PathTracer {
             scene,
+            search: scene,
             max_depth,
             next_event: true,
             roulette: true,
         }
+    }
+
+    /// The same path tracer, finding its hits through `search`.
+    pub fn with_search(self, search: &'s dyn Search) -> PathTracer<'s> {
+        PathTracer { search, ..self }
     }
 
     /// The nearest emitter (rectangle front or sphere light) the ray meets before t_max.
@@ -129,7 +138,7 @@ impl<'s> PathTracer<'s> {
         stats.primary_rays += 1;
         for depth in 0..self.max_depth {
             let before = sum;
-            let hit = scene.intersect(&ray, 0.0, f64::INFINITY, stats);
+            let hit = self.search.nearest(&ray, 0.0, f64::INFINITY, stats);
             let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
             // Where the path is now: on an emitter (which may reflect too) or an object.
             let (si, object) = if let Some(lh) = self.light_hit(&ray, t_hit) {
@@ -290,8 +299,8 @@ impl<'s> PathTracer<'s> {
                 dir: e.wi,
             };
             if self
-                .scene
-                .occluded(&shadow, 0.0, e.distance * (1.0 - 1e-9), stats)
+                .search
+                .blocker(&shadow, 0.0, e.distance * (1.0 - 1e-9), stats)
                 .is_some()
             {
                 continue;

@@ -20,9 +20,10 @@ use crate::geometry::Ray;
 use crate::lessons::{self, Lesson, Verdict};
 use crate::render::preview::ColorMode;
 use crate::render::Image;
+use crate::sampling::Rng;
 use crate::scene::{Limits, Scene};
-use crate::trace::sampling::Rng;
-use crate::trace::{text, RayNode, Stats, Termination, Tracer};
+use crate::stats::Stats;
+use crate::trace::{text, RayNode, Termination, Tracer};
 
 /// The deepest recursion the explorer traces (each level can double the tree).
 pub const MAX_DEPTH: u32 = 16;
@@ -555,10 +556,9 @@ impl App {
         let ray = scene.camera.pixel_ray(x, y);
         // Glossy and frosted rays drawn from the pixel's own generator, as the renderer does.
         let rng = || Rng::for_pixel(0, x, y);
-        let mut stats = Stats::default();
-        let full =
-            Tracer::with_depth(&scene, self.depth).inspect_with(&ray, &mut rng(), &mut stats);
-        self.tree_stats = stats;
+        let mut tracer = Tracer::new(&scene).with_depth(self.depth).with_rng(rng());
+        let full = tracer.inspect(&ray);
+        self.tree_stats = tracer.stats;
         self.pixel_value = pixel_value(&scene, self.depth, x, y);
         self.full_tree = Some(full);
         if let Some(k) = self.level {
@@ -566,18 +566,18 @@ impl App {
             self.level = Some(k);
             self.partials = (1..=self.depth)
                 .map(|d| {
-                    Tracer::with_depth(&scene, d).radiance_with(
-                        &ray,
-                        &mut rng(),
-                        &mut Stats::default(),
-                    )
+                    Tracer::new(&scene)
+                        .with_depth(d)
+                        .with_rng(rng())
+                        .radiance(&ray)
                 })
                 .collect();
-            self.level_tree = Some(Tracer::with_depth(&scene, k).inspect_with(
-                &ray,
-                &mut rng(),
-                &mut Stats::default(),
-            ));
+            self.level_tree = Some(
+                Tracer::new(&scene)
+                    .with_depth(k)
+                    .with_rng(rng())
+                    .inspect(&ray),
+            );
         } else {
             self.partials.clear();
             self.level_tree = None;
@@ -1447,9 +1447,9 @@ fn parse_pixel(s: &str) -> Option<(u32, u32)> {
 /// centre ray: several samples, corners, or a path tracer (whose tree is only the Whitted
 /// reading of the scene).
 fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
-    use crate::render::antialias::Antialias;
     use crate::render::film::Film;
     use crate::render::RenderOptions;
+    use crate::scene::Antialias;
     let options = RenderOptions {
         max_depth: depth,
         ..RenderOptions::of(scene)
@@ -1459,7 +1459,7 @@ fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, Stri
     if options.spp <= 1 && options.antialias == Antialias::Grid && !path {
         return None;
     }
-    let value = film.lone_pixel(x, y, &mut Stats::default());
+    let value = film.lone_pixel(&mut film.tracer(), x, y);
     let mut how = format!("{} spp {}", options.spp, film.antialias().name());
     if film.splats() {
         how.push_str(" gaussian");

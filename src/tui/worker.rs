@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use crate::render::{render, Image, RenderOptions};
 use crate::scene::Scene;
-use crate::trace::Stats;
+use crate::stats::Stats;
 
 /// One preview to render.
 #[derive(Clone)]

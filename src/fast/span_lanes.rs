@@ -6,9 +6,10 @@
 use glam::{DAffine3, DVec3};
 use wide::f64x4;
 
-use super::cylinder::{BASE_CAP, SIDE, TOP_CAP};
+use super::lanes::RayLanes;
 use super::sphere_group::LaneQuadratic;
-use super::{Aabox, Cone, Cylinder, RayLanes};
+use crate::geometry::cylinder::{BASE_CAP, SIDE, TOP_CAP};
+use crate::geometry::{Aabox, Cone, Cylinder};
 
 /// Four rays' spans through one primitive.
 #[derive(Clone, Copy)]

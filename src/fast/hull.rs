@@ -16,9 +16,9 @@
 use glam::DVec3;
 use wide::f64x4;
 
-use super::aabb::overlaps;
-use super::Aabb;
-use crate::geometry::lane_mask;
+use super::lanes::lane_mask;
+use crate::accel::aabb::overlaps;
+use crate::accel::Aabb;
 
 /// What the hull says about every ray of the packet and one box.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -155,7 +155,7 @@ fn max(a: f64, b: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::accel::aabb::SlabRay;
-    use crate::trace::sampling::Rng;
+    use crate::sampling::Rng;
 
     /// Packets of 16 rays (from one point, or from points spread over a patch; directions
     /// nearly parallel or spread wide) against boxes placed so that some rays graze them:

@@ -7,6 +7,7 @@ use glam::DVec3;
 use rand::{Rng as _, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+#[derive(Clone, Debug)]
 pub struct Rng(Pcg64Mcg);
 
 impl Rng {

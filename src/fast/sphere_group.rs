@@ -10,12 +10,9 @@
 use glam::DVec3;
 use wide::f64x4;
 
-use super::ray::RayLanes;
-use super::sphere::{MISS_MARGIN, MISS_TEST_FLOOR, TANGENT_TOLERANCE};
-use super::{Ray, Span, Sphere};
-
-/// Spheres per group: four f64 lanes fill one 256-bit (AVX) vector.
-pub const LANES: usize = 4;
+use super::lanes::{RayLanes, LANES};
+use crate::geometry::sphere::{MISS_MARGIN, MISS_TEST_FLOOR, TANGENT_TOLERANCE};
+use crate::geometry::{Ray, Span, Sphere};
 
 /// The spheres' centres and squared radii in structure-of-arrays form, one lane per sphere.
 #[derive(Clone, Debug)]
@@ -52,10 +49,6 @@ impl SphereGroup {
 
     pub fn len(&self) -> usize {
         self.len
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.len == 0
     }
 
     /// The nearest crossing with t_min < t < t_max and the sphere it belongs to: the first of
@@ -307,14 +300,15 @@ fn lane_spans(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::ray::lane_mask;
+    use crate::fast::lanes::lane_mask;
+    use crate::fast::probe::sphere_hit;
     use proptest::prelude::*;
 
     fn one_by_one(spheres: &[Sphere], ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
         let mut best = None;
         let mut limit = t_max;
         for (k, s) in spheres.iter().enumerate() {
-            if let Some(t) = s.hit(ray, t_min, limit) {
+            if let Some(t) = sphere_hit(s, ray, t_min, limit) {
                 (limit, best) = (t, Some((t, k)));
             }
         }
@@ -330,7 +324,7 @@ mod tests {
         spheres
             .iter()
             .enumerate()
-            .find_map(|(k, s)| s.hit(ray, t_min, t_max).map(|t| (t, k)))
+            .find_map(|(k, s)| sphere_hit(s, ray, t_min, t_max).map(|t| (t, k)))
     }
 
     /// Coordinates on a coarse grid, so that tangents, shared centres, equal distances and

@@ -15,10 +15,11 @@ use arrayvec::ArrayVec;
 use smallvec::SmallVec;
 use wide::f64x4;
 
-use super::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
-use super::sphere_group::{SphereGroup, LANES};
-use super::{Ray, Span, Sphere, Surface};
+use super::lanes::LANES;
+use super::sphere_group::SphereGroup;
 use crate::accel::Aabb;
+use crate::geometry::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
+use crate::geometry::{Ray, Span, Sphere, Surface};
 
 /// At most this many primitives: the inside flags fit a mask, the ends sort quickly, and the
 /// working lists live on the stack (a heap allocation per ray would cost more than the lists).
@@ -225,7 +226,7 @@ impl FlatCsg {
     ) -> Result<Option<Span>, ()> {
         let (leaf, bounds) = self.leaves[k];
         let prunes = matches!(self.op, CsgOp::Intersection | CsgOp::Difference);
-        let missed = |b: Aabb| !b.hit(r.ray, r.inv_dir, r.t_min, r.t_max);
+        let missed = |b: Aabb| !b.hit(r.ray.origin, r.inv_dir, r.t_min, r.t_max);
         if (k > 0 && r.prune && prunes && empty) || (r.use_bounds && bounds.is_some_and(missed)) {
             done.pruned += 1;
             return Ok(None);

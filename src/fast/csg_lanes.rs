@@ -14,10 +14,11 @@
 use glam::{DAffine3, DVec3};
 use wide::f64x4;
 
-use super::csg::CsgOp;
+use super::lanes::{box_hit_lanes, lane_mask, RayLanes, SlabLanes};
 use super::span_lanes::{self, SpanLanes};
-use super::{lane_mask, RayLanes, Shape, Sphere, Surface};
-use crate::accel::{Aabb, SlabLanes};
+use crate::accel::Aabb;
+use crate::geometry::csg::CsgOp;
+use crate::geometry::{Shape, Sphere, Surface};
 
 /// An operand the lanes can test.
 #[derive(Clone, Debug)]
@@ -133,7 +134,7 @@ impl CsgLanes {
         }
         let open = lane_mask(open);
         let box_missed = |k: usize| match &self.bounds[k] {
-            Some(b) if use_bounds => open & !lane_mask(b.hit_lanes(slabs, 0.0, t_max)),
+            Some(b) if use_bounds => open & !lane_mask(box_hit_lanes(b, slabs, 0.0, t_max)),
             _ => f64x4::ZERO,
         };
         // Operand A, behind its box.

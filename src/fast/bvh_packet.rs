@@ -1,0 +1,337 @@
+//! The BVH searched by a packet of rays at once (a pixel's grid samples, which take nearly the
+//! same path through the tree): a node is fetched once for the packet and its box tested for
+//! all its rays together. Each ray visits the nodes and items the core's `Bvh::closest` or
+//! `Bvh::any` would, in the same order, with the same arithmetic.
+
+use super::hull::{Hull, Verdict};
+use crate::accel::aabb::slab;
+use crate::accel::{Aabb, Bvh, Visits};
+use crate::geometry::Ray;
+
+/// Which way a ray's direction points on each axis, as the traversal orders children by it
+/// (the signs of 1/d, −0 counting as negative: the signs of d itself, read without the
+/// divisions). Rays with equal signs take the same path through the ordering.
+pub fn signs(r: &Ray) -> [bool; 3] {
+    r.dir.to_array().map(f64::is_sign_negative)
+}
+
+/// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
+/// all of them: each group is one set of 4-wide vector instructions. The unused lanes of the
+/// last group repeat its first ray (their answers are masked off).
+struct Packet {
+    quads: [Quad; PACKET / 4],
+    len: usize,
+    /// The rays' hull, which answers most box tests for all of them at once.
+    hull: Option<Hull>,
+}
+
+#[derive(Clone, Copy, Default)]
+struct Quad {
+    origin: [[f64; 4]; 3],
+    inv_dir: [[f64; 4]; 3],
+}
+
+/// The most rays searched together.
+pub const PACKET: usize = 16;
+
+impl Packet {
+    fn new(rays: &[Ray]) -> Packet {
+        assert!(
+            !rays.is_empty() && rays.len() <= PACKET,
+            "1 to 16 rays per packet"
+        );
+        let mut p = Packet {
+            quads: [Quad::default(); PACKET / 4],
+            len: rays.len(),
+            hull: None,
+        };
+        for (q, quad) in p.quads.iter_mut().enumerate().take(rays.len().div_ceil(4)) {
+            for lane in 0..4 {
+                let r = rays.get(4 * q + lane).unwrap_or(&rays[4 * q]);
+                let inv = r.dir.recip();
+                for axis in 0..3 {
+                    quad.origin[axis][lane] = r.origin[axis];
+                    quad.inv_dir[axis][lane] = inv[axis];
+                }
+            }
+        }
+        p.hull = Hull::new((0..rays.len()).map(|i| {
+            let quad = &p.quads[i / 4];
+            let lane = |v: &[[f64; 4]; 3]| [v[0][i % 4], v[1][i % 4], v[2][i % 4]];
+            (lane(&quad.origin), lane(&quad.inv_dir))
+        }));
+        p
+    }
+
+    /// Bit i set if ray i meets the box within [t_min, t_max[i]], for the rays `active` names:
+    /// `Aabb::hit_slabs` for every lane, with the same `slab` and `overlaps` steps, so the same
+    /// answer to the last bit. `reach` bounds the rays' t_max; with it the hull answers for all
+    /// of them when it can (as exactly: see `hull.rs`).
+    #[inline(always)]
+    fn hits(
+        &self,
+        b: &Aabb,
+        t_min: f64,
+        t_max: &[f64; PACKET],
+        reach: (f64, f64),
+        active: u16,
+    ) -> u16 {
+        if let Some(hull) = &self.hull {
+            match hull.classify(b, t_min, reach) {
+                Verdict::AllMiss => return 0,
+                Verdict::AllHit => return active,
+                Verdict::Mixed => {}
+            }
+        }
+        let mut mask = 0u16;
+        for (q, quad) in self.quads.iter().enumerate().take(self.len.div_ceil(4)) {
+            let mut enter = [t_min; 4];
+            let mut exit: [f64; 4] = t_max[4 * q..4 * q + 4].try_into().unwrap();
+            for axis in 0..3 {
+                for lane in 0..4 {
+                    (enter[lane], exit[lane]) = slab(
+                        (b.min[axis], b.max[axis]),
+                        quad.origin[axis][lane],
+                        quad.inv_dir[axis][lane],
+                        (enter[lane], exit[lane]),
+                    );
+                }
+            }
+            mask |= (overlaps4(&enter, &exit) as u16) << (4 * q);
+        }
+        mask & active
+    }
+}
+
+/// `overlaps` for four lanes, as four bits (bit k for lane k).
+#[inline(always)]
+fn overlaps4(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    {
+        // One vector compare and one mask move. Written out portably, the compiler took the
+        // four bits out of the compare one at a time and put them back together (perf put a
+        // quarter of the packet search's samples there); this way the 10 000-sphere peer scene
+        // renders 6 % faster, with the same image.
+        use std::arch::x86_64::*;
+        // SAFETY: the target has AVX (checked at compile time); the loads read 4 f64 each
+        // from arrays of 4.
+        unsafe {
+            let e = _mm256_loadu_pd(enter.as_ptr());
+            let x = _mm256_loadu_pd(exit.as_ptr());
+            let abs = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+            // exit + |exit|·4·ε, multiplied in `overlaps`' order so every bit is the same.
+            let slack = _mm256_mul_pd(
+                _mm256_mul_pd(abs, _mm256_set1_pd(4.0)),
+                _mm256_set1_pd(f64::EPSILON),
+            );
+            let bound = _mm256_add_pd(x, slack);
+            _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(e, bound)) as u8
+        }
+    }
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    {
+        let mut bits = 0;
+        for lane in 0..4 {
+            bits |= (crate::accel::aabb::overlaps(enter[lane], exit[lane]) as u8) << lane;
+        }
+        bits
+    }
+}
+
+/// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
+/// path through the tree). A node is fetched once for the packet and its box tested for
+/// all its rays together, in a loop the compiler turns into vector instructions;
+/// `visit(ray, item, t_max)` is as in `closest`, per ray.
+///
+/// The rays' directions must have the signs of the first one's (see `signs`): then
+/// every ray visits the same nodes and items in the same order as `closest` would take it,
+/// with the same arithmetic, so its answer is `closest`'s to the last bit, ties included.
+pub fn closest_packet(
+    bvh: &Bvh,
+    rays: &[Ray],
+    t_min: f64,
+    t_max: &mut [f64; PACKET],
+    mut visit: impl FnMut(usize, u32, f64) -> Option<f64>,
+) -> Visits {
+    let Some(first) = rays.first() else {
+        return Visits::default();
+    };
+    let negative = signs(first);
+    debug_assert!(rays.iter().all(|r| signs(r) == negative));
+    let (_, work) = walk_packet(bvh, rays, t_min, t_max, Some(negative), |i, item, t_max| {
+        if let Some(t) = visit(i, item, t_max[i]) {
+            t_max[i] = t_max[i].min(t);
+        }
+        false
+    });
+    work
+}
+
+/// `any` for a packet of up to 16 rays, ray i searching [t_min, t_max[i]]: bit i of the
+/// answer is set when `visit(i, item)` returned true for some item. Each ray visits the
+/// nodes and items `any` would, in the same order, and leaves the packet at its first
+/// blocker; the directions may point anywhere (the order does not depend on them).
+pub fn any_packet(
+    bvh: &Bvh,
+    rays: &[Ray],
+    t_min: f64,
+    t_max: &[f64; PACKET],
+    mut visit: impl FnMut(usize, u32) -> bool,
+) -> (u32, Visits) {
+    let mut t_max = *t_max;
+    walk_packet(bvh, rays, t_min, &mut t_max, None, |i, item, _| {
+        visit(i, item)
+    })
+}
+
+/// The depth-first walk of both packet searches. Each node's box is tested for the rays
+/// still searching below it; at a leaf, `step(ray, item, t_max)` runs for every item and
+/// every ray that met the leaf's box, in order, and returns true when that ray is done
+/// (it leaves the packet). Children are visited nearer side first by the rays' common
+/// `signs`, or left first without them (as `any` does). Answers the rays that are done.
+fn walk_packet(
+    bvh: &Bvh,
+    rays: &[Ray],
+    t_min: f64,
+    t_max: &mut [f64; PACKET],
+    signs: Option<[bool; 3]>,
+    mut step: impl FnMut(usize, u32, &mut [f64; PACKET]) -> bool,
+) -> (u32, Visits) {
+    let mut work = Visits::default();
+    if bvh.nodes().is_empty() || rays.is_empty() {
+        return (0, work);
+    }
+    let packet = Packet::new(rays);
+    let all = (u32::MAX >> (32 - rays.len())) as u16;
+    let mut done = 0u16;
+    // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
+    let reach_of = |t_max: &[f64; PACKET]| {
+        t_max[..rays.len()]
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                (if t < lo { t } else { lo }, if t > hi { t } else { hi })
+            })
+    };
+    let mut reach = reach_of(t_max);
+    let mut stack = [(0u32, 0u16); 64];
+    stack[0] = (0, all);
+    let mut top = 1;
+    while top > 0 {
+        top -= 1;
+        let (index, active) = stack[top];
+        let active = active & !done;
+        if active == 0 {
+            continue;
+        }
+        let node = &bvh.nodes()[index as usize];
+        work.nodes += active.count_ones() as u64;
+        let hit = packet.hits(&node.bounds, t_min, t_max, reach, active);
+        if hit == 0 {
+            continue;
+        }
+        if node.count > 0 {
+            let first = node.offset as usize;
+            for &item in &bvh.items()[first..first + node.count as usize] {
+                let mut m = hit & !done;
+                while m != 0 {
+                    let i = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    work.items += 1;
+                    if step(i, item, t_max) {
+                        done |= 1 << i;
+                    }
+                }
+            }
+            reach = reach_of(t_max);
+        } else {
+            let left = index + 1;
+            let (near, far) = match signs {
+                Some(negative) if negative[node.axis as usize] => (node.offset, left),
+                _ => (left, node.offset),
+            };
+            stack[top] = (far, hit);
+            stack[top + 1] = (near, hit);
+            top += 2;
+        }
+    }
+    (done as u32, work)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::accel::aabb::SlabRay;
+    use glam::DVec3;
+
+    /// The signs read off d are those of 1/d, which the slab tests order children by: at ±0,
+    /// subnormals, the largest numbers and ±∞ too.
+    #[test]
+    fn signs_are_those_of_the_reciprocal() {
+        let values = [
+            0.0,
+            -0.0,
+            f64::MIN_POSITIVE / 8.0,
+            -f64::MIN_POSITIVE / 8.0,
+            0.3,
+            -0.3,
+            f64::MAX,
+            -f64::MAX,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for &x in &values {
+            for &y in &values {
+                let r = Ray {
+                    origin: DVec3::ZERO,
+                    dir: DVec3::new(x, y, -x),
+                };
+                assert_eq!(
+                    signs(&r),
+                    SlabRay::new(r.origin, r.dir.recip()).negative,
+                    "{x} {y}"
+                );
+            }
+        }
+    }
+
+    /// The four-lane overlap test answers every lane as `overlaps` does, at the edges of the
+    /// number line too (signed zeros, subnormals, the largest finite numbers, ∞, NaN).
+    #[test]
+    fn overlaps4_is_overlaps_lane_by_lane() {
+        let values = [
+            f64::NEG_INFINITY,
+            -f64::MAX,
+            -1e300,
+            -1.0,
+            -0.0,
+            0.0,
+            1e-320,
+            1.0,
+            1.0 + f64::EPSILON,
+            1.0 + 4.0 * f64::EPSILON,
+            f64::MAX / 2.0,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        let pairs: Vec<(f64, f64)> = values
+            .iter()
+            .flat_map(|&e| values.iter().map(move |&x| (e, x)))
+            .collect();
+        for chunk in pairs.chunks(4) {
+            let enter = std::array::from_fn(|k| chunk[k % chunk.len()].0);
+            let exit = std::array::from_fn(|k| chunk[k % chunk.len()].1);
+            let bits = overlaps4(&enter, &exit);
+            for lane in 0..4 {
+                let expected = crate::accel::aabb::overlaps(enter[lane], exit[lane]);
+                assert_eq!(
+                    bits >> lane & 1 == 1,
+                    expected,
+                    "{} {}",
+                    enter[lane],
+                    exit[lane]
+                );
+            }
+        }
+    }
+}

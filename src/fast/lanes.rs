@@ -1,0 +1,229 @@
+//! Rays in lanes: up to four rays laid out axis by axis in `f64x4` vectors (structure of
+//! arrays), so that one shape or box is tested against all of them with the same instructions.
+//! Every lane computes what the one-ray routine of the core computes, in the same order.
+
+use glam::DVec3;
+use wide::f64x4;
+
+use crate::accel::Aabb;
+use crate::geometry::{Plane, Ray};
+
+/// Rays (or spheres) per vector: four f64 lanes fill one 256-bit (AVX) register.
+pub const LANES: usize = 4;
+
+/// A filler for the unused places of a fixed-size array of rays.
+pub const UNUSED: Ray = Ray {
+    origin: DVec3::ZERO,
+    dir: DVec3::Z,
+};
+
+/// Up to four rays, one per lane: a packet's rays tested against one sphere or plane at a
+/// time, or one ray repeated in every lane against a group of spheres.
+#[derive(Clone, Copy, Debug)]
+pub struct RayLanes {
+    pub origin: [f64x4; 3],
+    pub dir: [f64x4; 3],
+    /// d·d, as the sphere's quadratic computes it.
+    pub a: f64x4,
+}
+
+impl RayLanes {
+    /// One ray in every lane.
+    #[inline(always)]
+    pub fn splat(ray: &Ray) -> RayLanes {
+        let DVec3 {
+            x: dx,
+            y: dy,
+            z: dz,
+        } = ray.dir;
+        let o = ray.origin;
+        RayLanes {
+            origin: [o.x, o.y, o.z].map(f64x4::splat),
+            dir: [dx, dy, dz].map(f64x4::splat),
+            a: f64x4::splat(dx * dx + dy * dy + dz * dz),
+        }
+    }
+
+    /// The rays in lanes 0, 1, …; lanes beyond them hold `UNUSED`.
+    pub fn new(rays: &[Ray]) -> RayLanes {
+        assert!(rays.len() <= LANES);
+        let (mut o, mut d) = ([UNUSED.origin; LANES], [UNUSED.dir; LANES]);
+        for (k, r) in rays.iter().enumerate() {
+            (o[k], d[k]) = (r.origin, r.dir);
+        }
+        let axis = |v: &[DVec3; LANES], i: usize| f64x4::new(v.map(|p| p[i]));
+        let dir = [axis(&d, 0), axis(&d, 1), axis(&d, 2)];
+        RayLanes::from_lanes([axis(&o, 0), axis(&o, 1), axis(&o, 2)], dir)
+    }
+
+    /// Rays already in lanes: origins and directions, axis by axis.
+    #[inline(always)]
+    pub fn from_lanes(origin: [f64x4; 3], dir: [f64x4; 3]) -> RayLanes {
+        RayLanes {
+            origin,
+            dir,
+            a: dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2],
+        }
+    }
+}
+
+/// All ones in lane i when bit i of `bits` is set.
+pub fn lane_mask(bits: u32) -> f64x4 {
+    let on = f64::from_bits(u64::MAX);
+    f64x4::new([0, 1, 2, 3].map(|i| if bits & (1 << i) != 0 { on } else { 0.0 }))
+}
+
+/// Four rays in lanes prepared for slab tests against many boxes: the core's `SlabRay` four at
+/// a time.
+#[derive(Clone, Copy, Debug)]
+pub struct SlabLanes {
+    origin: [f64x4; 3],
+    dir: [f64x4; 3],
+    /// 1/d per component, as `DVec3::recip` finds it ray by ray.
+    inv_dir: [f64x4; 3],
+    /// All ones where 1/d is negative (`SlabRay::negative`).
+    negative: [f64x4; 3],
+}
+
+impl SlabLanes {
+    pub fn new(rays: &RayLanes) -> SlabLanes {
+        let inv_dir = rays.dir.map(|d| f64x4::ONE / d);
+        SlabLanes {
+            origin: rays.origin,
+            dir: rays.dir,
+            inv_dir,
+            negative: inv_dir.map(f64x4::is_sign_negative),
+        }
+    }
+
+    /// The rays themselves, as `RayLanes::new` gave them.
+    #[inline(always)]
+    pub fn rays(&self) -> RayLanes {
+        RayLanes::from_lanes(self.origin, self.dir)
+    }
+
+    /// The 1/d of the ray in one lane, bit for bit `ray.dir.recip()`.
+    pub fn inv_dir(&self, lane: usize) -> DVec3 {
+        DVec3::from_array(self.inv_dir.map(|axis| axis.to_array()[lane]))
+    }
+}
+
+/// `Aabb::hit_slabs` for four rays at once, each lane with its own t_max: the bits of the lanes
+/// whose ray passes through the box. Lane by lane the very arithmetic and comparisons of the
+/// core's `slab` and `overlaps`, so each bit is what the ray's own test answers.
+#[inline(always)]
+pub fn box_hit_lanes(b: &Aabb, r: &SlabLanes, t_min: f64, t_max: f64x4) -> u32 {
+    let (mut enter, mut exit) = (f64x4::splat(t_min), t_max);
+    for axis in 0..3 {
+        let (lo, hi) = (f64x4::splat(b.min[axis]), f64x4::splat(b.max[axis]));
+        let negative = r.negative[axis];
+        let (near, far) = (negative.bitselect(hi, lo), negative.bitselect(lo, hi));
+        let inv = r.inv_dir[axis];
+        let t_near = (near - r.origin[axis]) * inv;
+        let t_far = (far - r.origin[axis]) * inv;
+        // As `slab`: a NaN compares false and leaves the interval as it was.
+        enter = t_near.simd_gt(enter).bitselect(t_near, enter);
+        exit = t_far.simd_lt(exit).bitselect(t_far, exit);
+    }
+    let slack = exit.abs() * f64x4::splat(4.0) * f64x4::splat(f64::EPSILON);
+    enter.simd_le(exit + slack).to_bitmask()
+}
+
+/// `probe::plane_hit` for the rays of `rays` with t_min ≥ 0, with the same operations in the
+/// same order: each lane's t, and bit i set when ray lane i crosses the plane with
+/// t_min < t < t_max[i] (that t is then the one `plane_hit` returns). `plane_hit`'s early exit
+/// for height and rate of the same sign needs no test here: t = −height/rate ≤ 0 there.
+#[inline(always)]
+pub fn plane_hits_of_lanes(
+    plane: &Plane,
+    rays: &RayLanes,
+    t_min: f64,
+    t_max: f64x4,
+) -> (f64x4, u32) {
+    debug_assert!(t_min >= 0.0);
+    let [nx, ny, nz] = plane.normal.to_array().map(f64x4::splat);
+    let [px, py, pz] = plane.point.to_array().map(f64x4::splat);
+    let [dx, dy, dz] = rays.dir;
+    let [ox, oy, oz] = rays.origin;
+    let rate = dx * nx + dy * ny + dz * nz;
+    let height = (ox - px) * nx + (oy - py) * ny + (oz - pz) * nz;
+    let t = -height / rate;
+    let crossing = rate.simd_ne(f64x4::ZERO)
+        & t.simd_gt(f64x4::splat(t_min))
+        & t.simd_lt(t_max)
+        & t.abs().simd_lt(f64x4::splat(f64::INFINITY));
+    (t, crossing.to_bitmask())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A coordinate that often sits exactly on a box's face (−1 or 1), at zero, or anywhere.
+    fn coordinate() -> impl Strategy<Value = f64> {
+        prop_oneof![Just(-1.0), Just(1.0), Just(0.0), Just(-0.0), -3.0..3.0f64]
+    }
+
+    /// A direction component that is often zero (of either sign: a ray parallel to a slab),
+    /// tiny, or anything.
+    fn component() -> impl Strategy<Value = f64> {
+        prop_oneof![Just(0.0), Just(-0.0), Just(1e-300), -1.0..1.0f64]
+    }
+
+    fn ray() -> impl Strategy<Value = Ray> {
+        (
+            [coordinate(), coordinate(), coordinate()],
+            [component(), component(), component()],
+        )
+            .prop_map(|(o, d)| Ray {
+                origin: DVec3::from_array(o),
+                dir: DVec3::from_array(d),
+            })
+    }
+
+    fn reach() -> impl Strategy<Value = f64> {
+        prop_oneof![Just(f64::INFINITY), Just(0.0), 0.0..5.0f64]
+    }
+
+    proptest! {
+        /// Each lane's bit is its own ray's slab test, for rays that start on a face, run
+        /// parallel to a slab (0 · ∞ is NaN there) or along an edge, and each lane's 1/d is
+        /// the ray's own `recip` to the last bit.
+        #[test]
+        fn each_lanes_bit_is_its_rays_own_slab_test(
+            rays in proptest::collection::vec(ray(), 1..=4),
+            t_max in [reach(), reach(), reach(), reach()],
+            flat in any::<bool>(),
+        ) {
+            // The box [−1, 1]³, or a flat one (a face with no thickness along y).
+            let max = if flat { DVec3::new(1.0, -1.0, 1.0) } else { DVec3::ONE };
+            let b = Aabb::new(-DVec3::ONE, max);
+            let slabs = SlabLanes::new(&RayLanes::new(&rays));
+            let bits = box_hit_lanes(&b, &slabs, 0.0, f64x4::new(t_max));
+            for (i, r) in rays.iter().enumerate() {
+                let inv = r.dir.recip();
+                prop_assert_eq!(slabs.inv_dir(i).to_array().map(f64::to_bits), inv.to_array().map(f64::to_bits));
+                let alone = b.hit(r.origin, inv, 0.0, t_max[i]);
+                prop_assert_eq!(bits & (1 << i) != 0, alone, "lane {} of {:?}", i, r);
+            }
+        }
+    }
+
+    /// The cases the lanes must get right, named: a ray through the box, one beside it, one
+    /// lying in a face's plane and parallel to it (NaN, which must not reject), and one whose
+    /// box lies beyond its t_max.
+    #[test]
+    fn lanes_hit_miss_graze_and_stop_short() {
+        let b = Aabb::new(-DVec3::ONE, DVec3::ONE);
+        let z = DVec3::new(0.0, 0.0, 1.0);
+        // From x = 0 (through), x = 2 (beside), x = 1 (in the face x = 1), x = 0 again.
+        let rays = [0.0, 2.0, 1.0, 0.0].map(|x| Ray {
+            origin: DVec3::new(x, 0.0, -5.0),
+            dir: z,
+        });
+        let slabs = SlabLanes::new(&RayLanes::new(&rays));
+        let t_max = f64x4::new([f64::INFINITY, f64::INFINITY, f64::INFINITY, 3.9]);
+        assert_eq!(box_hit_lanes(&b, &slabs, 0.0, t_max), 0b0101);
+    }
+}

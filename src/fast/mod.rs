@@ -1,0 +1,32 @@
+//! The fast wing: everything in raytree that exists only for speed.
+//!
+//! The textbook core (`crate::trace::whitted`, the scene's own `Search`, one routine per shape)
+//! is the definition of what raytree computes. This wing is an optimisation of it and nothing
+//! else: packets of rays traced together (`packet_trace`), searched together through the BVH
+//! (`bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
+//! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
+//! flat CSG objects read off their primitives' spans (`csg_crossing`) or in lanes
+//! (`csg_lanes`, `span_lanes`).
+//!
+//! The contract: every image the wing renders equals, bit for bit, the image of the core's
+//! recursion with the core's search, and so do the counters of work. `tests/fast_paths.rs`
+//! checks it on every lesson and peer scene and with property tests. The core never imports
+//! the wing (`tests/architecture.rs`); only the renderer calls it.
+
+mod bvh_packet;
+mod csg_crossing;
+mod csg_lanes;
+mod hull;
+mod lanes;
+mod packet_search;
+mod packet_trace;
+mod probe;
+mod search;
+mod span_lanes;
+mod sphere_group;
+
+pub use bvh_packet::PACKET;
+pub use packet_trace::trace_packet;
+pub use probe::{plane_hit, sphere_hit};
+pub use search::FastScene;
+pub use sphere_group::SphereGroup;

@@ -1,0 +1,261 @@
+//! The Whitted recursion for a packet of rays: a pixel's grid samples, then the secondary rays
+//! of their surfaces, wave after wave. The core's steps (`Tracer::light_share`,
+//! `shadow_factor`, `children`, `finish`, …) in another order: every ray's local terms of a
+//! light first, then all their shadow rays toward it together, then the secondary rays as
+//! packets of their own. Each ray's intensity, the counters and the random numbers drawn are
+//! those of tracing the rays one after another with `Tracer::radiance`. The tracer must find
+//! its hits through the same `FastScene` the packets are searched with.
+
+use std::borrow::Cow;
+
+use arrayvec::ArrayVec;
+use glam::DVec3;
+
+use super::bvh_packet::PACKET;
+use super::lanes::UNUSED;
+use super::search::FastScene;
+use crate::geometry::Ray;
+use crate::scene::{Hit, Interaction};
+use crate::shading::local::ambient;
+use crate::trace::{RayKind, Task, Tracer, Transmission};
+
+/// The rays of a packet, each with its place in the tree: a pixel's primary rays, or the tasks
+/// of a packet of secondary rays.
+trait Lanes {
+    fn kind(&self, i: usize) -> RayKind;
+    fn ray(&self, i: usize) -> &Ray;
+    fn depth(&self, i: usize) -> u32;
+    /// The whole task (built on demand for a primary ray: it is needed only where secondary
+    /// rays leave).
+    fn task(&self, i: usize) -> Cow<'_, Task>;
+}
+
+impl Lanes for [Ray] {
+    fn kind(&self, _: usize) -> RayKind {
+        RayKind::Primary
+    }
+
+    fn ray(&self, i: usize) -> &Ray {
+        &self[i]
+    }
+
+    fn depth(&self, _: usize) -> u32 {
+        0
+    }
+
+    fn task(&self, i: usize) -> Cow<'_, Task> {
+        Cow::Owned(Task::primary(&self[i]))
+    }
+}
+
+impl Lanes for [Task] {
+    fn kind(&self, i: usize) -> RayKind {
+        self[i].kind
+    }
+
+    fn ray(&self, i: usize) -> &Ray {
+        &self[i].ray
+    }
+
+    fn depth(&self, i: usize) -> u32 {
+        self[i].depth
+    }
+
+    fn task(&self, i: usize) -> Cow<'_, Task> {
+        Cow::Borrowed(&self[i])
+    }
+}
+
+/// The reflection (or refraction) rays of a packet's surfaces, gathered to be traced as a
+/// packet of their own, and the colour each surface receives through them.
+struct Children {
+    tasks: ArrayVec<Task, PACKET>,
+    /// The surface (its lane in the parent packet) each task leaves from.
+    lanes: [usize; PACKET],
+    /// Per parent lane: the intensity arriving through its child (zero for a child the depth
+    /// limit or the adaptive threshold stopped); None for a surface without such a child.
+    colors: [Option<DVec3>; PACKET],
+}
+
+impl Children {
+    fn new() -> Children {
+        Children {
+            tasks: ArrayVec::new(),
+            lanes: [0; PACKET],
+            colors: [None; PACKET],
+        }
+    }
+
+    /// The child of the surface in lane `lane`: to be traced, or stopped (it brings nothing).
+    fn add(&mut self, lane: usize, task: &Task, traced: bool) {
+        if traced {
+            self.lanes[self.tasks.len()] = lane;
+            self.tasks.push(*task);
+        }
+        self.colors[lane] = Some(DVec3::ZERO);
+    }
+
+    fn settle(&mut self, lane: usize, color: DVec3) {
+        self.colors[lane] = Some(color);
+    }
+}
+
+/// The primary rays of one pixel (a regular grid's samples, up to 16): `out[i]` is exactly
+/// what `Tracer::radiance` gives ray i, and the stats and the random numbers drawn are those of
+/// tracing the rays one after another.
+pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
+    let n = rays.len();
+    assert!(n <= PACKET && out.len() == n);
+    let mut hits = [None; PACKET];
+    fast.intersect_packet(rays, &mut hits[..n], &mut t.stats);
+    shade_packet(t, fast, rays, &hits[..n], out);
+}
+
+/// A packet of rays from their nearest hits: `out[i]` is exactly what `Tracer::shade` gives
+/// task i. The shadow rays toward each light are searched together
+/// (`FastScene::occluded_packet`); the secondary rays go in waves (`secondary_packet`) where
+/// the objects are tested in lanes and nothing draws random numbers, else one after another.
+fn shade_packet<L: Lanes + ?Sized>(
+    t: &mut Tracer,
+    fast: &FastScene,
+    tasks: &L,
+    hits: &[Option<Hit>],
+    out: &mut [DVec3],
+) {
+    let scene = t.scene;
+    let n = hits.len();
+    let mut shaded: [Option<Interaction>; PACKET] = [None; PACKET];
+    for i in 0..n {
+        t.count(tasks.kind(i));
+        match &hits[i] {
+            None => out[i] = scene.background,
+            Some(hit) => {
+                let si = scene.interaction(tasks.ray(i), hit);
+                out[i] = ambient(scene.material(si.material), scene.ambient);
+                shaded[i] = Some(si);
+            }
+        }
+    }
+    for (k, light) in scene.lights.iter().enumerate() {
+        let single = light.shadow_rays() == 1 && t.options.shadows;
+        let mut terms = [DVec3::ZERO; PACKET];
+        let mut shadow_rays = [UNUSED; PACKET];
+        let mut reach = [0.0; PACKET];
+        let mut lanes = [0usize; PACKET];
+        let mut cast = 0;
+        for i in 0..n {
+            let Some(si) = &shaded[i] else { continue };
+            let m = scene.material(si.material);
+            let (sample, lit, skipped) = t.light_share(m, si, -tasks.ray(i).dir, k, false);
+            terms[i] = lit.diffuse + lit.specular;
+            if skipped.is_some() {
+                // As `color += s · terms` with s = 0, to the bit.
+                out[i] += 0.0 * terms[i];
+            } else if single {
+                t.stats.shadow_rays += 1;
+                (shadow_rays[cast], reach[cast]) = t.shadow_ray(si, sample.l, sample.distance);
+                lanes[cast] = i;
+                cast += 1;
+            } else {
+                let s = t.shadow_factor(si, tasks.depth(i), sample.l, sample.distance, light);
+                out[i] += s * terms[i];
+            }
+        }
+        let blocked = fast.occluded_packet(&shadow_rays[..cast], &reach[..cast], &mut t.stats);
+        for (k, &i) in lanes[..cast].iter().enumerate() {
+            let s = if blocked & (1 << k) == 0 { 1.0 } else { 0.0 };
+            out[i] += s * terms[i];
+        }
+    }
+    if scene.features.sampled || !fast.tests_in_lanes() {
+        // Glossy and frosted surfaces draw random numbers: the rays go on one by one, in
+        // order, so each draws the numbers it draws when traced alone. And gathering the
+        // secondary rays into packets pays only where packets are tested four rays at a time.
+        for i in 0..n {
+            if let Some(si) = &shaded[i] {
+                out[i] = t.finish(&tasks.task(i), si, out[i]);
+            }
+        }
+    } else {
+        secondary_packet(t, fast, tasks, &shaded[..n], out);
+    }
+}
+
+/// `Tracer::secondary` for every surface of a packet (where no material draws random numbers,
+/// so the order rays are traced in changes nothing): all their reflection rays are traced
+/// together as one packet, then all their refraction rays (or, past the limiting angle, the
+/// mirror rays that stay inside) as another, and each surface sums kr·I_r + kt·I_t.
+fn secondary_packet<L: Lanes + ?Sized>(
+    t: &mut Tracer,
+    fast: &FastScene,
+    tasks: &L,
+    shaded: &[Option<Interaction>],
+    out: &mut [DVec3],
+) {
+    let scene = t.scene;
+    let mut splits: [Option<(f64, f64)>; PACKET] = [None; PACKET];
+    let mut reflected = Children::new();
+    let mut transmitted = Children::new();
+    for (i, si) in shaded.iter().enumerate() {
+        let Some(si) = si else { continue };
+        let m = scene.material(si.material);
+        if !(m.kr > 0.0 || m.kt > 0.0) {
+            continue;
+        }
+        let task = tasks.task(i);
+        let c = t.children(&task, si);
+        splits[i] = Some((c.kr, c.kt));
+        if let Some(child) = &c.reflection {
+            let traced = t.stopped(child).is_none();
+            reflected.add(i, child, traced);
+        }
+        match &c.refraction {
+            Transmission::None => {}
+            Transmission::Ray(child) => {
+                let traced = t.stopped(child).is_none();
+                transmitted.add(i, child, traced)
+            }
+            // The mirror ray joins the refraction rays' packet (rays bouncing inside a glass
+            // are many).
+            Transmission::TotalInternalReflection { mirror, .. } => {
+                let child = t.mirror_inside(&task, si, *mirror, c.kt);
+                let traced = t.stopped(&child).is_none();
+                if traced {
+                    t.stats.total_internal_reflections += 1;
+                }
+                transmitted.add(i, &child, traced);
+            }
+        }
+    }
+    trace_children(t, fast, &mut reflected);
+    trace_children(t, fast, &mut transmitted);
+    for (i, split) in splits.iter().enumerate() {
+        let Some((kr, kt)) = *split else { continue };
+        let mut sum = DVec3::ZERO;
+        if let Some(color) = reflected.colors[i] {
+            sum += kr * color;
+        }
+        if let Some(color) = transmitted.colors[i] {
+            sum += kt * color;
+        }
+        out[i] += sum;
+    }
+}
+
+/// Traces the children that are not stopped as one packet, and settles their parents' colours.
+fn trace_children(t: &mut Tracer, fast: &FastScene, children: &mut Children) {
+    let n = children.tasks.len();
+    if n == 0 {
+        return;
+    }
+    let rays: ArrayVec<Ray, PACKET> = children.tasks.iter().map(|t| t.ray).collect();
+    let mut hits = [None; PACKET];
+    fast.intersect_packet(&rays, &mut hits[..n], &mut t.stats);
+    let mut colors = [DVec3::ZERO; PACKET];
+    shade_packet(t, fast, &children.tasks[..], &hits[..n], &mut colors[..n]);
+    for k in 0..n {
+        let distance = hits[k].map_or(f64::INFINITY, |h| h.t);
+        let color = t.attenuated(colors[k], distance);
+        children.settle(children.lanes[k], color);
+    }
+}

@@ -1,0 +1,364 @@
+//! The fast search: the core's nearest-hit and any-hit searches (`crate::scene::Search`),
+//! faster, with the same hits and the same counted work to the last bit.
+//!
+//! `FastScene` is built from a compiled scene and its search index; it never changes them. It
+//! tests plain spheres and planes directly and runs of spheres four at a time (`probe.rs`),
+//! reads the nearest hit of a flat CSG object off its primitives' spans (`csg_crossing.rs`)
+//! instead of building segment lists, and answers packets of rays (`packet_search.rs`).
+
+use glam::DVec3;
+
+use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
+use super::csg_lanes::CsgLanes;
+use super::probe::{grouped, plane_hit, sphere_hit, Probe};
+use crate::geometry::csg::CsgWork;
+use crate::geometry::{first_crossing, Ray, Shape, Span, Surface};
+use crate::scene::{Geometry, Hit, Scene, Search};
+use crate::stats::Stats;
+
+/// A compiled scene with what the fast search needs beside it.
+pub struct FastScene<'s> {
+    pub scene: &'s Scene,
+    /// The bounded objects' probes, by BVH item number.
+    pub(super) bounded: Vec<Probe>,
+    /// The probes every ray tests (the scene's `unbounded` objects, runs of spheres grouped).
+    pub(super) unbounded: Vec<Probe>,
+    /// Per object: its CSG tree's flat form, when it has one.
+    flat_csg: Vec<Option<FlatCsg>>,
+    /// Per object: its flat form of two operands the lanes can test (spheres, boxes,
+    /// cylinders, cones), when it has one.
+    pub(super) csg_lanes: Vec<Option<CsgLanes>>,
+    /// Some object outside the BVH is tested behind its box: packets tested in lanes then find
+    /// their 1/d in lanes, for each such box's test of four rays at once.
+    pub(super) boxes_outside_bvh: bool,
+    /// Some object, in the BVH or not, is tested behind its box: the searches find each ray's
+    /// 1/d once for all the boxes (`inv_dir`).
+    boxed_objects: bool,
+    /// No BVH: a packet's rays, primary, shadow and secondary, are tested four at a time.
+    pub(super) in_lanes: bool,
+}
+
+impl LeafSpans for Scene {
+    #[inline]
+    fn leaf_span(&self, leaf: u32, ray: &Ray) -> Option<Span> {
+        self.leaves[leaf as usize].span(ray)
+    }
+}
+
+impl<'s> FastScene<'s> {
+    pub fn new(scene: &'s Scene) -> FastScene<'s> {
+        let index = &scene.index;
+        let flat_csg: Vec<Option<FlatCsg>> = scene
+            .objects
+            .iter()
+            .map(|o| match &o.geometry {
+                Geometry::Csg(root) => FlatCsg::new(root, |leaf| {
+                    scene.leaves[leaf as usize].world_sphere().cloned()
+                }),
+                Geometry::Leaf(_) => None,
+            })
+            .collect();
+        let mut fast = FastScene {
+            scene,
+            bounded: vec![],
+            unbounded: vec![],
+            csg_lanes: vec![],
+            flat_csg,
+            boxes_outside_bvh: false,
+            boxed_objects: false,
+            in_lanes: false,
+        };
+        fast.bounded = index.bounded.iter().map(|&o| fast.probe(o)).collect();
+        fast.unbounded = grouped(index.unbounded.iter().map(|&o| fast.probe(o)).collect());
+        fast.csg_lanes = fast
+            .flat_csg
+            .iter()
+            .map(|f| fast.lanes_form(f.as_ref()?))
+            .collect();
+        let boxed = |probes: &[Probe]| probes.iter().any(|p| matches!(p, Probe::Object(_)));
+        fast.boxes_outside_bvh = boxed(&fast.unbounded);
+        fast.boxed_objects = fast.boxes_outside_bvh || boxed(&fast.bounded);
+        fast.in_lanes = fast.bounded.is_empty();
+        fast
+    }
+
+    /// The flat CSG object in the form `csg_in_lanes` tests, if it is one: two operands, each a
+    /// sphere in world space or a box, cylinder or cone (turned and moved as its transform
+    /// says).
+    fn lanes_form(&self, flat: &FlatCsg) -> Option<CsgLanes> {
+        let [(a, a_box), (b, b_box)] = flat.operands() else {
+            return None;
+        };
+        let operand = |leaf: u32| {
+            let l = &self.scene.leaves[leaf as usize];
+            match (&l.shape, &l.transform) {
+                (Shape::Sphere(s), None) => Some(CsgLanes::sphere(s)),
+                (shape, tf) => CsgLanes::solid(shape, tf.as_ref().map(|t| t.to_local)),
+            }
+        };
+        CsgLanes::new(
+            flat.op(),
+            [operand(*a), operand(*b)],
+            [*a, *b],
+            [*a_box, *b_box],
+        )
+    }
+
+    /// Whether packets of rays go four at a time through the objects (no BVH: `intersect_in_lanes`).
+    pub fn tests_in_lanes(&self) -> bool {
+        self.in_lanes
+    }
+
+    /// How the hit searches test an object: directly for a plain sphere or plane.
+    fn probe(&self, object: u32) -> Probe {
+        let Geometry::Leaf(leaf) = self.scene.objects[object as usize].geometry else {
+            return Probe::Object(object);
+        };
+        let l = &self.scene.leaves[leaf as usize];
+        match (&l.shape, &l.transform) {
+            (Shape::Sphere(sphere), None) => Probe::Sphere {
+                sphere: sphere.clone(),
+                object,
+                leaf,
+            },
+            (Shape::Plane(plane), None) => Probe::Plane {
+                plane: plane.clone(),
+                object,
+                leaf,
+            },
+            _ => Probe::Object(object),
+        }
+    }
+
+    /// 1/d, which the boxes of the objects tested behind one need: found once per ray, not
+    /// once per box. Not at all in scenes without such objects (plain spheres and planes),
+    /// where a division per ray would buy nothing; there it is NaN, which no box test passes.
+    #[inline(always)]
+    pub(super) fn inv_dir(&self, ray: &Ray) -> DVec3 {
+        if self.boxed_objects {
+            ray.dir.recip()
+        } else {
+            DVec3::NAN
+        }
+    }
+
+    /// `object_hit` behind the object's box: a ray that misses the box, or meets it only beyond
+    /// the nearest hit so far, skips the object (and all of a CSG tree's evaluation).
+    /// `--no-csg-pruning` switches a CSG tree's boxes off, this one included.
+    ///
+    /// Inlined: 1/d, passed out of line, went through memory and was read back as the box
+    /// test's first step, and that stall (store forwarding fails) cost more than the division.
+    #[inline(always)]
+    fn boxed_object_hit(
+        &self,
+        o: u32,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
+        if self.tested_behind_box(o)
+            && !self.scene.objects[o as usize]
+                .bounds
+                .hit(ray.origin, inv_dir, t_min, t_max)
+        {
+            stats.bounds_skipped += 1;
+            return None;
+        }
+        self.object_hit(o, ray, inv_dir, t_min, t_max, stats)
+    }
+
+    /// Whether object o is tested behind its box: always, but for CSG objects with their boxes
+    /// switched off (`--no-csg-pruning`).
+    #[inline(always)]
+    pub(super) fn tested_behind_box(&self, o: u32) -> bool {
+        self.scene.csg_pruning
+            || !matches!(self.scene.objects[o as usize].geometry, Geometry::Csg(_))
+    }
+
+    /// Nearest crossing of one object's surface with t_min < t < t_max: the core's
+    /// `Scene::object_crossing`, but for a flat CSG object, whose nearest crossing is read off
+    /// its primitives' spans where the answer is clear. Kept out of line: its segment lists
+    /// would otherwise give the probes' tight loops a large stack frame.
+    #[inline(never)]
+    pub(super) fn object_hit(
+        &self,
+        o: u32,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
+        let scene = self.scene;
+        let (Geometry::Csg(root), Some(flat)) = (
+            &scene.objects[o as usize].geometry,
+            &self.flat_csg[o as usize],
+        ) else {
+            return scene.object_crossing(o, ray, inv_dir, t_min, t_max, stats);
+        };
+        stats.primitives_tested += 1;
+        let r = scene.csg_ray(ray, inv_dir, t_min, t_max);
+        let mut work = CsgWork::default();
+        let crossing = flat.nearest(scene, &r, &mut work);
+        stats.csg_pruned += work.pruned;
+        let (t, surface) = match crossing {
+            Crossing::Hit(t, surface) => (t, surface),
+            Crossing::Miss => return None,
+            Crossing::Undecided => first_crossing(&scene.csg_segments(root, &r, stats), t_min)?,
+        };
+        (t > t_min && t < t_max && t.is_finite()).then_some(Hit {
+            t,
+            object: o,
+            surface,
+        })
+    }
+
+    /// The hit of one object through its probe: `object_hit`'s answer, found faster for plain
+    /// spheres and planes.
+    #[inline(always)]
+    pub(super) fn probe_hit(
+        &self,
+        probe: &Probe,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
+        // Every arm ends in the same three parts, and the hit is put together once from
+        // them: an arm that returned its own `Hit` would make the compiler pass all hits
+        // through memory, and reading one back right after its field-by-field stores stalls
+        // the processor (store forwarding fails: 5 % of the Whitted peer scene's time).
+        let (t, object, surface) = match probe {
+            Probe::Sphere {
+                sphere,
+                object,
+                leaf,
+            } => {
+                stats.primitives_tested += 1;
+                let t = sphere_hit(sphere, ray, t_min, t_max)?;
+                (t, *object, Surface::new(*leaf, 0))
+            }
+            Probe::Plane {
+                plane,
+                object,
+                leaf,
+            } => {
+                stats.primitives_tested += 1;
+                let t = plane_hit(plane, ray, t_min, t_max)?;
+                (t, *object, Surface::new(*leaf, 0))
+            }
+            Probe::Spheres {
+                group,
+                objects,
+                leaves,
+            } => {
+                stats.primitives_tested += group.len() as u64;
+                let (t, k) = group.nearest(ray, t_min, t_max)?;
+                (t, objects[k], Surface::new(leaves[k], 0))
+            }
+            Probe::Object(o) => {
+                let h = self.boxed_object_hit(*o, ray, inv_dir, t_min, t_max, stats)?;
+                (h.t, h.object, h.surface)
+            }
+        };
+        Some(Hit { t, object, surface })
+    }
+
+    /// A blocker of a shadow ray through one probe: `probe_hit`'s answer, except that a group
+    /// of spheres answers with its first sphere in the way (not the nearest), as testing them
+    /// one after another until a blocker turns up does, and counts the spheres that took.
+    #[inline(always)]
+    pub(super) fn probe_blocker(
+        &self,
+        probe: &Probe,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
+        let Probe::Spheres {
+            group,
+            objects,
+            leaves,
+        } = probe
+        else {
+            return self.probe_hit(probe, ray, inv_dir, t_min, t_max, stats);
+        };
+        match group.first(ray, t_min, t_max) {
+            Some((t, k)) => {
+                stats.primitives_tested += k as u64 + 1;
+                Some(Hit {
+                    t,
+                    object: objects[k],
+                    surface: Surface::new(leaves[k], 0),
+                })
+            }
+            None => {
+                stats.primitives_tested += group.len() as u64;
+                None
+            }
+        }
+    }
+
+    /// The nearest hit among the objects outside the BVH, and the limit it sets for the rest.
+    #[inline(always)]
+    pub(super) fn nearest_unbounded(
+        &self,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> (Option<Hit>, f64) {
+        let (mut best, mut limit) = (None, t_max);
+        for p in &self.unbounded {
+            if let Some(h) = self.probe_hit(p, ray, inv_dir, t_min, limit, stats) {
+                limit = h.t;
+                best = Some(h);
+            }
+        }
+        (best, limit)
+    }
+}
+
+impl Search for FastScene<'_> {
+    fn nearest(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        let inv_dir = self.inv_dir(ray);
+        let (mut best, limit) = self.nearest_unbounded(ray, inv_dir, t_min, t_max, stats);
+        if !self.bounded.is_empty() {
+            let bvh = &self.scene.index.bvh;
+            let visits = bvh.closest(ray.origin, ray.dir, t_min, limit, |item, limit| {
+                let probe = &self.bounded[item as usize];
+                let h = self.probe_hit(probe, ray, inv_dir, t_min, limit, stats)?;
+                best = Some(h);
+                Some(h.t)
+            });
+            stats.bvh_nodes_visited += visits.nodes;
+        }
+        best
+    }
+
+    fn blocker(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        let inv_dir = self.inv_dir(ray);
+        for p in &self.unbounded {
+            if let Some(h) = self.probe_blocker(p, ray, inv_dir, t_min, t_max, stats) {
+                return Some(h);
+            }
+        }
+        let mut blocker = None;
+        if !self.bounded.is_empty() {
+            let bvh = &self.scene.index.bvh;
+            let (_, visits) = bvh.any(ray.origin, ray.dir, t_min, t_max, |item| {
+                let probe = &self.bounded[item as usize];
+                blocker = self.probe_blocker(probe, ray, inv_dir, t_min, t_max, stats);
+                blocker.is_some()
+            });
+            stats.bvh_nodes_visited += visits.nodes;
+        }
+        blocker
+    }
+}

@@ -1,0 +1,105 @@
+//! The scene's objects as the tracer sees them: every primitive (a plain object, or a leaf of
+//! a CSG tree) with its shape, transform, material and world-space bounds, and the objects that
+//! group them.
+
+use glam::DVec3;
+
+use crate::accel::Aabb;
+use crate::geometry::csg::CsgNode;
+use crate::geometry::{Ray, Segment, SegmentList, Shape, Span, Sphere, Surface, Transform};
+
+/// A primitive in the scene: a plain object, or a leaf of a CSG tree.
+#[derive(Clone, Debug)]
+pub struct Leaf {
+    /// The leaf's own name (for a plain object, the object's name).
+    pub name: String,
+    /// The object it belongs to.
+    pub object: u32,
+    /// The CSG operations from the object's root down to this leaf ("union/difference").
+    pub path: Vec<String>,
+    pub shape: Shape,
+    pub transform: Option<Transform>,
+    pub material: u32,
+    /// World-space bounds.
+    pub bounds: Aabb,
+}
+
+impl Leaf {
+    /// The leaf as a sphere in world space, if it is one.
+    pub fn world_sphere(&self) -> Option<&Sphere> {
+        match (&self.shape, &self.transform) {
+            (Shape::Sphere(s), None) => Some(s),
+            _ => None,
+        }
+    }
+
+    pub fn span(&self, ray: &Ray) -> Option<Span> {
+        match &self.transform {
+            Some(tf) => self.shape.span(&tf.ray_to_local(ray)),
+            None => self.shape.span(ray),
+        }
+    }
+
+    /// The leaf's segment list; its surfaces are named by `id`, its index in the scene.
+    pub fn segments(&self, id: u32, ray: &Ray) -> SegmentList {
+        let mut list = SegmentList::new();
+        if let Shape::Mesh(mesh) = &self.shape {
+            // Every crossing of a mesh's surface, as a zero-length segment.
+            let local = self
+                .transform
+                .as_ref()
+                .map_or(*ray, |tf| tf.ray_to_local(ray));
+            for (t, face) in mesh.crossings(&local) {
+                let s = Surface::new(id, face);
+                list.push(Segment {
+                    t_in: t,
+                    t_out: t,
+                    enter: s,
+                    exit: s,
+                });
+            }
+            return list;
+        }
+        // A span of NaN (arithmetic overflow on absurd input) is no intersection.
+        if let Some(s) = self
+            .span(ray)
+            .filter(|s| !s.t_in.is_nan() && !s.t_out.is_nan())
+        {
+            list.push(Segment {
+                t_in: s.t_in,
+                t_out: s.t_out,
+                enter: Surface::new(id, s.face_in as u32),
+                exit: Surface::new(id, s.face_out as u32),
+            });
+        }
+        list
+    }
+
+    /// The outward unit normal in world space at a world point on `face`. A plain sphere's or
+    /// plane's is found here, inline: it is wanted at every shaded hit.
+    #[inline(always)]
+    pub fn normal(&self, p: DVec3, face: u32) -> DVec3 {
+        match (&self.transform, &self.shape) {
+            (None, Shape::Sphere(s)) => s.normal(p),
+            (None, Shape::Plane(s)) => s.normal,
+            (Some(tf), shape) => {
+                tf.normal_to_world(shape.normal(tf.to_local.transform_point3(p), face))
+            }
+            (None, shape) => shape.normal(p, face),
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+pub enum Geometry {
+    /// A single primitive (index into `Scene::leaves`).
+    Leaf(u32),
+    Csg(CsgNode),
+}
+
+#[derive(Clone, Debug)]
+pub struct Object {
+    pub name: String,
+    pub geometry: Geometry,
+    pub bounds: Aabb,
+}

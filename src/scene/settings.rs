@@ -1,0 +1,41 @@
+//! Settings of a scene that say how its image is sampled: where a pixel's primary rays go,
+//! and how their values make the pixel. The renderer (`crate::render::antialias`) carries them
+//! out.
+
+/// How a pixel's primary rays are placed.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub enum Antialias {
+    #[default]
+    Grid,
+    Jittered,
+    /// Split a square while its corners differ by more than `threshold` (the sum of the
+    /// absolute differences of r, g and b, on values clamped to [0, 1]).
+    Adaptive {
+        threshold: f64,
+    },
+}
+
+/// POV-Ray's default antialiasing threshold.
+pub const DEFAULT_THRESHOLD: f64 = 0.3;
+
+impl Antialias {
+    pub fn name(self) -> &'static str {
+        match self {
+            Antialias::Grid => "grid",
+            Antialias::Jittered => "jittered",
+            Antialias::Adaptive { .. } => "adaptive",
+        }
+    }
+}
+
+/// The pixel reconstruction filter of supersampling.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Filter {
+    /// A pixel is the mean of its own samples.
+    #[default]
+    Box,
+    /// Mitsuba's default: every sample is splatted onto the pixels around it with weight
+    /// f(dx)·f(dy), f(x) = e^(−x²/2σ²) − e^(−r²/2σ²), σ = 0.5 px, r = 2 px; a pixel is the
+    /// weighted mean of the samples that reach it.
+    Gaussian,
+}

@@ -1,0 +1,618 @@
+//! Whitted ray tracing, as the lecture writes it: the textbook core of raytree.
+//!
+//! ```text
+//! I = ka·Ia·O + Σ_ℓ s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m)  +  kr·I_r  +  kt·I_t
+//!     └─ ambient ┘  └──── each light, times its shadow factor s ───┘   └ reflection ┘ └ refraction ┘
+//! ```
+//!
+//! `shade` computes a ray's intensity in the order the equation reads: the local terms with a
+//! shadow ray per light, then the reflection ray, then the refraction ray (or, past the
+//! limiting angle, total internal reflection). A secondary ray is one level deeper; it is not
+//! traced at the maximum depth, nor when its weight (the product of the coefficients on its
+//! way from the eye) falls below the adaptive threshold. Intensities are collected from the
+//! leaves up as the recursion returns.
+//!
+//! The same code renders images and builds the ray trees the explorer shows: a `Recorder`
+//! watches it (`NoRecorder` compiles to nothing). It asks a `Search` for hits: the scene's own,
+//! or the renderer's faster one, which finds the same hits.
+
+use glam::DVec3;
+
+use super::recorder::{NoRecorder, RayStart, Recorder, TreeRecorder};
+use super::task::Task;
+use super::tree::{HitInfo, Indices, Inspection, LightTerm, Local, RayKind, RayNode, Termination};
+use crate::geometry::{Ray, Shape};
+use crate::sampling::Rng;
+use crate::scene::{Hit, Interaction, Scene, Search};
+use crate::shading::local::{ambient, light_terms, LightTerms};
+use crate::shading::optics::{reflect, refract, schlick};
+use crate::shading::{lobe, Fresnel, Light, LightSample, Lobe, Material};
+use crate::stats::Stats;
+
+/// Options that change how one trace runs, beyond the scene's own settings.
+#[derive(Clone, Copy, Debug)]
+pub struct TraceOptions {
+    /// Rays per path, primary included: 1 traces primary rays only.
+    pub max_depth: u32,
+    /// Cast shadow rays (off only to show what the shadow term changes).
+    pub shadows: bool,
+}
+
+/// The tracer of one scene, with the context its rays share: the recorder that watches them,
+/// the random numbers of glossy and frosted rays, and the counters of rays and skipped work.
+pub struct Tracer<'s, R: Recorder = NoRecorder> {
+    pub scene: &'s Scene,
+    /// Where rays find their hits: the scene's own search, or the fast wing's.
+    pub search: &'s dyn Search,
+    pub options: TraceOptions,
+    pub rec: R,
+    pub rng: Rng,
+    pub stats: Stats,
+}
+
+/// The rays a surface sends on, before the depth limit and the adaptive threshold have
+/// their say.
+pub(crate) struct Children {
+    /// kr and kt after the Fresnel term.
+    pub kr: f64,
+    pub kt: f64,
+    /// The mirror ray, when kr > 0.
+    pub reflection: Option<Task>,
+    pub refraction: Transmission,
+}
+
+/// Where a surface's transmitted light comes from.
+pub(crate) enum Transmission {
+    /// kt = 0: nothing.
+    None,
+    /// The refracted ray (Snell's law).
+    Ray(Task),
+    /// Beyond the limiting angle: the mirror ray, staying inside, between media n1 → n2.
+    TotalInternalReflection { mirror: DVec3, indices: Indices },
+}
+
+impl<'s> Tracer<'s> {
+    /// A tracer of the scene with its own search and settings, recording nothing.
+    pub fn new(scene: &'s Scene) -> Tracer<'s> {
+        Tracer {
+            scene,
+            search: scene,
+            options: TraceOptions {
+                max_depth: scene.max_depth,
+                shadows: true,
+            },
+            rec: NoRecorder,
+            rng: Rng::for_pixel(0, 0, 0),
+            stats: Stats::default(),
+        }
+    }
+}
+
+impl<'s, R: Recorder> Tracer<'s, R> {
+    pub fn with_depth(mut self, max_depth: u32) -> Self {
+        self.options.max_depth = max_depth;
+        self
+    }
+
+    pub fn with_options(mut self, options: TraceOptions) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// Glossy and frosted rays draw from `rng` (the renderer gives each pixel its own).
+    pub fn with_rng(mut self, rng: Rng) -> Self {
+        self.rng = rng;
+        self
+    }
+
+    /// The same tracer, finding its hits through `search`.
+    pub fn with_search(mut self, search: &'s dyn Search) -> Self {
+        self.search = search;
+        self
+    }
+
+    /// The intensity seen along a primary ray.
+    pub fn radiance(&mut self, ray: &Ray) -> DVec3 {
+        self.trace(&Task::primary(ray)).0
+    }
+
+    /// The same computation as `radiance`, recording its ray tree.
+    pub fn inspect(&mut self, ray: &Ray) -> RayNode {
+        let mut recording = Tracer {
+            scene: self.scene,
+            search: self.search,
+            options: self.options,
+            rec: TreeRecorder::new(),
+            rng: self.rng.clone(),
+            stats: Stats::default(),
+        };
+        recording.radiance(ray);
+        self.rng = recording.rng;
+        self.stats.add(&recording.stats);
+        recording.rec.into_tree()
+    }
+
+    /// The tree of the ray through the centre of pixel (x, y), with the random numbers the
+    /// renderer gives that pixel (seed 0): for one sample per pixel its colour is the pixel's.
+    pub fn inspect_pixel(&mut self, x: u32, y: u32) -> Inspection {
+        self.rng = Rng::for_pixel(0, x, y);
+        let tree = self.inspect(&self.scene.camera.pixel_ray(x, y));
+        Inspection {
+            pixel: Some([x, y]),
+            color: tree.color,
+            tree,
+        }
+    }
+
+    /// Traces one ray: its intensity, and how far away it comes from (∞ for the background).
+    pub(crate) fn trace(&mut self, task: &Task) -> (DVec3, f64) {
+        let hit = self
+            .search
+            .nearest(&task.ray, 0.0, f64::INFINITY, &mut self.stats);
+        (self.shade(task, hit), hit.map_or(f64::INFINITY, |h| h.t))
+    }
+
+    /// The intensity of a ray from its nearest hit: I = I_local + kr·I_r + kt·I_t.
+    pub(crate) fn shade(&mut self, task: &Task, hit: Option<Hit>) -> DVec3 {
+        self.count(task.kind);
+        task.begin(&mut self.rec);
+        let Some(hit) = hit else {
+            let background = self.scene.background;
+            self.rec.end(background, Some(Termination::Background));
+            return background;
+        };
+        let si = self.scene.interaction(&task.ray, &hit);
+        if R::ACTIVE {
+            self.rec.hit(self.hit_info(&task.ray, hit.t, &si));
+        }
+        let color = self.local(task, &si);
+        self.finish(task, &si, color)
+    }
+
+    /// The node's total from its local intensity: the secondary rays' kr·I_r + kt·I_t added.
+    pub(crate) fn finish(&mut self, task: &Task, si: &Interaction, mut color: DVec3) -> DVec3 {
+        let scene = self.scene;
+        let m = scene.material(si.material);
+        if m.kr > 0.0 || m.kt > 0.0 {
+            color += self.secondary(task, si);
+        }
+        self.rec.end(color, None);
+        color
+    }
+
+    // --- Local illumination, with a shadow ray per light ---
+
+    /// I_local = ka·Ia·O + Σ_ℓ s·(diffuse + specular).
+    fn local(&mut self, task: &Task, si: &Interaction) -> DVec3 {
+        let scene = self.scene;
+        let m = scene.material(si.material);
+        let v = -task.ray.dir;
+        let mut color = ambient(m, scene.ambient);
+        let mut terms = Vec::new();
+        for (k, light) in scene.lights.iter().enumerate() {
+            let (sample, lit, skipped) = self.light_share(m, si, v, k, R::ACTIVE);
+            let s = match skipped {
+                Some(_) => 0.0,
+                None => self.shadow_factor(si, task.depth, sample.l, sample.distance, light),
+            };
+            color += s * (lit.diffuse + lit.specular);
+            if R::ACTIVE {
+                terms.push(LightTerm {
+                    light: light.name.clone(),
+                    shadow: s,
+                    l: sample.l,
+                    n_dot_l: lit.n_dot_l,
+                    attenuation: sample.attenuation,
+                    highlight_cos: lit.highlight_cos,
+                    diffuse: s * lit.diffuse,
+                    specular: s * lit.specular,
+                    skipped: skipped.map(str::to_string),
+                });
+            }
+        }
+        if R::ACTIVE {
+            self.rec.local(Local {
+                ambient: ambient(m, scene.ambient),
+                lights: terms,
+            });
+        }
+        color
+    }
+
+    /// Light k's diffuse and specular terms at a point, before the shadow factor, and why no
+    /// shadow ray is needed, if none is (then s = 0). `shows`: the terms go into a tree.
+    pub(crate) fn light_share(
+        &mut self,
+        m: &Material,
+        si: &Interaction,
+        v: DVec3,
+        k: usize,
+        shows: bool,
+    ) -> (LightSample, LightTerms, Option<&'static str>) {
+        let scene = self.scene;
+        let light = &scene.lights[k];
+        let sample = light.sample(si.point);
+        let strength = sample.attenuation * light.intensity;
+        let lit = light_terms(m, si.normal, v, sample.l, strength, shows);
+        let skipped = if lit.n_dot_l <= 0.0 {
+            self.stats.shadow_skipped_backfacing += 1;
+            Some("light behind the surface (n·l ≤ 0)")
+        } else if light.is_dark() {
+            self.stats.shadow_skipped_dark += 1;
+            Some("light has zero intensity")
+        } else if si.inside
+            && self.options.shadows
+            && self.scene.features.hides_light_inside(si.object, k)
+        {
+            // The way to a light outside a convex solid leaves the solid, whose surface is in
+            // the way.
+            self.stats.shadow_skipped_inside += 1;
+            Some("inside a convex solid the light is outside of: the solid blocks it")
+        } else {
+            None
+        };
+        (sample, lit, skipped)
+    }
+
+    /// s for one light: a shadow ray from the surface toward it. A point light is blocked by a
+    /// hit with 0 < t < distance, a directional one by any hit with t > 0. An area light gets
+    /// one shadow ray per point of its grid; s is the fraction that get through.
+    pub(crate) fn shadow_factor(
+        &mut self,
+        si: &Interaction,
+        depth: u32,
+        l: DVec3,
+        distance: f64,
+        light: &Light,
+    ) -> f64 {
+        let count = light.shadow_rays();
+        let mut visible = 0u32;
+        let mut first_blocker = None;
+        for k in 0..count {
+            let (dir, dist) = match light.shadow_point(k, si.point) {
+                Some(q) => {
+                    let to = q - si.point;
+                    (to.normalize(), to.length())
+                }
+                None => (l, distance),
+            };
+            self.stats.shadow_rays += 1;
+            let (ray, t_max) = self.shadow_ray(si, dir, dist);
+            let blocker = if self.options.shadows {
+                self.search.blocker(&ray, 0.0, t_max, &mut self.stats)
+            } else {
+                None
+            };
+            match blocker {
+                None => visible += 1,
+                Some(h) if R::ACTIVE && first_blocker.is_none() => first_blocker = Some((ray, h)),
+                Some(_) => {}
+            }
+        }
+        let s = visible as f64 / count as f64;
+        if R::ACTIVE {
+            self.record_shadow(si, depth, l, distance, light, s, first_blocker);
+        }
+        s
+    }
+
+    /// A shadow ray from the surface along `dir`, and how far it looks for blockers: up to a
+    /// light `distance` away.
+    pub(crate) fn shadow_ray(&self, si: &Interaction, dir: DVec3, distance: f64) -> (Ray, f64) {
+        let (from, moved) = self.scene.offset(si, dir, si.point);
+        (Ray { origin: from, dir }, shadow_reach(distance, moved))
+    }
+
+    // --- Reflection and refraction ---
+
+    /// kr·I_r + kt·I_t at a surface.
+    pub(crate) fn secondary(&mut self, task: &Task, si: &Interaction) -> DVec3 {
+        let scene = self.scene;
+        let m = scene.material(si.material);
+        let c = self.children(task, si);
+        let mut sum = DVec3::ZERO;
+        if let Some(child) = &c.reflection {
+            sum += c.kr
+                * match m.glossy {
+                    None => self.child(child),
+                    Some(lobe) => self.cone(child, task, si, lobe),
+                };
+        }
+        match &c.refraction {
+            Transmission::None => {}
+            Transmission::Ray(child) => {
+                sum += c.kt
+                    * match m.frosted {
+                        None => self.child(child),
+                        Some(lobe) => self.cone(child, task, si, lobe),
+                    };
+            }
+            Transmission::TotalInternalReflection { mirror, indices } => {
+                sum += c.kt * self.total_internal_reflection(task, si, *mirror, c.kt, *indices)
+            }
+        }
+        sum
+    }
+
+    /// The rays a surface sends on: the mirror direction r = d − 2(d·n)n, and Snell's law for
+    /// the transmitted one, with kr and kt after the Fresnel term.
+    pub(crate) fn children(&mut self, task: &Task, si: &Interaction) -> Children {
+        let scene = self.scene;
+        let m = scene.material(si.material);
+        let d = task.ray.dir;
+        let across = self.across(task, si, m);
+        let (n1, n2) = (across.n1, across.n2);
+        let transmitted = if m.kt > 0.0 {
+            refract(d, si.normal, n1, n2)
+        } else {
+            None
+        };
+        let (kr, kt) = match m.fresnel {
+            Fresnel::None => (m.kr, m.kt),
+            Fresnel::Schlick => {
+                let r = schlick(-d.dot(si.normal), n1, n2);
+                (m.kr * r, m.kt * (1.0 - r))
+            }
+        };
+        let mirror = reflect(d, si.normal);
+        let reflection = (kr > 0.0).then(|| Task {
+            ray: self.spawn(si, mirror, task),
+            kind: RayKind::Reflection,
+            depth: task.depth + 1,
+            weight: task.weight * kr,
+            coefficient: kr,
+            media: task.media,
+            indices: None,
+            split: task.split,
+        });
+        let refraction = match (kt > 0.0, transmitted) {
+            (false, _) => Transmission::None,
+            (true, Some(dir)) => Transmission::Ray(Task {
+                ray: self.spawn(si, dir, task),
+                kind: RayKind::Refraction,
+                depth: task.depth + 1,
+                weight: task.weight * kt,
+                coefficient: kt,
+                media: across.beyond,
+                indices: Some(Indices { n1, n2 }),
+                split: task.split,
+            }),
+            (true, None) => Transmission::TotalInternalReflection {
+                mirror,
+                indices: Indices { n1, n2 },
+            },
+        };
+        Children {
+            kr,
+            kt,
+            reflection,
+            refraction,
+        }
+    }
+
+    /// Beyond the limiting angle no light is transmitted: the refraction ray becomes a
+    /// reflection ray that stays inside. The tree shows a refraction node that ends in
+    /// "total_internal_reflection" with that mirror ray as its child.
+    fn total_internal_reflection(
+        &mut self,
+        task: &Task,
+        si: &Interaction,
+        mirror: DVec3,
+        kt: f64,
+        indices: Indices,
+    ) -> DVec3 {
+        let refraction = Task {
+            ray: Ray {
+                origin: si.point,
+                dir: task.ray.dir,
+            },
+            kind: RayKind::Refraction,
+            depth: task.depth + 1,
+            weight: task.weight * kt,
+            coefficient: kt,
+            media: task.media,
+            indices: Some(indices),
+            split: task.split,
+        };
+        if self.limit(&refraction).is_some() {
+            // The refraction ray would not be traced anyway: record it as cut off.
+            return self.child(&refraction);
+        }
+        self.stats.total_internal_reflections += 1;
+        refraction.begin(&mut self.rec);
+        let color = self.child(&self.mirror_inside(task, si, mirror, kt));
+        self.rec
+            .end(color, Some(Termination::TotalInternalReflection));
+        color
+    }
+
+    /// The mirror ray of a total internal reflection, which carries the transmitted share kt
+    /// and stays inside (the cut-off refraction ray has its depth and weight: the depth limit
+    /// and the adaptive threshold stop both alike).
+    pub(crate) fn mirror_inside(
+        &self,
+        task: &Task,
+        si: &Interaction,
+        mirror: DVec3,
+        kt: f64,
+    ) -> Task {
+        Task {
+            ray: self.spawn(si, mirror, task),
+            kind: RayKind::Reflection,
+            depth: task.depth + 1,
+            weight: task.weight * kt,
+            coefficient: 1.0,
+            media: task.media,
+            indices: None,
+            split: task.split,
+        }
+    }
+
+    // --- Depth control: the maximum depth and the adaptive threshold ---
+
+    /// Traces a secondary ray unless the depth limit or the adaptive threshold stops it; its
+    /// intensity as its parent receives it.
+    fn child(&mut self, task: &Task) -> DVec3 {
+        if let Some(why) = self.stopped(task) {
+            if R::ACTIVE {
+                task.begin(&mut self.rec);
+                self.rec.end(DVec3::ZERO, Some(why));
+            }
+            return DVec3::ZERO;
+        }
+        let (color, distance) = self.trace(task);
+        self.attenuated(color, distance)
+    }
+
+    /// Why a secondary ray is not traced, if it is not: its depth reached the limit, or its
+    /// weight fell below the adaptive threshold (it could change the pixel too little).
+    fn limit(&self, task: &Task) -> Option<Termination> {
+        if task.depth >= self.options.max_depth {
+            Some(Termination::MaxDepth)
+        } else if task.weight < self.scene.adaptive_threshold {
+            Some(Termination::Adaptive)
+        } else {
+            None
+        }
+    }
+
+    /// `limit`, counted among the work skipped.
+    pub(crate) fn stopped(&mut self, task: &Task) -> Option<Termination> {
+        let why = self.limit(task);
+        match why {
+            Some(Termination::MaxDepth) => self.stats.max_depth_cutoffs += 1,
+            Some(Termination::Adaptive) => self.stats.adaptive_cutoffs += 1,
+            _ => {}
+        }
+        why
+    }
+
+    /// A secondary ray's intensity as its parent receives it: with `secondary_attenuation`,
+    /// divided by c0 + c1·d + c2·d² for the distance d it travelled (seed 004).
+    pub(crate) fn attenuated(&self, color: DVec3, distance: f64) -> DVec3 {
+        match self.scene.secondary_attenuation {
+            Some([c0, c1, c2]) if distance.is_finite() => {
+                color / (c0 + c1 * distance + c2 * distance * distance)
+            }
+            _ => color,
+        }
+    }
+
+    // --- Monte Carlo: glossy reflection and frosted refraction ---
+
+    /// Seed 000's Monte Carlo reflection and refraction: the light arriving in a cone about
+    /// the principal direction is the average of n rays drawn from the lobe, each traced
+    /// recursively. The tree shows the cone as a node whose children are the sampled rays.
+    fn cone(&mut self, principal: &Task, parent: &Task, si: &Interaction, lobe: Lobe) -> DVec3 {
+        let n = if principal.split { 1 } else { lobe.samples };
+        if R::ACTIVE {
+            principal.begin(&mut self.rec);
+            self.rec.samples(n);
+        }
+        let mut sum = DVec3::ZERO;
+        for _ in 0..n {
+            let (u1, u2) = (self.rng.uniform(), self.rng.uniform());
+            let dir = lobe::spread(lobe.shape, principal.ray.dir, si.normal, u1, u2);
+            self.stats.glossy_rays += 1;
+            let sample = Task {
+                ray: self.spawn(si, dir, parent),
+                coefficient: 1.0 / n as f64,
+                split: true,
+                ..*principal
+            };
+            sum += self.child(&sample);
+        }
+        let mean = sum / n as f64;
+        if R::ACTIVE {
+            self.rec.end(mean, None);
+        }
+        mean
+    }
+
+    // --- Bookkeeping ---
+
+    /// The one place secondary rays leave a surface: the origin moves off the surface, along
+    /// the normal, to the side the new ray travels into, so it cannot hit its own surface.
+    fn spawn(&self, si: &Interaction, dir: DVec3, parent: &Task) -> Ray {
+        Ray {
+            origin: self.scene.offset(si, dir, parent.ray.origin).0,
+            dir,
+        }
+    }
+
+    /// Counts a ray among the rays of its kind.
+    pub(crate) fn count(&mut self, kind: RayKind) {
+        match kind {
+            RayKind::Primary => self.stats.primary_rays += 1,
+            RayKind::Reflection => self.stats.reflection_rays += 1,
+            RayKind::Refraction => self.stats.refraction_rays += 1,
+            RayKind::Shadow => self.stats.shadow_rays += 1,
+        }
+    }
+
+    /// Records a shadow node: the ray toward the light, s, and the first blocker.
+    #[allow(clippy::too_many_arguments)]
+    fn record_shadow(
+        &mut self,
+        si: &Interaction,
+        depth: u32,
+        l: DVec3,
+        distance: f64,
+        light: &Light,
+        s: f64,
+        first_blocker: Option<(Ray, Hit)>,
+    ) {
+        let (origin, moved) = self.scene.offset(si, l, si.point);
+        self.rec.begin(RayStart {
+            kind: RayKind::Shadow,
+            depth: depth + 1,
+            origin,
+            direction: l,
+            weight: 1.0,
+            coefficient: 1.0,
+        });
+        self.rec
+            .shadow(&light.name, shadow_reach(distance, moved), s);
+        if let Some((ray, h)) = first_blocker {
+            let bsi = self.scene.interaction(&ray, &h);
+            self.rec.hit(self.hit_info(&ray, h.t, &bsi));
+        }
+        self.rec.end(DVec3::splat(s), None);
+    }
+
+    fn hit_info(&self, ray: &Ray, t: f64, si: &Interaction) -> HitInfo {
+        let scene = self.scene;
+        let leaf = &scene.leaves[si.leaf as usize];
+        let local = || {
+            leaf.transform
+                .as_ref()
+                .map_or(si.point, |tf| tf.to_local.transform_point3(si.point))
+        };
+        let barycentric = match &leaf.shape {
+            Shape::Triangle(tri) => Some(tri.barycentric(local())),
+            Shape::Mesh(mesh) => Some(mesh.triangle(si.face).barycentric(local())),
+            _ => None,
+        };
+        HitInfo {
+            object: scene.objects[si.object as usize].name.clone(),
+            leaf: leaf.name.clone(),
+            csg_path: leaf.path.clone(),
+            material: scene.material(si.material).name.clone(),
+            t,
+            point: ray.at(t),
+            normal: si.normal,
+            inside: si.inside,
+            barycentric,
+        }
+    }
+}
+
+/// How far a shadow ray that starts `moved` off the surface looks for blockers: up to the light
+/// (the normal is a unit vector, so the offset moved the origin by exactly `moved`).
+pub fn shadow_reach(distance: f64, moved: f64) -> f64 {
+    if distance.is_finite() {
+        (distance - moved).max(0.0)
+    } else {
+        distance
+    }
+}
