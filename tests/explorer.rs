@@ -72,12 +72,14 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn root_color(app: &App) -> glam::DVec3 {
-    app.full_tree.as_ref().unwrap().color
+    app.tree.full_tree().unwrap().color
 }
 
 fn traced_color(app: &App, depth: u32) -> glam::DVec3 {
-    let scene = app.scene.as_ref().unwrap();
-    let ray = scene.camera.pixel_ray(app.cursor.0, app.cursor.1);
+    let scene = app.file.scene.as_ref().unwrap();
+    let ray = scene
+        .camera
+        .pixel_ray(app.tree.pixel().0, app.tree.pixel().1);
     Tracer::new(scene).with_depth(depth).inspect(&ray).color
 }
 
@@ -108,7 +110,7 @@ fn details_of_a_reflection_node() {
     // primary → its shadow ray → its reflection.
     press(&mut app, KeyCode::Down);
     press(&mut app, KeyCode::Down);
-    let n = app.selected_node().unwrap();
+    let n = app.tree.selected_node().unwrap();
     assert_eq!(n.kind, RayKind::Reflection);
     assert_eq!(n.hit.as_ref().unwrap().object, "glass");
     let text = screen(&app);
@@ -127,7 +129,7 @@ fn csg_panel() {
     let mut app = open(CSG, ColorMode::TrueColor, (80, 24));
     update(&mut app, Msg::Pick(20, 15));
     press(&mut app, KeyCode::Char('c'));
-    assert!(app.show_csg);
+    assert!(app.csg.shown());
     let text = screen(&app);
     assert!(text.contains("object lens"));
     assert!(text.contains("intersection lens: [8.334689, 11.638107]"));
@@ -142,7 +144,7 @@ fn csg_panel() {
     assert!(text.contains("sphere bottom: pruned: ray misses its bounding box"));
     insta::assert_snapshot!("csg_160x48", text);
     press(&mut app, KeyCode::Char('c'));
-    assert!(!app.show_csg);
+    assert!(!app.csg.shown());
     assert!(screen(&app).contains("details · primary ray"));
 }
 
@@ -213,7 +215,7 @@ fn lesson_panel_with_a_checked_answer() {
 
     press(&mut app, KeyCode::Char('a'));
     assert_eq!(app.focus, Focus::Lesson);
-    assert_eq!(app.cursor, (20, 15), "the exercise's pixel is picked");
+    assert_eq!(app.tree.pixel(), (20, 15), "the exercise's pixel is picked");
     // The right answer to `root`, as raytree computes it.
     let lesson = &app.lesson.as_ref().unwrap().lesson;
     let ex = lesson.exercise("root").unwrap();
@@ -232,11 +234,11 @@ fn lesson_panel_with_a_checked_answer() {
     assert!(!answered.result.as_ref().unwrap().correct);
     // The ray exercise picks the pixel whose primary ray it is.
     press(&mut app, KeyCode::Down);
-    assert_eq!(app.cursor, (10, 12));
+    assert_eq!(app.tree.pixel(), (10, 12));
     assert!(screen(&app).contains("the primary ray of pixel 10,12"));
     press(&mut app, KeyCode::Up);
     press(&mut app, KeyCode::Up);
-    assert_eq!(app.cursor, (20, 15));
+    assert_eq!(app.tree.pixel(), (20, 15));
     let text = screen(&app);
     assert!(text.contains("right:"));
     insta::assert_snapshot!("lesson_answer_160x48", text);
@@ -283,7 +285,7 @@ fn lesson_list() {
     press(&mut app, KeyCode::Enter);
     assert_eq!(app.screen, Screen::Scene);
     assert!(app.lesson_open());
-    assert!(app.scene.is_some());
+    assert!(app.file.scene.is_some());
 }
 
 #[test]
@@ -299,12 +301,12 @@ fn live_reload_keeps_the_last_good_scene_and_shows_the_error() {
     // A typo: the file no longer parses.
     std::fs::write(&path, good.replace("radius: 1 }", "radius: [1 }")).unwrap();
     update(&mut app, Msg::Tick);
-    let err = app.error.clone().expect("the broken file is reported");
+    let err = app.file.error.clone().expect("the broken file is reported");
     assert!(
         err.starts_with("target/explorer-tests/live-reload/scene.yaml:"),
         "{err}"
     );
-    assert!(app.scene.is_some(), "the last good scene stays");
+    assert!(app.file.scene.is_some(), "the last good scene stays");
     assert_eq!(root_color(&app), before);
     let text = screen(&app);
     assert!(text.contains("✗ target/explorer-tests/live-reload/scene.yaml:"));
@@ -316,9 +318,9 @@ fn live_reload_keeps_the_last_good_scene_and_shows_the_error() {
         .replace("background: [0.2, 0.3, 0.5]", "background: [0.5, 0.3, 0.2]");
     std::fs::write(&path, smaller).unwrap();
     update(&mut app, Msg::Tick);
-    assert!(app.error.is_none());
+    assert!(app.file.error.is_none());
     assert_eq!(app.image_size(), (24, 18));
-    assert_eq!(app.cursor, (23, 17));
+    assert_eq!(app.tree.pixel(), (23, 17));
     assert!(app.preview.job.is_some(), "the preview renders again");
     // Nothing changed: nothing happens.
     let generation = app.preview.generation;
@@ -332,40 +334,40 @@ fn live_reload_keeps_the_last_good_scene_and_shows_the_error() {
 #[test]
 fn cursor_moves_and_clamps_at_the_edges() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
-    assert_eq!(app.cursor, (24, 18), "starts at the centre");
+    assert_eq!(app.tree.pixel(), (24, 18), "starts at the centre");
     press(&mut app, KeyCode::Right);
     press(&mut app, KeyCode::Char('l'));
     press(&mut app, KeyCode::Down);
     press(&mut app, KeyCode::Char('j'));
     press(&mut app, KeyCode::Char('k'));
-    assert_eq!(app.cursor, (26, 19));
+    assert_eq!(app.tree.pixel(), (26, 19));
     press(&mut app, KeyCode::Char('h'));
     press(&mut app, KeyCode::Left);
     press(&mut app, KeyCode::Up);
-    assert_eq!(app.cursor, (24, 18));
+    assert_eq!(app.tree.pixel(), (24, 18));
     // Big steps: H J K L and shift + arrows move 10 pixels.
     press(&mut app, KeyCode::Char('L'));
-    assert_eq!(app.cursor, (34, 18));
+    assert_eq!(app.tree.pixel(), (34, 18));
     press_shift(&mut app, KeyCode::Down);
-    assert_eq!(app.cursor, (34, 28));
+    assert_eq!(app.tree.pixel(), (34, 28));
     press(&mut app, KeyCode::Char('J'));
-    assert_eq!(app.cursor, (34, 35), "clamped at the bottom edge");
+    assert_eq!(app.tree.pixel(), (34, 35), "clamped at the bottom edge");
     press(&mut app, KeyCode::Char('L'));
-    assert_eq!(app.cursor, (44, 35));
+    assert_eq!(app.tree.pixel(), (44, 35));
     press(&mut app, KeyCode::Char('L'));
-    assert_eq!(app.cursor, (47, 35), "clamped at the right edge");
+    assert_eq!(app.tree.pixel(), (47, 35), "clamped at the right edge");
     for _ in 0..6 {
         press(&mut app, KeyCode::Char('H'));
         press_shift(&mut app, KeyCode::Up);
     }
-    assert_eq!(app.cursor, (0, 0));
+    assert_eq!(app.tree.pixel(), (0, 0));
     press(&mut app, KeyCode::Left);
     press(&mut app, KeyCode::Up);
-    assert_eq!(app.cursor, (0, 0));
+    assert_eq!(app.tree.pixel(), (0, 0));
     // The tree follows the pixel.
-    let scene = app.scene.clone().unwrap();
+    let scene = app.file.scene.clone().unwrap();
     let ray = scene.camera.pixel_ray(0, 0);
-    assert_eq!(app.full_tree.as_ref().unwrap().direction, ray.dir);
+    assert_eq!(app.tree.full_tree().unwrap().direction, ray.dir);
 }
 
 #[test]
@@ -375,13 +377,13 @@ fn goto_typed_coordinates() {
     keys(&mut app, "3,4");
     assert!(screen(&app).contains("go to pixel x,y: 3,4"));
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.cursor, (3, 4));
+    assert_eq!(app.tree.pixel(), (3, 4));
     assert!(app.prompt.is_none());
     // Outside the image: refused, said so.
     press(&mut app, KeyCode::Char('g'));
     keys(&mut app, "48, 2");
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.cursor, (3, 4));
+    assert_eq!(app.tree.pixel(), (3, 4));
     assert!(screen(&app).contains("pixel 48,2 is outside the 48 × 36 image"));
     // Typing is typing: q in a prompt is a letter; Backspace and Esc work.
     press(&mut app, KeyCode::Char('g'));
@@ -391,11 +393,11 @@ fn goto_typed_coordinates() {
     keys(&mut app, "47 35");
     assert!(!app.quit);
     press(&mut app, KeyCode::Enter);
-    assert_eq!(app.cursor, (47, 35));
+    assert_eq!(app.tree.pixel(), (47, 35));
     press(&mut app, KeyCode::Char('g'));
     keys(&mut app, "1,1");
     press(&mut app, KeyCode::Esc);
-    assert_eq!(app.cursor, (47, 35));
+    assert_eq!(app.tree.pixel(), (47, 35));
     assert!(!app.quit);
 }
 
@@ -403,17 +405,17 @@ fn goto_typed_coordinates() {
 fn depth_keys_retrace_at_that_depth() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
     update(&mut app, Msg::Pick(20, 15));
-    assert_eq!(app.depth, 4);
+    assert_eq!(app.tree.depth(), 4);
     let full = root_color(&app);
     assert_eq!(full, traced_color(&app, 4));
     press(&mut app, KeyCode::Char('-'));
-    assert_eq!(app.depth, 3);
+    assert_eq!(app.tree.depth(), 3);
     assert_eq!(root_color(&app), traced_color(&app, 3));
     press(&mut app, KeyCode::Char('['));
     press(&mut app, KeyCode::Char('-'));
-    assert_eq!(app.depth, 1);
+    assert_eq!(app.tree.depth(), 1);
     // Depth 1: the primary ray only (local light), its reflection not traced.
-    let tree = app.full_tree.as_ref().unwrap();
+    let tree = app.tree.full_tree().unwrap();
     let local = tree.local.as_ref().unwrap().total();
     assert_eq!(tree.color, local);
     assert!(tree.color != full);
@@ -422,11 +424,11 @@ fn depth_keys_retrace_at_that_depth() {
         .iter()
         .any(|c| c.terminated == Some(raytree::trace::Termination::MaxDepth)));
     press(&mut app, KeyCode::Char('-'));
-    assert_eq!(app.depth, 1, "no lower than 1");
+    assert_eq!(app.tree.depth(), 1, "no lower than 1");
     press(&mut app, KeyCode::Char('+'));
     press(&mut app, KeyCode::Char(']'));
     press(&mut app, KeyCode::Char('='));
-    assert_eq!(app.depth, 4);
+    assert_eq!(app.tree.depth(), 4);
     assert_eq!(root_color(&app), full);
     // The preview is rendered at the depth too.
     press(&mut app, KeyCode::Char('-'));
@@ -441,80 +443,84 @@ fn level_stepping_collects_intensity_level_by_level() {
     update(&mut app, Msg::Pick(20, 15));
     let full = root_color(&app);
     press(&mut app, KeyCode::Char('n'));
-    assert_eq!(app.level, Some(1));
-    let shown = app.shown_tree().unwrap();
+    assert_eq!(app.tree.level(), Some(1));
+    let shown = app.tree.shown_tree().unwrap();
     assert_eq!(shown.color, traced_color(&app, 1));
     assert!(shown.secondary().all(|c| c.terminated.is_some()));
     let text = screen(&app);
     assert!(text.contains("level 1 of 4"));
     press(&mut app, KeyCode::Char('n'));
     press(&mut app, KeyCode::Char('n'));
-    assert_eq!(app.level, Some(3));
-    assert_eq!(app.shown_tree().unwrap().color, traced_color(&app, 3));
-    assert_eq!(app.partials.len(), 4);
-    for (k, p) in app.partials.iter().enumerate() {
+    assert_eq!(app.tree.level(), Some(3));
+    assert_eq!(app.tree.shown_tree().unwrap().color, traced_color(&app, 3));
+    assert_eq!(app.tree.partials().len(), 4);
+    for (k, p) in app.tree.partials().iter().enumerate() {
         assert_eq!(*p, traced_color(&app, k as u32 + 1));
     }
     insta::assert_snapshot!("levels_160x48", screen(&app));
     press(&mut app, KeyCode::Char('p'));
-    assert_eq!(app.level, Some(2));
+    assert_eq!(app.tree.level(), Some(2));
     press(&mut app, KeyCode::Char('n'));
     press(&mut app, KeyCode::Char('n'));
-    assert_eq!(app.level, Some(4));
-    assert_eq!(app.shown_tree().unwrap().color, full);
+    assert_eq!(app.tree.level(), Some(4));
+    assert_eq!(app.tree.shown_tree().unwrap().color, full);
     press(&mut app, KeyCode::Char('n'));
-    assert_eq!(app.level, None, "past the last level: the whole tree again");
+    assert_eq!(
+        app.tree.level(),
+        None,
+        "past the last level: the whole tree again"
+    );
     assert!(screen(&app).contains("all 4 levels collected"));
     // Moving the pixel while stepping keeps the level.
     press(&mut app, KeyCode::Char('p'));
-    assert_eq!(app.level, Some(3));
+    assert_eq!(app.tree.level(), Some(3));
     press(&mut app, KeyCode::Right);
-    assert_eq!(app.level, Some(3));
-    assert_eq!(app.shown_tree().unwrap().color, traced_color(&app, 3));
+    assert_eq!(app.tree.level(), Some(3));
+    assert_eq!(app.tree.shown_tree().unwrap().color, traced_color(&app, 3));
 }
 
 #[test]
 fn tree_expands_and_collapses() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48));
     update(&mut app, Msg::Pick(20, 15));
-    let all = app.rows().len();
+    let all = app.tree.rows().len();
     assert_eq!(
         all,
-        app.full_tree.as_ref().unwrap().size(),
+        app.tree.full_tree().unwrap().size(),
         "small trees open fully"
     );
     press(&mut app, KeyCode::Tab);
     press(&mut app, KeyCode::Left);
-    assert_eq!(app.rows().len(), 1, "the root closed");
+    assert_eq!(app.tree.rows().len(), 1, "the root closed");
     assert!(screen(&app).contains("▶▸ primary: hit mirror"));
     press(&mut app, KeyCode::Right);
-    assert_eq!(app.rows().len(), all);
+    assert_eq!(app.tree.rows().len(), all);
     // Down to the reflection, close it, and Left again goes to the parent.
     press(&mut app, KeyCode::Char('j'));
     press(&mut app, KeyCode::Char('j'));
-    assert_eq!(app.selected, vec![1]);
+    assert_eq!(app.tree.selected(), vec![1]);
     press(&mut app, KeyCode::Enter);
-    let closed = app.rows().len();
+    let closed = app.tree.rows().len();
     assert!(closed < all);
     press(&mut app, KeyCode::Char(' '));
-    assert_eq!(app.rows().len(), all);
+    assert_eq!(app.tree.rows().len(), all);
     // Left closes an open ray, and on a closed one goes to the parent.
     press(&mut app, KeyCode::Char('h'));
-    assert_eq!(app.rows().len(), closed);
+    assert_eq!(app.tree.rows().len(), closed);
     press(&mut app, KeyCode::Char('h'));
-    assert_eq!(app.selected, Vec::<usize>::new());
+    assert_eq!(app.tree.selected(), Vec::<usize>::new());
     // e: everything open, then everything closed but the root.
     press(&mut app, KeyCode::Char('e'));
-    assert_eq!(app.rows().len(), all);
+    assert_eq!(app.tree.rows().len(), all);
     press(&mut app, KeyCode::Char('e'));
     assert_eq!(
-        app.rows().len(),
-        1 + app.full_tree.as_ref().unwrap().children.len()
+        app.tree.rows().len(),
+        1 + app.tree.full_tree().unwrap().children.len()
     );
     // A click on a tree line selects it.
     let p = app.panes();
     update(&mut app, Msg::Click(p.tree.x + 5, p.tree.y + 2));
-    assert_eq!(app.selected, vec![0]);
+    assert_eq!(app.tree.selected(), vec![0]);
     assert_eq!(app.focus, Focus::Tree);
 }
 
@@ -522,8 +528,9 @@ fn tree_expands_and_collapses() {
 fn a_click_on_the_preview_picks_that_pixel() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
     let p = app.panes();
-    let cell =
-        |app: &App| raytree::tui::layout::pixel_cell(&p, app.image_size(), app.cursor).unwrap();
+    let cell = |app: &App| {
+        raytree::tui::layout::pixel_cell(&p, app.image_size(), app.tree.pixel()).unwrap()
+    };
     // A cell covers a few pixels of the scene: a click picks the one in its middle, and the
     // marker lands on the cell clicked.
     for (col, row) in [
@@ -537,11 +544,14 @@ fn a_click_on_the_preview_picks_that_pixel() {
         assert_eq!(line.chars().nth(col as usize), Some('+'), "{line}");
     }
     update(&mut app, Msg::Click(p.image.x, p.image.y));
-    assert!(app.cursor.0 < 48 / p.image_px.0 + 1 && app.cursor.1 < 2 * 36 / p.image_px.1 + 1);
+    assert!(
+        app.tree.pixel().0 < 48 / p.image_px.0 + 1
+            && app.tree.pixel().1 < 2 * 36 / p.image_px.1 + 1
+    );
     // A click outside the preview picks nothing.
-    let before = app.cursor;
+    let before = app.tree.pixel();
     update(&mut app, Msg::Click(p.tree.x + 3, p.tree.bottom() - 2));
-    assert_eq!(app.cursor, before);
+    assert_eq!(app.tree.pixel(), before);
 }
 
 #[test]
@@ -565,9 +575,9 @@ fn quitting() {
 #[test]
 fn the_tree_root_is_the_rendered_pixel() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
-    let scene = app.scene.clone().unwrap();
+    let scene = app.file.scene.clone().unwrap();
     for depth in [4, 2] {
-        if app.depth != depth {
+        if app.tree.depth() != depth {
             app = app.with_depth(depth);
         }
         let (image, _) = render_simple(
@@ -698,7 +708,7 @@ fn timings() {
     });
     println!(
         "explorer timings: pick at depth 16 through glass ({} rays in the tree): {deep:?}",
-        app.full_tree.as_ref().unwrap().size(),
+        app.tree.full_tree().unwrap().size(),
     );
 }
 
@@ -928,25 +938,29 @@ fn panels_scroll_within_their_content() {
     for _ in 0..5 {
         press(&mut app, KeyCode::PageDown);
     }
-    let (max, _) = ui::max_scroll(&app);
+    let (max, _) = app.scroll_limits();
     assert!(max > 0);
-    assert_eq!(app.details_scroll, max, "no further than the last line");
+    assert_eq!(
+        app.tree.details_scroll(),
+        max,
+        "no further than the last line"
+    );
     assert!(screen(&app).contains("sum  I ="));
     press(&mut app, KeyCode::Up);
-    assert_eq!(app.details_scroll, max - 1);
+    assert_eq!(app.tree.details_scroll(), max - 1);
     for _ in 0..3 {
         press(&mut app, KeyCode::PageUp);
     }
-    assert_eq!(app.details_scroll, 0);
+    assert_eq!(app.tree.details_scroll(), 0);
     // The CSG panel scrolls to the selected ray's section.
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
     update(&mut app, Msg::Pick(20, 15));
     press(&mut app, KeyCode::Char('c'));
-    assert_eq!(app.csg_scroll, 0);
+    assert_eq!(app.csg.scroll(), 0);
     press(&mut app, KeyCode::Tab);
     press(&mut app, KeyCode::Down);
     press(&mut app, KeyCode::Down);
-    assert!(app.csg_scroll > 0);
+    assert!(app.csg.scroll() > 0);
     let text = screen(&app);
     assert!(text.contains("▶ reflection ray"), "{text}");
 }
@@ -959,41 +973,45 @@ fn a_glossy_cone_is_folded_under_its_mean_until_opened() {
         (160, 48),
     );
     update(&mut app, Msg::Pick(20, 26));
-    let tree = app.full_tree.clone().unwrap();
+    let tree = app.tree.full_tree().cloned().unwrap();
     // The cone's rays are the renderer's own for this pixel: the root is the rendered value.
-    let scene = app.scene.clone().unwrap();
+    let scene = app.file.scene.clone().unwrap();
     let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
     assert_eq!(tree.color, film.lone_pixel(&mut film.tracer(), 20, 26));
     let cone = tree.children.iter().position(|c| c.samples == Some(4));
     let cone = cone.expect("the floor's reflection is a cone of 4 rays");
     // Folded: the cone is one line, its 4 sampled rays hidden.
-    let folded = app.rows().len();
-    assert!(app.rows().iter().any(|r| r.path == vec![cone] && !r.open));
+    let folded = app.tree.rows().len();
+    assert!(app
+        .tree
+        .rows()
+        .iter()
+        .any(|r| r.path == vec![cone] && !r.open));
     assert!(screen(&app).contains("glossy reflection: mean of 4 rays"));
     insta::assert_snapshot!("glossy_cone_folded_160x48", screen(&app));
     // Opened: the sampled rays appear below it.
     press(&mut app, KeyCode::Tab);
-    while app.selected != vec![cone] {
+    while app.tree.selected() != vec![cone] {
         press(&mut app, KeyCode::Char('j'));
     }
     press(&mut app, KeyCode::Right);
-    assert!(app.rows().len() >= folded + 4);
+    assert!(app.tree.rows().len() >= folded + 4);
 }
 
 #[test]
 fn a_supersampled_pixel_shows_its_rendered_value_above_the_centre_ray() {
     let mut app = open("lessons/13-antialiasing", ColorMode::TrueColor, (160, 48));
     update(&mut app, Msg::Pick(1, 1));
-    let scene = app.scene.clone().unwrap();
+    let scene = app.file.scene.clone().unwrap();
     let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
     let rendered = film.lone_pixel(&mut film.tracer(), 1, 1);
-    let (value, how) = app.pixel_value.clone().expect("16 spp, adaptive");
+    let (value, how) = app.tree.pixel_value().cloned().expect("16 spp, adaptive");
     assert_eq!(value, rendered);
     assert!(how.contains("adaptive"), "{how}");
     // The tree itself follows the centre ray, which lands on the card.
-    assert_eq!(app.full_tree.as_ref().unwrap().color, glam::DVec3::ONE);
+    assert_eq!(app.tree.full_tree().unwrap().color, glam::DVec3::ONE);
     assert!(screen(&app).contains("pixel = 0.625"));
     // A one-ray scene needs no such line.
     let plain = open(MIRROR, ColorMode::TrueColor, (160, 48));
-    assert!(plain.pixel_value.is_none());
+    assert!(plain.tree.pixel_value().is_none());
 }

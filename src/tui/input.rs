@@ -6,7 +6,8 @@ use crossterm::event::{
     Event, KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
 };
 
-use super::app::{App, Focus, Msg, Screen, BIG_STEP};
+use super::app::{App, Focus, Screen, BIG_STEP};
+use super::msg::Msg;
 
 /// The message for a terminal event, if it means anything.
 pub fn event(app: &App, ev: &Event) -> Option<Msg> {
@@ -62,7 +63,7 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
         return match k.code {
             KeyCode::Char('q') => Some(Msg::Quit),
             KeyCode::Esc => Some(Msg::Cancel)
-                .filter(|_| app.scene.is_some())
+                .filter(|_| app.file.scene.is_some())
                 .or(Some(Msg::Quit)),
             KeyCode::Char('?') => Some(Msg::ToggleHelp),
             KeyCode::Up | KeyCode::Char('k') => Some(Msg::Up),
@@ -78,12 +79,11 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
     match k.code {
         KeyCode::Char('q') => return Some(Msg::Quit),
         KeyCode::Esc => {
-            let in_exercises = app.focus == Focus::Lesson
-                && app
-                    .lesson
-                    .as_ref()
-                    .is_some_and(|l| l.open && l.view == super::app::LessonView::Exercises);
-            return Some(if in_exercises { Msg::Cancel } else { Msg::Quit });
+            return Some(if app.exercises_active() {
+                Msg::Cancel
+            } else {
+                Msg::Quit
+            });
         }
         KeyCode::Char('?') => return Some(Msg::ToggleHelp),
         KeyCode::Char('g') => return Some(Msg::Goto),

@@ -1,5 +1,6 @@
 //! Where every pane goes, as a function of the terminal size and what is open. Drawing and
-//! the model (preview resolution, mouse picking) both ask this module, so they always agree.
+//! the model (preview resolution, mouse picking, scroll limits) both ask this module, so they
+//! always agree.
 
 use ratatui::layout::{Margin, Rect};
 
@@ -109,6 +110,20 @@ pub fn list_panes(area: Rect) -> (Rect, Rect, Rect, Rect) {
     let list = Rect::new(main.x, main.y, lw, main.height);
     let info = Rect::new(main.x + lw, main.y, main.width - lw, main.height);
     (list, info, status, message)
+}
+
+/// The inner area of a bordered pane.
+pub fn inner(r: Rect) -> Rect {
+    r.inner(Margin::new(1, 1))
+}
+
+/// The first row shown of a list of which `selected` must be visible in `height` rows.
+pub fn list_offset(selected: usize, height: usize) -> usize {
+    if height == 0 {
+        0
+    } else {
+        (selected + 1).saturating_sub(height)
+    }
 }
 
 /// The cell of the image that shows pixel (x, y) of a `w` × `h` scene.

@@ -1,26 +1,34 @@
 //! The terminal explorer (`raytree explore`): pick a pixel of the preview, see its ray tree,
 //! every term of every intensity, the CSG segment lists, depth by depth, beside a lesson.
 //!
-//! Headless core: one `App` model, a `Msg` enum and `update` (app.rs); keys to messages
-//! (input.rs); drawing as pure functions of `&App`, one per pane (ui/); the preview renderer on
-//! its own thread (worker.rs); terminal setup and restore (terminal.rs). Everything but the
-//! last two runs without a terminal, which is how tests/explorer.rs drives it.
+//! Headless core: one `App` model composed of the parts in state/, a `Msg` enum (msg.rs) and
+//! `update` (app.rs); keys to messages (input.rs); pane geometry (layout.rs) and word wrap
+//! (wrap.rs, markdown.rs) shared by the model and the drawing; drawing as pure functions of
+//! `&App`, one per pane (ui/); the preview renderer on its own thread (worker.rs); terminal
+//! setup and restore (terminal.rs). Everything but the last two runs without a terminal, which
+//! is how tests/explorer.rs drives it.
 
 pub mod app;
 pub mod input;
 pub mod layout;
+pub mod markdown;
+pub mod msg;
+pub mod state;
 pub mod terminal;
 pub mod tree;
 pub mod ui;
 pub mod worker;
+pub mod wrap;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
-pub use app::{update, App, Msg};
+pub use app::{update, App};
+pub use msg::Msg;
 
 use crate::render::preview::ColorMode;
+use state::ray_tree::MAX_DEPTH;
 
 /// How the explorer starts.
 #[derive(Clone, Debug, Default)]
@@ -42,10 +50,9 @@ pub fn run(options: Options) -> Result<(), String> {
     };
     let mut app = App::open(options.target.as_deref(), color)?;
     if let Some(d) = options.depth {
-        if !(1..=app::MAX_DEPTH).contains(&d) {
+        if !(1..=MAX_DEPTH).contains(&d) {
             return Err(format!(
-                "--depth must be between 1 and {}, got {d}",
-                app::MAX_DEPTH
+                "--depth must be between 1 and {MAX_DEPTH}, got {d}"
             ));
         }
         app = app.with_depth(d);
@@ -125,9 +132,9 @@ fn event_loop(term: &mut terminal::Term, app: &mut App) -> std::io::Result<()> {
         }
         if last_tick.elapsed() >= app::WATCH_INTERVAL {
             last_tick = Instant::now();
-            let before = (app.error.clone(), app.preview.generation);
+            let before = (app.file.error.clone(), app.preview.generation);
             update(app, Msg::Tick);
-            if before != (app.error.clone(), app.preview.generation) {
+            if before != (app.file.error.clone(), app.preview.generation) {
                 dirty = true;
             }
         }

@@ -6,9 +6,10 @@ use ratatui::text::Line;
 use ratatui::widgets::{Block, Paragraph};
 use ratatui::Frame;
 
-use super::{themed, wrap, wrap_hang};
-use crate::tui::app::{list_offset, App};
-use crate::tui::layout::list_panes;
+use super::themed;
+use crate::tui::app::App;
+use crate::tui::layout::{list_offset, list_panes};
+use crate::tui::wrap::{wrap, wrap_hang};
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let (list_area, info_area, status, message) = list_panes(area);

@@ -1,4 +1,5 @@
-//! Drawing: pure functions of `&App`, one per pane. Nothing here changes the model.
+//! Drawing: pure functions of `&App`, one per pane. Nothing here changes the model, and the
+//! model never calls in here: what both need (pane geometry, wrapped rows) lives outside ui/.
 
 mod csg;
 mod details;
@@ -12,16 +13,16 @@ mod tree_view;
 use glam::DVec3;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
-use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, BorderType};
 use ratatui::{Frame, Terminal};
 
-use super::app::{App, Focus, LessonView, Screen};
+pub(crate) use super::layout::inner;
+
+use super::app::{App, Focus, Screen};
 use crate::render::preview::{ansi256, ramp_char, rgb8, ColorMode};
 
-pub use details::details_lines;
 pub use help::KEYS;
 
 /// Draws the whole screen.
@@ -40,7 +41,7 @@ pub fn draw(f: &mut Frame, app: &App) {
             preview::draw(f, app, &p);
             tree_view::draw(f, app, p.tree);
             if let Some(r) = p.lower {
-                if app.show_csg {
+                if app.csg.shown() {
                     csg::draw(f, app, r);
                 } else {
                     details::draw(f, app, r);
@@ -55,44 +56,6 @@ pub fn draw(f: &mut Frame, app: &App) {
     if app.show_help {
         help::draw(f, app, area);
     }
-}
-
-/// How far the lower pane (details or CSG) and the lesson pane can scroll, in rows.
-pub fn max_scroll(app: &App) -> (u16, u16) {
-    let p = app.panes();
-    let lower = p.lower.map_or(0, |r| {
-        let i = inner(r);
-        let n = if app.show_csg {
-            csg::lines(app, i.width as usize).0.len()
-        } else {
-            details::lines(app, i.width as usize).len()
-        };
-        n.saturating_sub(i.height as usize)
-    });
-    let lesson = match (p.lesson, &app.lesson) {
-        (Some(r), Some(l)) if l.view == LessonView::Exercises => {
-            let (head, body) = lesson::exercise_lines(app, l, inner(r));
-            body.len()
-                .saturating_sub((inner(r).height as usize).saturating_sub(head.len()))
-        }
-        (Some(r), Some(l)) => {
-            let i = inner(r);
-            lesson::markdown(&l.lesson.readme, (i.width as usize).max(10))
-                .len()
-                .saturating_sub(i.height as usize)
-        }
-        _ => 0,
-    };
-    (
-        lower.min(u16::MAX as usize) as u16,
-        lesson.min(u16::MAX as usize) as u16,
-    )
-}
-
-/// The row of the CSG pane where the selected ray's section starts.
-pub fn csg_section_row(app: &App) -> Option<usize> {
-    let r = app.panes().lower?;
-    csg::lines(app, inner(r).width as usize).1
 }
 
 /// The screen as plain text (no colours), one line per row, trailing spaces trimmed.
@@ -164,71 +127,6 @@ pub(crate) fn pane<'a>(app: &App, title: impl Into<Line<'a>>, focus: Option<Focu
         .title(title)
 }
 
-/// Display width of a string in terminal cells.
-pub(crate) fn width(s: &str) -> usize {
-    Span::raw(s).width()
-}
-
-/// Word-wraps a line to `max` cells; continuation lines keep the line's indentation (plus
-/// two cells), so wrapped formulas stay readable.
-pub fn wrap(line: &str, max: usize) -> Vec<String> {
-    let indent_len = line.len() - line.trim_start().len();
-    let hang = " ".repeat((indent_len + 2).min(max / 2));
-    wrap_hang(line, max, &hang)
-}
-
-/// Word-wraps a line to `max` cells, starting continuation lines with `hang`.
-pub fn wrap_hang(line: &str, max: usize, hang: &str) -> Vec<String> {
-    if max == 0 {
-        return vec![];
-    }
-    if width(line) <= max {
-        return vec![line.to_string()];
-    }
-    let hang = if width(hang) > max / 2 { "" } else { hang };
-    let indent_len = line.len() - line.trim_start().len();
-    let mut out = Vec::new();
-    let mut cur = line[..indent_len].to_string();
-    let mut cur_w = width(&cur);
-    let mut at_start = true;
-    for word in line[indent_len..].split(' ') {
-        let ww = width(word);
-        let sep = if at_start { 0 } else { 1 };
-        if !at_start && cur_w + sep + ww > max {
-            out.push(std::mem::take(&mut cur));
-            cur = hang.to_string();
-            cur_w = width(&cur);
-            at_start = true;
-        }
-        let sep = if at_start { 0 } else { 1 };
-        if cur_w + sep + ww <= max {
-            if sep == 1 {
-                cur.push(' ');
-            }
-            cur.push_str(word);
-            cur_w += sep + ww;
-            at_start = false;
-            continue;
-        }
-        // A word longer than a line: cut it.
-        for ch in word.chars() {
-            let cw = width(ch.encode_utf8(&mut [0; 4]));
-            if cur_w + cw > max {
-                out.push(std::mem::take(&mut cur));
-                cur = hang.to_string();
-                cur_w = width(&cur);
-            }
-            cur.push(ch);
-            cur_w += cw;
-        }
-        at_start = false;
-    }
-    if !cur.trim().is_empty() {
-        out.push(cur);
-    }
-    out
-}
-
 /// The rows of `lines` shown in an area of `height` rows scrolled by `scroll` (clamped so the
 /// last page stays full).
 pub(crate) fn scroll_window<T: Clone>(lines: &[T], scroll: u16, height: u16) -> (Vec<T>, usize) {
@@ -249,7 +147,37 @@ pub(crate) fn position_note(start: usize, shown: usize, total: usize) -> Option<
     })
 }
 
-/// The inner area of a bordered pane.
-pub(crate) fn inner(r: Rect) -> Rect {
-    r.inner(ratatui::layout::Margin::new(1, 1))
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::tui::{update, Msg};
+
+    fn mirror(size: (u16, u16)) -> App {
+        let path = Path::new("tests/scenes/explorer-mirror.yaml");
+        let mut app = App::open(Some(path), ColorMode::TrueColor).expect("the test scene opens");
+        update(&mut app, Msg::Resize(size.0, size.1));
+        update(&mut app, Msg::Pick(20, 15));
+        app
+    }
+
+    /// The model's scroll limit of the lower pane is the rows drawn there less its height.
+    #[test]
+    fn the_model_scrolls_as_far_as_the_drawing_goes() {
+        for size in [(80, 24), (100, 30), (160, 48)] {
+            let mut app = mirror(size);
+            for _ in 0..2 {
+                let r = inner(app.panes().lower.expect("a lower pane"));
+                let drawn = if app.csg.shown() {
+                    csg::lines(&app, r.width as usize).len()
+                } else {
+                    details::lines(&app, r.width as usize).len()
+                };
+                let expected = drawn.saturating_sub(r.height as usize) as u16;
+                assert_eq!(app.scroll_limits().0, expected, "{size:?}");
+                update(&mut app, Msg::ToggleCsg);
+            }
+        }
+    }
 }

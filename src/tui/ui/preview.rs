@@ -73,7 +73,7 @@ pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
         }
     }
     if w > 0 && h > 0 {
-        if let Some((cx, cy)) = pixel_cell(p, (w, h), app.cursor) {
+        if let Some((cx, cy)) = pixel_cell(p, (w, h), app.tree.pixel()) {
             if let (true, Some(cell)) = (
                 r.contains(ratatui::layout::Position::new(cx, cy)),
                 buf.cell_mut((cx, cy)),

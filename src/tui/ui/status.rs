@@ -7,7 +7,10 @@ use ratatui::text::{Line, Span};
 use ratatui::Frame;
 
 use super::themed;
-use crate::tui::app::{App, Prompt, Tone};
+use crate::tui::app::App;
+use crate::tui::state::prompt::Prompt;
+use crate::tui::state::Tone;
+use crate::tui::wrap::wrap_hang;
 
 /// 1234567 → "1,234,567".
 pub fn grouped(n: u64) -> String {
@@ -25,10 +28,10 @@ pub fn grouped(n: u64) -> String {
 /// The status line: as much as fits, the least useful parts dropped first.
 pub fn status_text(app: &App) -> String {
     let (w, h) = app.image_size();
-    let (x, y) = app.cursor;
-    let depth = match app.level {
-        Some(k) => format!("depth {} (level {k})", app.depth),
-        None => format!("depth {}", app.depth),
+    let (x, y) = app.tree.pixel();
+    let depth = match app.tree.level() {
+        Some(k) => format!("depth {} (level {k})", app.tree.depth()),
+        None => format!("depth {}", app.tree.depth()),
     };
     let p = &app.preview;
     let progress = if p.running {
@@ -46,9 +49,10 @@ pub fn status_text(app: &App) -> String {
         .stats
         .map(|s| format!("{} rays", grouped(s.rays())))
         .unwrap_or_default();
-    let tree = format!("tree {} rays", grouped(app.tree_stats.rays()));
-    let path = app.name();
+    let tree = format!("tree {} rays", grouped(app.tree.stats().rays()));
+    let path = app.file.name();
     let file = app
+        .file
         .path
         .as_ref()
         .and_then(|p| p.file_name())
@@ -138,7 +142,7 @@ pub fn draw(f: &mut Frame, app: &App, status: Rect, message: Rect) {
                 Tone::Bad => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
             };
             let style = themed(app, style);
-            let lines = super::wrap_hang(&text, message.width as usize, "  ");
+            let lines = wrap_hang(&text, message.width as usize, "  ");
             for (i, l) in lines.iter().take(message.height as usize).enumerate() {
                 buf.set_stringn(
                     message.x,

@@ -13,28 +13,29 @@ use crate::tui::app::{App, Focus};
 use crate::tui::tree::{self, label, short_color};
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
-    let (x, y) = app.cursor;
-    let title = match app.level {
-        Some(k) => format!(" ray tree · pixel {x},{y} · level {k} of {} ", app.depth),
-        None => format!(" ray tree · pixel {x},{y} · depth {} ", app.depth),
+    let t = &app.tree;
+    let (x, y) = t.pixel();
+    let title = match t.level() {
+        Some(k) => format!(" ray tree · pixel {x},{y} · level {k} of {} ", t.depth()),
+        None => format!(" ray tree · pixel {x},{y} · depth {} ", t.depth()),
     };
-    let Some(root) = app.shown_tree() else {
+    let Some(root) = t.shown_tree() else {
         f.render_widget(
             Paragraph::new("no scene").block(pane(app, title, Some(Focus::Tree))),
             area,
         );
         return;
     };
-    let rows = app.rows();
+    let rows = t.rows();
     let body = app.tree_body_height();
-    let start = app.tree_offset.min(rows.len());
+    let start = t.offset().min(rows.len());
     let shown = &rows[start..(start + body).min(rows.len())];
     let mut block = pane(app, title, Some(Focus::Tree));
     if let Some(note) = position_note(start, shown.len(), rows.len()) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
     let mut lines: Vec<Line> = Vec::new();
-    if let Some((value, how)) = &app.pixel_value {
+    if let Some((value, how)) = t.pixel_value() {
         lines.push(Line::from(vec![
             Span::styled(
                 format!("pixel = {} ", short_color(*value)),
@@ -44,12 +45,12 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             Span::raw(format!(" {how}")),
         ]));
     }
-    if let Some(k) = app.level {
+    if let Some(k) = t.level() {
         let mut spans = vec![Span::styled(
             "levels:",
             themed(app, Style::new().fg(Color::Yellow)),
         )];
-        for (i, c) in app.partials.iter().enumerate().take(k as usize) {
+        for (i, c) in t.partials().iter().enumerate().take(k as usize) {
             spans.push(Span::raw(format!(" {}: {}", i + 1, short_color(*c))));
             if i + 1 < k as usize {
                 spans.push(Span::raw(" →"));
@@ -59,7 +60,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     }
     for row in shown {
         let n = tree::node_at(root, &row.path).expect("row of this tree");
-        let selected = row.path == app.selected;
+        let selected = row.path == t.selected();
         let icon = match (row.has_children, row.open) {
             (true, true) => "▾ ",
             (true, false) => "▸ ",

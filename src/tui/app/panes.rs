@@ -1,0 +1,134 @@
+//! How `App` routes keys and the mouse to the panes: focus, Up/Down/Page in the focused pane,
+//! scrolling, the CSG panel, clicks and the wheel. Which pane a cell belongs to comes from
+//! layout.rs, how far a pane scrolls from the part it shows.
+
+use ratatui::layout::Position;
+
+use super::{App, Focus};
+use crate::tui::layout::{self, inner};
+use crate::tui::msg::Msg;
+use crate::tui::state::Tone;
+
+impl App {
+    pub(super) fn focusable(&self) -> Vec<Focus> {
+        let p = self.panes();
+        let mut f = vec![Focus::Preview, Focus::Tree];
+        if p.lower.is_some() {
+            f.push(Focus::Lower);
+        }
+        if p.lesson.is_some() {
+            f.push(Focus::Lesson);
+        }
+        f
+    }
+
+    pub(super) fn cycle_focus(&mut self, forward: bool) {
+        let f = self.focusable();
+        let i = f.iter().position(|&x| x == self.focus).unwrap_or(0);
+        let n = f.len();
+        self.focus = f[if forward {
+            (i + 1) % n
+        } else {
+            (i + n - 1) % n
+        }];
+    }
+
+    /// Up, Down and Page in the focused pane (Page scrolls a panel when the preview has it).
+    pub(super) fn focused(&mut self, msg: &Msg) {
+        let (delta, page) = match *msg {
+            Msg::Up => (-1, false),
+            Msg::Down => (1, false),
+            Msg::Page(d) => (10 * d, true),
+            _ => return,
+        };
+        match self.focus {
+            Focus::Tree => self.tree_update(msg),
+            Focus::Lower => self.scroll_lower(delta),
+            Focus::Preview if !page => self.move_pixel(0, delta),
+            Focus::Preview if self.panes().lesson.is_some() => self.scroll_lesson(delta),
+            Focus::Preview => self.scroll_lower(delta),
+            Focus::Lesson if self.exercises_active() && page => {
+                let pane = self.panes().lesson;
+                if let Some(l) = &mut self.lesson {
+                    l.scroll_exercise(delta, pane);
+                }
+            }
+            Focus::Lesson if self.exercises_active() => {
+                let i = self.lesson.as_ref().map_or(0, |l| l.exercise) as i64 + delta as i64;
+                self.select_exercise(i.max(0) as usize);
+            }
+            Focus::Lesson => self.scroll_lesson(delta),
+        }
+    }
+
+    pub(super) fn tree_update(&mut self, msg: &Msg) {
+        let moved = self.tree.update(msg);
+        self.follow_selection(moved);
+    }
+
+    fn scroll_lower(&mut self, delta: i32) {
+        let lower = self.panes().lower;
+        if self.csg.shown() {
+            self.csg.scroll_by(delta, self.tree.selected(), lower);
+        } else {
+            self.tree.scroll_details(delta, lower);
+        }
+    }
+
+    fn scroll_lesson(&mut self, delta: i32) {
+        let pane = self.panes().lesson;
+        if let Some(l) = &mut self.lesson {
+            l.scroll_by(delta, pane);
+        }
+    }
+
+    pub(super) fn toggle_csg(&mut self) {
+        if !self.csg.toggle() {
+            return;
+        }
+        self.refresh_csg();
+        // Narrow screens have room for one of the two panels.
+        if self.size.0 < layout::WIDE {
+            if let Some(l) = &mut self.lesson {
+                l.open = false;
+            }
+        }
+        if self.csg.is_empty() {
+            self.message = Some(("no object along these rays".into(), Tone::Info));
+        }
+    }
+
+    pub(super) fn click(&mut self, col: u16, row: u16) {
+        let at = Position::new(col, row);
+        let p = self.panes();
+        if let Some((x, y)) = layout::cell_pixel(&p, self.image_size(), col, row) {
+            self.focus = Focus::Preview;
+            self.pick(x, y);
+        } else if p.tree.contains(at) {
+            self.focus = Focus::Tree;
+            let body = inner(p.tree);
+            let top = body.y + self.tree.level().is_some() as u16;
+            if row >= top && row < body.bottom() {
+                let moved = self.tree.click((row - top) as usize);
+                self.follow_selection(moved);
+            }
+        } else if p.lower.is_some_and(|r| r.contains(at)) {
+            self.focus = Focus::Lower;
+        } else if p.lesson.is_some_and(|r| r.contains(at)) {
+            self.focus = Focus::Lesson;
+        }
+    }
+
+    pub(super) fn wheel(&mut self, col: u16, row: u16, delta: i32) {
+        let at = Position::new(col, row);
+        let p = self.panes();
+        if p.tree.contains(at) {
+            let body = self.tree_body_height();
+            self.tree.scroll_rows(delta, body);
+        } else if p.lower.is_some_and(|r| r.contains(at)) {
+            self.scroll_lower(delta);
+        } else if p.lesson.is_some_and(|r| r.contains(at)) {
+            self.scroll_lesson(delta);
+        }
+    }
+}

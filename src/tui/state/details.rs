@@ -1,0 +1,145 @@
+//! What the node details pane says: where the selected ray starts and goes, what it hit, and
+//! the illumination formula with the numbers filled in, term by term, summing to its
+//! intensity; as rows at the pane's width, which the ray tree scrolls through.
+
+use glam::DVec3;
+
+use crate::trace::text::{color, node_details, num, vec3};
+use crate::trace::{RayKind, RayNode, Termination};
+use crate::tui::wrap::wrap;
+
+/// The formula every shaded node follows.
+pub const FORMULA: &str = "I = ka·Ia·O + Σℓ s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m) + kr·I_r + kt·I_t";
+
+/// The detail lines of a node; a line may carry a colour swatch (drawn after it).
+pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)> {
+    let mut out: Vec<(String, Option<DVec3>)> = Vec::new();
+    let plain = |s: String| (s, None);
+    match n.kind {
+        RayKind::Shadow => out.push(plain(format!(
+            "shadow ray towards light {} · depth {}",
+            n.light.as_deref().unwrap_or("?"),
+            n.depth
+        ))),
+        k => out.push((
+            format!(
+                "{} ray · depth {} · I = {}",
+                k.name(),
+                n.depth,
+                color(n.color)
+            ),
+            Some(n.color),
+        )),
+    }
+    out.push(plain(format!("origin    {}", vec3(n.origin))));
+    out.push(plain(format!("direction {}", vec3(n.direction))));
+    // node_details starts with "ray o → d", said above in two lines.
+    for l in node_details(n).into_iter().skip(1) {
+        if l.starts_with("ambient") {
+            out.push(plain(FORMULA.to_string()));
+        }
+        out.push(plain(l));
+    }
+    match n.kind {
+        RayKind::Shadow => {
+            if let Some(t) = n.t_max {
+                out.push(plain(format!("looks for blockers up to t = {}", num(t))));
+            }
+            out.push(plain(match &n.hit {
+                Some(h) => format!(
+                    "blocked by {} at t = {}: s = {}",
+                    h.object,
+                    num(h.t),
+                    num(n.shadow.unwrap_or(0.0))
+                ),
+                None => format!(
+                    "nothing in the way: s = {}",
+                    num(n.shadow.unwrap_or(1.0))
+                ),
+            }));
+        }
+        _ => match n.terminated {
+            Some(Termination::Background) => out.push((
+                format!("hit nothing: I = background = {}", color(n.color)),
+                Some(n.color),
+            )),
+            Some(Termination::MaxDepth) => out.push(plain(format!(
+                "not traced: the path already has {max_depth} rays (the maximum depth); + goes deeper"
+            ))),
+            Some(Termination::Adaptive) => out.push(plain(format!(
+                "not traced: its weight {} is below the adaptive threshold",
+                num(n.weight)
+            ))),
+            Some(Termination::TotalInternalReflection) => out.push(plain(
+                "total internal reflection: no light is transmitted; the energy follows the mirror ray"
+                    .into(),
+            )),
+            None => {}
+        },
+    }
+    if let Some(local) = &n.local {
+        let mut terms = vec![local.ambient];
+        for l in &local.lights {
+            terms.push(l.diffuse);
+            terms.push(l.specular);
+        }
+        for c in n.secondary() {
+            terms.push(c.coefficient * c.color);
+        }
+        let sum = terms
+            .iter()
+            .map(|t| color(*t))
+            .collect::<Vec<_>>()
+            .join(" + ");
+        out.push((
+            format!("sum  I = {sum} = {}", color(n.color)),
+            Some(n.color),
+        ));
+    }
+    out
+}
+
+/// How a row of the details is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DetailKind {
+    /// The first line: the ray's kind, depth and intensity.
+    Title,
+    Formula,
+    Sum,
+    Plain,
+}
+
+/// A row of the details pane; the last row of a line may end with a colour swatch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DetailRow {
+    pub text: String,
+    pub kind: DetailKind,
+    pub swatch: Option<DVec3>,
+}
+
+/// The details of a node wrapped to `width` cells (a swatch takes three of them).
+pub fn rows(n: &RayNode, max_depth: u32, width: usize) -> Vec<DetailRow> {
+    let mut rows = Vec::new();
+    for (i, (s, sw)) in details_lines(n, max_depth).into_iter().enumerate() {
+        let kind = if i == 0 {
+            DetailKind::Title
+        } else if s.starts_with("I = ka") {
+            DetailKind::Formula
+        } else if s.starts_with("sum") {
+            DetailKind::Sum
+        } else {
+            DetailKind::Plain
+        };
+        let sw_w = if sw.is_some() { 3 } else { 0 };
+        let parts = wrap(&s, width.saturating_sub(sw_w).max(10));
+        let count = parts.len();
+        for (j, text) in parts.into_iter().enumerate() {
+            rows.push(DetailRow {
+                text,
+                kind,
+                swatch: sw.filter(|_| j + 1 == count),
+            });
+        }
+    }
+    rows
+}
