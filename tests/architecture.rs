@@ -17,8 +17,14 @@ fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
         ("shading", vec!["geometry", "accel"]),
         ("scene", vec!["shading", "geometry", "accel"]),
         ("trace", vec!["scene", "shading", "geometry", "accel"]),
-        ("fast", vec!["trace", "scene", "shading", "geometry", "accel"]),
-        ("render", vec!["fast", "trace", "scene", "shading", "geometry", "accel"]),
+        (
+            "fast",
+            vec!["trace", "scene", "shading", "geometry", "accel"],
+        ),
+        (
+            "render",
+            vec!["fast", "trace", "scene", "shading", "geometry", "accel"],
+        ),
         ("plot_font", vec![]),
     ];
     // The applications, on top: everything but the fast wing, which the renderer alone runs.
@@ -26,7 +32,10 @@ fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
     layers.push(("lessons", below_apps.to_vec()));
     layers.push(("bench", [&below_apps[..], &["plot_font"]].concat()));
     layers.push(("tui", [&below_apps[..], &["lessons"]].concat()));
-    layers.push(("cli", [&below_apps[..], &["lessons", "bench", "tui"]].concat()));
+    layers.push((
+        "cli",
+        [&below_apps[..], &["lessons", "bench", "tui"]].concat(),
+    ));
     layers
         .into_iter()
         .map(|(m, mut deps)| {
@@ -41,7 +50,12 @@ fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
 /// The top-level module a source file belongs to: `src/scene/search.rs` → `scene`.
 fn module_of(path: &Path) -> String {
     let rel = path.strip_prefix("src").unwrap();
-    let first = rel.components().next().unwrap().as_os_str().to_string_lossy();
+    let first = rel
+        .components()
+        .next()
+        .unwrap()
+        .as_os_str()
+        .to_string_lossy();
     first.trim_end_matches(".rs").to_string()
 }
 
@@ -135,7 +149,10 @@ fn the_layers_have_no_cycle() {
         false
     }
     for &m in allowed.keys() {
-        assert!(!reaches(&allowed, m, m, &mut vec![]), "{m} can reach itself");
+        assert!(
+            !reaches(&allowed, m, m, &mut vec![]),
+            "{m} can reach itself"
+        );
     }
 }
 
@@ -151,7 +168,10 @@ fn a_forbidden_import_is_reported() {
         violations("trace", "    let s = crate::fast::FastScene::new(scene);"),
         vec!["fast"]
     );
-    assert_eq!(violations("tui", "use crate::fast::trace_packet;"), vec!["fast"]);
+    assert_eq!(
+        violations("tui", "use crate::fast::trace_packet;"),
+        vec!["fast"]
+    );
     assert!(violations("geometry", "// see crate::render::film").is_empty());
     assert!(violations("render", "use crate::fast::FastScene;").is_empty());
 }

@@ -12,8 +12,8 @@ use ratatui::layout::Rect;
 use super::details::{self, DetailRow};
 use super::tree_state::TreeState;
 use super::{max_scroll, Note, Tone};
-use crate::scene::Scene;
 use crate::sampling::Rng;
+use crate::scene::Scene;
 use crate::stats::Stats;
 use crate::trace::{text, RayNode, Tracer};
 use crate::tui::layout::inner;
@@ -378,9 +378,9 @@ impl RayTree {
 /// centre ray: several samples, corners, or a path tracer (whose tree is only the Whitted
 /// reading of the scene).
 fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
-    use crate::scene::Antialias;
     use crate::render::film::Film;
     use crate::render::RenderOptions;
+    use crate::scene::Antialias;
     let options = RenderOptions {
         max_depth: depth,
         ..RenderOptions::of(scene)

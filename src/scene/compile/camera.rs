@@ -1,0 +1,142 @@
+//! The camera: a look-at camera with a vertical field of view, or the window model of the
+//! lecture notes (eye, u, v, w, f and the window on the image plane).
+
+use glam::DVec3;
+use serde_saphyr::Spanned;
+
+use super::{invalid, nonzero, pos, Invalid, Limits, Pos, TOP};
+use crate::scene::format::{CameraSpec, SceneFile};
+use crate::scene::{Camera, Projection};
+
+/// The file's camera, which every scene needs.
+pub fn of(file: &SceneFile, limits: &Limits) -> Result<Camera, Invalid> {
+    Ok(match &file.camera {
+        Some(Spanned {
+            value: None,
+            referenced,
+            ..
+        }) => {
+            return invalid(
+                Pos::of(referenced),
+                "`camera` is empty: give eye and look_at, or the window model",
+            )
+        }
+        Some(
+            c @ Spanned {
+                value: Some(spec), ..
+            },
+        ) => camera(spec, pos(c), limits)?,
+        None => {
+            return invalid(
+                TOP,
+                "missing `camera`: a scene needs a camera (eye and look_at, or the window model)",
+            )
+        }
+    })
+}
+
+fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
+    let size = |s: &Option<Spanned<i64>>, default: i64, what: &str| -> Result<u32, Invalid> {
+        let (v, at) = s.as_ref().map_or((default, p), |s| (s.value, pos(s)));
+        if !(1..=1_000_000).contains(&v) {
+            return invalid(
+                at,
+                format!("camera {what} must be between 1 and 1000000 pixels, got {v}"),
+            );
+        }
+        Ok(v as u32)
+    };
+    let width = size(&c.width, 320, "width")?;
+    let height = size(&c.height, 240, "height")?;
+    if width as u64 * height as u64 > limits.max_pixels {
+        return invalid(
+            c.width.as_ref().map_or(p, pos),
+            format!(
+                "image of {width} × {height} pixels exceeds the budget of {} pixels (use --allow-huge to render it anyway)",
+                limits.max_pixels
+            ),
+        );
+    }
+    let Some(eye) = c.eye.map(|v| v.0) else {
+        return invalid(p, "camera needs an `eye`");
+    };
+    if let Some(window) = &c.window {
+        let need = |v: Option<DVec3>, k: &str| {
+            v.map_or_else(|| invalid(p, format!("window camera needs `{k}`")), Ok)
+        };
+        let (u, v, w) = (
+            need(c.u.as_ref().map(|x| x.value.0), "u")?,
+            need(c.v.as_ref().map(|x| x.value.0), "v")?,
+            need(c.w.as_ref().map(|x| x.value.0), "w")?,
+        );
+        let f = c.f.map(|n| n.0).map_or_else(
+            || invalid(p, "window camera needs the focal distance `f`"),
+            Ok,
+        )?;
+        for (axis, k) in [(&c.u, "u"), (&c.v, "v"), (&c.w, "w")] {
+            let axis = axis.as_ref().expect("checked above");
+            nonzero(axis.value.0, pos(axis), &format!("camera axis {k}"))?;
+        }
+        let [wl, wr, wt, wb] = window.value.map(|n| n.0);
+        if wl == wr || wt == wb {
+            return invalid(
+                pos(window),
+                "camera window has zero width or height (wl = wr or wt = wb)",
+            );
+        }
+        if c.look_at.is_some() || c.fov.is_some() {
+            return invalid(
+                p,
+                "camera mixes the window model (window, u, v, w, f) with look_at/fov: use one",
+            );
+        }
+        return Ok(Camera {
+            projection: Projection::Window {
+                eye,
+                u,
+                v,
+                w,
+                f,
+                window: window.value.map(|n| n.0),
+            },
+            width,
+            height,
+        });
+    }
+    let Some(target) = c.look_at.map(|v| v.0) else {
+        return invalid(
+            p,
+            "camera needs `look_at` (or the window model: u, v, w, f, window)",
+        );
+    };
+    let forward = nonzero(target - eye, p, "look_at − eye")?;
+    let (up, up_pos) = c.up.as_ref().map_or((DVec3::Y, p), |u| (u.value.0, pos(u)));
+    let up = nonzero(up, up_pos, "camera up")?;
+    if forward.cross(up).length() < 1e-9 {
+        return invalid(
+            up_pos,
+            "camera up is parallel to the view direction (look_at − eye)",
+        );
+    }
+    let fov = match &c.fov {
+        None => 40.0,
+        Some(f) if !(f.value.0 > 0.0 && f.value.0 < 180.0) => {
+            return invalid(
+                pos(f),
+                format!(
+                    "fov must be between 0 and 180 degrees (exclusive), got {}",
+                    f.value
+                ),
+            )
+        }
+        Some(f) => f.value.0,
+    };
+    Ok(match c.handedness.unwrap_or_default() {
+        crate::scene::format::Handedness::Left => {
+            Camera::look_at(eye, target, up, fov, width, height)
+        }
+        crate::scene::format::Handedness::Right => {
+            Camera::look_at_right_handed(eye, target, up, fov, width, height)
+        }
+    })
+}

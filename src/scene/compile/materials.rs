@@ -1,0 +1,136 @@
+//! The materials: the coefficients of the local model, reflection and transmission, the index
+//! of refraction, glossy and frosted lobes, emission.
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+use serde_saphyr::Spanned;
+
+use super::{invalid, pos, Invalid, Pos};
+use crate::scene::format::{LobeSpec, MaterialSpec, SceneFile};
+use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material};
+
+/// The file's materials, and each one's index by name.
+pub fn of(file: &SceneFile) -> Result<(Vec<Material>, BTreeMap<String, u32>), Invalid> {
+    let mut materials = Vec::new();
+    let mut material_index = BTreeMap::new();
+    for (name, m) in &file.materials {
+        material_index.insert(name.clone(), materials.len() as u32);
+        materials.push(material(name, &m.value, pos(m))?);
+    }
+    Ok((materials, material_index))
+}
+
+fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
+    let coefficient =
+        |c: &Option<Spanned<crate::scene::format::Num>>, k: &str| -> Result<f64, Invalid> {
+            match c {
+                None => Ok(0.0),
+                Some(c) if c.value.0 < 0.0 => invalid(
+                    pos(c),
+                    format!("material `{name}`: {k} must be ≥ 0, got {}", c.value),
+                ),
+                Some(c) => Ok(c.value.0),
+            }
+        };
+    let ior = match &m.ior {
+        None => 1.0,
+        Some(i) if i.value.0 <= 0.0 => {
+            return invalid(
+                pos(i),
+                format!("material `{name}`: ior must be > 0, got {}", i.value),
+            )
+        }
+        Some(i) => i.value.0,
+    };
+    let shininess = match &m.shininess {
+        None => 1.0,
+        Some(s) => coefficient(&Some(s.clone()), "shininess")?,
+    };
+    let color = m.color.map_or(DVec3::ONE, |t| t.0);
+    if color.min_element() < 0.0 {
+        return invalid(p, format!("material `{name}`: color must be ≥ 0"));
+    }
+    Ok(Material {
+        name: name.to_string(),
+        color,
+        ka: coefficient(&m.ka, "ka")?,
+        kd: coefficient(&m.kd, "kd")?,
+        ks: coefficient(&m.ks, "ks")?,
+        shininess,
+        highlight: m.highlight.unwrap_or(Highlight::Blinn),
+        kr: coefficient(&m.kr, "kr")?,
+        kt: coefficient(&m.kt, "kt")?,
+        ior,
+        fresnel: m.fresnel.unwrap_or(Fresnel::None),
+        emission: m.emission.map_or(DVec3::ZERO, |t| t.0),
+        glossy: m
+            .glossy
+            .as_ref()
+            .map(|g| lobe(name, "glossy", g))
+            .transpose()?,
+        frosted: m
+            .frosted
+            .as_ref()
+            .map(|f| lobe(name, "frosted", f))
+            .transpose()?,
+    })
+}
+
+/// A glossy or frosted lobe: exactly one of `spread` (degrees, 0 < σ ≤ 45) or `exponent`
+/// (≥ 1), and 1…1024 samples (default 16).
+fn lobe(material: &str, key: &str, spec: &Spanned<LobeSpec>) -> Result<Lobe, Invalid> {
+    let l = &spec.value;
+    let shape = match (&l.spread, &l.exponent) {
+        (Some(s), None) => {
+            if !(s.value.0 > 0.0 && s.value.0 <= 45.0) {
+                return invalid(
+                    pos(s),
+                    format!(
+                        "material `{material}`: {key} spread must be between 0 and 45 degrees, got {}",
+                        s.value
+                    ),
+                );
+            }
+            LobeShape::Normal {
+                sigma: s.value.0.to_radians(),
+            }
+        }
+        (None, Some(e)) => {
+            if e.value.0 < 1.0 {
+                return invalid(
+                    pos(e),
+                    format!(
+                        "material `{material}`: {key} exponent must be ≥ 1, got {}",
+                        e.value
+                    ),
+                );
+            }
+            LobeShape::Phong {
+                exponent: e.value.0,
+            }
+        }
+        _ => {
+            return invalid(
+                pos(spec),
+                format!(
+                    "material `{material}`: {key} needs exactly one of `spread` (degrees) or `exponent`"
+                ),
+            )
+        }
+    };
+    let samples = match &l.samples {
+        None => 16,
+        Some(s) if !(1..=1024).contains(&s.value) => {
+            return invalid(
+                pos(s),
+                format!(
+                    "material `{material}`: {key} samples must be between 1 and 1024, got {}",
+                    s.value
+                ),
+            )
+        }
+        Some(s) => s.value as u32,
+    };
+    Ok(Lobe { shape, samples })
+}

@@ -1,0 +1,404 @@
+//! The objects: each one's shape (or CSG tree of shapes) with its transform and material,
+//! compiled into leaves (the primitives, in world space where a transform allows) and objects
+//! (their trees and bounds).
+
+use std::collections::{BTreeMap, HashSet};
+use std::path::Path;
+
+use glam::{DAffine3, DVec3};
+use serde_saphyr::Spanned;
+
+use super::{invalid, nonzero, pos, Invalid, Limits, Pos};
+use crate::accel::{Aabb, Ball};
+use crate::geometry::csg::{CsgNode, CsgOp};
+use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
+use crate::scene::format::{ObjectSpec, SceneFile, TransformStep, Triple};
+use crate::scene::{Geometry, Leaf, Object};
+
+/// The file's objects and their leaves; names are unique, materials resolved.
+pub fn of(
+    file: &SceneFile,
+    material_index: &BTreeMap<String, u32>,
+    source: Option<&Path>,
+    limits: &Limits,
+) -> Result<(Vec<Leaf>, Vec<Object>), Invalid> {
+    let base = source
+        .and_then(|p| p.parent())
+        .map(|p| p.to_path_buf())
+        .unwrap_or_default();
+    let mut builder = Builder {
+        materials: &material_index,
+        leaves: Vec::new(),
+        limits,
+        base: &base,
+    };
+    let mut objects = Vec::new();
+    let mut names = HashSet::new();
+    for (i, o) in file.objects.iter().enumerate() {
+        let name = o
+            .value
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("object{}", i + 1));
+        if !names.insert(name.clone()) {
+            return invalid(pos(o), format!("duplicate object name `{name}`"));
+        }
+        let Some(m) = &o.value.material else {
+            return invalid(pos(o), format!("object `{name}` has no `material`"));
+        };
+        let material = builder.material(m)?;
+        let object = objects.len() as u32;
+        let mut ctx = Ctx {
+            object,
+            object_name: &name,
+            path: vec![],
+            leaf_count: 0,
+            depth: 0,
+        };
+        let node = builder.node(
+            o,
+            material,
+            &Transform::new(DAffine3::IDENTITY),
+            &mut ctx,
+            true,
+        )?;
+        let (geometry, bounds) = match node {
+            CsgNode::Leaf { leaf, bounds } => {
+                builder.leaves[leaf as usize].name = name.clone();
+                (Geometry::Leaf(leaf), bounds)
+            }
+            node => {
+                let b = node.bounds();
+                (Geometry::Csg(node), b)
+            }
+        };
+        objects.push(Object {
+            name,
+            geometry,
+            bounds,
+        });
+    }
+    Ok((builder.leaves, objects))
+}
+
+struct Builder<'a> {
+    materials: &'a BTreeMap<String, u32>,
+    leaves: Vec<Leaf>,
+    limits: &'a Limits,
+    /// Folder of the scene file: mesh files are found relative to it.
+    base: &'a std::path::Path,
+}
+
+/// Where in an object's CSG tree the builder is.
+struct Ctx<'a> {
+    object: u32,
+    object_name: &'a str,
+    path: Vec<String>,
+    leaf_count: usize,
+    depth: usize,
+}
+
+impl Builder<'_> {
+    fn material(&self, m: &Spanned<String>) -> Result<u32, Invalid> {
+        self.materials.get(&m.value).copied().map_or_else(
+            || {
+                let known: Vec<&str> = self.materials.keys().map(String::as_str).collect();
+                invalid(
+                    pos(m),
+                    format!(
+                        "unknown material `{}` (defined: {})",
+                        m.value,
+                        known.join(", ")
+                    ),
+                )
+            },
+            Ok,
+        )
+    }
+
+    fn node(
+        &mut self,
+        o: &Spanned<ObjectSpec>,
+        material: u32,
+        parent: &Transform,
+        ctx: &mut Ctx,
+        top: bool,
+    ) -> Result<CsgNode, Invalid> {
+        let spec = &o.value;
+        let p = pos(o);
+        if ctx.depth > self.limits.max_csg_depth {
+            return invalid(
+                p,
+                format!(
+                    "CSG tree nested deeper than {} levels",
+                    self.limits.max_csg_depth
+                ),
+            );
+        }
+        let material = match &spec.material {
+            Some(m) if !top => self.material(m)?,
+            _ => material,
+        };
+        let transform = parent.after(&transform(&spec.transform)?);
+        let shapes = [
+            spec.sphere.is_some(),
+            spec.plane.is_some(),
+            spec.aabox.is_some(),
+            spec.cylinder.is_some(),
+            spec.cone.is_some(),
+            spec.triangle.is_some(),
+            spec.mesh.is_some(),
+            spec.icosphere.is_some(),
+            spec.union.is_some(),
+            spec.intersection.is_some(),
+            spec.difference.is_some(),
+            spec.complement.is_some(),
+        ];
+        match shapes.iter().filter(|&&b| b).count() {
+            1 => {}
+            0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, mesh, icosphere, union, intersection, difference, complement"),
+            _ => return invalid(p, "more than one shape key in one object: nest them in a union, or write two objects"),
+        }
+        let csg = [
+            (CsgOp::Union, &spec.union),
+            (CsgOp::Intersection, &spec.intersection),
+            (CsgOp::Difference, &spec.difference),
+        ];
+        for (op, children) in csg {
+            if let Some(children) = children {
+                if children.len() < 2 {
+                    return invalid(p, format!("{} needs at least two children", op.name()));
+                }
+                return self.operation(
+                    op,
+                    spec.name.clone(),
+                    children.iter().collect(),
+                    material,
+                    &transform,
+                    ctx,
+                );
+            }
+        }
+        if let Some(child) = &spec.complement {
+            return self.operation(
+                CsgOp::Complement,
+                spec.name.clone(),
+                vec![&**child],
+                material,
+                &transform,
+                ctx,
+            );
+        }
+        let shape = shape(spec, p, self.base)?;
+        if !top && !shape.is_convex_solid() {
+            return invalid(
+                p,
+                format!("a {} cannot take part in CSG: its segment list is not one interval (use spheres, boxes, cylinders, cones)", shape.kind()),
+            );
+        }
+        ctx.leaf_count += 1;
+        let name = spec
+            .name
+            .clone()
+            .unwrap_or_else(|| format!("{}.{}{}", ctx.object_name, shape.kind(), ctx.leaf_count));
+        // A shape the transform keeps of its kind is stored in world space: no ray needs
+        // carrying to object space for it.
+        let (shape, transform) = if transform.to_world == DAffine3::IDENTITY {
+            (shape, None)
+        } else {
+            match shape.moved(&transform) {
+                Some(moved) => (moved, None),
+                None => (shape, Some(transform)),
+            }
+        };
+        let bounds = match &transform {
+            Some(tf) => shape.bounds().transformed(&tf.to_world),
+            None => shape.bounds(),
+        };
+        let leaf = self.leaves.len() as u32;
+        self.leaves.push(Leaf {
+            name,
+            object: ctx.object,
+            path: ctx.path.clone(),
+            shape,
+            transform,
+            material,
+            bounds,
+        });
+        Ok(CsgNode::Leaf { leaf, bounds })
+    }
+
+    fn operation(
+        &mut self,
+        op: CsgOp,
+        name: Option<String>,
+        children: Vec<&Spanned<ObjectSpec>>,
+        material: u32,
+        transform: &Transform,
+        ctx: &mut Ctx,
+    ) -> Result<CsgNode, Invalid> {
+        let name = name.unwrap_or_else(|| op.name().to_string());
+        ctx.path.push(name.clone());
+        ctx.depth += 1;
+        let mut nodes = Vec::with_capacity(children.len());
+        for c in children {
+            nodes.push(self.node(c, material, transform, ctx, false)?);
+        }
+        ctx.depth -= 1;
+        ctx.path.pop();
+        // A result lies inside the first child for ∩ and −, inside some child for ∪.
+        let bounds = match op {
+            CsgOp::Union => nodes
+                .iter()
+                .fold(Aabb::empty(), |b, n| b.union(&n.bounds())),
+            CsgOp::Intersection => nodes
+                .iter()
+                .fold(Aabb::everything(), |b, n| b.intersection(&n.bounds())),
+            CsgOp::Difference => nodes[0].bounds(),
+            CsgOp::Complement => Aabb::everything(),
+        };
+        // Spheres' common parts are bounded far more tightly by a ball than by their boxes.
+        let bounds = match self.ball(op, &nodes) {
+            Some(ball) => bounds.intersection(&ball.bounds()),
+            None => bounds,
+        };
+        Ok(CsgNode::Op {
+            op,
+            name,
+            children: nodes,
+            bounds,
+        })
+    }
+
+    /// A ball around an operation's result, when one is known: spheres in world space, and
+    /// what intersections and differences keep of them.
+    fn ball(&self, op: CsgOp, children: &[CsgNode]) -> Option<Ball> {
+        let ball = |node: &CsgNode| match node {
+            CsgNode::Leaf { leaf, .. } => self.leaves[*leaf as usize]
+                .world_sphere()
+                .map(|s| Ball::new(s.center, s.radius)),
+            CsgNode::Op { op, children, .. } => self.ball(*op, children),
+        };
+        match op {
+            CsgOp::Intersection => children
+                .iter()
+                .filter_map(ball)
+                .reduce(|a, b| a.around_common(&b)),
+            CsgOp::Difference => ball(&children[0]),
+            CsgOp::Union | CsgOp::Complement => None,
+        }
+    }
+}
+
+/// The steps compose in the order written: the first step is applied first.
+fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
+    let mut m = DAffine3::IDENTITY;
+    for s in steps {
+        let step = match &s.value {
+            TransformStep::Translate(v) => DAffine3::from_translation(v.0),
+            TransformStep::RotateX(d) => DAffine3::from_rotation_x(d.0.to_radians()),
+            TransformStep::RotateY(d) => DAffine3::from_rotation_y(d.0.to_radians()),
+            TransformStep::RotateZ(d) => DAffine3::from_rotation_z(d.0.to_radians()),
+            TransformStep::Scale(Triple(v)) => {
+                if v.abs().min_element() < 1e-12 {
+                    return invalid(pos(s), "scale must not be zero in any axis");
+                }
+                DAffine3::from_scale(*v)
+            }
+        };
+        m = step * m;
+    }
+    Ok(Transform::new(m))
+}
+
+fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Invalid> {
+    let positive = |r: &Spanned<crate::scene::format::Num>, what: &str| -> Result<f64, Invalid> {
+        if r.value.0 > 0.0 {
+            Ok(r.value.0)
+        } else {
+            invalid(pos(r), format!("{what} must be > 0, got {}", r.value))
+        }
+    };
+    if let Some(s) = &spec.sphere {
+        return Ok(Shape::Sphere(Sphere {
+            center: s.center.0,
+            radius: positive(&s.radius, "sphere radius")?,
+        }));
+    }
+    if let Some(s) = &spec.plane {
+        return Ok(Shape::Plane(Plane {
+            point: s.point.0,
+            normal: nonzero(s.normal.value.0, pos(&s.normal), "plane normal")?,
+        }));
+    }
+    if let Some(s) = &spec.aabox {
+        if !(s.min.value.0.cmplt(s.max.0).all()) {
+            return invalid(
+                pos(&s.min),
+                "box min must be smaller than max in every axis",
+            );
+        }
+        return Ok(Shape::Box(Aabox {
+            min: s.min.value.0,
+            max: s.max.0,
+        }));
+    }
+    if let Some(s) = &spec.cylinder {
+        let radius = positive(&s.radius, "cylinder radius")?;
+        nonzero(
+            s.top.0 - s.base.value.0,
+            pos(&s.base),
+            "cylinder axis (top − base)",
+        )?;
+        return Ok(Shape::Cylinder(Cylinder {
+            base: s.base.value.0,
+            top: s.top.0,
+            radius,
+        }));
+    }
+    if let Some(s) = &spec.cone {
+        let radius = positive(&s.radius, "cone radius")?;
+        nonzero(
+            s.base.0 - s.apex.value.0,
+            pos(&s.apex),
+            "cone axis (base − apex)",
+        )?;
+        return Ok(Shape::Cone(Cone {
+            apex: s.apex.value.0,
+            base: s.base.0,
+            radius,
+        }));
+    }
+    if let Some(t) = &spec.triangle {
+        let [a, b, c] = t.value.map(|v| v.0);
+        let tri = Triangle { a, b, c };
+        if tri.normal() == DVec3::ZERO {
+            return invalid(
+                pos(t),
+                "degenerate triangle: its three vertices are collinear",
+            );
+        }
+        return Ok(Shape::Triangle(tri));
+    }
+    if let Some(m) = &spec.mesh {
+        let path = base.join(&m.file.value);
+        let (mesh, _) = crate::geometry::Mesh::load_obj(&path, m.smooth.unwrap_or(true))
+            .or_else(|e| invalid(pos(&m.file), e))?;
+        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+    }
+    if let Some(i) = &spec.icosphere {
+        let k = i.subdivisions.value;
+        if !(0..=8).contains(&k) {
+            return invalid(
+                pos(&i.subdivisions),
+                format!("icosphere subdivisions must be between 0 and 8, got {k}"),
+            );
+        }
+        let mut mesh = crate::geometry::Mesh::icosphere(k as u32);
+        if i.smooth == Some(false) {
+            mesh = crate::geometry::Mesh::new(mesh.positions, vec![], mesh.triangles).0;
+        }
+        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+    }
+    invalid(p, "no shape")
+}
