@@ -108,10 +108,8 @@ impl Packet {
 fn overlaps4(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     {
-        // One vector compare and one mask move. Written out portably, the compiler took the
-        // four bits out of the compare one at a time and put them back together (perf put a
-        // quarter of the packet search's samples there); this way the 10 000-sphere peer scene
-        // renders 6 % faster, with the same image.
+        // One vector compare and one mask move: written portably, the compiler takes the four
+        // bits out of the compare one at a time and puts them back together.
         use std::arch::x86_64::*;
         // SAFETY: the target has AVX (checked at compile time); the loads read 4 f64 each
         // from arrays of 4.

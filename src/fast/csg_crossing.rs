@@ -34,7 +34,7 @@ pub struct FlatCsg {
     /// the box's planes), so it is not tested again: None.
     leaves: SmallVec<[(u32, Option<Aabb>); 2]>,
     /// The operands, when all are spheres in world space and fit one group: then their spans
-    /// are found side by side (the lens of the CSG peer scene).
+    /// are found side by side (a lens).
     spheres: Option<SphereGroup>,
 }
 
@@ -120,9 +120,8 @@ impl FlatCsg {
     /// only added to when the answer is decided, so an `Undecided` evaluation can be redone by
     /// the segment lists without counting anything twice.
     ///
-    /// Its pieces are inlined into one function on purpose: split in two out of line (the
-    /// operands' spans, then the walk along the ends), the CSG peer scene ran 3–4 % slower,
-    /// and 36 % slower with the spans returned by value.
+    /// Its pieces (the operands' spans, then the walk along the ends) are inlined into one
+    /// function on purpose, so that the spans stay in registers.
     pub fn nearest(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
         // Most CSG objects have two operands: their spans stay in registers (held in a list,
         // each was stored and at once read back, and the read stalled on store forwarding).
@@ -338,8 +337,7 @@ impl FlatCsg {
 }
 
 /// Four numbers as one vector, put together in registers. `f64x4::new` goes through memory,
-/// and there the one wide load of four narrow stores stalled on store forwarding: a fifth of
-/// the samples of `object_hit` in the CSG peer scene, and 5 % of its time.
+/// where the one wide load of four narrow stores stalls on store forwarding.
 #[inline(always)]
 fn lanes(a: f64, b: f64, c: f64, d: f64) -> f64x4 {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]

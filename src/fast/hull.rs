@@ -1,8 +1,7 @@
 //! The hull of a packet of rays: on each axis, the range of their origins and of their 1/d.
 //!
 //! A pixel's sixteen samples, or their shadow rays toward one light, are so alike that a box
-//! of the BVH is almost always met by all of them or by none (on the 10 000-sphere peer
-//! scene, 97 % of the packet's box tests were one or the other). One slab test of the box
+//! of the BVH is almost always met by all of them or by none. One slab test of the box
 //! against the hull, in interval arithmetic, proves most of those cases at the cost of a
 //! single ray's test, and only the rest need the test ray by ray.
 //!
@@ -32,9 +31,8 @@ pub enum Verdict {
 }
 
 /// The bounds on each axis side by side in one vector's lanes 0–2 (lane 3 is unused), so that
-/// a box's three slabs are tested at once. Tested axis by axis, the hull test took 1.8× the
-/// instructions (291 M against 158 M of the 10 000-sphere peer scene's 1 050 M at 200×150,
-/// callgrind): the largest part of a packet's search of the BVH.
+/// a box's three slabs are tested at once: the hull test is the largest part of a packet's
+/// search of the BVH.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hull {
     origin_lo: f64x4,

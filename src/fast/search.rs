@@ -146,8 +146,8 @@ impl<'s> FastScene<'s> {
     /// the nearest hit so far, skips the object (and all of a CSG tree's evaluation).
     /// `--no-csg-pruning` switches a CSG tree's boxes off, this one included.
     ///
-    /// Inlined: 1/d, passed out of line, went through memory and was read back as the box
-    /// test's first step, and that stall (store forwarding fails) cost more than the division.
+    /// Inlined, so that 1/d stays in registers for the box test rather than going through
+    /// memory and being read back at once (a store-forwarding stall).
     #[inline(always)]
     fn boxed_object_hit(
         &self,
@@ -230,7 +230,7 @@ impl<'s> FastScene<'s> {
         // Every arm ends in the same three parts, and the hit is put together once from
         // them: an arm that returned its own `Hit` would make the compiler pass all hits
         // through memory, and reading one back right after its field-by-field stores stalls
-        // the processor (store forwarding fails: 5 % of the Whitted peer scene's time).
+        // the processor (store forwarding fails).
         let (t, object, surface) = match probe {
             Probe::Sphere {
                 sphere,

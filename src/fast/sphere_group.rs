@@ -1,11 +1,11 @@
 //! Up to four plain spheres tested against one ray side by side.
 //!
-//! `Sphere::hit` leaves most misses early, through branches that the processor guesses wrong
-//! whenever a ray's fate differs from the last one's. Here the same arithmetic runs for four
-//! spheres at once in `wide`'s `f64x4` vectors (the compiler does not vectorise the scalar
-//! version by itself: written lane by lane it was 1.6× slower), and each test's early exits
-//! become masks, with one branch left: none of the four can be hit. Every lane's t is the one `Sphere::hit` gives to
-//! the last bit, so a group answers exactly what testing its spheres one after another does.
+//! `probe::sphere_hit` leaves most misses early, through branches that the processor guesses
+//! wrong whenever a ray's fate differs from the last one's. Here the same arithmetic runs for
+//! four spheres at once in `wide`'s `f64x4` vectors (the compiler does not vectorise the
+//! scalar version by itself), and each test's early exits become masks, with one branch left:
+//! none of the four can be hit. Every lane's t is the one `sphere_hit` gives to the last bit,
+//! so a group answers exactly what testing its spheres one after another does.
 
 use glam::DVec3;
 use wide::f64x4;

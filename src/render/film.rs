@@ -405,13 +405,10 @@ fn per_pixel(
     let corner = |_: &mut Tracer, i: u32, j: u32| corners[(j * (w + 1) + i) as usize];
     let mut image = Image::new(w, h);
     // One row per job (`with_max_len(1)`, here and in the loops above and below). Left to
-    // itself, rayon cuts the rows into a few long runs, about four per thread, and cuts only
-    // stolen runs further. A run cannot be stolen once it has started, so a thread that ran
-    // out of work waited idle for the other's last run: up to a quarter of the image. With
-    // rows handed out one at a time, the threads finish at most a row apart. (CSG peer scene,
-    // whose rows through the glass lens cost far more than the others, two threads: a core
-    // stood idle for 0.37 s of each render before and 0.04 s after; `raytree bench threads`
-    // measured 1.70× against one thread before and 1.98× after.)
+    // itself, rayon cuts the rows into a few long runs, and a run cannot be stolen once it has
+    // started, so a thread out of work would wait for the other's last run. With rows handed
+    // out one at a time, the threads finish at most a row apart, however unevenly the cost of
+    // rows is spread (a glass lens makes some rows far dearer than others).
     let rows = image
         .pixels
         .par_chunks_mut(w as usize)

@@ -358,10 +358,8 @@ pub struct ObjectSpec {
     pub material: Option<Spanned<String>>,
     #[serde(default)]
     pub transform: Vec<Spanned<TransformStep>>,
-    // The shapes are boxed: unboxed, every object carried room for all eight of them
-    // (1.2 kB), and the list of the many peer scene's 10 000 spheres was moved and faulted
-    // in megabytes at a time as it grew. Boxed, loading that scene (and rendering it at 8×6)
-    // took 127–136 ms against 153 ms, means of 15 runs, twice.
+    // The shapes are boxed so that an object does not carry room for all of them: a list of
+    // many thousand objects stays small while it is parsed.
     pub sphere: Option<Box<SphereSpec>>,
     pub plane: Option<Box<PlaneSpec>>,
     #[serde(rename = "box")]

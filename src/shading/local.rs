@@ -98,8 +98,7 @@ fn highlight_power(cos: f64, m: f64) -> f64 {
 
 /// aᵉ by repeated squaring: a, a², a⁴, … multiplied in where e has a one bit. The same
 /// multiplications in the same order as `f64::powi` (compiler-builtins' `__powidf2`, so images
-/// do not change), written out so that the compiler inlines them: the call cost 2 % of the
-/// Whitted peer scene's instructions.
+/// do not depend on which is used), written out so that the compiler can inline them.
 #[inline]
 fn powi_by_squaring(mut a: f64, mut e: u32) -> f64 {
     let mut product = 1.0;

@@ -14,7 +14,8 @@
 //!
 //! The same code renders images and builds the ray trees the explorer shows: a `Recorder`
 //! watches it (`NoRecorder` compiles to nothing). It asks a `Search` for hits: the scene's own,
-//! or the renderer's faster one, which finds the same hits.
+//! or the renderer's faster one, which finds the same hits. (`#[inline(always)]` marks the
+//! steps the fast wing's packet loops call for every ray; it changes no result.)
 
 use glam::DVec3;
 
@@ -145,6 +146,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
     }
 
     /// Traces one ray: its intensity, and how far away it comes from (∞ for the background).
+    #[inline(always)]
     pub(crate) fn trace(&mut self, task: &Task) -> (DVec3, f64) {
         let hit = self
             .search
@@ -170,6 +172,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
     }
 
     /// The node's total from its local intensity: the secondary rays' kr·I_r + kt·I_t added.
+    #[inline(always)]
     pub(crate) fn finish(&mut self, task: &Task, si: &Interaction, mut color: DVec3) -> DVec3 {
         let scene = self.scene;
         let m = scene.material(si.material);
@@ -221,6 +224,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
 
     /// Light k's diffuse and specular terms at a point, before the shadow factor, and why no
     /// shadow ray is needed, if none is (then s = 0). `shows`: the terms go into a tree.
+    #[inline(always)]
     pub(crate) fn light_share(
         &mut self,
         m: &Material,
@@ -298,6 +302,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
 
     /// A shadow ray from the surface along `dir`, and how far it looks for blockers: up to a
     /// light `distance` away.
+    #[inline(always)]
     pub(crate) fn shadow_ray(&self, si: &Interaction, dir: DVec3, distance: f64) -> (Ray, f64) {
         let (from, moved) = self.scene.offset(si, dir, si.point);
         (Ray { origin: from, dir }, shadow_reach(distance, moved))
@@ -336,6 +341,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
 
     /// The rays a surface sends on: the mirror direction r = d − 2(d·n)n, and Snell's law for
     /// the transmitted one, with kr and kt after the Fresnel term.
+    #[inline(always)]
     pub(crate) fn children(&mut self, task: &Task, si: &Interaction) -> Children {
         let scene = self.scene;
         let m = scene.material(si.material);
@@ -429,6 +435,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
     /// The mirror ray of a total internal reflection, which carries the transmitted share kt
     /// and stays inside (the cut-off refraction ray has its depth and weight: the depth limit
     /// and the adaptive threshold stop both alike).
+    #[inline(always)]
     pub(crate) fn mirror_inside(
         &self,
         task: &Task,
@@ -466,6 +473,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
 
     /// Why a secondary ray is not traced, if it is not: its depth reached the limit, or its
     /// weight fell below the adaptive threshold (it could change the pixel too little).
+    #[inline(always)]
     fn limit(&self, task: &Task) -> Option<Termination> {
         if task.depth >= self.options.max_depth {
             Some(Termination::MaxDepth)
@@ -477,6 +485,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
     }
 
     /// `limit`, counted among the work skipped.
+    #[inline(always)]
     pub(crate) fn stopped(&mut self, task: &Task) -> Option<Termination> {
         let why = self.limit(task);
         match why {
@@ -489,6 +498,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
 
     /// A secondary ray's intensity as its parent receives it: with `secondary_attenuation`,
     /// divided by c0 + c1·d + c2·d² for the distance d it travelled (seed 004).
+    #[inline(always)]
     pub(crate) fn attenuated(&self, color: DVec3, distance: f64) -> DVec3 {
         match self.scene.secondary_attenuation {
             Some([c0, c1, c2]) if distance.is_finite() => {
@@ -541,6 +551,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
     }
 
     /// Counts a ray among the rays of its kind.
+    #[inline(always)]
     pub(crate) fn count(&mut self, kind: RayKind) {
         match kind {
             RayKind::Primary => self.stats.primary_rays += 1,
