@@ -1,6 +1,10 @@
 //! Antialiasing (seed 004's supersampling; POV-Ray's adaptive method): where primary rays go,
 //! what they cost, and how close each mode comes to the exact pixel coverage.
 
+mod common;
+
+use common::scene;
+
 use std::sync::atomic::AtomicBool;
 
 use glam::DVec3;
@@ -8,10 +12,6 @@ use raytree::render::film::Film;
 use raytree::render::{render, render_simple, Image, RenderOptions};
 use raytree::scene::{parse, Limits, Scene};
 use raytree::scene::{Antialias, Filter};
-
-fn scene(yaml: &str) -> Scene {
-    parse(yaml, "aa.yaml", None, &Limits::default()).unwrap()
-}
 
 /// A white triangle on black, lit only by the ambient term (so a pixel's exact value is the
 /// fraction of it the triangle covers): slanted edges, the worst case for a regular grid.

@@ -17,7 +17,9 @@ struct Link {
 fn is_name(span: &str) -> bool {
     let ident = |s: &str| {
         !s.is_empty()
-            && s.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && s.chars()
+                .next()
+                .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
             && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
     };
     match span.split_once("::") {
@@ -92,8 +94,10 @@ fn lesson_readmes() -> Vec<std::path::PathBuf> {
         .map(|e| e.unwrap().path())
         .filter(|p| {
             p.is_dir()
-                && p.file_name()
-                    .is_some_and(|n| n.to_string_lossy().starts_with(|c: char| c.is_ascii_digit()))
+                && p.file_name().is_some_and(|n| {
+                    n.to_string_lossy()
+                        .starts_with(|c: char| c.is_ascii_digit())
+                })
         })
         .map(|p| p.join("README.md"))
         .collect();
@@ -107,7 +111,11 @@ fn every_function_the_docs_name_exists_where_they_say() {
     let mut all = vec![];
     let architecture = std::fs::read_to_string(root.join("docs/architecture.md")).unwrap();
     let map = links("docs/architecture.md", &architecture);
-    assert!(map.len() >= 50, "the concept map names only {} functions", map.len());
+    assert!(
+        map.len() >= 50,
+        "the concept map names only {} functions",
+        map.len()
+    );
     all.extend(map);
     for readme in lesson_readmes() {
         let text = std::fs::read_to_string(&readme).unwrap();
@@ -118,7 +126,10 @@ fn every_function_the_docs_name_exists_where_they_say() {
             .unwrap_or_else(|| panic!("{doc} has no \"## In the code\" section"));
         let section = section.split("\n## ").next().unwrap();
         let found = links(&doc, section);
-        assert!(!found.is_empty(), "{doc}: \"In the code\" names no function");
+        assert!(
+            !found.is_empty(),
+            "{doc}: \"In the code\" names no function"
+        );
         all.extend(found);
     }
     let wrong: Vec<String> = all

@@ -1,19 +1,19 @@
 //! Monte Carlo reflection and refraction (seed 000), soft shadows from sphere lights, and the
 //! path tracer's light sampling, against closed-form answers.
 
+mod common;
+
+use common::scene;
+
 use glam::DVec3;
 use raytree::geometry::Ray;
 use raytree::render::{render_simple, RenderOptions};
 use raytree::sampling::Rng;
-use raytree::scene::{parse, Limits, Scene};
+use raytree::scene::Scene;
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
 use raytree::trace::tree::{RayKind, RayNode};
 use raytree::trace::Tracer;
-
-fn scene(yaml: &str) -> Scene {
-    parse(yaml, "glossy.yaml", None, &Limits::default()).unwrap()
-}
 
 const CAMERA: &str =
     "camera: { eye: [0, 1, -1], look_at: [0, 0, 0], fov: 30, width: 16, height: 12 }\n";

@@ -1,18 +1,18 @@
 //! The path tracer against closed-form answers (furnace tests), its own reference (convergence
 //! at the 1/√N rate, next-event estimation unbiased) and thread counts (determinism).
 
+mod common;
+
+use common::scene;
+
 use std::path::Path;
 
 use glam::DVec3;
 use raytree::render::{render_simple, Image, RenderOptions};
 use raytree::sampling::Rng;
-use raytree::scene::{load, parse, Limits, Scene};
+use raytree::scene::{load, Limits, Scene};
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
-
-fn scene(yaml: &str) -> Scene {
-    parse(yaml, "mc.yaml", None, &Limits::default()).unwrap()
-}
 
 fn mean(img: &Image) -> DVec3 {
     img.pixels.iter().sum::<DVec3>() / img.pixels.len() as f64

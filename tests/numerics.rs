@@ -2,18 +2,17 @@
 //! on a surface, refraction up to and beyond the critical angle, nested dielectrics, Fresnel
 //! energy, and coincident CSG faces at every scale.
 
+mod common;
+
+use common::scene;
+
 use glam::DVec3;
 use proptest::prelude::*;
 use raytree::geometry::{Aabox, Ray, Shape, Sphere};
 use raytree::scene::Search;
-use raytree::scene::{parse, Limits, Scene};
 use raytree::shading::optics::{refract, schlick};
 use raytree::stats::Stats;
 use raytree::trace::{RayKind, Tracer};
-
-fn scene(yaml: &str) -> Scene {
-    parse(yaml, "n.yaml", None, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 500, ..ProptestConfig::default() })]

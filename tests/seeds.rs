@@ -1,17 +1,17 @@
 //! The worked examples of the lecture notes (../shared/seeds), reproduced through the library.
 
+mod common;
+
+use common::scene;
+
 use std::path::Path;
 
 use glam::DVec3;
 use raytree::geometry::Ray;
+use raytree::scene::Limits;
 use raytree::scene::Search;
-use raytree::scene::{parse, Limits, Scene};
 use raytree::stats::Stats;
 use raytree::trace::{text, Tracer};
-
-fn scene(yaml: &str) -> Scene {
-    parse(yaml, "test.yaml", None, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
-}
 
 const SEED_000_CSG: &str = r#"
 camera: { eye: [0, 0, -10], look_at: [0, 0, 0], width: 8, height: 8 }

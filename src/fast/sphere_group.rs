@@ -51,6 +51,10 @@ impl SphereGroup {
         self.len
     }
 
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
     /// The nearest crossing with t_min < t < t_max and the sphere it belongs to: the first of
     /// the nearest, as testing the spheres in order with a shrinking limit finds it.
     #[inline(always)]

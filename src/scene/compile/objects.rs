@@ -27,7 +27,7 @@ pub fn of(
         .map(|p| p.to_path_buf())
         .unwrap_or_default();
     let mut builder = Builder {
-        materials: &material_index,
+        materials: material_index,
         leaves: Vec::new(),
         limits,
         base: &base,

@@ -16,7 +16,8 @@ fuzz_target!(|data: &[u8]| {
         }
         Ok(mut scene) => {
             scene.camera = scene.camera.resized(4, 3);
-            let (image, _) = render_simple(&scene, RenderOptions { max_depth: scene.max_depth.min(3), spp: 1, seed: 0 });
+            let options = RenderOptions { max_depth: scene.max_depth.min(3), spp: 1, ..RenderOptions::of(&scene) };
+            let (image, _) = render_simple(&scene, options);
             assert!(image.first_non_finite().is_none(), "NaN pixel");
         }
     }
