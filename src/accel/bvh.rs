@@ -109,7 +109,7 @@ impl Bvh {
         }
         // Deep down, halve at the median so the traversal stack (64 entries) can never overflow.
         let split = if depth < 40 {
-            self.sah_split(boxes, centers, start, end, axis, &centroid_bounds, &bounds)
+            self.sah_split(boxes, centers, start..end, axis, &centroid_bounds, &bounds)
         } else {
             None
         };
@@ -138,17 +138,16 @@ impl Bvh {
 
     /// Binned SAH: partitions the items and returns the split point, or None when a leaf is
     /// cheaper than any split.
-    #[allow(clippy::too_many_arguments)]
     fn sah_split(
         &mut self,
         boxes: &[Aabb],
         centers: &[DVec3],
-        start: usize,
-        end: usize,
+        items: std::ops::Range<usize>,
         axis: usize,
         cb: &Aabb,
         bounds: &Aabb,
     ) -> Option<usize> {
+        let (start, end) = (items.start, items.end);
         let (lo, width) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
         if width <= 0.0 {
             return None;

@@ -314,7 +314,6 @@ impl FastScene<'_> {
     /// against all of them at once, then the object ray by ray where it passed, and each ray's
     /// nearest hit so far and its limit t_max are updated as `intersect` would.
     /// Out of line, so that the lanes' loop over plain spheres and planes stays small.
-    #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     fn object_in_lanes(
         &self,
@@ -350,7 +349,6 @@ impl FastScene<'_> {
 
     /// Object o against the shadow rays of a packet still `open` (bit i: ray i), behind its
     /// box tried against all of them at once: the bits of the rays it blocks.
-    #[allow(clippy::too_many_arguments)]
     #[inline(never)]
     fn object_blocks_lanes(
         &self,

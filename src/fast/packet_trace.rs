@@ -157,7 +157,7 @@ fn shade_packet<L: Lanes + ?Sized>(
                 lanes[cast] = i;
                 cast += 1;
             } else {
-                let s = t.shadow_factor(si, tasks.depth(i), sample.l, sample.distance, light);
+                let s = t.shadow_factor(si, tasks.depth(i), &sample, light);
                 out[i] += s * terms[i];
             }
         }

@@ -60,7 +60,6 @@ impl Camera {
         Camera::frame(eye, target, up, fov_degrees, width, height, true)
     }
 
-    #[allow(clippy::too_many_arguments)]
     fn frame(
         eye: DVec3,
         target: DVec3,

@@ -6,11 +6,13 @@ pub mod path;
 pub mod recorder;
 mod task;
 pub mod text;
+pub mod tracer;
 pub mod tree;
 pub mod whitted;
 
 pub use media::Media;
 pub use task::Task;
+pub use tracer::{TraceOptions, Tracer};
 pub use tree::{Inspection, RayKind, RayNode, Termination};
+pub use whitted::shadow_reach;
 pub(crate) use whitted::Transmission;
-pub use whitted::{shadow_reach, TraceOptions, Tracer};
