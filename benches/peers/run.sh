@@ -45,10 +45,6 @@ for scene in ${scenes[*]}; do
     paste "$out/r" "$out/p" | awk '{print $1 / $2}' > "$out/ratios"
     ratio=$(median < "$out/ratios")
     range=$(sort -n "$out/ratios" | awk 'NR == 1 {lo = $1} {hi = $1} END {printf "%.3f–%.3f", lo, hi}')
-    # Warm-up, counting the rays (every run traces the same ones).
-    pov_rays=$("${pov[@]}" 2>&1 |
-        awk '/^Rays:/ {r = $2} /^Shadow Ray Tests:/ {s = $4} END {print r + s}')
-    ray_rays=$("${ray[@]}" --stats 2>&1 | awk '/^rays traced/ {print $3}')
     printf "%-8s %12s %12s %8.3f %14s %14s %14s\n" "$scene" "$p" "$r" "$ratio" "$range" \
         "$(rate "$pov_rays" "$p")" "$(rate "$ray_rays" "$r")"
 done
