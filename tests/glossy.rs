@@ -70,12 +70,15 @@ fn glossy_noise_falls_as_one_over_root_n_about_the_right_mean() {
 
 #[test]
 fn a_glossy_floor_under_a_uniform_sky_reflects_exactly_kr_times_the_sky() {
-    // Every sampled ray, even one mirrored back from below the floor, sees the sky.
+    // Every sampled ray sees the sky: one drawn below the floor is folded back above it. A
+    // black floor just below would darken any ray that went under.
     for lobe in ["spread: 30", "spread: 2", "exponent: 3"] {
         let s = scene(&format!(
             "{CAMERA}background: 0.8\n\
-             materials: {{ floor: {{ kr: 0.5, glossy: {{ {lobe}, samples: 8 }} }} }}\n\
-             objects: [ {{ plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }} ]\n"
+             materials: {{ floor: {{ kr: 0.5, glossy: {{ {lobe}, samples: 8 }} }}, black: {{}} }}\n\
+             objects:\n\
+             - {{ plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }}\n\
+             - {{ plane: {{ point: [0, -0.01, 0], normal: [0, 1, 0] }}, material: black }}\n"
         ));
         let (image, _) = render_simple(&s, RenderOptions::of(&s));
         for p in &image.pixels {

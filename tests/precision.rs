@@ -1,68 +1,84 @@
-//! How far from the origin can a scene be before floating point breaks it? The same shadow-ray
-//! computation in f32 and in f64, with the fixed epsilon an f32 renderer typically uses.
+//! How far from the origin can a scene be before floating point breaks it? raytree's own shadow
+//! rays, with a fixed bias, on a floor moved ever further out; beside them the same computation
+//! written in f32, which is what an f32 renderer with the usual fixed epsilon would do.
 //! (`cargo test --test precision -- --nocapture` prints the table quoted in the README.)
 
-/// The fraction of floor pixels whose shadow ray starts below the floor (self-shadowing:
-/// acne), for a floor at height `offset` seen from 10 units above, the whole scene moved
-/// `offset` from the origin along every axis, shadow rays lifted by `eps`.
-macro_rules! acne_fraction {
-    ($name:ident, $f:ty) => {
-        fn $name(offset: f64, eps: f64) -> f64 {
-            let d0 = offset as $f;
-            let eps = eps as $f;
-            let (mut bad, mut total) = (0u32, 0u32);
-            for j in 0..64 {
-                for i in 0..64 {
-                    // Eye 10 above the floor, looking down through a 2 × 2 window.
-                    let o = [d0, d0 + 10.0, d0];
-                    let d = [(i as $f - 31.5) / 32.0, -1.0 as $f, (j as $f - 31.5) / 32.0];
-                    let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                    let d = [d[0] / len, d[1] / len, d[2] / len];
-                    // Plane y = d0: t = (d0 − o.y)/d.y, p = o + t·d, shadow ray from p + eps·n.
-                    let t = (d0 - o[1]) / d[1];
-                    let py = o[1] + t * d[1];
-                    let start = py + eps;
-                    // The shadow ray toward a light above re-hits the floor when it starts
-                    // on or below it.
-                    if start - d0 <= 0.0 {
-                        bad += 1;
-                    }
-                    total += 1;
-                }
-            }
-            bad as f64 / total as f64
-        }
-    };
+mod common;
+
+use raytree::render::{render_simple, RenderOptions};
+
+/// The fixed bias both sides use: a typical f32 renderer's epsilon.
+const EPS: f64 = 1e-4;
+
+/// The fraction of raytree's floor pixels in their own shadow (acne: the shadow ray toward a
+/// light straight above the floor starts below it and is blocked by it). The floor is tilted
+/// (normal (0.6, 0.8, 0)), so that its points are not exact in any coordinate, and seen from 10
+/// above along its normal. It is lit with kd = 1 and no ambient term, so a pixel is 0 exactly
+/// when its shadow ray was blocked: nothing else is in the scene.
+fn raytree_acne(offset: f64) -> f64 {
+    let o = offset;
+    let n = [0.6, 0.8, 0.0];
+    let at = |k: f64| format!("[{:e}, {:e}, {o:e}]", o + k * n[0], o + k * n[1]);
+    let yaml = format!(
+        "camera: {{ eye: {}, look_at: {}, up: [0, 0, 1], fov: 90, width: 64, height: 64 }}
+shadow_bias: {EPS:e}
+lights: [ {{ point: {} }} ]
+materials: {{ floor: {{ kd: 1 }} }}
+objects:
+  - {{ name: floor, plane: {{ point: {}, normal: [0.6, 0.8, 0] }}, material: floor }}
+",
+        at(10.0),
+        at(0.0),
+        at(100.0),
+        at(0.0),
+    );
+    let scene = common::scene(&yaml);
+    let (image, _) = render_simple(&scene, RenderOptions::of(&scene));
+    let dark = image.pixels.iter().filter(|p| p.x == 0.0).count();
+    dark as f64 / image.pixels.len() as f64
 }
 
-acne_fraction!(acne_f32, f32);
-acne_fraction!(acne_f64, f64);
-
-#[test]
-fn f32_breaks_thousands_of_units_out_f64_does_not() {
-    let eps = 1e-4;
-    println!("offset     f32 acne   f64 acne   (fixed epsilon {eps})");
-    let mut first_f32 = None;
-    let mut first_f64 = None;
-    for k in 0..=13 {
-        let offset = 10f64.powi(k);
-        let (a, b) = (acne_f32(offset, eps), acne_f64(offset, eps));
-        println!("1e{k:<7} {:>8.1}%  {:>8.1}%", 100.0 * a, 100.0 * b);
-        if a > 0.01 && first_f32.is_none() {
-            first_f32 = Some(k);
-        }
-        if b > 0.01 && first_f64.is_none() {
-            first_f64 = Some(k);
+/// The same floor in f32, written out: the point on the floor, lifted by the epsilon, is
+/// still on or below the floor when the spacing of f32 numbers there exceeds the epsilon.
+fn f32_acne(offset: f64) -> f64 {
+    let (d0, eps) = (offset as f32, EPS as f32);
+    let mut bad = 0;
+    for j in 0..64 {
+        for i in 0..64 {
+            let o = [d0, d0 + 10.0, d0];
+            let d = [(i as f32 - 31.5) / 32.0, -1.0f32, (j as f32 - 31.5) / 32.0];
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let dy = d[1] / len;
+            let t = (d0 - o[1]) / dy;
+            let py = o[1] + t * dy;
+            if py + eps - d0 <= 0.0 {
+                bad += 1;
+            }
         }
     }
-    // f32 has 24 bits: at 10^4 the spacing of floats (≈ 0.001) exceeds the epsilon.
+    bad as f64 / 4096.0
+}
+
+#[test]
+fn raytree_in_f64_keeps_a_fixed_bias_clean_until_the_spacing_of_doubles_exceeds_it() {
+    println!("offset     f32 acne   raytree (f64) acne   (fixed bias {EPS})");
+    let mut first = None;
+    for k in 0..=14 {
+        let offset = 10f64.powi(k);
+        let (a, b) = (f32_acne(offset), raytree_acne(offset));
+        println!("1e{k:<7} {:>8.1}%  {:>8.1}%", 100.0 * a, 100.0 * b);
+        if b > 0.01 && first.is_none() {
+            first = Some(k);
+        }
+    }
+    // Doubles near x are x·2⁻⁵² apart: the bias 1e−4 is first smaller than that spacing for
+    // x ≈ 4.5·10¹¹, so the first offset with acne is 10¹² (or, if the rounding of that one
+    // happens to stay on the right side, 10¹³); none before.
     assert!(
-        matches!(first_f32, Some(3..=4)),
-        "f32 first fails at 1e{first_f32:?}"
+        matches!(first, Some(12..=13)),
+        "raytree first shows acne at 1e{first:?}"
     );
-    // f64 has 53 bits: the same epsilon lasts until about 10^12.
-    assert!(
-        matches!(first_f64, Some(11..=13)),
-        "f64 first fails at 1e{first_f64:?}"
-    );
+    // From there on, the hit points' rounding errors (up or down, about equally) exceed the
+    // bias: a large share of the floor is in its own shadow.
+    assert!(raytree_acne(1e14) > 0.25);
 }
