@@ -131,9 +131,9 @@ fn light_mark(l: &crate::shading::Light) -> LightMark {
     }
 }
 
-/// The frame around the rays: their origins and hits, the eye and the image plane; a shadow
-/// ray's light only when it is not far off (a distant light would shrink the rays to a dot;
-/// its ray runs off the edge instead); the objects too when no ray hit anything.
+/// The frame around the rays: their origins and hits, the eye and the image plane; the objects
+/// hit and a shadow ray's light only when they are not far off (a distant light would shrink
+/// the rays to a dot: its ray runs off the edge instead); all objects when no ray hit any.
 fn frame_around(scene: &Scene, all: &[Segment], eye: Option<&Eye>, view: View) -> Frame {
     let mut near: Vec<DVec2> = vec![];
     let mut lights: Vec<DVec2> = vec![];
@@ -156,10 +156,22 @@ fn frame_around(scene: &Scene, all: &[Segment], eye: Option<&Eye>, view: View) -
         }
     }
     let core = Frame::around(near.iter().copied(), 0.0);
+    let big = core.size().max_element();
     let reach = Frame {
-        min: core.min - core.size(),
-        max: core.max + core.size(),
+        min: core.min - big,
+        max: core.max + big,
     };
+    // The objects the rays hit, whole, unless one is much larger than the rays' reach.
+    for s in all.iter().filter(|s| s.normal.is_some()) {
+        let Some(o) = s.object.as_ref().and_then(|n| scene.objects.iter().find(|o| &o.name == n)) else {
+            continue;
+        };
+        let (lo, hi) = (view.project(o.bounds.min), view.project(o.bounds.max));
+        if o.bounds.is_finite() && reach.contains(lo) && reach.contains(hi) {
+            near.push(lo);
+            near.push(hi);
+        }
+    }
     near.extend(lights.into_iter().filter(|p| reach.contains(*p)));
     Frame::around(near, 0.08)
 }

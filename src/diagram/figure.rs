@@ -96,6 +96,31 @@ fn text(at: DVec2, s: &str, size: f64, color: &str) -> Text {
         .set("paint-order", "stroke")
 }
 
+/// A label at `at` that stays inside the panel: anchored at its end when it would run off
+/// the right edge.
+fn label_in(p: &Panel, at: DVec2, s: &str, size: f64, color: &str) -> Text {
+    let width = 0.6 * size * s.chars().count() as f64;
+    let right = p.origin.x + p.size.x - 4.0;
+    let t = text(at, s, size, color);
+    if at.x + width > right {
+        t.set("x", r(at.x.min(right))).set("text-anchor", "end")
+    } else {
+        t
+    }
+}
+
+/// The rectangle (top-left, bottom-right) a label drawn by `label_in` covers, roughly.
+fn label_box(p: &Panel, at: DVec2, s: &str, size: f64) -> (DVec2, DVec2) {
+    let width = 0.6 * size * s.chars().count() as f64;
+    let right = p.origin.x + p.size.x - 4.0;
+    let x0 = if at.x + width > right { at.x.min(right) - width } else { at.x };
+    (DVec2::new(x0, at.y - size), DVec2::new(x0 + width, at.y + 2.0))
+}
+
+fn overlap(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
+    a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
+}
+
 /// Two decimals are plenty for pixel coordinates.
 fn r(x: f64) -> f64 {
     (x * 100.0).round() / 100.0
@@ -264,10 +289,15 @@ impl Figure<'_> {
                 .unwrap_or(DVec2::ZERO);
             g = g.add(text(low + DVec2::new(6.0, 14.0), "image plane", 12.0, "#666666"));
             let eye = p.px(d.at(e.at));
+            let pix = p.px(d.at(e.pixel));
+            // The label on the side away from the image plane.
+            let away = (eye - pix).normalize_or(DVec2::NEG_Y) * 16.0;
             g = g
                 .add(Circle::new().set("cx", r(eye.x)).set("cy", r(eye.y)).set("r", 5).set("fill", INK))
-                .add(text(eye + DVec2::new(-14.0, -10.0), "eye", 13.0, INK));
-            let pix = p.px(d.at(e.pixel));
+                .add(
+                    text(eye + away + DVec2::new(0.0, 4.0), "eye", 13.0, INK)
+                        .set("text-anchor", "middle"),
+                );
             g = g.add(
                 Rectangle::new()
                     .set("x", r(pix.x - 3.0))
@@ -286,6 +316,7 @@ impl Figure<'_> {
         order.sort_by_key(|s| (!matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked), s.depth));
         let labelled = d.segments.len() <= 40;
         let mut labels = vec![];
+        let mut taken: Vec<(DVec2, DVec2)> = vec![];
         for s in order {
             let (a, b) = d.ends(s, &p.frame);
             let (pa, pb) = (p.px(a), p.px(b));
@@ -320,16 +351,29 @@ impl Figure<'_> {
                 }
                 g = g.add(Circle::new().set("cx", r(ph.x)).set("cy", r(ph.y)).set("r", 3.2).set("fill", INK));
             }
-            if labelled && dir.length() > 30.0 && (!shadow || d.segments.len() <= 16) {
-                let mid = pa + dir * if s.to.is_some() { 0.5 } else { 0.35 };
+            let room = if s.kind == SegKind::Primary { 30.0 } else { 60.0 };
+            if labelled && dir.length() > room && (!shadow || d.segments.len() <= 16) {
+                let along = match (shadow, s.to.is_some()) {
+                    (true, _) => 0.25,
+                    (false, true) => 0.5,
+                    (false, false) => 0.35,
+                };
+                let mid = pa + dir * along;
                 let off = dir.perp().normalize_or_zero() * 10.0;
-                // Labels go above the ray.
-                let off = if off.y > 0.0 { -off } else { off };
                 let mut label = s.label();
                 if s.kind == SegKind::Missed {
                     label = format!("{label} (background)");
                 }
-                labels.push(text(mid + off, &label, 12.0, &color));
+                // Above the ray, else below it; left out where both would cover another label.
+                let above = if off.y > 0.0 { -off } else { off };
+                for at in [mid + above, mid - above + DVec2::new(0.0, 10.0)] {
+                    let bx = label_box(p, at, &label, 12.0);
+                    if !taken.iter().any(|b| overlap(b, &bx)) {
+                        taken.push(bx);
+                        labels.push(label_in(p, at, &label, 12.0, &color));
+                        break;
+                    }
+                }
             }
         }
         for t in labels {
@@ -365,7 +409,7 @@ impl Figure<'_> {
             };
             return g
                 .add(Circle::new().set("cx", r(c.x)).set("cy", r(c.y)).set("r", 7).set("fill", sun).set("stroke", "#b07d00"))
-                .add(text(c + DVec2::new(14.0, -10.0), &name, 14.0, INK).set("font-weight", "bold"));
+                .add(label_in(p, c + DVec2::new(14.0, -10.0), &name, 14.0, INK).set("font-weight", "bold"));
         }
         let Some(dir) = l.direction else {
             return g;
@@ -376,17 +420,17 @@ impl Figure<'_> {
             return g.add(text(p.origin + DVec2::new(8.0, 18.0), &format!("{}: along the view", l.name), 13.0, INK));
         }
         let centre = p.frame.center();
-        let from_edge = p.frame.exit(centre, -v);
         let size = p.frame.size().length();
+        let from_edge = p.frame.exit(centre, -v) + v * 0.02 * size;
         let mut g = g;
         for k in [-1.0, 0.0, 1.0] {
-            let start = from_edge + v.perp() * k * 0.035 * size - v * 0.0;
+            let start = from_edge + v.perp() * k * 0.035 * size;
             let end = start + v * 0.12 * size;
             let (a, b) = (p.px(start), p.px(end));
             g = g.add(line(a, b, sun, 2.5)).add(arrowhead(b, b - a, 10.0, sun));
         }
-        let at = p.px(from_edge + v * 0.06 * size) + DVec2::new(10.0, 4.0);
-        g.add(text(at, &format!("{} (far away)", l.name), 14.0, INK).set("font-weight", "bold"))
+        let at = p.px(from_edge + v * 0.06 * size + v.perp() * 0.07 * size);
+        g.add(label_in(p, at, &format!("{} (far away)", l.name), 14.0, INK).set("font-weight", "bold"))
     }
 
     fn legend(&self, at: DVec2) -> Group {

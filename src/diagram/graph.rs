@@ -90,20 +90,22 @@ pub fn title(n: &RayNode) -> String {
             let to = match (&n.hit, n.terminated) {
                 (Some(h), _) => h.object.clone(),
                 (None, Some(Termination::Background)) | (None, None) => "background".into(),
-                (None, Some(Termination::MaxDepth)) => "not traced (max depth)".into(),
-                (None, Some(Termination::Adaptive)) => "not traced (adaptive)".into(),
-                (None, Some(Termination::TotalInternalReflection)) => "total internal reflection".into(),
+                (None, Some(_)) => "not traced".into(),
             };
             format!("{} → {to}", k.name())
         }
     }
 }
 
-/// "I = 0.462" for a ray, "lit, s = 1" or "blocked by a" for a shadow ray.
+/// "I = 0.462" for a ray, "lit, s = 1" or "blocked by a" for a shadow ray, why a ray was not
+/// traced.
 pub fn value(n: &RayNode) -> String {
-    match (n.kind, &n.hit) {
-        (RayKind::Shadow, Some(h)) => format!("blocked by {}", h.object),
-        (RayKind::Shadow, None) => format!("lit, s = {}", short(n.shadow.unwrap_or(1.0))),
+    match (n.kind, &n.hit, n.terminated) {
+        (RayKind::Shadow, Some(h), _) => format!("blocked by {}", h.object),
+        (RayKind::Shadow, None, _) => format!("lit, s = {}", short(n.shadow.unwrap_or(1.0))),
+        (_, None, Some(Termination::MaxDepth)) => "(max depth)".into(),
+        (_, None, Some(Termination::Adaptive)) => "(adaptive cut-off)".into(),
+        (_, None, Some(Termination::TotalInternalReflection)) => "(total internal reflection)".into(),
         _ => format!("I = {}", short_color(n.color)),
     }
 }

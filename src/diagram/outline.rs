@@ -31,14 +31,19 @@ pub struct LeafOutline {
 }
 
 impl Outline {
-    /// The points a label is placed by: the polygon's top, the line's point.
+    /// The point a label is placed by: the polygon's top, the line's point.
     pub fn anchor(&self) -> DVec2 {
         match self {
-            Outline::Polygon(p) => p
-                .iter()
-                .copied()
-                .max_by(|a, b| a.y.total_cmp(&b.y))
-                .unwrap_or(DVec2::ZERO),
+            // The top, and of points as high (a sheet seen edge-on) the leftmost.
+            Outline::Polygon(p) => {
+                let top = p.iter().map(|q| q.y).fold(f64::NEG_INFINITY, f64::max);
+                let size = self.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length());
+                p.iter()
+                    .copied()
+                    .filter(|q| q.y >= top - 1e-3 * size)
+                    .min_by(|a, b| a.x.total_cmp(&b.x))
+                    .unwrap_or(DVec2::ZERO)
+            }
             Outline::Line { point, .. } => *point,
         }
     }
