@@ -27,7 +27,10 @@ fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
         ),
         ("plot_font", vec![]),
         // Ray diagrams: the projection and outlines the explorer and the figures share.
-        ("diagram", vec!["trace", "scene", "shading", "geometry", "accel"]),
+        (
+            "diagram",
+            vec!["trace", "scene", "shading", "geometry", "accel"],
+        ),
     ];
     // The applications, on top: everything but the fast wing, which the renderer alone runs.
     let below_apps = ["render", "trace", "scene", "shading", "geometry", "accel"];

@@ -4,10 +4,10 @@ use std::process::ExitCode;
 
 use super::args::{depth, SceneArgs, Target};
 use super::Failure;
+use crate::diagram::dot::dot;
 use crate::sampling::Rng;
 use crate::stats::Stats;
 use crate::trace::tree::Inspection;
-use crate::diagram::dot::dot;
 use crate::trace::{text, Tracer};
 
 #[derive(clap::Args, Debug)]

@@ -18,8 +18,16 @@ pub fn dot(root: &RayNode, scene: Option<&Scene>, title: &str) -> String {
     for (i, n) in nodes.iter().enumerate() {
         let node = super::node_at(root, &n.path);
         let color = hex(node.map_or(SegKind::Missed, SegKind::of).rgb());
-        let style = if n.untraced { ", style=\"rounded,dashed\"" } else { "" };
-        let shape = if n.kind == RayKind::Shadow { ", shape=ellipse" } else { "" };
+        let style = if n.untraced {
+            ", style=\"rounded,dashed\""
+        } else {
+            ""
+        };
+        let shape = if n.kind == RayKind::Shadow {
+            ", shape=ellipse"
+        } else {
+            ""
+        };
         out.push_str(&format!(
             "  n{i} [label={}, color=\"{color}\"{shape}{style}];\n",
             quote(&format!("{}\n{}", n.title, n.value))

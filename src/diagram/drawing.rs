@@ -163,7 +163,11 @@ fn frame_around(scene: &Scene, all: &[Segment], eye: Option<&Eye>, view: View) -
     };
     // The objects the rays hit, whole, unless one is much larger than the rays' reach.
     for s in all.iter().filter(|s| s.normal.is_some()) {
-        let Some(o) = s.object.as_ref().and_then(|n| scene.objects.iter().find(|o| &o.name == n)) else {
+        let Some(o) = s
+            .object
+            .as_ref()
+            .and_then(|n| scene.objects.iter().find(|o| &o.name == n))
+        else {
             continue;
         };
         let (lo, hi) = (view.project(o.bounds.min), view.project(o.bounds.max));
@@ -173,5 +177,9 @@ fn frame_around(scene: &Scene, all: &[Segment], eye: Option<&Eye>, view: View) -
         }
     }
     near.extend(lights.into_iter().filter(|p| reach.contains(*p)));
+    // Some way along each ray that leaves for the background, so that it is seen going.
+    for s in all.iter().filter(|s| s.kind == SegKind::Missed) {
+        near.push(view.project(s.from + s.dir * 0.5 * big.max(1.0)));
+    }
     Frame::around(near, 0.08)
 }

@@ -113,8 +113,15 @@ fn label_in(p: &Panel, at: DVec2, s: &str, size: f64, color: &str) -> Text {
 fn label_box(p: &Panel, at: DVec2, s: &str, size: f64) -> (DVec2, DVec2) {
     let width = 0.6 * size * s.chars().count() as f64;
     let right = p.origin.x + p.size.x - 4.0;
-    let x0 = if at.x + width > right { at.x.min(right) - width } else { at.x };
-    (DVec2::new(x0, at.y - size), DVec2::new(x0 + width, at.y + 2.0))
+    let x0 = if at.x + width > right {
+        at.x.min(right) - width
+    } else {
+        at.x
+    };
+    (
+        DVec2::new(x0, at.y - size),
+        DVec2::new(x0 + width, at.y + 2.0),
+    )
 }
 
 fn overlap(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
@@ -193,9 +200,7 @@ impl Figure<'_> {
                     ),
                 ),
             )
-            .add(
-                text(DVec2::new(12.0, 26.0), &self.title, 16.0, INK).set("font-weight", "bold"),
-            )
+            .add(text(DVec2::new(12.0, 26.0), &self.title, 16.0, INK).set("font-weight", "bold"))
             .add(
                 Rectangle::new()
                     .set("x", scene_origin.x)
@@ -287,13 +292,24 @@ impl Figure<'_> {
                 .copied()
                 .max_by(|a, b| a.y.total_cmp(&b.y))
                 .unwrap_or(DVec2::ZERO);
-            g = g.add(text(low + DVec2::new(6.0, 14.0), "image plane", 12.0, "#666666"));
+            g = g.add(text(
+                low + DVec2::new(6.0, 14.0),
+                "image plane",
+                12.0,
+                "#666666",
+            ));
             let eye = p.px(d.at(e.at));
             let pix = p.px(d.at(e.pixel));
             // The label on the side away from the image plane.
             let away = (eye - pix).normalize_or(DVec2::NEG_Y) * 16.0;
             g = g
-                .add(Circle::new().set("cx", r(eye.x)).set("cy", r(eye.y)).set("r", 5).set("fill", INK))
+                .add(
+                    Circle::new()
+                        .set("cx", r(eye.x))
+                        .set("cy", r(eye.y))
+                        .set("r", 5)
+                        .set("fill", INK),
+                )
                 .add(
                     text(eye + away + DVec2::new(0.0, 4.0), "eye", 13.0, INK)
                         .set("text-anchor", "middle"),
@@ -313,7 +329,12 @@ impl Figure<'_> {
         }
         // Rays: shadow rays first, then by depth, so the ray a label belongs to is on top.
         let mut order: Vec<&Segment> = d.segments.iter().collect();
-        order.sort_by_key(|s| (!matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked), s.depth));
+        order.sort_by_key(|s| {
+            (
+                !matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked),
+                s.depth,
+            )
+        });
         let labelled = d.segments.len() <= 40;
         let mut labels = vec![];
         let mut taken: Vec<(DVec2, DVec2)> = vec![];
@@ -332,14 +353,29 @@ impl Figure<'_> {
             if dir.length() > 12.0 {
                 // The arrow in the middle of a ray that ends, near the edge of one that does not.
                 let at = if s.to.is_some() { 0.55 } else { 0.8 };
-                g = g.add(arrowhead(pa + dir * at, dir, if shadow { 9.0 } else { 12.0 }, &color));
+                g = g.add(arrowhead(
+                    pa + dir * at,
+                    dir,
+                    if shadow { 9.0 } else { 12.0 },
+                    &color,
+                ));
             }
             if s.kind == SegKind::ShadowBlocked {
                 // A cross where the blocker stops it.
                 let k = 5.0;
                 g = g
-                    .add(line(pb + DVec2::new(-k, -k), pb + DVec2::new(k, k), &color, 2.0))
-                    .add(line(pb + DVec2::new(-k, k), pb + DVec2::new(k, -k), &color, 2.0));
+                    .add(line(
+                        pb + DVec2::new(-k, -k),
+                        pb + DVec2::new(k, k),
+                        &color,
+                        2.0,
+                    ))
+                    .add(line(
+                        pb + DVec2::new(-k, k),
+                        pb + DVec2::new(k, -k),
+                        &color,
+                        2.0,
+                    ));
             }
             if let Some((hit, n)) = s.normal {
                 let tip = d.at(hit + n * 0.07 * diag);
@@ -347,11 +383,24 @@ impl Figure<'_> {
                 if (pt - ph).length() > 4.0 {
                     g = g
                         .add(line(ph, pt, NORMAL, 1.6).set("stroke-dasharray", "5 4"))
-                        .add(text(pt + DVec2::new(3.0, -3.0), "n", 12.0, NORMAL).set("font-style", "italic"));
+                        .add(
+                            text(pt + DVec2::new(3.0, -3.0), "n", 12.0, NORMAL)
+                                .set("font-style", "italic"),
+                        );
                 }
-                g = g.add(Circle::new().set("cx", r(ph.x)).set("cy", r(ph.y)).set("r", 3.2).set("fill", INK));
+                g = g.add(
+                    Circle::new()
+                        .set("cx", r(ph.x))
+                        .set("cy", r(ph.y))
+                        .set("r", 3.2)
+                        .set("fill", INK),
+                );
             }
-            let room = if s.kind == SegKind::Primary { 30.0 } else { 60.0 };
+            let room = if s.kind == SegKind::Primary {
+                30.0
+            } else {
+                60.0
+            };
             if labelled && dir.length() > room && (!shadow || d.segments.len() <= 16) {
                 let along = match (shadow, s.to.is_some()) {
                     (true, _) => 0.25,
@@ -408,8 +457,18 @@ impl Figure<'_> {
                 l.name.clone()
             };
             return g
-                .add(Circle::new().set("cx", r(c.x)).set("cy", r(c.y)).set("r", 7).set("fill", sun).set("stroke", "#b07d00"))
-                .add(label_in(p, c + DVec2::new(14.0, -10.0), &name, 14.0, INK).set("font-weight", "bold"));
+                .add(
+                    Circle::new()
+                        .set("cx", r(c.x))
+                        .set("cy", r(c.y))
+                        .set("r", 7)
+                        .set("fill", sun)
+                        .set("stroke", "#b07d00"),
+                )
+                .add(
+                    label_in(p, c + DVec2::new(14.0, -10.0), &name, 14.0, INK)
+                        .set("font-weight", "bold"),
+                );
         }
         let Some(dir) = l.direction else {
             return g;
@@ -417,7 +476,12 @@ impl Figure<'_> {
         // Parallel arrows from far away, entering near the corner the light comes from.
         let v = d.view.project(dir).normalize_or_zero();
         if v == DVec2::ZERO {
-            return g.add(text(p.origin + DVec2::new(8.0, 18.0), &format!("{}: along the view", l.name), 13.0, INK));
+            return g.add(text(
+                p.origin + DVec2::new(8.0, 18.0),
+                &format!("{}: along the view", l.name),
+                13.0,
+                INK,
+            ));
         }
         let centre = p.frame.center();
         let size = p.frame.size().length();
@@ -427,10 +491,15 @@ impl Figure<'_> {
             let start = from_edge + v.perp() * k * 0.035 * size;
             let end = start + v * 0.12 * size;
             let (a, b) = (p.px(start), p.px(end));
-            g = g.add(line(a, b, sun, 2.5)).add(arrowhead(b, b - a, 10.0, sun));
+            g = g
+                .add(line(a, b, sun, 2.5))
+                .add(arrowhead(b, b - a, 10.0, sun));
         }
         let at = p.px(from_edge + v * 0.06 * size + v.perp() * 0.07 * size);
-        g.add(label_in(p, at, &format!("{} (far away)", l.name), 14.0, INK).set("font-weight", "bold"))
+        g.add(
+            label_in(p, at, &format!("{} (far away)", l.name), 14.0, INK)
+                .set("font-weight", "bold"),
+        )
     }
 
     fn legend(&self, at: DVec2) -> Group {
@@ -439,12 +508,20 @@ impl Figure<'_> {
         for k in SegKind::ALL {
             let c = ray_color(k);
             g = g
-                .add(line(DVec2::new(x, at.y), DVec2::new(x + 22.0, at.y), &c, 3.0))
+                .add(line(
+                    DVec2::new(x, at.y),
+                    DVec2::new(x + 22.0, at.y),
+                    &c,
+                    3.0,
+                ))
                 .add(text(DVec2::new(x + 27.0, at.y + 4.0), k.name(), 12.0, INK));
             x += 36.0 + 7.2 * k.name().len() as f64;
         }
-        g.add(line(DVec2::new(x, at.y), DVec2::new(x + 22.0, at.y), NORMAL, 1.6).set("stroke-dasharray", "5 4"))
-            .add(text(DVec2::new(x + 27.0, at.y + 4.0), "normal", 12.0, INK))
+        g.add(
+            line(DVec2::new(x, at.y), DVec2::new(x + 22.0, at.y), NORMAL, 1.6)
+                .set("stroke-dasharray", "5 4"),
+        )
+        .add(text(DVec2::new(x + 27.0, at.y + 4.0), "normal", 12.0, INK))
     }
 
     /// The ray tree as a graph in the rectangle at `origin` of `size`.
@@ -460,13 +537,25 @@ impl Figure<'_> {
         let row_h = ((size.y - 30.0) / rows).min(110.0);
         let chars = nodes
             .iter()
-            .map(|n| node_lines(n).iter().map(|l| l.chars().count()).max().unwrap_or(1))
+            .map(|n| {
+                node_lines(n)
+                    .iter()
+                    .map(|l| l.chars().count())
+                    .max()
+                    .unwrap_or(1)
+            })
             .max()
             .unwrap_or(1) as f64;
         // Small enough that the widest node fits its column, and three lines its row.
-        let font = (0.92 * col_w / (0.62 * chars)).min(0.28 * row_h).clamp(6.0, 13.0);
+        let font = (0.92 * col_w / (0.62 * chars))
+            .min(0.28 * row_h)
+            .clamp(6.0, 13.0);
         let box_w = |n: &GraphNode| {
-            let c = node_lines(n).iter().map(|l| l.chars().count()).max().unwrap_or(1) as f64;
+            let c = node_lines(n)
+                .iter()
+                .map(|l| l.chars().count())
+                .max()
+                .unwrap_or(1) as f64;
             (c * 0.62 * font + 8.0).min(col_w * 0.98).max(font * 4.0)
         };
         let box_h = 3.0 * font * 1.25 + 6.0;
@@ -480,7 +569,10 @@ impl Figure<'_> {
         for n in &nodes {
             let Some(pi) = n.parent else { continue };
             let (a, b) = (centre(&nodes[pi]), centre(n));
-            let (a, b) = (a + DVec2::new(0.0, box_h / 2.0), b - DVec2::new(0.0, box_h / 2.0));
+            let (a, b) = (
+                a + DVec2::new(0.0, box_h / 2.0),
+                b - DVec2::new(0.0, box_h / 2.0),
+            );
             let color = node_color(self.tree, n);
             g = g.add(line(a, b, &color, 1.4));
             if let Some(e) = &n.edge {
@@ -503,15 +595,26 @@ impl Figure<'_> {
                 .set("stroke", color.as_str())
                 .set("stroke-width", if n.path.is_empty() { 2.5 } else { 1.6 });
             if n.untraced {
-                rect = rect.set("stroke-dasharray", "4 3").set("stroke-opacity", 0.6);
+                rect = rect
+                    .set("stroke-dasharray", "4 3")
+                    .set("stroke-opacity", 0.6);
             }
             g = g.add(rect);
             for (i, l) in node_lines(n).iter().enumerate() {
                 let y = c.y - box_h / 2.0 + 3.0 + font * (1.0 + 1.25 * i as f64);
-                let t = text(DVec2::new(c.x, y), l, font, if i == 0 { color.as_str() } else { INK })
-                    .set("text-anchor", "middle")
-                    .set("stroke-width", 0);
-                g = g.add(if i == 0 { t.set("font-weight", "bold") } else { t });
+                let t = text(
+                    DVec2::new(c.x, y),
+                    l,
+                    font,
+                    if i == 0 { color.as_str() } else { INK },
+                )
+                .set("text-anchor", "middle")
+                .set("stroke-width", 0);
+                g = g.add(if i == 0 {
+                    t.set("font-weight", "bold")
+                } else {
+                    t
+                });
             }
         }
         g
@@ -523,7 +626,9 @@ fn node_lines(n: &GraphNode) -> [String; 3] {
     let (kind, to) = n
         .title
         .split_once(" → ")
-        .map_or((n.title.clone(), String::new()), |(a, b)| (a.to_string(), b.to_string()));
+        .map_or((n.title.clone(), String::new()), |(a, b)| {
+            (a.to_string(), b.to_string())
+        });
     [kind, format!("→ {to}"), n.value.clone()]
 }
 

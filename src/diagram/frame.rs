@@ -139,7 +139,9 @@ mod tests {
         let f = unit();
         let (a, b) = f.clip(DVec2::new(-1.0, 0.5), DVec2::new(2.0, 0.5)).unwrap();
         assert_eq!((a, b), (DVec2::new(0.0, 0.5), DVec2::new(1.0, 0.5)));
-        assert!(f.clip(DVec2::new(-1.0, 2.0), DVec2::new(2.0, 2.0)).is_none());
+        assert!(f
+            .clip(DVec2::new(-1.0, 2.0), DVec2::new(2.0, 2.0))
+            .is_none());
         // A diagonal through a corner region that misses the square.
         assert!(f.clip(DVec2::new(1.5, 0.0), DVec2::new(2.0, 2.0)).is_none());
         let inside = (DVec2::new(0.2, 0.3), DVec2::new(0.4, 0.9));

@@ -36,7 +36,16 @@ pub struct GraphNode {
 pub fn layout(root: &RayNode, scene: Option<&Scene>) -> Vec<GraphNode> {
     let mut out = vec![];
     let mut next_leaf = 0.0;
-    place(root, None, None, scene, &mut vec![], 0, &mut next_leaf, &mut out);
+    place(
+        root,
+        None,
+        None,
+        scene,
+        &mut vec![],
+        0,
+        &mut next_leaf,
+        &mut out,
+    );
     out
 }
 
@@ -62,7 +71,11 @@ fn place(
         edge: parent_node.and_then(|p| edge(p, n, scene)),
         untraced: matches!(
             n.terminated,
-            Some(Termination::MaxDepth | Termination::Adaptive | Termination::TotalInternalReflection)
+            Some(
+                Termination::MaxDepth
+                    | Termination::Adaptive
+                    | Termination::TotalInternalReflection
+            )
         ),
     });
     let x = if n.children.is_empty() {
@@ -73,7 +86,16 @@ fn place(
         let mut xs = vec![];
         for (i, c) in n.children.iter().enumerate() {
             path.push(i);
-            xs.push(place(c, Some(n), Some(index), scene, path, row + 1, next_leaf, out));
+            xs.push(place(
+                c,
+                Some(n),
+                Some(index),
+                scene,
+                path,
+                row + 1,
+                next_leaf,
+                out,
+            ));
             path.pop();
         }
         0.5 * (xs[0] + xs[xs.len() - 1])
@@ -105,7 +127,9 @@ pub fn value(n: &RayNode) -> String {
         (RayKind::Shadow, None, _) => format!("lit, s = {}", short(n.shadow.unwrap_or(1.0))),
         (_, None, Some(Termination::MaxDepth)) => "(max depth)".into(),
         (_, None, Some(Termination::Adaptive)) => "(adaptive cut-off)".into(),
-        (_, None, Some(Termination::TotalInternalReflection)) => "(total internal reflection)".into(),
+        (_, None, Some(Termination::TotalInternalReflection)) => {
+            "(total internal reflection)".into()
+        }
         _ => format!("I = {}", short_color(n.color)),
     }
 }
@@ -141,7 +165,10 @@ mod tests {
         let g = layout(&tree, Some(&scene));
         assert_eq!(g.len(), tree.size());
         for n in &g {
-            let kids: Vec<&GraphNode> = g.iter().filter(|c| c.parent == Some(g.iter().position(|m| m == n).unwrap())).collect();
+            let kids: Vec<&GraphNode> = g
+                .iter()
+                .filter(|c| c.parent == Some(g.iter().position(|m| m == n).unwrap()))
+                .collect();
             if kids.is_empty() {
                 assert_eq!(n.pos.x.fract(), 0.0, "a leaf sits in a column of its own");
             } else {
@@ -152,6 +179,9 @@ mod tests {
         }
         // The sheet a: kr = kt = 0.3, as the exercise gives them.
         let edges: Vec<&str> = g.iter().filter_map(|n| n.edge.as_deref()).collect();
-        assert!(edges.contains(&"kr = 0.3") && edges.contains(&"kt = 0.3"), "{edges:?}");
+        assert!(
+            edges.contains(&"kr = 0.3") && edges.contains(&"kt = 0.3"),
+            "{edges:?}"
+        );
     }
 }

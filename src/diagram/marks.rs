@@ -58,11 +58,21 @@ mod tests {
 
     #[test]
     fn a_pixel_ray_lands_back_on_its_pixel() {
-        let cam = Camera::look_at(DVec3::new(0.0, 1.0, -6.0), DVec3::ZERO, DVec3::Y, 40.0, 48, 36);
+        let cam = Camera::look_at(
+            DVec3::new(0.0, 1.0, -6.0),
+            DVec3::ZERO,
+            DVec3::Y,
+            40.0,
+            48,
+            36,
+        );
         for (x, y) in [(0, 0), (20, 15), (47, 35)] {
             let ray = cam.pixel_ray(x, y);
             let at = image_position(&cam, ray.at(7.5)).unwrap();
-            assert!((at - DVec2::new(x as f64 + 0.5, y as f64 + 0.5)).length() < 1e-9, "{at}");
+            assert!(
+                (at - DVec2::new(x as f64 + 0.5, y as f64 + 0.5)).length() < 1e-9,
+                "{at}"
+            );
         }
         assert_eq!(image_position(&cam, DVec3::new(0.0, 1.0, -10.0)), None);
     }

@@ -51,10 +51,12 @@ impl Outline {
     /// The polygon's bounding rectangle (none for a line).
     pub fn bounds(&self) -> Option<(DVec2, DVec2)> {
         match self {
-            Outline::Polygon(p) if !p.is_empty() => Some(p.iter().fold(
-                (DVec2::INFINITY, DVec2::NEG_INFINITY),
-                |(lo, hi), q| (lo.min(*q), hi.max(*q)),
-            )),
+            Outline::Polygon(p) if !p.is_empty() => Some(
+                p.iter()
+                    .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), q| {
+                        (lo.min(*q), hi.max(*q))
+                    }),
+            ),
             _ => None,
         }
     }
@@ -83,7 +85,11 @@ pub fn outlines(scene: &Scene, view: View, section: f64) -> Vec<LeafOutline> {
 pub fn leaf_outline(l: &Leaf, view: View, section: f64) -> Option<Outline> {
     let tf = l.transform.as_ref();
     let world = |p: DVec3| tf.map_or(p, |t| t.point_to_world(p));
-    let flat = |pts: Vec<DVec3>| Outline::Polygon(hull(pts.into_iter().map(|p| view.project(world(p))).collect()));
+    let flat = |pts: Vec<DVec3>| {
+        Outline::Polygon(hull(
+            pts.into_iter().map(|p| view.project(world(p))).collect(),
+        ))
+    };
     Some(match &l.shape {
         Shape::Sphere(s) => ellipse(s.center, s.radius, tf, view),
         Shape::Box(b) => {
@@ -228,7 +234,10 @@ mod tests {
         };
         let max_x = p.iter().map(|q| q.x.abs()).fold(0.0, f64::max);
         let max_y = p.iter().map(|q| q.y.abs()).fold(0.0, f64::max);
-        assert!((max_x - 3.0).abs() < 1e-9 && (max_y - 1.0).abs() < 1e-9, "{max_x} {max_y}");
+        assert!(
+            (max_x - 3.0).abs() < 1e-9 && (max_y - 1.0).abs() < 1e-9,
+            "{max_x} {max_y}"
+        );
         // Seen from above, the z half-axis is 2.
         let Outline::Polygon(p) = ellipse(DVec3::ZERO, 1.0, Some(&tf), View::Top) else {
             panic!();

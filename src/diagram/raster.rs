@@ -30,7 +30,11 @@ fn pixmap(svg: &str) -> Result<resvg::tiny_skia::Pixmap, String> {
     let size = tree.size().to_int_size();
     let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height())
         .ok_or_else(|| format!("cannot draw a {} × {} image", size.width(), size.height()))?;
-    resvg::render(&tree, resvg::tiny_skia::Transform::default(), &mut pixmap.as_mut());
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
     Ok(pixmap)
 }
 

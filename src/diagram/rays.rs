@@ -139,9 +139,8 @@ fn walk(n: &RayNode, path: &mut Vec<usize>, out: &mut Vec<Segment>) {
 
 fn segment(n: &RayNode, path: &[usize]) -> Option<Segment> {
     let shadow = n.kind == RayKind::Shadow;
-    let traced = shadow
-        || matches!(n.terminated, None | Some(Termination::Background))
-        || n.hit.is_some();
+    let traced =
+        shadow || matches!(n.terminated, None | Some(Termination::Background)) || n.hit.is_some();
     if !traced || n.cone().is_some() || !n.direction.is_finite() {
         // A glossy or frosted cone is drawn as its sampled rays, its children.
         return None;
@@ -149,7 +148,12 @@ fn segment(n: &RayNode, path: &[usize]) -> Option<Segment> {
     let (kind, to, object, coefficient) = if shadow {
         let s = n.shadow.unwrap_or(0.0);
         match &n.hit {
-            Some(h) => (SegKind::ShadowBlocked, Some(h.point), Some(h.object.clone()), s),
+            Some(h) => (
+                SegKind::ShadowBlocked,
+                Some(h.point),
+                Some(h.object.clone()),
+                s,
+            ),
             None => {
                 let reach = n.t_max.filter(|t| t.is_finite());
                 let to = reach.map(|t| n.origin + t * n.direction);
@@ -164,7 +168,12 @@ fn segment(n: &RayNode, path: &[usize]) -> Option<Segment> {
             (Some(_), _) => SegKind::Refraction,
         };
         let h = n.hit.as_ref();
-        (kind, h.map(|h| h.point), h.map(|h| h.object.clone()), n.coefficient)
+        (
+            kind,
+            h.map(|h| h.point),
+            h.map(|h| h.object.clone()),
+            n.coefficient,
+        )
     };
     let normal = if shadow {
         None

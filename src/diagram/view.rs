@@ -158,13 +158,25 @@ mod tests {
     #[test]
     fn auto_drops_the_axis_the_rays_do_not_leave() {
         // Rays in the plane z = 0 (lesson 08): seen from the front.
-        let flat_z = [DVec3::new(-2.0, 3.5, 0.0), DVec3::ZERO, DVec3::new(1.0, 1.7, 0.0)];
+        let flat_z = [
+            DVec3::new(-2.0, 3.5, 0.0),
+            DVec3::ZERO,
+            DVec3::new(1.0, 1.7, 0.0),
+        ];
         assert_eq!(View::best_for(&flat_z), View::Front);
         // Rays along the z axis with a shadow ray up in y (lesson 07): x never changes.
-        let along_z = [DVec3::new(0.0, 0.0, -5.0), DVec3::ZERO, DVec3::new(0.0, 5.0, -5.0)];
+        let along_z = [
+            DVec3::new(0.0, 0.0, -5.0),
+            DVec3::ZERO,
+            DVec3::new(0.0, 5.0, -5.0),
+        ];
         assert_eq!(View::best_for(&along_z), View::Side);
         // Rays in a floor plane y = 1: from above.
-        let flat_y = [DVec3::new(0.0, 1.0, 0.0), DVec3::new(3.0, 1.0, 2.0), DVec3::new(-1.0, 1.0, 5.0)];
+        let flat_y = [
+            DVec3::new(0.0, 1.0, 0.0),
+            DVec3::new(3.0, 1.0, 2.0),
+            DVec3::new(-1.0, 1.0, 5.0),
+        ];
         assert_eq!(View::best_for(&flat_y), View::Top);
     }
 

@@ -261,20 +261,7 @@ impl App {
             lesson: self.lesson_open(),
             diagram: self.diagram.open,
         };
-        layout::scene_panes(area, aspect, open, self.message_rows(), self.tree_width())
-    }
-
-    /// Cells the tree pane needs across for its widest row, borders included.
-    pub fn tree_width(&self) -> u16 {
-        let widest = self.tree.shown_tree().map_or(0, |root| {
-            self.tree
-                .rows()
-                .iter()
-                .map(|r| super::tree::row_width(root, r))
-                .max()
-                .unwrap_or(0)
-        });
-        (widest + 2).min(u16::MAX as usize) as u16
+        layout::scene_panes(area, aspect, open, self.message_rows())
     }
 
     /// Lines the tree pane gives to rows at the current size.

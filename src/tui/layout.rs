@@ -7,6 +7,9 @@ use ratatui::layout::{Margin, Rect};
 /// Terminals at least this wide show the lesson panel as a column of its own.
 pub const WIDE: u16 = 120;
 
+/// The tree pane's width on wide terminals: a row four levels deep with its colour.
+pub const TREE_WIDTH: u16 = 64;
+
 /// The panes of the scene screen.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Panes {
@@ -64,16 +67,11 @@ pub struct Open {
 /// The scene screen: preview and tree on top, details (or CSG) below, the lesson beside
 /// (wide screens) or in place of the details (narrow ones), status and message lines at the
 /// bottom. The diagram shares the bottom with the details (or the lesson), on its right; on a
-/// wide screen with the lesson open it takes the top of the lesson's column instead. The
-/// preview gives up width (down to two thirds of what it would take) so that the tree's rows
-/// fit (`tree_width` cells, borders included).
-pub fn scene_panes(
-    area: Rect,
-    aspect: f64,
-    open: Open,
-    message_rows: u16,
-    tree_width: u16,
-) -> Panes {
+/// wide screen with the lesson open it takes the top of the lesson's column instead. On a
+/// wide screen the preview gives up width (down to two thirds of what it would take) so that
+/// the tree pane is `TREE_WIDTH` wide: deep rows with their colours fit. The tree shown does
+/// not change the layout, so picking a pixel never renders the preview again.
+pub fn scene_panes(area: Rect, aspect: f64, open: Open, message_rows: u16) -> Panes {
     let (main, status, message) = bottom_lines(area, message_rows);
     let wide = area.width >= WIDE;
     let (left, side) = if open.lesson && wide {
@@ -95,6 +93,7 @@ pub fn scene_panes(
         left.width * 3 / 5
     };
     let full = wanted.min(cap);
+    let tree_width = if wide { TREE_WIDTH } else { 0 };
     let room = left.width.saturating_sub(tree_width);
     let pw = full.min(room.max(full * 2 / 3)).max(left.width.min(6));
     let preview = Rect::new(top.x, top.y, pw, top_h);
@@ -124,7 +123,12 @@ pub fn scene_panes(
                 // The details (or the lesson) keep 9/20 of the width: their lines wrap.
                 let lw = bottom.width * 9 / 20;
                 let left_part = Rect::new(bottom.x, bottom.y, lw, bottom.height);
-                diagram = Some(Rect::new(bottom.x + lw, bottom.y, bottom.width - lw, bottom.height));
+                diagram = Some(Rect::new(
+                    bottom.x + lw,
+                    bottom.y,
+                    bottom.width - lw,
+                    bottom.height,
+                ));
                 if lower.is_some() {
                     lower = Some(left_part);
                 } else {
@@ -211,11 +215,12 @@ mod tests {
             for lesson in [false, true] {
                 for diagram in [false, true] {
                     let open = Open { lesson, diagram };
-                    let p = scene_panes(Rect::new(0, 0, w, h), 4.0 / 3.0, open, 1, 60);
-                    let rects: Vec<Rect> = [Some(p.preview), Some(p.tree), p.lower, p.lesson, p.diagram]
-                        .into_iter()
-                        .flatten()
-                        .collect();
+                    let p = scene_panes(Rect::new(0, 0, w, h), 4.0 / 3.0, open, 1);
+                    let rects: Vec<Rect> =
+                        [Some(p.preview), Some(p.tree), p.lower, p.lesson, p.diagram]
+                            .into_iter()
+                            .flatten()
+                            .collect();
                     for (i, a) in rects.iter().enumerate() {
                         assert!(a.width > 0 && a.height > 0, "{w}×{h} {open:?}: {a:?}");
                         for b in &rects[i + 1..] {
@@ -227,17 +232,18 @@ mod tests {
                 }
             }
         }
-        // A wide tree takes width from the preview, down to two thirds of it.
-        let open = Open { lesson: true, diagram: false };
-        let narrow = scene_panes(Rect::new(0, 0, 160, 48), 4.0 / 3.0, open, 1, 40);
-        let wide = scene_panes(Rect::new(0, 0, 160, 48), 4.0 / 3.0, open, 1, 62);
-        assert!(wide.tree.width >= 62 || wide.preview.width * 3 >= narrow.preview.width * 2);
-        assert!(wide.tree.width > narrow.tree.width);
+        // With the lesson open on a wide screen the tree still gets its width.
+        let open = Open {
+            lesson: true,
+            diagram: false,
+        };
+        let p = scene_panes(Rect::new(0, 0, 160, 48), 4.0 / 3.0, open, 1);
+        assert!(p.tree.width >= TREE_WIDTH, "{:?}", p.tree);
     }
 
     #[test]
     fn picking_a_cell_and_marking_a_pixel_agree() {
-        let p = scene_panes(Rect::new(0, 0, 80, 24), 161.0 / 121.0, Open::default(), 1, 40);
+        let p = scene_panes(Rect::new(0, 0, 80, 24), 161.0 / 121.0, Open::default(), 1);
         for (x, y) in [(0, 0), (80, 60), (160, 120), (13, 77)] {
             let (c, r) = pixel_cell(&p, (161, 121), (x, y)).unwrap();
             let (x2, y2) = cell_pixel(&p, (161, 121), c, r).unwrap();

@@ -219,16 +219,6 @@ pub fn intensity_text(n: &RayNode) -> Option<String> {
     (n.kind != RayKind::Shadow).then(|| format!("  I = {} ", short_color(n.color)))
 }
 
-/// Cells a row of the tree pane takes: the selection mark, guides, icon, label, intensity and
-/// its swatch (two cells, three in ASCII).
-pub fn row_width(root: &RayNode, row: &Row) -> usize {
-    let Some(n) = node_at(root, &row.path) else {
-        return 0;
-    };
-    let text = intensity_text(n).map_or(0, |t| t.chars().count() + 3);
-    1 + row.guides.chars().count() + 2 + label(n).chars().count() + text
-}
-
 /// The nodes that are rays with an intensity of their own (not shadow rays), in display order.
 pub fn ray_paths(root: &RayNode) -> Vec<NodePath> {
     let mut out = Vec::new();

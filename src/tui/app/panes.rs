@@ -148,9 +148,6 @@ impl App {
             Msg::ToggleDiagram => {
                 let note = self.diagram.toggle();
                 self.message = Some(note);
-                if self.diagram.open {
-                    self.focus = Focus::Diagram;
-                }
             }
             Msg::CycleView => {
                 let note = self.diagram.cycle_view();

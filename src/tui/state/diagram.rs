@@ -106,7 +106,11 @@ impl DiagramPane {
                 Tone::Info,
             );
         }
-        let open = if self.open { "" } else { " (d opens the diagram)" };
+        let open = if self.open {
+            ""
+        } else {
+            " (d opens the diagram)"
+        };
         (
             format!("BVH boxes the selected ray's search visited{open}"),
             Tone::Info,

@@ -93,7 +93,13 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let legend_area = Rect::new(body.x, body.bottom() - 1, body.width, 1);
     let frame = app.diagram.frame(&d, canvas_area.width, canvas_area.height);
     let selected = app.tree.selected().to_vec();
-    let color = |c: Color| if app.color == crate::render::preview::ColorMode::Ascii { Color::Reset } else { c };
+    let color = |c: Color| {
+        if app.color == crate::render::preview::ColorMode::Ascii {
+            Color::Reset
+        } else {
+            c
+        }
+    };
     let canvas = Canvas::default()
         .marker(Marker::Braille)
         .x_bounds([frame.min.x, frame.max.x])
@@ -139,7 +145,11 @@ fn paint(
             Outline::Polygon(p) if p.len() >= 2 => {
                 // Outlines far outside the frame cost nothing to skip.
                 let (lo, hi) = o.outline.bounds().expect("a polygon has bounds");
-                if hi.x < frame.min.x || lo.x > frame.max.x || hi.y < frame.min.y || lo.y > frame.max.y {
+                if hi.x < frame.min.x
+                    || lo.x > frame.max.x
+                    || hi.y < frame.min.y
+                    || lo.y > frame.max.y
+                {
                     continue;
                 }
                 for i in 0..p.len() {
@@ -151,7 +161,12 @@ fn paint(
                 }
             }
             Outline::Line { point, dir } => {
-                seg(ctx, *point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag, color(OUTLINE));
+                seg(
+                    ctx,
+                    *point - *dir * 4.0 * diag,
+                    *point + *dir * 4.0 * diag,
+                    color(OUTLINE),
+                );
             }
             _ => {}
         }
@@ -172,13 +187,23 @@ fn paint(
     if let Some(e) = &d.eye {
         let corners: Vec<DVec2> = e.image_plane.iter().map(|p| d.at(*p)).collect();
         for i in 0..4 {
-            seg(ctx, corners[i], corners[(i + 1) % 4], color(Color::DarkGray));
+            seg(
+                ctx,
+                corners[i],
+                corners[(i + 1) % 4],
+                color(Color::DarkGray),
+            );
         }
     }
     ctx.layer();
     // Rays, the shadow rays under the others; normals dashed.
     let mut order: Vec<_> = d.segments.iter().collect();
-    order.sort_by_key(|s| (!matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked), s.depth));
+    order.sort_by_key(|s| {
+        (
+            !matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked),
+            s.depth,
+        )
+    });
     for s in &order {
         let (a, b) = d.ends(s, frame);
         seg(ctx, a, b, color(kind_color(s.kind)));
@@ -198,7 +223,9 @@ fn paint(
         });
     }
     // Names: objects, lights, the eye.
-    let dim = Style::new().fg(color(OUTLINE)).add_modifier(Modifier::ITALIC);
+    let dim = Style::new()
+        .fg(color(OUTLINE))
+        .add_modifier(Modifier::ITALIC);
     let mut named: Vec<&str> = vec![];
     for o in &d.outlines {
         if named.contains(&o.object.as_str()) {
@@ -206,17 +233,27 @@ fn paint(
         }
         named.push(&o.object);
         let at = match &o.outline {
-            Outline::Line { point, dir } => match frame.clip(*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag) {
-                Some((a, b)) => if a.x <= b.x { a } else { b },
-                None => continue,
-            },
+            Outline::Line { point, dir } => {
+                match frame.clip(*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag) {
+                    Some((a, b)) => {
+                        if a.x <= b.x {
+                            a
+                        } else {
+                            b
+                        }
+                    }
+                    None => continue,
+                }
+            }
             other => other.anchor(),
         };
         if frame.contains(at) {
             ctx.print(at.x, at.y, Span::styled(o.object.clone(), dim));
         }
     }
-    let bright = Style::new().fg(color(Color::LightYellow)).add_modifier(Modifier::BOLD);
+    let bright = Style::new()
+        .fg(color(Color::LightYellow))
+        .add_modifier(Modifier::BOLD);
     for l in &d.lights {
         if let Some(p) = l.at {
             let q = d.at(p);
@@ -229,21 +266,33 @@ fn paint(
             if v.length() > 0.0 {
                 let at = frame.exit(frame.center(), -v);
                 let inside = at + (frame.center() - at) * 0.1;
-                ctx.print(inside.x, inside.y, Span::styled(format!("☀{}", l.name), bright));
+                ctx.print(
+                    inside.x,
+                    inside.y,
+                    Span::styled(format!("☀{}", l.name), bright),
+                );
             }
         }
     }
     if let Some(e) = &d.eye {
         let q = d.at(e.at);
         if frame.contains(q) {
-            ctx.print(q.x, q.y, Span::styled("◉eye", Style::new().add_modifier(Modifier::BOLD)));
+            ctx.print(
+                q.x,
+                q.y,
+                Span::styled("◉eye", Style::new().add_modifier(Modifier::BOLD)),
+            );
         }
     }
 }
 
 /// The legend: each kind in its colour, the words shortened when the line is narrow.
 fn legend(app: &App, width: u16) -> Line<'static> {
-    let full: usize = SegKind::ALL.iter().map(|k| k.name().len() + 3).sum::<usize>() + 9;
+    let full: usize = SegKind::ALL
+        .iter()
+        .map(|k| k.name().len() + 3)
+        .sum::<usize>()
+        + 9;
     let short = width as usize <= full;
     let mut spans = vec![];
     for k in SegKind::ALL {
@@ -254,7 +303,11 @@ fn legend(app: &App, width: u16) -> Line<'static> {
         ));
     }
     spans.push(Span::styled(
-        if short { "┄n".to_string() } else { "┄normal".to_string() },
+        if short {
+            "┄n".to_string()
+        } else {
+            "┄normal".to_string()
+        },
         themed(app, Style::new().fg(NORMAL)),
     ));
     Line::from(spans)

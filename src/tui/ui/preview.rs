@@ -7,10 +7,10 @@ use ratatui::text::Line;
 use ratatui::Frame;
 
 use super::{pane, themed};
+use crate::diagram::marks::hit_marks;
 use crate::render::preview::{ramp_char, ColorMode};
 use crate::tui::app::{App, Focus};
 use crate::tui::layout::{pixel_cell, Panes};
-use crate::diagram::marks::hit_marks;
 use crate::tui::worker::Pass;
 
 use super::diagram::kind_color;
