@@ -74,12 +74,19 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         let entered = v.boxes.iter().filter(|b| b.1).count();
         let note = if v.total == 0 {
             " no BVH: every object tested ".to_string()
-        } else {
+        } else if area.width < 70 {
             format!(
-                " BVH: {} of {} boxes visited, {entered} entered · {} objects tested ",
+                " BVH {}/{} boxes, {entered} entered ",
+                v.boxes.len(),
+                v.total
+            )
+        } else {
+            let tested = v.objects_tested;
+            let s = if tested == 1 { "" } else { "s" };
+            format!(
+                " BVH: {} of {} boxes visited, {entered} entered · {tested} object{s} tested ",
                 v.boxes.len(),
                 v.total,
-                v.objects_tested
             )
         };
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
@@ -227,7 +234,9 @@ fn paint(
         .fg(color(OUTLINE))
         .add_modifier(Modifier::ITALIC);
     let mut named: Vec<&str> = vec![];
-    for o in &d.outlines {
+    // Hundreds of names would hide the drawing.
+    let few = d.outlines.len() <= 24;
+    for o in d.outlines.iter().filter(|_| few) {
         if named.contains(&o.object.as_str()) {
             continue;
         }
