@@ -101,7 +101,17 @@ impl Frame {
                 }
             }
         }
-        (t0 <= t1).then(|| (a + t0 * d, a + t1 * d))
+        // Ends inside the frame are kept exactly as they are.
+        let at = |t: f64, end: DVec2| {
+            if t == 0.0 {
+                a
+            } else if t == 1.0 {
+                end
+            } else {
+                a + t * d
+            }
+        };
+        (t0 <= t1).then(|| (at(t0, a), at(t1, b)))
     }
 
     /// Where a ray from `from` along `dir` leaves the frame (`from` itself when it is outside
