@@ -12,11 +12,13 @@
 //! 6. `trace`: the Whitted recursion (the textbook core), the path tracer, ray trees;
 //! 7. `fast`: the fast wing, an optimisation of the core that equals it bit for bit;
 //! 8. `render`: images from many rays, in parallel;
-//! 9. `lessons`, `bench`, `tui`, `cli`: what users run.
+//! 9. `diagram`: a pixel's rays drawn in the scene (beside `fast` and `render`, above `trace`);
+//! 10. `lessons`, `bench`, `tui`, `cli`: what users run.
 
 pub mod accel;
 pub mod bench;
 pub mod cli;
+pub mod diagram;
 pub mod fast;
 pub mod geometry;
 pub mod lessons;

@@ -26,15 +26,24 @@ fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
             vec!["fast", "trace", "scene", "shading", "geometry", "accel"],
         ),
         ("plot_font", vec![]),
+        // Ray diagrams: the projection and outlines the explorer and the figures share.
+        (
+            "diagram",
+            vec!["trace", "scene", "shading", "geometry", "accel"],
+        ),
     ];
     // The applications, on top: everything but the fast wing, which the renderer alone runs.
     let below_apps = ["render", "trace", "scene", "shading", "geometry", "accel"];
     layers.push(("lessons", below_apps.to_vec()));
     layers.push(("bench", [&below_apps[..], &["plot_font"]].concat()));
-    layers.push(("tui", [&below_apps[..], &["lessons"]].concat()));
+    layers.push(("tui", [&below_apps[..], &["lessons", "diagram"]].concat()));
     layers.push((
         "cli",
-        [&below_apps[..], &["lessons", "bench", "tui"]].concat(),
+        [
+            &below_apps[..],
+            &["lessons", "bench", "tui", "diagram", "plot_font"],
+        ]
+        .concat(),
     ));
     layers
         .into_iter()

@@ -713,6 +713,210 @@ fn timings() {
 }
 
 // ---------------------------------------------------------------------------------------
+// The ray diagram pane
+
+const L08: &str = "lessons/08-pixel-intensity";
+
+/// Braille cells on a screen: the rays and outlines the canvas drew.
+fn braille(text: &str) -> usize {
+    text.chars()
+        .filter(|c| ('\u{2801}'..='\u{28ff}').contains(c))
+        .count()
+}
+
+/// The rows of the screen inside a pane (its border excluded), as text.
+fn pane_text(app: &App, r: ratatui::layout::Rect) -> String {
+    screen(app)
+        .lines()
+        .skip(r.y as usize + 1)
+        .take(r.height.saturating_sub(2) as usize)
+        .map(|l| {
+            l.chars()
+                .skip(r.x as usize + 1)
+                .take(r.width as usize - 2)
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn the_diagram_pane_draws_the_exercise_from_the_front_at_both_sizes() {
+    for (size, name) in [
+        ((80, 24), "diagram_l08_80x24"),
+        ((160, 48), "diagram_l08_160x48"),
+    ] {
+        let mut app = open(L08, ColorMode::TrueColor, size);
+        update(&mut app, Msg::Pick(30, 30));
+        press(&mut app, KeyCode::Char('d'));
+        let p = app.panes();
+        let r = p.diagram.expect("d opens the diagram");
+        assert!(
+            p.tree.width > 0 && p.lower.or(p.lesson).is_some(),
+            "it shares the screen"
+        );
+        let text = screen(&app);
+        assert!(text.contains("rays · front view (x →, y ↑)"), "{text}");
+        assert!(braille(&pane_text(&app, r)) > 40, "{text}");
+        assert!(
+            text.contains("━prim") || text.contains("━primary"),
+            "the legend: {text}"
+        );
+        // The four surfaces are named where they are drawn.
+        let inside = pane_text(&app, r);
+        for name in ["a", "b", "c", "d"] {
+            assert!(inside.contains(name), "{name} in\n{inside}");
+        }
+        insta::assert_snapshot!(name, text);
+        press(&mut app, KeyCode::Char('d'));
+        assert!(app.panes().diagram.is_none());
+    }
+}
+
+#[test]
+fn the_diagram_views_of_the_mirror_scene_and_a_selected_ray() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(20, 15));
+    press(&mut app, KeyCode::Char('d'));
+    // v: top, then side.
+    press(&mut app, KeyCode::Char('v'));
+    assert!(screen(&app).contains("rays · top view (x →, z ↑)"));
+    insta::assert_snapshot!("diagram_top_160x48", screen(&app));
+    press(&mut app, KeyCode::Char('v'));
+    let side = screen(&app);
+    assert!(side.contains("rays · side view (z →, y ↑)"));
+    insta::assert_snapshot!("diagram_side_160x48", side);
+    // The reflection towards the glass ball selected: drawn in yellow over the others.
+    press(&mut app, KeyCode::Tab);
+    assert_eq!(app.focus, Focus::Tree);
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Down);
+    assert_eq!(app.tree.selected_node().unwrap().kind, RayKind::Reflection);
+    let mut term = ratatui::Terminal::new(ratatui::backend::TestBackend::new(160, 48)).unwrap();
+    term.draw(|f| ui::draw(f, &app)).unwrap();
+    let buf = term.backend().buffer();
+    let r = app.panes().diagram.unwrap();
+    let yellow = (r.x..r.right())
+        .flat_map(|x| (r.y..r.bottom()).map(move |y| (x, y)))
+        .filter(|&(x, y)| {
+            buf[(x, y)].fg == ratatui::style::Color::LightYellow
+                && braille(buf[(x, y)].symbol()) == 1
+        })
+        .count();
+    assert!(
+        yellow > 3,
+        "the selected ray is highlighted ({yellow} cells)"
+    );
+    insta::assert_snapshot!("diagram_selected_80x24", {
+        update(&mut app, Msg::Resize(80, 24));
+        screen(&app)
+    });
+    // Zoom and pan change what is shown; v frames the rays again.
+    let before = screen(&app);
+    press(&mut app, KeyCode::Char('>'));
+    assert!(app.diagram.zoom > 1.0);
+    assert_ne!(screen(&app), before);
+    press(&mut app, KeyCode::Char('<'));
+    press(&mut app, KeyCode::Char('v'));
+    assert_eq!(app.diagram.zoom, 1.0);
+}
+
+#[test]
+fn level_stepping_reveals_the_rays_in_the_diagram_level_by_level() {
+    let mut app = open(L08, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(30, 30));
+    press(&mut app, KeyCode::Char('d'));
+    let r = app.panes().diagram.unwrap();
+    let full = braille(&pane_text(&app, r));
+    press(&mut app, KeyCode::Char('n'));
+    assert_eq!(app.tree.level(), Some(1));
+    let one = pane_text(&app, r);
+    let text = screen(&app);
+    assert!(text.contains("not yet revealed"), "{text}");
+    assert!(!text.contains("not traced: max depth"), "{text}");
+    insta::assert_snapshot!("diagram_level_1_160x48", text);
+    press(&mut app, KeyCode::Char('n'));
+    press(&mut app, KeyCode::Char('n'));
+    assert_eq!(app.tree.level(), Some(3));
+    let three = pane_text(&app, r);
+    insta::assert_snapshot!("diagram_level_3_160x48", screen(&app));
+    // The rays appear level by level in a frame that stays put.
+    assert!(braille(&one) < braille(&three), "{one}\n---\n{three}");
+    assert!(braille(&three) <= full);
+    let mut small = open(L08, ColorMode::TrueColor, (80, 24));
+    update(&mut small, Msg::Pick(30, 30));
+    press(&mut small, KeyCode::Char('d'));
+    press(&mut small, KeyCode::Char('n'));
+    insta::assert_snapshot!("diagram_level_1_80x24", screen(&small));
+    keys(&mut small, "nn");
+    insta::assert_snapshot!("diagram_level_3_80x24", screen(&small));
+}
+
+#[test]
+fn the_bvh_overlay_shows_the_boxes_the_ray_visited_and_their_count() {
+    let mut app = open(
+        "lessons/12-acceleration/many.yaml",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    update(&mut app, Msg::Pick(160, 120));
+    press(&mut app, KeyCode::Char('d'));
+    press(&mut app, KeyCode::Char('b'));
+    let text = screen(&app);
+    let scene = app.file.scene.clone().unwrap();
+    let ray = scene.camera.pixel_ray(160, 120);
+    let v = scene.visited_boxes(&ray, f64::INFINITY, false);
+    let count = format!(
+        "BVH: {} of {} boxes visited",
+        v.boxes.len(),
+        scene.bvh_nodes()
+    );
+    assert!(text.contains(&count), "{count}\n{text}");
+    insta::assert_snapshot!("diagram_bvh_160x48", text);
+    update(&mut app, Msg::Resize(80, 24));
+    insta::assert_snapshot!("diagram_bvh_80x24", screen(&app));
+    // Without a BVH the message says why.
+    let mut small = open(L08, ColorMode::TrueColor, (80, 24));
+    press(&mut small, KeyCode::Char('b'));
+    assert!(screen(&small).contains("no BVH"), "{}", screen(&small));
+}
+
+#[test]
+fn m_marks_where_the_rays_landed_on_the_preview() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(20, 15));
+    assert!(!screen(&app).contains('◆'));
+    press(&mut app, KeyCode::Char('m'));
+    let text = screen(&app);
+    let p = app.panes();
+    // The reflection lands on the glass ball, which the preview shows right of the mirror.
+    let marks: Vec<(u16, u16)> = text
+        .lines()
+        .enumerate()
+        .flat_map(|(y, l)| {
+            l.chars()
+                .enumerate()
+                .filter(|c| c.1 == '◆')
+                .map(move |(x, _)| (x as u16, y as u16))
+        })
+        .collect();
+    let marks: Vec<(u16, u16)> = marks
+        .into_iter()
+        .filter(|&(x, y)| p.image.contains(ratatui::layout::Position::new(x, y)))
+        .collect();
+    assert!(!marks.is_empty(), "{text}");
+    let scene = app.file.scene.clone().unwrap();
+    let tree = app.tree.full_tree().unwrap();
+    let glass = tree.find("reflection").unwrap().hit.as_ref().unwrap().point;
+    let at = raytree::diagram::marks::image_position(&scene.camera, glass).unwrap();
+    let cell =
+        raytree::tui::layout::pixel_cell(&p, app.image_size(), (at.x as u32, at.y as u32)).unwrap();
+    assert!(marks.contains(&cell), "{cell:?} in {marks:?}");
+    press(&mut app, KeyCode::Char('m'));
+    assert!(!screen(&app).contains('◆'));
+}
+
+// ---------------------------------------------------------------------------------------
 // The real binary in a real terminal (tmux)
 
 struct Tmux {
@@ -767,6 +971,11 @@ fn have_tmux() -> bool {
 /// on a server of its own; after the explorer exits, the shell records its exit status and the
 /// terminal's modes (stty -a), then prints DONE.
 fn start_in_tmux(name: &str, env: &str) -> (Tmux, PathBuf, PathBuf) {
+    start_in_tmux_on(name, env, MIRROR)
+}
+
+/// `start_in_tmux` on another scene or lesson.
+fn start_in_tmux_on(name: &str, env: &str, target: &str) -> (Tmux, PathBuf, PathBuf) {
     let bin = env!("CARGO_BIN_EXE_raytree");
     let dir = scratch(name);
     let status = dir.join("status");
@@ -775,7 +984,7 @@ fn start_in_tmux(name: &str, env: &str) -> (Tmux, PathBuf, PathBuf) {
         socket: format!("raytree-{name}-{}", std::process::id()),
     };
     let script = format!(
-        "{env} '{bin}' explore {MIRROR}; echo \"exit $?\" > '{}'; stty -a > '{}'; echo DONE; sleep 60",
+        "{env} '{bin}' explore {target}; echo \"exit $?\" > '{}'; stty -a > '{}'; echo DONE; sleep 60",
         status.display(),
         stty.display()
     );
@@ -842,6 +1051,32 @@ fn in_tmux() {
     assert_restored(&tmux, &stty);
     assert!(
         !after.contains("ray tree ·"),
+        "the explorer's screen is gone:\n{after}"
+    );
+}
+
+#[test]
+fn in_tmux_the_diagram_pane_draws_braille_and_its_legend() {
+    if !have_tmux() {
+        return;
+    }
+    let (tmux, status, stty) = start_in_tmux_on("tmux-diagram", "", L08);
+    tmux.wait_for("ray tree · pixel");
+    tmux.run(&["send-keys", "-t", "explore", "d"]);
+    let shown = tmux.wait_for("rays · front view");
+    assert!(braille(&shown) > 20, "{shown}");
+    assert!(
+        shown.contains("━prim") || shown.contains("━primary"),
+        "{shown}"
+    );
+    tmux.run(&["send-keys", "-t", "explore", "q"]);
+    let after = tmux.wait_for("DONE");
+    let code = std::fs::read_to_string(&status).unwrap();
+    assert_eq!(code.trim(), "exit 0", "{after}");
+    assert_restored(&tmux, &stty);
+    assert_eq!(
+        braille(&after),
+        0,
         "the explorer's screen is gone:\n{after}"
     );
 }

@@ -206,8 +206,23 @@ impl Bvh {
         origin: DVec3,
         dir: DVec3,
         t_min: f64,
+        t_max: f64,
+        visit: impl FnMut(u32, f64) -> Option<f64>,
+    ) -> Visits {
+        self.closest_watched(origin, dir, t_min, t_max, visit, |_, _| {})
+    }
+
+    /// `closest`, telling `watch(node, entered)` of every node whose box it tests, in order:
+    /// what the explorer draws to show the boxes a ray visits. The renderer's searches pass a
+    /// watcher that does nothing, which the compiler removes.
+    pub fn closest_watched(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        t_min: f64,
         mut t_max: f64,
         mut visit: impl FnMut(u32, f64) -> Option<f64>,
+        mut watch: impl FnMut(u32, bool),
     ) -> Visits {
         let mut work = Visits::default();
         if self.nodes.is_empty() {
@@ -221,7 +236,9 @@ impl Bvh {
             top -= 1;
             let node = &self.nodes[stack[top] as usize];
             work.nodes += 1;
-            if !node.bounds.hit_slabs(&slabs, t_min, t_max) {
+            let entered = node.bounds.hit_slabs(&slabs, t_min, t_max);
+            watch(stack[top], entered);
+            if !entered {
                 continue;
             }
             if node.count > 0 {
@@ -254,7 +271,20 @@ impl Bvh {
         dir: DVec3,
         t_min: f64,
         t_max: f64,
+        visit: impl FnMut(u32) -> bool,
+    ) -> (bool, Visits) {
+        self.any_watched(origin, dir, t_min, t_max, visit, |_, _| {})
+    }
+
+    /// `any`, telling `watch(node, entered)` of every node whose box it tests, in order.
+    pub fn any_watched(
+        &self,
+        origin: DVec3,
+        dir: DVec3,
+        t_min: f64,
+        t_max: f64,
         mut visit: impl FnMut(u32) -> bool,
+        mut watch: impl FnMut(u32, bool),
     ) -> (bool, Visits) {
         let mut work = Visits::default();
         if self.nodes.is_empty() {
@@ -268,7 +298,9 @@ impl Bvh {
             let index = stack[top];
             let node = &self.nodes[index as usize];
             work.nodes += 1;
-            if !node.bounds.hit_slabs(&slabs, t_min, t_max) {
+            let entered = node.bounds.hit_slabs(&slabs, t_min, t_max);
+            watch(index, entered);
+            if !entered {
                 continue;
             }
             if node.count > 0 {

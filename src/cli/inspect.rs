@@ -2,8 +2,9 @@
 
 use std::process::ExitCode;
 
-use super::args::{depth, Format, SceneArgs, Target};
+use super::args::{depth, SceneArgs, Target};
 use super::Failure;
+use crate::diagram::dot::dot;
 use crate::sampling::Rng;
 use crate::stats::Stats;
 use crate::trace::tree::Inspection;
@@ -20,6 +21,16 @@ pub struct Args {
     depth: Option<u32>,
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
+}
+
+/// How the tree is printed.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Format {
+    #[default]
+    Text,
+    Json,
+    /// Graphviz: one node per ray, edges labelled with their coefficients.
+    Dot,
 }
 
 /// A path-traced pixel: its estimate over the scene's samples, and the first few paths.
@@ -57,6 +68,11 @@ fn paths(a: &Args, scene: &crate::scene::Scene) -> Result<ExitCode, Failure> {
         shown.push((value, log));
     }
     match a.format {
+        Format::Dot => {
+            return Err(Failure(
+                "--format dot draws a Whitted ray tree; a path-traced scene has paths, not a tree (use --format json)".into(),
+            ))
+        }
         Format::Json => {
             let doc = serde_json::json!({
                 "pixel": [x, y],
@@ -112,6 +128,13 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     };
     match a.format {
         Format::Json => println!("{}", serde_json::to_string_pretty(&inspection)?),
+        Format::Dot => {
+            let title = match inspection.pixel {
+                Some([x, y]) => format!("pixel ({x}, {y}): I = {}", text::color(inspection.color)),
+                None => format!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir)),
+            };
+            print!("{}", dot(&inspection.tree, Some(&scene), &title));
+        }
         Format::Text => {
             if let Some([x, y]) = inspection.pixel {
                 println!("pixel ({x}, {y}) = {}", text::color(inspection.color));

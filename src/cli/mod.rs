@@ -4,6 +4,7 @@ mod args;
 mod bench;
 mod check;
 pub mod csg;
+mod diagram;
 mod explore;
 mod inspect;
 mod lessons;
@@ -30,6 +31,8 @@ enum Command {
     Inspect(inspect::Args),
     /// Print the segment list at every node of every object a ray meets.
     Csg(csg::Args),
+    /// Draw a pixel's rays in a cross-section of the scene, beside its ray tree (SVG or PNG).
+    Diagram(diagram::Args),
     /// Print a half-block (colour) or ASCII preview of a scene to stdout.
     Preview(preview::Args),
     /// The terminal explorer: pick a pixel, see its ray tree (no argument: the lesson list).
@@ -58,6 +61,7 @@ pub fn run() -> ExitCode {
         Command::Render(a) => render::run(a),
         Command::Inspect(a) => inspect::run(a),
         Command::Csg(a) => csg::run(a),
+        Command::Diagram(a) => diagram::run(a),
         Command::Preview(a) => preview::run(a),
         Command::Explore(a) => explore::run(a),
         Command::Bench(a) => bench::run(a),

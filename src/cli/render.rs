@@ -72,16 +72,33 @@ enum EngineArg {
 }
 
 /// Images side by side, separated by a white gap of 4 pixels.
+/// The frames side by side, each under a label "DEPTH k" (frame k is depth k).
 fn strip(frames: &[crate::render::Image]) -> crate::render::Image {
     const GAP: u32 = 4;
+    // The label band: a 3 × 5 font at 2 pixels per dot, or 1 in small frames.
     let (w, h) = (frames[0].width, frames[0].height);
+    let scale = if w >= 60 { 2.0 } else { 1.0 };
+    let band = (5.0 * scale) as u32 + 6;
     let n = frames.len() as u32;
-    let mut out = crate::render::Image::new(n * w + (n - 1) * GAP, h);
+    let mut out = crate::render::Image::new(n * w + (n - 1) * GAP, h + band);
     out.pixels.iter_mut().for_each(|p| *p = glam::DVec3::ONE);
     for (k, f) in frames.iter().enumerate() {
+        let left = k as u32 * (w + GAP);
         for y in 0..h {
             for x in 0..w {
-                out.pixels[(y * out.width + k as u32 * (w + GAP) + x) as usize] = f.get(x, y);
+                out.pixels[((y + band) * out.width + left + x) as usize] = f.get(x, y);
+            }
+        }
+        let label = format!("DEPTH {}", k + 1);
+        let label = if crate::plot_font::width(&label, scale) <= w as f64 {
+            label
+        } else {
+            format!("{}", k + 1)
+        };
+        for (x, y) in crate::plot_font::pixels(&label, left as f64 + 2.0, 3.0, scale) {
+            let (x, y) = (x as u32, y as u32);
+            if x < left + w && y < band {
+                out.pixels[(y * out.width + x) as usize] = glam::DVec3::ZERO;
             }
         }
     }

@@ -10,7 +10,7 @@ use glam::DVec3;
 
 use super::objects::Geometry;
 use super::{Hit, Scene};
-use crate::accel::Bvh;
+use crate::accel::{Aabb, Bvh};
 use crate::geometry::{first_crossing, Ray, Shape, Surface};
 use crate::stats::Stats;
 
@@ -79,6 +79,37 @@ impl SearchIndex {
 
 impl Search for Scene {
     fn nearest(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        self.nearest_watched(ray, t_min, t_max, stats, |_, _| {})
+    }
+
+    fn blocker(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        self.blocker_watched(ray, t_min, t_max, stats, |_, _| {})
+    }
+}
+
+/// The BVH boxes one ray's search tested: what the explorer overlays on its diagram (`b`).
+#[derive(Clone, Debug, Default)]
+pub struct Visited {
+    /// Each box tested, in the order tested, and whether the ray entered it.
+    pub boxes: Vec<(Aabb, bool)>,
+    /// Boxes in the whole hierarchy.
+    pub total: usize,
+    /// Objects whose own test ran (the leaves' objects the ray reached, and the unbounded).
+    pub objects_tested: u64,
+    /// What the search found.
+    pub hit: Option<Hit>,
+}
+
+impl Scene {
+    /// `Search::nearest`, telling `watch(node, entered)` of every BVH node whose box it tests.
+    pub fn nearest_watched(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+        watch: impl FnMut(u32, bool),
+    ) -> Option<Hit> {
         let inv_dir = ray.dir.recip();
         let (mut best, mut limit) = (None, t_max);
         for &o in &self.index.unbounded {
@@ -88,19 +119,32 @@ impl Search for Scene {
             }
         }
         let index = &self.index;
-        let visits = index
-            .bvh
-            .closest(ray.origin, ray.dir, t_min, limit, |item, limit| {
+        let visits = index.bvh.closest_watched(
+            ray.origin,
+            ray.dir,
+            t_min,
+            limit,
+            |item, limit| {
                 let o = index.bounded[item as usize];
                 let h = self.object_hit(o, ray, inv_dir, t_min, limit, stats)?;
                 best = Some(h);
                 Some(h.t)
-            });
+            },
+            watch,
+        );
         stats.bvh_nodes_visited += visits.nodes;
         best
     }
 
-    fn blocker(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+    /// `Search::blocker`, telling `watch(node, entered)` of every BVH node whose box it tests.
+    pub fn blocker_watched(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+        watch: impl FnMut(u32, bool),
+    ) -> Option<Hit> {
         let inv_dir = ray.dir.recip();
         for &o in &self.index.unbounded {
             if let Some(h) = self.object_hit(o, ray, inv_dir, t_min, t_max, stats) {
@@ -109,17 +153,42 @@ impl Search for Scene {
         }
         let index = &self.index;
         let mut blocker = None;
-        let (_, visits) = index.bvh.any(ray.origin, ray.dir, t_min, t_max, |item| {
-            let o = index.bounded[item as usize];
-            blocker = self.object_hit(o, ray, inv_dir, t_min, t_max, stats);
-            blocker.is_some()
-        });
+        let (_, visits) = index.bvh.any_watched(
+            ray.origin,
+            ray.dir,
+            t_min,
+            t_max,
+            |item| {
+                let o = index.bounded[item as usize];
+                blocker = self.object_hit(o, ray, inv_dir, t_min, t_max, stats);
+                blocker.is_some()
+            },
+            watch,
+        );
         stats.bvh_nodes_visited += visits.nodes;
         blocker
     }
-}
 
-impl Scene {
+    /// The boxes the search of a ray tests: the nearest-hit search up to `t_max`, or the
+    /// shadow ray's any-hit search (`shadow`), exactly as the tracer runs them.
+    pub fn visited_boxes(&self, ray: &Ray, t_max: f64, shadow: bool) -> Visited {
+        let nodes = self.index.bvh.nodes();
+        let mut boxes = vec![];
+        let watch = |node: u32, entered: bool| boxes.push((nodes[node as usize].bounds, entered));
+        let mut stats = Stats::default();
+        let hit = if shadow {
+            self.blocker_watched(ray, 0.0, t_max, &mut stats, watch)
+        } else {
+            self.nearest_watched(ray, 0.0, t_max, &mut stats, watch)
+        };
+        Visited {
+            boxes,
+            total: nodes.len(),
+            objects_tested: stats.primitives_tested,
+            hit,
+        }
+    }
+
     /// Chooses the acceleration structure (rebuilding the BVH if needed).
     pub fn set_accel(&mut self, accel: Accel) {
         self.index = SearchIndex::build(self, accel);

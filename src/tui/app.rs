@@ -24,6 +24,7 @@ use ratatui::layout::Rect;
 use super::layout::{self, Panes};
 use super::msg::Msg;
 use super::state::csg::CsgPanel;
+use super::state::diagram::DiagramPane;
 use super::state::lesson::LessonPanel;
 use super::state::list::LessonList;
 use super::state::preview::Preview;
@@ -56,6 +57,8 @@ pub enum Focus {
     /// Node details or the CSG panel.
     Lower,
     Lesson,
+    /// The ray diagram: arrows pan it.
+    Diagram,
 }
 
 pub struct App {
@@ -65,6 +68,8 @@ pub struct App {
     /// The picked pixel and its ray tree.
     pub tree: RayTree,
     pub csg: CsgPanel,
+    /// The ray diagram pane (`d`).
+    pub diagram: DiagramPane,
     pub lesson: Option<LessonPanel>,
     pub list: Option<LessonList>,
     pub focus: Focus,
@@ -112,6 +117,14 @@ pub fn update(app: &mut App, msg: Msg) {
         Msg::LevelNext => app.step_level(true),
         Msg::LevelPrev => app.step_level(false),
         Msg::ToggleCsg => app.toggle_csg(),
+        Msg::ToggleDiagram
+        | Msg::CycleView
+        | Msg::ToggleBvh
+        | Msg::ToggleMarks
+        | Msg::Zoom(_)
+        | Msg::Pan(..)
+        | Msg::Drag(..)
+        | Msg::Release => app.diagram_update(&msg),
         Msg::ToggleReadme | Msg::Exercises | Msg::Work => app.lesson_update(&msg),
         Msg::Goto => app.prompt = Some(Prompt::Goto(String::new())),
     }
@@ -128,6 +141,7 @@ impl App {
             preview: Preview::default(),
             tree: RayTree::default(),
             csg: CsgPanel::default(),
+            diagram: DiagramPane::default(),
             lesson: None,
             list: None,
             focus: Focus::Preview,
@@ -243,7 +257,11 @@ impl App {
     pub fn panes_in(&self, area: Rect) -> Panes {
         let (w, h) = self.image_size();
         let aspect = if h == 0 { 1.0 } else { w as f64 / h as f64 };
-        layout::scene_panes(area, aspect, self.lesson_open(), self.message_rows())
+        let open = layout::Open {
+            lesson: self.lesson_open(),
+            diagram: self.diagram.open,
+        };
+        layout::scene_panes(area, aspect, open, self.message_rows())
     }
 
     /// Lines the tree pane gives to rows at the current size.

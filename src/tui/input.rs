@@ -25,10 +25,14 @@ pub fn mouse(app: &App, m: &MouseEvent) -> Option<Msg> {
     }
     match m.kind {
         MouseEventKind::Down(MouseButton::Left) => Some(Msg::Click(m.column, m.row)),
-        // Dragging over the preview keeps picking.
+        // Dragging over the preview keeps picking; over the diagram it pans.
         MouseEventKind::Drag(MouseButton::Left) if app.focus == Focus::Preview => {
             Some(Msg::Click(m.column, m.row))
         }
+        MouseEventKind::Drag(MouseButton::Left) if app.focus == Focus::Diagram => {
+            Some(Msg::Drag(m.column, m.row))
+        }
+        MouseEventKind::Up(MouseButton::Left) => Some(Msg::Release),
         MouseEventKind::ScrollUp => Some(Msg::Wheel(m.column, m.row, -1)),
         MouseEventKind::ScrollDown => Some(Msg::Wheel(m.column, m.row, 1)),
         _ => None,
@@ -92,6 +96,12 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
         KeyCode::Char('n') => return Some(Msg::LevelNext),
         KeyCode::Char('p') => return Some(Msg::LevelPrev),
         KeyCode::Char('c') => return Some(Msg::ToggleCsg),
+        KeyCode::Char('d') => return Some(Msg::ToggleDiagram),
+        KeyCode::Char('v') => return Some(Msg::CycleView),
+        KeyCode::Char('b') => return Some(Msg::ToggleBvh),
+        KeyCode::Char('m') => return Some(Msg::ToggleMarks),
+        KeyCode::Char('<' | ',') => return Some(Msg::Zoom(-1)),
+        KeyCode::Char('>' | '.') => return Some(Msg::Zoom(1)),
         KeyCode::Char('r') => return Some(Msg::ToggleReadme),
         KeyCode::Char('a') => return Some(Msg::Exercises),
         KeyCode::Char('w') => return Some(Msg::Work),
@@ -142,6 +152,19 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
                 Some(Msg::Collapse)
             } else if matches!(k.code, KeyCode::Enter | KeyCode::Char(' ')) {
                 Some(Msg::Toggle)
+            } else {
+                None
+            }
+        }
+        Focus::Diagram => {
+            if left {
+                Some(Msg::Pan(-1, 0))
+            } else if right {
+                Some(Msg::Pan(1, 0))
+            } else if up {
+                Some(Msg::Pan(0, 1))
+            } else if down {
+                Some(Msg::Pan(0, -1))
             } else {
                 None
             }

@@ -7,6 +7,9 @@ use ratatui::layout::{Margin, Rect};
 /// Terminals at least this wide show the lesson panel as a column of its own.
 pub const WIDE: u16 = 120;
 
+/// The tree pane's width on wide terminals: a row four levels deep with its colour.
+pub const TREE_WIDTH: u16 = 64;
+
 /// The panes of the scene screen.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Panes {
@@ -20,6 +23,8 @@ pub struct Panes {
     /// Node details or the CSG panel (absent when a narrow screen gives it to the lesson).
     pub lower: Option<Rect>,
     pub lesson: Option<Rect>,
+    /// The ray diagram, when it is open.
+    pub diagram: Option<Rect>,
     pub status: Rect,
     pub message: Rect,
 }
@@ -52,12 +57,24 @@ pub fn bottom_lines(area: Rect, message_rows: u16) -> (Rect, Rect, Rect) {
     (main, status, message)
 }
 
-/// The scene screen: preview and tree on top, details (or CSG) below, the lesson beside or
-/// below, status and message lines at the bottom.
-pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool, message_rows: u16) -> Panes {
+/// The panels open beside the preview and the tree.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Open {
+    pub lesson: bool,
+    pub diagram: bool,
+}
+
+/// The scene screen: preview and tree on top, details (or CSG) below, the lesson beside
+/// (wide screens) or in place of the details (narrow ones), status and message lines at the
+/// bottom. The diagram shares the bottom with the details (or the lesson), on its right; on a
+/// wide screen with the lesson open it takes the top of the lesson's column instead. On a
+/// wide screen the preview gives up width (down to two thirds of what it would take) so that
+/// the tree pane is `TREE_WIDTH` wide: deep rows with their colours fit. The tree shown does
+/// not change the layout, so picking a pixel never renders the preview again.
+pub fn scene_panes(area: Rect, aspect: f64, open: Open, message_rows: u16) -> Panes {
     let (main, status, message) = bottom_lines(area, message_rows);
     let wide = area.width >= WIDE;
-    let (left, side) = if lesson_open && wide {
+    let (left, side) = if open.lesson && wide {
         let lw = (area.width * 2 / 5).max(40);
         let left = Rect::new(main.x, main.y, main.width - lw, main.height);
         let side = Rect::new(main.x + left.width, main.y, lw, main.height);
@@ -75,7 +92,10 @@ pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool, message_rows: u16
     } else {
         left.width * 3 / 5
     };
-    let pw = wanted.min(cap).max(left.width.min(6));
+    let full = wanted.min(cap);
+    let tree_width = if wide { TREE_WIDTH } else { 0 };
+    let room = left.width.saturating_sub(tree_width);
+    let pw = full.min(room.max(full * 2 / 3)).max(left.width.min(6));
     let preview = Rect::new(top.x, top.y, pw, top_h);
     let tree = Rect::new(top.x + pw, top.y, top.width - pw, top_h);
     let inner = preview.inner(Margin::new(1, 1));
@@ -87,10 +107,36 @@ pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool, message_rows: u16
         iw as u16,
         cells_h,
     );
-    let (lower, lesson) = match (lesson_open, side) {
+    let (mut lower, mut lesson) = match (open.lesson, side) {
         (true, None) => (None, Some(bottom)),
         (_, side) => (Some(bottom), side),
     };
+    let mut diagram = None;
+    if open.diagram {
+        match side {
+            Some(col) => {
+                let dh = col.height * 11 / 20;
+                diagram = Some(Rect::new(col.x, col.y, col.width, dh));
+                lesson = Some(Rect::new(col.x, col.y + dh, col.width, col.height - dh));
+            }
+            None => {
+                // The details (or the lesson) keep 9/20 of the width: their lines wrap.
+                let lw = bottom.width * 9 / 20;
+                let left_part = Rect::new(bottom.x, bottom.y, lw, bottom.height);
+                diagram = Some(Rect::new(
+                    bottom.x + lw,
+                    bottom.y,
+                    bottom.width - lw,
+                    bottom.height,
+                ));
+                if lower.is_some() {
+                    lower = Some(left_part);
+                } else {
+                    lesson = Some(left_part);
+                }
+            }
+        }
+    }
     Panes {
         preview,
         image,
@@ -98,6 +144,7 @@ pub fn scene_panes(area: Rect, aspect: f64, lesson_open: bool, message_rows: u16
         tree,
         lower,
         lesson,
+        diagram,
         status,
         message,
     }
@@ -163,8 +210,40 @@ mod tests {
     }
 
     #[test]
+    fn panes_do_not_overlap_and_the_tree_gets_the_width_it_needs() {
+        for (w, h) in [(80, 24), (100, 30), (160, 48)] {
+            for lesson in [false, true] {
+                for diagram in [false, true] {
+                    let open = Open { lesson, diagram };
+                    let p = scene_panes(Rect::new(0, 0, w, h), 4.0 / 3.0, open, 1);
+                    let rects: Vec<Rect> =
+                        [Some(p.preview), Some(p.tree), p.lower, p.lesson, p.diagram]
+                            .into_iter()
+                            .flatten()
+                            .collect();
+                    for (i, a) in rects.iter().enumerate() {
+                        assert!(a.width > 0 && a.height > 0, "{w}×{h} {open:?}: {a:?}");
+                        for b in &rects[i + 1..] {
+                            assert!(!a.intersects(*b), "{w}×{h} {open:?}: {a:?} and {b:?}");
+                        }
+                    }
+                    assert_eq!(p.diagram.is_some(), diagram);
+                    assert_eq!(p.lesson.is_some(), lesson);
+                }
+            }
+        }
+        // With the lesson open on a wide screen the tree still gets its width.
+        let open = Open {
+            lesson: true,
+            diagram: false,
+        };
+        let p = scene_panes(Rect::new(0, 0, 160, 48), 4.0 / 3.0, open, 1);
+        assert!(p.tree.width >= TREE_WIDTH, "{:?}", p.tree);
+    }
+
+    #[test]
     fn picking_a_cell_and_marking_a_pixel_agree() {
-        let p = scene_panes(Rect::new(0, 0, 80, 24), 161.0 / 121.0, false, 1);
+        let p = scene_panes(Rect::new(0, 0, 80, 24), 161.0 / 121.0, Open::default(), 1);
         for (x, y) in [(0, 0), (80, 60), (160, 120), (13, 77)] {
             let (c, r) = pixel_cell(&p, (161, 121), (x, y)).unwrap();
             let (x2, y2) = cell_pixel(&p, (161, 121), c, r).unwrap();

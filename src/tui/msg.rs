@@ -34,6 +34,20 @@ pub enum Msg {
     LevelNext,
     LevelPrev,
     ToggleCsg,
+    /// The ray diagram pane (`d`), its view (`v`), the BVH boxes over it (`b`), the hit
+    /// points marked on the preview (`m`).
+    ToggleDiagram,
+    CycleView,
+    ToggleBvh,
+    ToggleMarks,
+    /// Zooms the diagram in (positive) or out, in steps.
+    Zoom(i32),
+    /// Pans the diagram by arrow steps (right and up positive).
+    Pan(i32, i32),
+    /// A drag of the mouse to a cell (the diagram pans with it).
+    Drag(u16, u16),
+    /// The mouse button let go.
+    Release,
     ToggleReadme,
     ToggleHelp,
     /// Opens the exercises (`a`).

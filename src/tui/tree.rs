@@ -214,6 +214,11 @@ pub fn label(n: &RayNode) -> String {
     }
 }
 
+/// The intensity shown after a ray's label ("  I = 0.462 "); none for a shadow ray.
+pub fn intensity_text(n: &RayNode) -> Option<String> {
+    (n.kind != RayKind::Shadow).then(|| format!("  I = {} ", short_color(n.color)))
+}
+
 /// The nodes that are rays with an intensity of their own (not shadow rays), in display order.
 pub fn ray_paths(root: &RayNode) -> Vec<NodePath> {
     let mut out = Vec::new();

@@ -19,6 +19,9 @@ impl App {
         if p.lesson.is_some() {
             f.push(Focus::Lesson);
         }
+        if p.diagram.is_some() {
+            f.push(Focus::Diagram);
+        }
         f
     }
 
@@ -58,6 +61,7 @@ impl App {
                 self.select_exercise(i.max(0) as usize);
             }
             Focus::Lesson => self.scroll_lesson(delta),
+            Focus::Diagram => self.diagram.pan_steps(0, -delta.signum()),
         }
     }
 
@@ -116,6 +120,9 @@ impl App {
             self.focus = Focus::Lower;
         } else if p.lesson.is_some_and(|r| r.contains(at)) {
             self.focus = Focus::Lesson;
+        } else if p.diagram.is_some_and(|r| r.contains(at)) {
+            self.focus = Focus::Diagram;
+            self.diagram.drag = Some((col, row));
         }
     }
 
@@ -129,6 +136,46 @@ impl App {
             self.scroll_lower(delta);
         } else if p.lesson.is_some_and(|r| r.contains(at)) {
             self.scroll_lesson(delta);
+        } else if p.diagram.is_some_and(|r| r.contains(at)) {
+            // The wheel zooms: up (negative) zooms in.
+            self.diagram.zoom_by(-delta);
+        }
+    }
+
+    /// The diagram's keys and the mouse dragging over it.
+    pub(super) fn diagram_update(&mut self, msg: &Msg) {
+        match *msg {
+            Msg::ToggleDiagram => {
+                let note = self.diagram.toggle();
+                self.message = Some(note);
+            }
+            Msg::CycleView => {
+                let note = self.diagram.cycle_view();
+                self.message = Some(note);
+            }
+            Msg::ToggleBvh => {
+                let note = self.diagram.toggle_bvh(self.file.scene.as_deref());
+                self.message = Some(note);
+            }
+            Msg::ToggleMarks => {
+                self.preview.marks = !self.preview.marks;
+                let note = if self.preview.marks {
+                    "hit points marked on the preview: ◆ where the rays landed (reflection, refraction)"
+                } else {
+                    "hit marks hidden"
+                };
+                self.message = Some((note.into(), Tone::Info));
+            }
+            Msg::Zoom(steps) => self.diagram.zoom_by(steps),
+            Msg::Pan(dx, dy) => self.diagram.pan_steps(dx, dy),
+            Msg::Drag(col, row) => {
+                if let Some(r) = self.panes().diagram {
+                    let body = inner(r);
+                    self.diagram.drag_to(col, row, (body.width, body.height));
+                }
+            }
+            Msg::Release => self.diagram.drag = None,
+            _ => {}
         }
     }
 }

@@ -63,6 +63,10 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
                 format!("hit nothing: I = background = {}", color(n.color)),
                 Some(n.color),
             )),
+            // Cut by the level being stepped: the full tree traces it.
+            Some(Termination::MaxDepth) if n.depth < max_depth => out.push(plain(
+                "not yet revealed: level stepping shows one more level at each n".into(),
+            )),
             Some(Termination::MaxDepth) => out.push(plain(format!(
                 "not traced: the path already has {max_depth} rays (the maximum depth); + goes deeper"
             ))),

@@ -1,6 +1,6 @@
 //! The parts of the explorer's model, each with its own data and the changes that concern only
-//! it: the scene file, the preview, the picked pixel's ray tree, the CSG panel, the lesson
-//! panel, the lesson list and the prompt. `App` (app.rs) composes them and routes each
+//! it: the scene file, the preview, the picked pixel's ray tree, the CSG panel, the diagram
+//! pane, the lesson panel, the lesson list and the prompt. `App` (app.rs) composes them and routes each
 //! message.
 //!
 //! A part never reaches into another: what it needs from outside (the scene, a pane's
@@ -9,6 +9,7 @@
 
 pub mod csg;
 pub mod details;
+pub mod diagram;
 pub mod exercises;
 pub mod lesson;
 pub mod list;

@@ -27,6 +27,8 @@ pub struct Preview {
     /// Statistics of the image shown.
     pub stats: Option<Stats>,
     pub elapsed: Option<Duration>,
+    /// Mark where the tree's rays hit, on the image (`m`).
+    pub marks: bool,
 }
 
 impl Preview {

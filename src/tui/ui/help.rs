@@ -26,6 +26,10 @@ pub const KEYS: &[(&str, &str)] = &[
     ("n p", "step levels: next / previous (partial I)"),
     ("", "panels"),
     ("c", "CSG segment lists of the picked pixel's rays"),
+    (
+        "d v b m < >",
+        "rays drawn · view · BVH boxes · hit marks · zoom",
+    ),
     ("r", "lesson README"),
     ("a", "lesson exercises: ↑↓ choose, Enter answer"),
     ("w", "the selected exercise's worked solution"),

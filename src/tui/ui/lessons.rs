@@ -44,7 +44,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         ));
     }
     let block = Block::bordered()
-        .title(format!(" lessons in {} ", list.root.display()))
+        .title(format!(" lessons · folder {}/ ", list.root.display()))
         .border_style(themed(app, Style::new().fg(Color::Cyan)));
     f.render_widget(Paragraph::new(lines).block(block), list_area);
 

@@ -3,6 +3,7 @@
 
 mod csg;
 mod details;
+pub mod diagram;
 mod help;
 mod lesson;
 mod lessons;
@@ -49,6 +50,9 @@ pub fn draw(f: &mut Frame, app: &App) {
             }
             if let Some(r) = p.lesson {
                 lesson::draw(f, app, r);
+            }
+            if let Some(r) = p.diagram {
+                diagram::draw(f, app, r);
             }
             status::draw(f, app, p.status, p.message);
         }

@@ -7,22 +7,37 @@ use ratatui::text::Line;
 use ratatui::Frame;
 
 use super::{pane, themed};
+use crate::diagram::marks::hit_marks;
 use crate::render::preview::{ramp_char, ColorMode};
 use crate::tui::app::{App, Focus};
 use crate::tui::layout::{pixel_cell, Panes};
 use crate::tui::worker::Pass;
 
+use super::diagram::kind_color;
+
 pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
-    let (w, h) = app.image_size();
     let title = format!(" preview {}×{} ", p.image_px.0, p.image_px.1);
     let note = if app.preview.running || app.preview.pass == Some(Pass::Draft) {
         " rendering… "
     } else {
         ""
     };
-    let block = pane(app, title, Some(Focus::Preview))
+    let mut block = pane(app, title, Some(Focus::Preview))
         .title_bottom(Line::from(note).alignment(Alignment::Right));
+    if app.preview.marks {
+        block = block.title_bottom(Line::from(" ◆ hits ").alignment(Alignment::Left));
+    }
     f.render_widget(block, p.preview);
+    draw_image(f, app, p);
+    let (w, h) = app.image_size();
+    if app.preview.marks && w > 0 && h > 0 {
+        marks(f, app, p, (w, h));
+    }
+    cursor(f, app, p);
+}
+
+/// The image in half-block cells (or the ASCII ramp).
+fn draw_image(f: &mut Frame, app: &App, p: &Panes) {
     let buf = f.buffer_mut();
     let r = p.image;
     let (pw, ph) = p.image_px;
@@ -72,6 +87,13 @@ pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
             }
         }
     }
+}
+
+/// The picked pixel, marked.
+fn cursor(f: &mut Frame, app: &App, p: &Panes) {
+    let (w, h) = app.image_size();
+    let r = p.image;
+    let buf = f.buffer_mut();
     if w > 0 && h > 0 {
         if let Some((cx, cy)) = pixel_cell(p, (w, h), app.tree.pixel()) {
             if let (true, Some(cell)) = (
@@ -92,6 +114,37 @@ pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
                     cell.set_char('+');
                     cell.set_style(style);
                 }
+            }
+        }
+    }
+}
+
+/// Where the tree's reflection and refraction rays landed, marked on the image: ◆ in the
+/// ray's colour (the selected ray's in yellow).
+fn marks(f: &mut Frame, app: &App, p: &Panes, (w, h): (u32, u32)) {
+    let (Some(scene), Some(root)) = (app.file.scene.as_deref(), app.tree.shown_tree()) else {
+        return;
+    };
+    let (pw, ph) = p.image_px;
+    let r = p.image;
+    let buf = f.buffer_mut();
+    for m in hit_marks(&scene.camera, root) {
+        let (sx, sy) = (m.at.x / w as f64 * pw as f64, m.at.y / h as f64 * ph as f64);
+        if !(sx >= 0.0 && sy >= 0.0 && sx < pw as f64 && sy < ph as f64) {
+            continue;
+        }
+        let (cx, cy) = (r.x + sx as u16, r.y + (sy / 2.0) as u16);
+        let color = if m.path == app.tree.selected() {
+            Color::LightYellow
+        } else {
+            kind_color(m.kind)
+        };
+        if let Some(cell) = buf.cell_mut((cx, cy)) {
+            if app.color == ColorMode::Ascii {
+                cell.set_char('o');
+            } else {
+                cell.set_char('◆');
+                cell.set_fg(color);
             }
         }
     }

@@ -8,9 +8,9 @@ use ratatui::widgets::Paragraph;
 use ratatui::Frame;
 
 use super::{pane, position_note, swatch, themed};
-use crate::trace::RayKind;
+use crate::trace::{RayKind, Termination};
 use crate::tui::app::{App, Focus};
-use crate::tui::tree::{self, label, short_color};
+use crate::tui::tree::{self, intensity_text, label, short_color};
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let t = &app.tree;
@@ -80,12 +80,14 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             RayKind::Reflection => Color::Cyan,
             RayKind::Refraction => Color::Magenta,
         };
-        spans.push(Span::styled(
-            label(n),
-            themed(app, Style::new().fg(kind_color)),
-        ));
-        if n.kind != RayKind::Shadow {
-            spans.push(Span::raw(format!("  I = {} ", short_color(n.color))));
+        let mut text = label(n);
+        if n.terminated == Some(Termination::MaxDepth) && n.depth < t.depth() {
+            // Cut by the level being stepped, not by the maximum depth.
+            text = text.replace("not traced: max depth", "not yet revealed");
+        }
+        spans.push(Span::styled(text, themed(app, Style::new().fg(kind_color))));
+        if let Some(i) = intensity_text(n) {
+            spans.push(Span::raw(i));
             spans.push(swatch(app, n.color));
         }
         let mut line = Line::from(spans);

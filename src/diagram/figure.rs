@@ -1,0 +1,637 @@
+//! The `raytree diagram` figure, in the style of the lecture slides (seed 004): on the left
+//! the scene cut by the plane of the view, with the rays as arrows coloured and labelled by
+//! their kind and intensity, the normals dashed, the lights and the eye; on the right the ray
+//! tree as a graph, its edges labelled with the coefficients. Written as SVG through the `svg`
+//! crate; `raster.rs` turns it into PNG.
+
+use glam::{DVec2, DVec3};
+use svg::node::element::{
+    Circle, ClipPath, Definitions, Group, Line, Polygon, Rectangle, Text, Title,
+};
+use svg::Document;
+
+use super::drawing::Drawing;
+use super::frame::Frame;
+use super::graph::{layout, GraphNode};
+use super::outline::Outline;
+use super::rays::{SegKind, Segment};
+use crate::scene::Scene;
+use crate::trace::{RayKind, RayNode};
+
+/// What the figure shows, besides the drawing itself.
+pub struct Figure<'a> {
+    pub scene: &'a Scene,
+    pub tree: &'a RayNode,
+    pub drawing: &'a Drawing,
+    /// The title line: scene, pixel or ray, view.
+    pub title: String,
+    /// The figure's size in pixels.
+    pub width: u32,
+    pub height: u32,
+}
+
+const INK: &str = "#222222";
+const OUTLINE: &str = "#555555";
+const FILL: &str = "#e4e4e4";
+const NORMAL: &str = "#2e7d32";
+const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
+
+fn hex([r, g, b]: [u8; 3]) -> String {
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
+/// The colour of a kind of ray in figures.
+pub fn ray_color(kind: SegKind) -> String {
+    hex(kind.rgb())
+}
+
+/// World units of the view's plane to pixels of a panel.
+struct Panel {
+    frame: Frame,
+    origin: DVec2,
+    size: DVec2,
+}
+
+impl Panel {
+    fn new(frame: Frame, origin: DVec2, size: DVec2) -> Panel {
+        Panel {
+            frame: frame.with_aspect(size.x / size.y),
+            origin,
+            size,
+        }
+    }
+
+    fn px(&self, p: DVec2) -> DVec2 {
+        let f = &self.frame;
+        let u = (p - f.min) / f.size();
+        DVec2::new(
+            self.origin.x + u.x * self.size.x,
+            self.origin.y + (1.0 - u.y) * self.size.y,
+        )
+    }
+}
+
+fn line(a: DVec2, b: DVec2, color: &str, width: f64) -> Line {
+    Line::new()
+        .set("x1", r(a.x))
+        .set("y1", r(a.y))
+        .set("x2", r(b.x))
+        .set("y2", r(b.y))
+        .set("stroke", color)
+        .set("stroke-width", width)
+        .set("stroke-linecap", "round")
+}
+
+fn text(at: DVec2, s: &str, size: f64, color: &str) -> Text {
+    Text::new(s)
+        .set("x", r(at.x))
+        .set("y", r(at.y))
+        .set("font-size", size)
+        .set("font-family", FONT)
+        .set("fill", color)
+        // A white halo keeps labels readable over lines.
+        .set("stroke", "white")
+        .set("stroke-width", 3)
+        .set("stroke-linejoin", "round")
+        .set("paint-order", "stroke")
+}
+
+/// A label at `at` that stays inside the panel: anchored at its end when it would run off
+/// the right edge.
+fn label_in(p: &Panel, at: DVec2, s: &str, size: f64, color: &str) -> Text {
+    let width = 0.6 * size * s.chars().count() as f64;
+    let right = p.origin.x + p.size.x - 4.0;
+    let t = text(at, s, size, color);
+    if at.x + width > right {
+        t.set("x", r(at.x.min(right))).set("text-anchor", "end")
+    } else {
+        t
+    }
+}
+
+/// The rectangle (top-left, bottom-right) a label drawn by `label_in` covers, roughly.
+fn label_box(p: &Panel, at: DVec2, s: &str, size: f64) -> (DVec2, DVec2) {
+    let width = 0.6 * size * s.chars().count() as f64;
+    let right = p.origin.x + p.size.x - 4.0;
+    let x0 = if at.x + width > right {
+        at.x.min(right) - width
+    } else {
+        at.x
+    };
+    (
+        DVec2::new(x0, at.y - size),
+        DVec2::new(x0 + width, at.y + 2.0),
+    )
+}
+
+fn overlap(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
+    a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
+}
+
+/// Two decimals are plenty for pixel coordinates.
+fn r(x: f64) -> f64 {
+    (x * 100.0).round() / 100.0
+}
+
+fn points(ps: &[DVec2]) -> String {
+    ps.iter()
+        .map(|p| format!("{},{}", r(p.x), r(p.y)))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// An arrowhead with its tip at `tip`, pointing along `dir`.
+fn arrowhead(tip: DVec2, dir: DVec2, size: f64, color: &str) -> Polygon {
+    let d = dir.normalize_or_zero();
+    let side = d.perp() * size * 0.45;
+    let back = tip - d * size;
+    Polygon::new()
+        .set("points", points(&[tip, back + side, back - side]))
+        .set("fill", color)
+}
+
+/// The title's height, the legend's, and the share of the width the section takes.
+const TOP: f64 = 40.0;
+const LEGEND: f64 = 30.0;
+const SPLIT: f64 = 0.58;
+
+impl Figure<'_> {
+    /// Where the section is drawn.
+    fn scene_panel(&self) -> Panel {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let split = (w * SPLIT).round();
+        Panel::new(
+            self.drawing.frame,
+            DVec2::new(12.0, TOP),
+            DVec2::new(split - 24.0, h - TOP - LEGEND - 12.0),
+        )
+    }
+
+    /// Where a world point is drawn in the figure, in pixels.
+    pub fn pixel_of(&self, p: DVec3) -> DVec2 {
+        self.scene_panel().px(self.drawing.at(p))
+    }
+
+    /// The SVG document.
+    pub fn svg(&self) -> Document {
+        let (w, h) = (self.width as f64, self.height as f64);
+        let panel = self.scene_panel();
+        let (scene_origin, scene_size) = (panel.origin, panel.size);
+        let split = (w * SPLIT).round();
+        let mut doc = Document::new()
+            .set("width", self.width)
+            .set("height", self.height)
+            .set("viewBox", (0, 0, self.width, self.height))
+            .add(Title::new(self.title.clone()))
+            .add(
+                Rectangle::new()
+                    .set("width", "100%")
+                    .set("height", "100%")
+                    .set("fill", "white"),
+            )
+            .add(
+                Definitions::new().add(
+                    ClipPath::new().set("id", "section").add(
+                        Rectangle::new()
+                            .set("x", scene_origin.x)
+                            .set("y", scene_origin.y)
+                            .set("width", scene_size.x)
+                            .set("height", scene_size.y),
+                    ),
+                ),
+            )
+            .add(text(DVec2::new(12.0, 26.0), &self.title, 16.0, INK).set("font-weight", "bold"))
+            .add(
+                Rectangle::new()
+                    .set("x", scene_origin.x)
+                    .set("y", scene_origin.y)
+                    .set("width", scene_size.x)
+                    .set("height", scene_size.y)
+                    .set("fill", "none")
+                    .set("stroke", "#cccccc"),
+            )
+            .add(self.section(&panel))
+            .add(self.legend(DVec2::new(12.0, h - LEGEND + 8.0)));
+        let graph_origin = DVec2::new(split + 8.0, TOP);
+        let graph_size = DVec2::new(w - split - 20.0, h - TOP - 12.0);
+        doc = doc.add(self.graph(graph_origin, graph_size));
+        doc
+    }
+
+    /// The scene cut by the view's plane, with the rays.
+    fn section(&self, p: &Panel) -> Group {
+        let d = self.drawing;
+        let mut g = Group::new().set("clip-path", "url(#section)");
+        let diag = p.frame.size().length();
+        // Objects: silhouettes filled light grey, planes as lines, each named.
+        for o in &d.outlines {
+            let name = if o.leaf == o.object {
+                o.object.clone()
+            } else {
+                format!("{}/{}", o.object, o.leaf)
+            };
+            match &o.outline {
+                Outline::Polygon(pts) if pts.len() >= 3 => {
+                    let px: Vec<DVec2> = pts.iter().map(|q| p.px(*q)).collect();
+                    g = g.add(
+                        Polygon::new()
+                            .set("points", points(&px))
+                            .set("fill", FILL)
+                            .set("fill-opacity", 0.7)
+                            .set("stroke", OUTLINE)
+                            .set("stroke-width", 1.5),
+                    );
+                }
+                Outline::Polygon(pts) if pts.len() == 2 => {
+                    g = g.add(line(p.px(pts[0]), p.px(pts[1]), OUTLINE, 3.0));
+                }
+                Outline::Line { point, dir } => {
+                    let (a, b) = (*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag);
+                    if let Some((a, b)) = p.frame.clip(a, b) {
+                        g = g.add(line(p.px(a), p.px(b), OUTLINE, 3.0));
+                    }
+                }
+                _ => {}
+            }
+            let anchor = match &o.outline {
+                Outline::Line { point, dir } => {
+                    // Near where the line enters the frame on the left.
+                    let (a, b) = (*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag);
+                    match p.frame.clip(a, b) {
+                        Some((a, b)) => {
+                            let left = if a.x <= b.x { a } else { b };
+                            let right = if a.x <= b.x { b } else { a };
+                            left + (right - left) * 0.04
+                        }
+                        None => continue,
+                    }
+                }
+                o => o.anchor(),
+            };
+            let at = p.px(anchor) + DVec2::new(4.0, -6.0);
+            g = g.add(text(at, &name, 14.0, OUTLINE).set("font-style", "italic"));
+        }
+        // The eye, the image plane and the pixel on it.
+        if let Some(e) = &d.eye {
+            let corners: Vec<DVec2> = e.image_plane.iter().map(|q| p.px(d.at(*q))).collect();
+            let hull = super::outline::hull(corners);
+            if hull.len() >= 3 {
+                g = g.add(
+                    Polygon::new()
+                        .set("points", points(&hull))
+                        .set("fill", "none")
+                        .set("stroke", "#888888")
+                        .set("stroke-width", 1.5)
+                        .set("stroke-dasharray", "5 3"),
+                );
+            } else if hull.len() == 2 {
+                g = g.add(line(hull[0], hull[1], "#888888", 2.0).set("stroke-dasharray", "5 3"));
+            }
+            let low = hull
+                .iter()
+                .copied()
+                .max_by(|a, b| a.y.total_cmp(&b.y))
+                .unwrap_or(DVec2::ZERO);
+            g = g.add(text(
+                low + DVec2::new(6.0, 14.0),
+                "image plane",
+                12.0,
+                "#666666",
+            ));
+            let eye = p.px(d.at(e.at));
+            let pix = p.px(d.at(e.pixel));
+            // The label on the side away from the image plane.
+            let away = (eye - pix).normalize_or(DVec2::NEG_Y) * 16.0;
+            g = g
+                .add(
+                    Circle::new()
+                        .set("cx", r(eye.x))
+                        .set("cy", r(eye.y))
+                        .set("r", 5)
+                        .set("fill", INK),
+                )
+                .add(
+                    text(eye + away + DVec2::new(0.0, 4.0), "eye", 13.0, INK)
+                        .set("text-anchor", "middle"),
+                );
+            g = g.add(
+                Rectangle::new()
+                    .set("x", r(pix.x - 3.0))
+                    .set("y", r(pix.y - 3.0))
+                    .set("width", 6)
+                    .set("height", 6)
+                    .set("fill", "#888888"),
+            );
+        }
+        // Lights.
+        for l in &d.lights {
+            g = self.light(g, p, l);
+        }
+        // Rays: shadow rays first, then by depth, so the ray a label belongs to is on top.
+        let mut order: Vec<&Segment> = d.segments.iter().collect();
+        order.sort_by_key(|s| {
+            (
+                !matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked),
+                s.depth,
+            )
+        });
+        let labelled = d.segments.len() <= 40;
+        let mut labels = vec![];
+        let mut taken: Vec<(DVec2, DVec2)> = vec![];
+        for s in order {
+            let (a, b) = d.ends(s, &p.frame);
+            let (pa, pb) = (p.px(a), p.px(b));
+            let color = ray_color(s.kind);
+            let shadow = matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked);
+            let width = match s.kind {
+                SegKind::Primary => 3.0,
+                SegKind::ShadowClear | SegKind::ShadowBlocked => 1.6,
+                _ => 2.4,
+            };
+            g = g.add(line(pa, pb, &color, width));
+            let dir = pb - pa;
+            if dir.length() > 12.0 {
+                // The arrow in the middle of a ray that ends, near the edge of one that does not.
+                let at = if s.to.is_some() { 0.55 } else { 0.8 };
+                g = g.add(arrowhead(
+                    pa + dir * at,
+                    dir,
+                    if shadow { 9.0 } else { 12.0 },
+                    &color,
+                ));
+            }
+            if s.kind == SegKind::ShadowBlocked {
+                // A cross where the blocker stops it.
+                let k = 5.0;
+                g = g
+                    .add(line(
+                        pb + DVec2::new(-k, -k),
+                        pb + DVec2::new(k, k),
+                        &color,
+                        2.0,
+                    ))
+                    .add(line(
+                        pb + DVec2::new(-k, k),
+                        pb + DVec2::new(k, -k),
+                        &color,
+                        2.0,
+                    ));
+            }
+            if let Some((hit, n)) = s.normal {
+                let tip = d.at(hit + n * 0.07 * diag);
+                let (ph, pt) = (p.px(d.at(hit)), p.px(tip));
+                if (pt - ph).length() > 4.0 {
+                    g = g
+                        .add(line(ph, pt, NORMAL, 1.6).set("stroke-dasharray", "5 4"))
+                        .add(
+                            text(pt + DVec2::new(3.0, -3.0), "n", 12.0, NORMAL)
+                                .set("font-style", "italic"),
+                        );
+                }
+                g = g.add(
+                    Circle::new()
+                        .set("cx", r(ph.x))
+                        .set("cy", r(ph.y))
+                        .set("r", 3.2)
+                        .set("fill", INK),
+                );
+            }
+            let room = if s.kind == SegKind::Primary {
+                30.0
+            } else {
+                60.0
+            };
+            if labelled && dir.length() > room && (!shadow || d.segments.len() <= 16) {
+                let along = match (shadow, s.to.is_some()) {
+                    (true, _) => 0.25,
+                    (false, true) => 0.5,
+                    (false, false) => 0.35,
+                };
+                let mid = pa + dir * along;
+                let off = dir.perp().normalize_or_zero() * 10.0;
+                let mut label = s.label();
+                if s.kind == SegKind::Missed {
+                    label = format!("{label} (background)");
+                }
+                // Above the ray, else below it; left out where both would cover another label.
+                let above = if off.y > 0.0 { -off } else { off };
+                for at in [mid + above, mid - above + DVec2::new(0.0, 10.0)] {
+                    let bx = label_box(p, at, &label, 12.0);
+                    if !taken.iter().any(|b| overlap(b, &bx)) {
+                        taken.push(bx);
+                        labels.push(label_in(p, at, &label, 12.0, &color));
+                        break;
+                    }
+                }
+            }
+        }
+        for t in labels {
+            g = g.add(t);
+        }
+        g
+    }
+
+    fn light(&self, g: Group, p: &Panel, l: &super::drawing::LightMark) -> Group {
+        let d = self.drawing;
+        let sun = "#f2b705";
+        if let Some(at) = l.at {
+            let q = d.at(at);
+            let (c, off) = if p.frame.contains(q) {
+                (p.px(q), false)
+            } else {
+                // Off the figure: drawn at the edge, towards it.
+                let centre = p.frame.center();
+                let edge = p.frame.exit(centre, q - centre);
+                let inward = (centre - edge).normalize_or_zero() * 0.03 * p.frame.size().length();
+                (p.px(edge + inward), true)
+            };
+            let mut g = g;
+            for k in 0..8 {
+                let a = k as f64 * std::f64::consts::TAU / 8.0;
+                let u = DVec2::new(a.cos(), a.sin());
+                g = g.add(line(c + u * 9.0, c + u * 14.0, sun, 2.0));
+            }
+            let name = if off {
+                format!("{} (off the figure)", l.name)
+            } else {
+                l.name.clone()
+            };
+            return g
+                .add(
+                    Circle::new()
+                        .set("cx", r(c.x))
+                        .set("cy", r(c.y))
+                        .set("r", 7)
+                        .set("fill", sun)
+                        .set("stroke", "#b07d00"),
+                )
+                .add(
+                    label_in(p, c + DVec2::new(14.0, -10.0), &name, 14.0, INK)
+                        .set("font-weight", "bold"),
+                );
+        }
+        let Some(dir) = l.direction else {
+            return g;
+        };
+        // Parallel arrows from far away, entering near the corner the light comes from.
+        let v = d.view.project(dir).normalize_or_zero();
+        if v == DVec2::ZERO {
+            return g.add(text(
+                p.origin + DVec2::new(8.0, 18.0),
+                &format!("{}: along the view", l.name),
+                13.0,
+                INK,
+            ));
+        }
+        let centre = p.frame.center();
+        let size = p.frame.size().length();
+        let from_edge = p.frame.exit(centre, -v) + v * 0.02 * size;
+        let mut g = g;
+        for k in [-1.0, 0.0, 1.0] {
+            let start = from_edge + v.perp() * k * 0.035 * size;
+            let end = start + v * 0.12 * size;
+            let (a, b) = (p.px(start), p.px(end));
+            g = g
+                .add(line(a, b, sun, 2.5))
+                .add(arrowhead(b, b - a, 10.0, sun));
+        }
+        let at = p.px(from_edge + v * 0.06 * size + v.perp() * 0.07 * size);
+        g.add(
+            label_in(p, at, &format!("{} (far away)", l.name), 14.0, INK)
+                .set("font-weight", "bold"),
+        )
+    }
+
+    fn legend(&self, at: DVec2) -> Group {
+        let mut g = Group::new();
+        let mut x = at.x;
+        for k in SegKind::ALL {
+            let c = ray_color(k);
+            g = g
+                .add(line(
+                    DVec2::new(x, at.y),
+                    DVec2::new(x + 22.0, at.y),
+                    &c,
+                    3.0,
+                ))
+                .add(text(DVec2::new(x + 27.0, at.y + 4.0), k.name(), 12.0, INK));
+            x += 36.0 + 7.2 * k.name().len() as f64;
+        }
+        g.add(
+            line(DVec2::new(x, at.y), DVec2::new(x + 22.0, at.y), NORMAL, 1.6)
+                .set("stroke-dasharray", "5 4"),
+        )
+        .add(text(DVec2::new(x + 27.0, at.y + 4.0), "normal", 12.0, INK))
+    }
+
+    /// The ray tree as a graph in the rectangle at `origin` of `size`.
+    fn graph(&self, origin: DVec2, size: DVec2) -> Group {
+        let nodes = layout(self.tree, Some(self.scene));
+        let mut g = Group::new().add(
+            text(origin + DVec2::new(0.0, 12.0), "ray tree", 14.0, INK).set("font-weight", "bold"),
+        );
+        let cols = nodes.iter().map(|n| n.pos.x).fold(0.0, f64::max) + 1.0;
+        let rows = nodes.iter().map(|n| n.pos.y).fold(0.0, f64::max) + 1.0;
+        let top = origin.y + 30.0;
+        let col_w = size.x / cols;
+        let row_h = ((size.y - 30.0) / rows).min(110.0);
+        let chars = nodes
+            .iter()
+            .map(|n| {
+                node_lines(n)
+                    .iter()
+                    .map(|l| l.chars().count())
+                    .max()
+                    .unwrap_or(1)
+            })
+            .max()
+            .unwrap_or(1) as f64;
+        // Small enough that the widest node fits its column, and three lines its row.
+        let font = (0.92 * col_w / (0.62 * chars))
+            .min(0.28 * row_h)
+            .clamp(6.0, 13.0);
+        let box_w = |n: &GraphNode| {
+            let c = node_lines(n)
+                .iter()
+                .map(|l| l.chars().count())
+                .max()
+                .unwrap_or(1) as f64;
+            (c * 0.62 * font + 8.0).min(col_w * 0.98).max(font * 4.0)
+        };
+        let box_h = 3.0 * font * 1.25 + 6.0;
+        let centre = |n: &GraphNode| {
+            DVec2::new(
+                origin.x + (n.pos.x + 0.5) * col_w,
+                top + n.pos.y * row_h + box_h / 2.0,
+            )
+        };
+        // Edges first, under the boxes, with their coefficients.
+        for n in &nodes {
+            let Some(pi) = n.parent else { continue };
+            let (a, b) = (centre(&nodes[pi]), centre(n));
+            let (a, b) = (
+                a + DVec2::new(0.0, box_h / 2.0),
+                b - DVec2::new(0.0, box_h / 2.0),
+            );
+            let color = node_color(self.tree, n);
+            g = g.add(line(a, b, &color, 1.4));
+            if let Some(e) = &n.edge {
+                let mid = a + (b - a) * 0.55;
+                g = g.add(text(mid + DVec2::new(3.0, 0.0), e, font * 0.95, "#444444"));
+            }
+        }
+        for n in &nodes {
+            let c = centre(n);
+            let bw = box_w(n);
+            let color = node_color(self.tree, n);
+            let shadow = n.kind == RayKind::Shadow;
+            let mut rect = Rectangle::new()
+                .set("x", r(c.x - bw / 2.0))
+                .set("y", r(c.y - box_h / 2.0))
+                .set("width", r(bw))
+                .set("height", r(box_h))
+                .set("rx", if shadow { box_h / 2.0 } else { 5.0 })
+                .set("fill", "white")
+                .set("stroke", color.as_str())
+                .set("stroke-width", if n.path.is_empty() { 2.5 } else { 1.6 });
+            if n.untraced {
+                rect = rect
+                    .set("stroke-dasharray", "4 3")
+                    .set("stroke-opacity", 0.6);
+            }
+            g = g.add(rect);
+            for (i, l) in node_lines(n).iter().enumerate() {
+                let y = c.y - box_h / 2.0 + 3.0 + font * (1.0 + 1.25 * i as f64);
+                let t = text(
+                    DVec2::new(c.x, y),
+                    l,
+                    font,
+                    if i == 0 { color.as_str() } else { INK },
+                )
+                .set("text-anchor", "middle")
+                .set("stroke-width", 0);
+                g = g.add(if i == 0 {
+                    t.set("font-weight", "bold")
+                } else {
+                    t
+                });
+            }
+        }
+        g
+    }
+}
+
+/// A graph node's three lines: the kind, what it reached, the value.
+fn node_lines(n: &GraphNode) -> [String; 3] {
+    let (kind, to) = n
+        .title
+        .split_once(" → ")
+        .map_or((n.title.clone(), String::new()), |(a, b)| {
+            (a.to_string(), b.to_string())
+        });
+    [kind, format!("→ {to}"), n.value.clone()]
+}
+
+fn node_color(root: &RayNode, n: &GraphNode) -> String {
+    ray_color(super::node_at(root, &n.path).map_or(SegKind::Missed, SegKind::of))
+}

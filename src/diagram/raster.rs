@@ -1,0 +1,53 @@
+//! SVG to PNG through resvg: the same figure as pixels, for slides that take no SVG.
+
+use std::sync::{Arc, OnceLock};
+
+use resvg::usvg;
+
+/// The system's fonts, loaded once.
+fn fonts() -> Arc<usvg::fontdb::Database> {
+    static FONTS: OnceLock<Arc<usvg::fontdb::Database>> = OnceLock::new();
+    FONTS
+        .get_or_init(|| {
+            let mut db = usvg::fontdb::Database::new();
+            db.load_system_fonts();
+            Arc::new(db)
+        })
+        .clone()
+}
+
+/// Whether any font was found to draw the labels with.
+pub fn have_fonts() -> bool {
+    !fonts().is_empty()
+}
+
+fn pixmap(svg: &str) -> Result<resvg::tiny_skia::Pixmap, String> {
+    let options = usvg::Options {
+        fontdb: fonts(),
+        ..Default::default()
+    };
+    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| format!("bad SVG: {e}"))?;
+    let size = tree.size().to_int_size();
+    let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height())
+        .ok_or_else(|| format!("cannot draw a {} × {} image", size.width(), size.height()))?;
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    Ok(pixmap)
+}
+
+/// The RGBA pixels of an SVG document at its own size: (width, height, pixels row by row).
+/// The figures are opaque (a white background), so premultiplied alpha changes nothing.
+pub fn rasterize(svg: &str) -> Result<(u32, u32, Vec<u8>), String> {
+    let p = pixmap(svg)?;
+    Ok((p.width(), p.height(), p.take()))
+}
+
+/// The SVG document as PNG bytes.
+pub fn png(svg: &str) -> Result<Vec<u8>, String> {
+    pixmap(svg)?
+        .encode_png()
+        .map_err(|e| format!("cannot encode the PNG: {e}"))
+}

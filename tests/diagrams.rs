@@ -1,0 +1,371 @@
+//! Ray diagrams: the `raytree diagram` figure (its rays drawn where the JSON tree says they
+//! are, in their colours, once resvg has drawn it), `inspect --format dot` (one node per ray),
+//! the BVH boxes a ray's search visits, and the labels of `render --depth-strip`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use glam::{DVec2, DVec3};
+use raytree::diagram::figure::Figure;
+use raytree::diagram::{raster, Drawing, SegKind, ViewChoice};
+use raytree::geometry::Ray;
+use raytree::scene::{Limits, Search};
+use raytree::stats::Stats;
+use raytree::trace::Tracer;
+use serde_json::Value;
+
+const L08: &str = "lessons/08-pixel-intensity/scene.yaml";
+
+fn raytree(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(args)
+        .output()
+        .expect("raytree runs")
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = Path::new("target/diagram-tests");
+    std::fs::create_dir_all(dir).unwrap();
+    let p = dir.join(name);
+    let _ = std::fs::remove_file(&p);
+    p
+}
+
+fn vec3(v: &Value) -> DVec3 {
+    let a: Vec<f64> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    DVec3::new(a[0], a[1], a[2])
+}
+
+/// Every node of a JSON tree with a hit: (kind, origin, hit point), parents first.
+fn hit_rays(node: &Value, out: &mut Vec<(String, DVec3, DVec3)>) {
+    if let Some(h) = node["hit"].as_object() {
+        out.push((
+            node["kind"].as_str().unwrap().to_string(),
+            vec3(&node["origin"]),
+            vec3(&h["point"]),
+        ));
+    }
+    for c in node["children"].as_array().unwrap() {
+        hit_rays(c, out);
+    }
+}
+
+fn count_nodes(node: &Value) -> usize {
+    1 + node["children"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(count_nodes)
+        .sum::<usize>()
+}
+
+/// Whether a pixel within `reach` of (x, y) has about the colour `rgb` (lines are
+/// antialiased, so their edges are blends).
+fn colour_near(img: &(u32, u32, Vec<u8>), at: DVec2, rgb: [u8; 3], reach: i64) -> bool {
+    let (w, h, px) = img;
+    for dy in -reach..=reach {
+        for dx in -reach..=reach {
+            let (x, y) = (at.x.round() as i64 + dx, at.y.round() as i64 + dy);
+            if x < 0 || y < 0 || x >= *w as i64 || y >= *h as i64 {
+                continue;
+            }
+            let i = 4 * (y as usize * *w as usize + x as usize);
+            let close = (0..3).all(|c| (px[i + c] as i32 - rgb[c] as i32).abs() <= 24);
+            if close {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+#[test]
+fn the_figure_draws_each_ray_where_the_json_tree_puts_it_in_its_colour() {
+    let svg_path = temp("l08.svg");
+    let out = raytree(&[
+        "diagram",
+        L08,
+        "--pixel",
+        "30,30",
+        "-o",
+        svg_path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    assert!(svg.starts_with("<svg"), "{}", &svg[..80.min(svg.len())]);
+    let json = raytree(&["inspect", L08, "--pixel", "30,30", "--format", "json"]);
+    let doc: Value = serde_json::from_slice(&json.stdout).unwrap();
+    let mut rays = vec![];
+    hit_rays(&doc["tree"], &mut rays);
+    // The exercise's tree: p → a, a → b (reflection), b → d, a → c (refraction).
+    let kinds: Vec<&str> = rays.iter().map(|r| r.0.as_str()).collect();
+    assert_eq!(kinds, ["primary", "reflection", "reflection", "refraction"]);
+
+    // Where the figure puts world points: the front view (the exercise lies in z = 0) at one
+    // scale across and up, framed by the figure.
+    let scene = raytree::scene::load(Path::new(L08), &Limits::default()).unwrap();
+    let tree = Tracer::new(&scene).inspect(&scene.camera.pixel_ray(30, 30));
+    let drawing = Drawing::new(&scene, &tree, &tree, ViewChoice::Auto, Some((30, 30)));
+    assert_eq!(drawing.view, raytree::diagram::View::Front);
+    let fig = Figure {
+        scene: &scene,
+        tree: &tree,
+        drawing: &drawing,
+        title: String::new(),
+        width: 1200,
+        height: 640,
+    };
+    let px = |p: DVec3| fig.pixel_of(p);
+    let (o, ex, ey) = (px(DVec3::ZERO), px(DVec3::X), px(DVec3::Y));
+    assert!(
+        (ex - o).y.abs() < 1e-9 && (ey - o).x.abs() < 1e-9,
+        "axis-aligned"
+    );
+    assert!((ex - o).x > 0.0 && (ey - o).y < 0.0, "x to the right, y up");
+    assert!(
+        ((ex - o).x + (ey - o).y).abs() < 1e-9,
+        "the same scale both ways"
+    );
+
+    let img = raster::rasterize(&svg).unwrap();
+    assert_eq!((img.0, img.1), (1200, 640));
+    let colour = |k: &str| match k {
+        "primary" => SegKind::Primary.rgb(),
+        "reflection" => SegKind::Reflection.rgb(),
+        _ => SegKind::Refraction.rgb(),
+    };
+    for (kind, from, to) in &rays {
+        // Along the ray, clear of its ends (where other rays and the hit dots meet).
+        for f in [0.3, 0.7] {
+            let at = px(*from + (*to - *from) * f);
+            assert!(
+                colour_near(&img, at, colour(kind), 2),
+                "no {kind} colour at {at} ({f} of the way from {from} to {to})"
+            );
+        }
+    }
+    // And not everywhere: well clear of every ray, below the refracted ray's end, is paper.
+    let c = rays[3].2;
+    let blank = px(c + DVec3::new(-1.5, -1.2, 0.0));
+    for kind in ["primary", "reflection", "refraction"] {
+        assert!(
+            !colour_near(&img, blank, colour(kind), 2),
+            "{kind} at {blank}"
+        );
+    }
+
+    // The PNG is the same figure.
+    let png_path = temp("l08.png");
+    let out = raytree(&[
+        "diagram",
+        L08,
+        "--pixel",
+        "30,30",
+        "-o",
+        png_path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let png = image::open(&png_path).unwrap().to_rgba8();
+    assert_eq!(png.dimensions(), (1200, 640));
+    let at = px(rays[0].1 + (rays[0].2 - rays[0].1) * 0.5);
+    let png_img = (1200, 640, png.into_raw());
+    assert!(colour_near(&png_img, at, SegKind::Primary.rgb(), 2), "{at}");
+}
+
+#[test]
+fn dot_has_one_node_per_ray_of_the_json_tree() {
+    for (scene, pixel) in [
+        (L08, "30,30"),
+        ("tests/scenes/explorer-mirror.yaml", "20,15"),
+        ("lessons/07-recursion-depth/scene.yaml", "80,60"),
+    ] {
+        let json = raytree(&["inspect", scene, "--pixel", pixel, "--format", "json"]);
+        let doc: Value = serde_json::from_slice(&json.stdout).unwrap();
+        let dot = raytree(&["inspect", scene, "--pixel", pixel, "--format", "dot"]);
+        assert!(dot.status.success());
+        let text = String::from_utf8(dot.stdout).unwrap();
+        assert!(text.starts_with("digraph ray_tree {"), "{text}");
+        let nodes = text
+            .lines()
+            .filter(|l| l.contains(" [label=") && !l.contains(" -> "))
+            .count();
+        let edges = text.lines().filter(|l| l.contains(" -> ")).count();
+        let n = count_nodes(&doc["tree"]);
+        assert_eq!(nodes, n, "{scene}\n{text}");
+        assert_eq!(edges, n - 1, "a tree has one edge fewer than nodes");
+    }
+    // The exercise's coefficients label its edges.
+    let dot = raytree(&["inspect", L08, "--pixel", "30,30", "--format", "dot"]);
+    let text = String::from_utf8(dot.stdout).unwrap();
+    assert!(
+        text.contains("[label=\"kr = 0.3\"]") && text.contains("[label=\"kt = 0.3\"]"),
+        "{text}"
+    );
+    assert!(
+        text.contains("[label=\"kr = 0.5\"]") && text.contains("[label=\"s = 1\"]"),
+        "{text}"
+    );
+}
+
+#[test]
+fn bad_arguments_exit_2_with_one_line_and_a_miss_still_draws() {
+    let out_svg = temp("bad.svg");
+    let o = out_svg.to_str().unwrap();
+    for args in [
+        vec!["diagram", L08, "--pixel", "61,0", "-o", o],
+        vec![
+            "diagram",
+            L08,
+            "--pixel",
+            "3,3",
+            "-o",
+            "target/diagram-tests/fig.pdf",
+        ],
+        vec![
+            "diagram", L08, "--pixel", "3,3", "--view", "diagonal", "-o", o,
+        ],
+        vec!["diagram", L08, "--pixel", "3,3", "--width", "5", "-o", o],
+    ] {
+        let out = raytree(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        if !args.contains(&"--view") {
+            assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        }
+        assert!(!out_svg.exists(), "{args:?} wrote a figure");
+    }
+    // A ray into the sky: the ray and the background are drawn.
+    let sky = temp("sky.svg");
+    let out = raytree(&[
+        "diagram",
+        L08,
+        "--ray",
+        "0,5,0:0,1,0",
+        "--view",
+        "side",
+        "-o",
+        sky.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let svg = std::fs::read_to_string(&sky).unwrap();
+    assert!(svg.contains("(background)"), "the missed ray is labelled");
+    assert!(svg.contains("side view"));
+}
+
+#[test]
+fn the_boxes_recorded_are_the_search_that_counted_them() {
+    let path = "lessons/12-acceleration/many.yaml";
+    let scene = raytree::scene::load(Path::new(path), &Limits::default()).unwrap();
+    assert!(
+        scene.bvh_nodes() > 100,
+        "968 spheres are searched through a BVH"
+    );
+    for ray in [
+        Ray::new(DVec3::new(0.0, 0.0, -12.0), DVec3::Z),
+        Ray::new(DVec3::new(0.0, 0.0, -12.0), DVec3::new(7.0, 0.0, 24.0)),
+        Ray::new(DVec3::new(0.5, 0.0, -12.0), DVec3::Z),
+    ] {
+        let mut stats = Stats::default();
+        let hit = scene.nearest(&ray, 0.0, f64::INFINITY, &mut stats);
+        let v = scene.visited_boxes(&ray, f64::INFINITY, false);
+        assert_eq!(v.boxes.len() as u64, stats.bvh_nodes_visited);
+        assert_eq!(v.objects_tested, stats.primitives_tested);
+        assert_eq!(v.hit.map(|h| h.t), hit.map(|h| h.t));
+        assert_eq!(v.total, scene.bvh_nodes());
+        // The first box is the root, around everything; every box entered is one the ray
+        // meets (the slab test, lesson 12).
+        assert!(v.boxes[0].1);
+        for (b, entered) in &v.boxes {
+            if *entered {
+                assert!(b.hit(ray.origin, ray.dir.recip(), 0.0, f64::INFINITY));
+            }
+        }
+        // The shadow search: as counted by the blocker search.
+        let mut stats = Stats::default();
+        scene.blocker(&ray, 0.0, 30.0, &mut stats);
+        let v = scene.visited_boxes(&ray, 30.0, true);
+        assert_eq!(v.boxes.len() as u64, stats.bvh_nodes_visited);
+    }
+    // The centre ray hits the first sphere at t = 11.7 (the lesson's worked answer), having
+    // entered far fewer boxes than the tree has.
+    let v = scene.visited_boxes(
+        &Ray::new(DVec3::new(0.0, 0.0, -12.0), DVec3::Z),
+        f64::INFINITY,
+        false,
+    );
+    assert!((v.hit.unwrap().t - 11.7).abs() < 1e-9);
+    assert!(
+        v.boxes.len() * 10 < v.total,
+        "{} of {}",
+        v.boxes.len(),
+        v.total
+    );
+}
+
+#[test]
+fn a_depth_strip_labels_each_frame_with_its_depth() {
+    let out_path = temp("strip.png");
+    let out = raytree(&[
+        "render",
+        "lessons/07-recursion-depth/scene.yaml",
+        "--depth-strip",
+        "3",
+        "--width",
+        "80",
+        "--height",
+        "60",
+        "-o",
+        out_path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let img = image::open(&out_path).unwrap().to_rgb8();
+    let (w, h) = img.dimensions();
+    assert_eq!(w, 3 * 80 + 2 * 4);
+    let band = h - 60;
+    assert!(band >= 10, "a band for the labels above the frames");
+    for k in 0..3 {
+        // Dark label pixels in each frame's band, and only white elsewhere in it.
+        let left = k * 84;
+        let dark = (0..band)
+            .flat_map(|y| (left..left + 80).map(move |x| (x, y)))
+            .filter(|&(x, y)| img.get_pixel(x, y).0 == [0, 0, 0])
+            .count();
+        assert!(dark > 20, "frame {k} has a label ({dark} dark pixels)");
+    }
+    // Frame 1 below its band is the depth-1 render.
+    let one = temp("one.png");
+    raytree(&[
+        "render",
+        "lessons/07-recursion-depth/scene.yaml",
+        "--depth",
+        "1",
+        "--width",
+        "80",
+        "--height",
+        "60",
+        "-o",
+        one.to_str().unwrap(),
+    ]);
+    let one = image::open(&one).unwrap().to_rgb8();
+    for (x, y) in [(0, 0), (40, 30), (79, 59)] {
+        assert_eq!(img.get_pixel(x, y + band), one.get_pixel(x, y));
+    }
+}
