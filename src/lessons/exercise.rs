@@ -5,6 +5,8 @@ use std::path::{Path, PathBuf};
 use glam::DVec3;
 use serde::Deserialize;
 
+use super::tolerance::Tolerance;
+
 /// What an exercise asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -65,14 +67,11 @@ pub struct Exercise {
     pub scene: Option<String>,
     /// Overrides the scene's max_depth (for the ray tree, and for rendering a pixel).
     pub depth: Option<u32>,
-    #[serde(default = "default_tolerance")]
-    pub tolerance: f64,
+    /// How close an answer must be (see `Tolerance`).
+    #[serde(default)]
+    pub tolerance: Tolerance,
     /// Shown on request before the answer.
     pub hint: Option<String>,
-}
-
-fn default_tolerance() -> f64 {
-    1e-3
 }
 
 #[derive(Clone, Debug, Deserialize)]

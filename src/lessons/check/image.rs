@@ -228,7 +228,9 @@ fn one_pixel(r: &Rendering, w: &Worked, ex: &Exercise, [x, y]: [u32; 2]) -> Vec<
         Antialias::Grid | Antialias::Jittered => samples(r, [x, y], path, &mut out),
         Antialias::Adaptive { threshold } => adaptive::pixel(r, threshold, [x, y], &mut out),
     };
-    if ex.ask == Ask::PixelValue && !Answer::color(value).matches(&w.expected, 1e-12) {
+    if ex.ask == Ask::PixelValue
+        && !Answer::color(value).matches(&w.expected, &crate::lessons::Tolerance::absolute(1e-12))
+    {
         out.push(format!(
             "(the render gives {}: the steps above do not follow it exactly)",
             w.expected.show()

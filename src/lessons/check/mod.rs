@@ -27,6 +27,7 @@ use glam::DVec3;
 
 use super::answer::{parse_answer, Answer};
 use super::exercise::{Ask, Exercise, Lesson};
+use super::tolerance::Tolerance;
 use crate::geometry::Ray;
 use crate::scene::{Limits, Scene};
 use crate::trace::tree::HitInfo;
@@ -47,7 +48,8 @@ pub struct Verdict {
     pub correct: bool,
     pub given: Answer,
     pub expected: Answer,
-    pub tolerance: f64,
+    /// The rule the answer was held to.
+    pub tolerance: Tolerance,
     /// A common mistake that explains a wrong answer.
     pub hint: Option<String>,
 }
@@ -59,13 +61,13 @@ impl Verdict {
                 "right: {} (expected {}, tolerance {})",
                 self.given.show(),
                 self.expected.show(),
-                text::num(self.tolerance)
+                self.tolerance.describe()
             )
         } else {
             let mut s = format!(
                 "wrong: {} is not within {} of the expected answer",
                 self.given.show(),
-                text::num(self.tolerance)
+                self.tolerance.describe()
             );
             if let Some(h) = &self.hint {
                 s.push_str(&format!("\nhint: {h}"));
@@ -220,7 +222,7 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
 pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, String> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
-    let correct = given.matches(&w.expected, ex.tolerance);
+    let correct = given.matches(&w.expected, &ex.tolerance);
     let hint = if correct { None } else { hint(&w, ex, &given) };
     Ok(Verdict {
         correct,
@@ -234,7 +236,7 @@ pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, Str
 /// The first common mistake that gives the student's answer. A mistake that happens to give
 /// the right answer here explains nothing, so it is passed over.
 fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
-    let tol = ex.tolerance;
+    let tol = &ex.tolerance;
     question(ex.ask)
         .mistakes(w, ex)
         .into_iter()
