@@ -112,6 +112,7 @@ pub fn update(app: &mut App, msg: Msg) {
         Msg::LevelNext => app.step_level(true),
         Msg::LevelPrev => app.step_level(false),
         Msg::ToggleCsg => app.toggle_csg(),
+        Msg::CsgAll => app.csg_all(),
         Msg::ToggleReadme | Msg::Exercises | Msg::Work => app.lesson_update(&msg),
         Msg::Goto => app.prompt = Some(Prompt::Goto(String::new())),
     }

@@ -92,6 +92,7 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
         KeyCode::Char('n') => return Some(Msg::LevelNext),
         KeyCode::Char('p') => return Some(Msg::LevelPrev),
         KeyCode::Char('c') => return Some(Msg::ToggleCsg),
+        KeyCode::Char('C') => return Some(Msg::CsgAll),
         KeyCode::Char('r') => return Some(Msg::ToggleReadme),
         KeyCode::Char('a') => return Some(Msg::Exercises),
         KeyCode::Char('w') => return Some(Msg::Work),

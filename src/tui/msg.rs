@@ -34,6 +34,8 @@ pub enum Msg {
     LevelNext,
     LevelPrev,
     ToggleCsg,
+    /// The CSG panel with every object evaluated whole, or the objects met only (`C`).
+    CsgAll,
     ToggleReadme,
     ToggleHelp,
     /// Opens the exercises (`a`).

@@ -98,6 +98,24 @@ impl App {
         }
     }
 
+    /// C: every object evaluated whole in the CSG panel, or back to the objects met.
+    pub(super) fn csg_all(&mut self) {
+        let was_shown = self.csg.shown();
+        self.csg.toggle_all();
+        if !was_shown && self.size.0 < layout::WIDE {
+            if let Some(l) = &mut self.lesson {
+                l.open = false;
+            }
+        }
+        self.refresh_csg();
+        let note = if self.csg.all() {
+            "CSG panel: every object, evaluated whole without bounding boxes (C: the objects met)"
+        } else {
+            "CSG panel: the objects the rays meet, through their bounding boxes (C: every object)"
+        };
+        self.message = Some((note.into(), Tone::Info));
+    }
+
     pub(super) fn click(&mut self, col: u16, row: u16) {
         let at = Position::new(col, row);
         let p = self.panes();

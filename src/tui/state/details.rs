@@ -45,14 +45,23 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
             if let Some(t) = n.t_max {
                 out.push(plain(format!("looks for blockers up to t = {}", num(t))));
             }
-            out.push(plain(match &n.hit {
-                Some(h) => format!(
+            let s = n.shadow.unwrap_or(0.0);
+            out.push(plain(match (&n.hit, n.shadow_rays) {
+                (Some(h), Some(rays)) => format!(
+                    "{} of {rays} shadow rays reach the light (the first blocked meets {} at t = {}): s = {}",
+                    (s * rays as f64).round(),
+                    h.object,
+                    num(h.t),
+                    num(s)
+                ),
+                (None, Some(rays)) => format!("all {rays} shadow rays reach the light: s = 1"),
+                (Some(h), None) => format!(
                     "blocked by {} at t = {}: s = {}",
                     h.object,
                     num(h.t),
                     num(n.shadow.unwrap_or(0.0))
                 ),
-                None => format!(
+                (None, None) => format!(
                     "nothing in the way: s = {}",
                     num(n.shadow.unwrap_or(1.0))
                 ),

@@ -25,7 +25,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("+ - ] [", "raise / lower the maximum depth"),
     ("n p", "step levels: next / previous (partial I)"),
     ("", "panels"),
-    ("c", "CSG segment lists of the picked pixel's rays"),
+    ("c C", "CSG segment lists of the rays (C: every object)"),
     ("r", "lesson README"),
     ("a", "lesson exercises: ↑↓ choose, Enter answer"),
     ("w", "the selected exercise's worked solution"),
