@@ -6,6 +6,7 @@ use glam::DVec3;
 use serde::Deserialize;
 
 use super::tolerance::Tolerance;
+use crate::shading::Highlight;
 
 /// What an exercise asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
@@ -67,6 +68,9 @@ pub struct Exercise {
     pub scene: Option<String>,
     /// Overrides the scene's max_depth (for the ray tree, and for rendering a pixel).
     pub depth: Option<u32>,
+    /// The highlight model the exercise is worked in (`phong` or `blinn`), for every material
+    /// of its scene; without it, each material's own.
+    pub model: Option<Highlight>,
     /// How close an answer must be (see `Tolerance`).
     #[serde(default)]
     pub tolerance: Tolerance,

@@ -142,7 +142,7 @@ mod tests {
             }
         );
         assert!(read("-1").is_err());
-        assert!(read("{ relative: 0 }").is_err());
+        assert!(read("{ relative: 0, absolute: 0 }").is_err());
     }
 
     #[test]
