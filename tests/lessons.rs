@@ -181,10 +181,7 @@ fn a_gaussian_filtered_pixel_is_explained_sample_by_sample() {
     let lesson = Lesson {
         dir: Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/examples"),
         id: "examples".into(),
-        title: String::new(),
-        summary: String::new(),
-        readme: String::new(),
-        exercises: vec![],
+        ..Default::default()
     };
     let ex = Exercise {
         id: "cornell".into(),

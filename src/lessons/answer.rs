@@ -39,6 +39,42 @@ impl Answer {
         }
     }
 
+    /// The answer as JSON: a number, [x, y, z], [[t_in, t_out], ...], or "tir".
+    pub fn to_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let t = |x: f64| {
+            if x.is_finite() {
+                json!(x)
+            } else {
+                json!(crate::trace::text::num(x))
+            }
+        };
+        match self {
+            Answer::Number(x) => t(*x),
+            Answer::Vector(v) => json!([t(v.x), t(v.y), t(v.z)]),
+            Answer::Segments(s) => json!(s
+                .iter()
+                .map(|(a, b)| json!([t(*a), t(*b)]))
+                .collect::<Vec<_>>()),
+            Answer::Tir => json!("tir"),
+        }
+    }
+
+    /// The room `tol` leaves around this (expected) answer: for its largest number.
+    pub fn allowance(&self, tol: &Tolerance) -> f64 {
+        let largest = match self {
+            Answer::Number(x) => x.abs(),
+            Answer::Vector(v) => v.abs().max_element(),
+            Answer::Segments(s) => s
+                .iter()
+                .flat_map(|(a, b)| [a.abs(), b.abs()])
+                .filter(|x| x.is_finite())
+                .fold(0.0, f64::max),
+            Answer::Tir => 0.0,
+        };
+        tol.around(largest)
+    }
+
     /// Within the tolerance of `expected`, component by component, each allowed
     /// `tol.around(scale)`: the scale is the expected number itself, or the largest component
     /// of an expected vector. A single number matches a grey colour.

@@ -166,8 +166,17 @@ impl<'a> Traced<'a> {
 
 /// The exercise's scene, in the highlight model the exercise states.
 fn load(lesson: &Lesson, ex: &Exercise) -> Result<Scene, String> {
-    let mut scene = crate::scene::load(&lesson.scene_path(ex), &Limits::default())
-        .map_err(|e| e.to_string())?;
+    let path = lesson.scene_path(ex);
+    let mut scene = match lesson.scene_source(ex) {
+        Some(text) => crate::scene::parse(
+            text,
+            &path.display().to_string(),
+            Some(&path),
+            &Limits::default(),
+        ),
+        None => crate::scene::load(&path, &Limits::default()),
+    }
+    .map_err(|e| e.to_string())?;
     if let Some(model) = ex.model {
         for m in &mut scene.materials {
             m.highlight = model;
@@ -377,8 +386,15 @@ fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
         .map(|m| m.hint)
 }
 
-/// The worked derivation, step by step, with the numbers filled in.
+/// The worked derivation, step by step, with the numbers filled in (refused for a lesson whose
+/// solutions are hidden).
 pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
+    if lesson.solutions == super::exercise::Solutions::Hidden {
+        return Err(format!(
+            "lesson {}: the worked solutions are hidden (solutions: hidden)",
+            lesson.id
+        ));
+    }
     let w = work(lesson, ex)?;
     let n = node(&w.tree, ex)?;
     let mut out = vec![format!("{}: {}", ex.id, ex.question.trim())];
