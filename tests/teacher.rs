@@ -439,7 +439,10 @@ fn check_json_and_progress() {
     }
     assert_eq!(v["correct"], false);
     // The mirror's local term, 0.23 by hand (README).
-    assert!((v["expected"].as_f64().unwrap() - 0.23).abs() < 1e-12, "{v}");
+    assert!(
+        (v["expected"].as_f64().unwrap() - 0.23).abs() < 1e-12,
+        "{v}"
+    );
     let solved = |data: &Path| -> Vec<String> {
         let o = raytree_in(data, &["lessons", "--format", "json"]);
         let v: Value = serde_json::from_str(&out(&o)).unwrap();

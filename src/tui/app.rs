@@ -114,6 +114,7 @@ pub fn update(app: &mut App, msg: Msg) {
         Msg::ToggleCsg => app.toggle_csg(),
         Msg::CsgAll => app.csg_all(),
         Msg::ToggleReadme | Msg::Exercises | Msg::Work => app.lesson_update(&msg),
+        Msg::NextScene => app.next_scene(),
         Msg::Goto => app.prompt = Some(Prompt::Goto(String::new())),
     }
     app.settle();
@@ -176,9 +177,14 @@ impl App {
             path,
             scene,
             lesson,
+            folder,
         } = SceneFile::open(target)?;
         self.file.watch(path);
-        self.lesson = lesson.map(LessonPanel::new);
+        self.lesson = lesson.map(|l| {
+            let mut panel = LessonPanel::new(l);
+            panel.open = folder;
+            panel
+        });
         self.screen = Screen::Scene;
         self.tree.restart((scene.camera.width, scene.camera.height));
         self.focus = Focus::Preview;

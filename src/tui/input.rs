@@ -95,6 +95,7 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
         KeyCode::Char('C') => return Some(Msg::CsgAll),
         KeyCode::Char('r') => return Some(Msg::ToggleReadme),
         KeyCode::Char('a') => return Some(Msg::Exercises),
+        KeyCode::Char('s') => return Some(Msg::NextScene),
         KeyCode::Char('w') => return Some(Msg::Work),
         KeyCode::Char('o') => return Some(Msg::LessonList),
         KeyCode::Char('e') => return Some(Msg::ExpandAll),

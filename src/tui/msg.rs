@@ -38,6 +38,8 @@ pub enum Msg {
     CsgAll,
     ToggleReadme,
     ToggleHelp,
+    /// The lesson's next scene (`s`).
+    NextScene,
     /// Opens the exercises (`a`).
     Exercises,
     /// Shows or hides the selected exercise's worked solution (`w`).

@@ -125,7 +125,7 @@ impl App {
         } else if p.tree.contains(at) {
             self.focus = Focus::Tree;
             let body = inner(p.tree);
-            let top = body.y + self.tree.level().is_some() as u16;
+            let top = body.y + self.tree.head_lines() as u16;
             if row >= top && row < body.bottom() {
                 let moved = self.tree.click((row - top) as usize);
                 self.follow_selection(moved);

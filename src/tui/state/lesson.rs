@@ -45,12 +45,20 @@ pub struct LessonPanel {
     signature: [Option<FileSig>; 2],
 }
 
-/// Where an exercise points the ray tree: a pixel of the scene, a depth, a ray of the tree.
+/// Where an exercise points the ray tree: a pixel of the scene or a ray, a depth, a ray of the
+/// tree.
 pub struct Aim {
-    pub pixel: (u32, u32),
+    pub at: AimAt,
     pub depth: Option<u32>,
     /// The kinds on the path to the ray asked about ("reflection.refraction").
     pub node: String,
+}
+
+/// What the tree follows for an exercise.
+pub enum AimAt {
+    Pixel(u32, u32),
+    /// A ray that is no pixel's primary ray.
+    Ray(Ray),
 }
 
 /// What the explorer says when there is no lesson to act on.
@@ -100,9 +108,32 @@ impl LessonPanel {
         self.view = LessonView::Exercises;
     }
 
-    /// Selects exercise `i` (clamped); None without exercises. When the exercise is about a
-    /// pixel of a `w` × `h` image of this scene (or a ray that is one's primary ray), the
-    /// `Aim` says where the ray tree should go; the note says what the exercise is about.
+    /// The scene file an exercise is posed on.
+    pub fn scene_of(&self, i: usize) -> Option<String> {
+        let ex = self.lesson.exercises.get(i)?;
+        Some(ex.scene.clone().unwrap_or_else(|| "scene.yaml".into()))
+    }
+
+    /// The lesson's scenes: scene.yaml, then the other scene files of its folder in name order.
+    pub fn scenes(&self) -> Vec<String> {
+        let mut others: Vec<String> = std::fs::read_dir(&self.lesson.dir)
+            .map(|rd| {
+                rd.filter_map(|e| e.ok())
+                    .map(|e| e.file_name().to_string_lossy().into_owned())
+                    .filter(|n| n.ends_with(".yaml") && n != "exercises.yaml" && n != "scene.yaml")
+                    .collect()
+            })
+            .unwrap_or_default();
+        others.sort();
+        let mut all = vec!["scene.yaml".to_string()];
+        all.extend(others);
+        all
+    }
+
+    /// Selects exercise `i` (clamped); None without exercises. `scene` is the exercise's own
+    /// scene (the caller switches to it first): the `Aim` says where the ray tree should go, a
+    /// pixel of its `w` × `h` image (also for a ray that is a pixel's primary ray) or the
+    /// exercise's ray; the note says what the exercise is about.
     pub fn select_exercise(
         &mut self,
         i: usize,
@@ -119,14 +150,12 @@ impl LessonPanel {
         }
         self.exercise = i;
         let ex = &self.lesson.exercises[i];
-        let same_scene = ex.scene.as_deref().is_none_or(|s| s == "scene.yaml");
         let mut note = format!("exercise {}", ex.id);
+        let ray = ex.ray.as_ref().map(|r| Ray::new(r.origin, r.direction));
         // A ray exercise whose ray is a primary ray of the scene is that pixel's.
-        let pixel = match (ex.pixel, &ex.ray, scene) {
+        let pixel = match (ex.pixel, &ray, scene) {
             (Some(p), ..) => Some(p),
-            (None, Some(r), Some(scene)) if same_scene => {
-                pixel_of_ray(scene, &Ray::new(r.origin, r.direction)).map(|(x, y)| [x, y])
-            }
+            (None, Some(r), Some(scene)) => pixel_of_ray(scene, r).map(|(x, y)| [x, y]),
             _ => None,
         };
         if let (Some(r), None) = (&ex.ray, ex.pixel) {
@@ -139,21 +168,23 @@ impl LessonPanel {
                 note.push_str(", the primary ray of");
             }
         }
-        let mut aim = None;
-        if let (Some([x, y]), true) = (pixel, same_scene) {
-            if x < w && y < h {
-                aim = Some(Aim {
-                    pixel: (x, y),
-                    depth: ex.depth,
-                    node: ex.node.clone(),
-                });
+        let at = match (pixel, ray) {
+            (Some([x, y]), _) if x < w && y < h => {
                 let sep = if ex.pixel.is_some() { ":" } else { "" };
                 note.push_str(&format!("{sep} pixel {x},{y}"));
-                if !ex.node.is_empty() {
-                    note.push_str(&format!(", node {}", ex.node));
-                }
+                Some(AimAt::Pixel(x, y))
             }
+            (_, Some(r)) if r.dir.is_finite() && r.dir != glam::DVec3::ZERO => Some(AimAt::Ray(r)),
+            _ => None,
+        };
+        if at.is_some() && !ex.node.is_empty() {
+            note.push_str(&format!(", node {}", ex.node));
         }
+        let aim = at.map(|at| Aim {
+            at,
+            depth: ex.depth,
+            node: ex.node.clone(),
+        });
         if let Some(s) = &ex.scene {
             note.push_str(&format!(" (scene {s})"));
         }

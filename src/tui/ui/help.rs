@@ -26,7 +26,7 @@ pub const KEYS: &[(&str, &str)] = &[
     ("n p", "step levels: next / previous (partial I)"),
     ("", "panels"),
     ("c C", "CSG segment lists of the rays (C: every object)"),
-    ("r", "lesson README"),
+    ("r s", "lesson README · s: the lesson's next scene"),
     ("a", "lesson exercises: ↑↓ choose, Enter answer"),
     ("w", "the selected exercise's worked solution"),
     ("PgUp PgDn", "scroll the panel"),

@@ -8,16 +8,20 @@ use ratatui::widgets::Paragraph;
 use ratatui::Frame;
 
 use super::{pane, position_note, swatch, themed};
-use crate::trace::RayKind;
+use crate::trace::{text, RayKind};
 use crate::tui::app::{App, Focus};
 use crate::tui::tree::{self, label, short_color};
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let t = &app.tree;
     let (x, y) = t.pixel();
+    let at = match t.aimed_ray() {
+        Some(r) => format!("ray {} → {}", text::vec3(r.origin), text::vec3(r.dir)),
+        None => format!("pixel {x},{y}"),
+    };
     let title = match t.level() {
-        Some(k) => format!(" ray tree · pixel {x},{y} · level {k} of {} ", t.depth()),
-        None => format!(" ray tree · pixel {x},{y} · depth {} ", t.depth()),
+        Some(k) => format!(" ray tree · {at} · level {k} of {} ", t.depth()),
+        None => format!(" ray tree · {at} · depth {} ", t.depth()),
     };
     let Some(root) = t.shown_tree() else {
         f.render_widget(
@@ -35,6 +39,30 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
     let mut lines: Vec<Line> = Vec::new();
+    let yellow = themed(app, Style::new().fg(Color::Yellow));
+    if let Some(p) = t.paths() {
+        lines.push(Line::from(vec![
+            Span::styled(
+                format!("path traced: estimate {} ", short_color(p.estimate)),
+                yellow,
+            ),
+            swatch(app, p.estimate),
+            Span::raw(format!(" of {} paths", p.spp)),
+        ]));
+        for (k, (value, steps)) in p.shown.iter().enumerate() {
+            lines.push(Line::from(vec![
+                Span::raw(format!(" path {}: {} ", k + 1, short_color(*value))),
+                Span::styled(
+                    format!("eye → {steps}"),
+                    themed(app, Style::new().fg(Color::DarkGray)),
+                ),
+            ]));
+        }
+        lines.push(Line::styled(
+            "▼ Whitted reading of the centre ray, not the estimate:",
+            yellow,
+        ));
+    }
     if let Some((value, how)) = t.pixel_value() {
         lines.push(Line::from(vec![
             Span::styled(
