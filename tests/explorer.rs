@@ -1164,3 +1164,112 @@ fn the_tree_says_how_much_of_a_soft_shadow_is_blocked() {
     assert!(text.contains("partly blocked (15 of 16 clear)"), "{text}");
     assert!(!text.contains("blocked by shelf, s"), "{text}");
 }
+
+/// A copy of lesson 05 (a mirror, a ball) in a scratch folder, with `solutions: hidden`.
+fn hidden_lesson(name: &str) -> PathBuf {
+    let dir = scratch(name);
+    for f in ["scene.yaml", "README.md"] {
+        std::fs::copy(Path::new("lessons/05-reflection").join(f), dir.join(f)).unwrap();
+    }
+    let exercises = std::fs::read_to_string("lessons/05-reflection/exercises.yaml").unwrap();
+    std::fs::write(
+        dir.join("exercises.yaml"),
+        exercises.replacen("exercises:", "solutions: hidden\nexercises:", 1),
+    )
+    .unwrap();
+    dir
+}
+
+/// Answers exercise `i` of the open lesson with raytree's own value.
+fn answer_right(app: &mut App, i: usize) {
+    let l = &app.lesson.as_ref().unwrap().lesson;
+    let ex = &l.exercises[i];
+    let value = raytree::lessons::work(l, ex).unwrap().expected.show();
+    update(app, Msg::Exercises);
+    let at = app.lesson.as_ref().unwrap().exercise;
+    for _ in at..i {
+        update(app, Msg::Down);
+    }
+    for _ in i..at {
+        update(app, Msg::Up);
+    }
+    update(app, Msg::Submit);
+    for c in value.chars() {
+        update(app, Msg::Input(c));
+    }
+    update(app, Msg::Submit);
+}
+
+/// With `solutions: hidden`, no worked solutions, and the tree and details show no intensity
+/// until every intensity exercise of the scene is answered right.
+#[test]
+fn hidden_solutions_hide_intensities_until_answered() {
+    let dir = hidden_lesson("hidden-solutions");
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(80, 60));
+    let text = screen(&app);
+    assert!(text.contains("I = ?"), "{text}");
+    assert!(!text.contains("I = 0."), "{text}");
+    press(&mut app, KeyCode::Char('a'));
+    press(&mut app, KeyCode::Char('w'));
+    assert!(screen(&app).contains("hidden"), "{}", screen(&app));
+    assert!(!screen(&app).contains("worked solution (w hides):"));
+    let asks: Vec<usize> = {
+        let l = &app.lesson.as_ref().unwrap().lesson;
+        l.exercises
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| {
+                use raytree::lessons::Ask::*;
+                matches!(e.ask, Intensity | Local | Diffuse | Specular | PixelValue)
+            })
+            .map(|(k, _)| k)
+            .collect()
+    };
+    let (last, rest) = asks.split_last().unwrap();
+    for &k in rest {
+        answer_right(&mut app, k);
+    }
+    assert!(screen(&app).contains("I = ?"), "one left: still hidden");
+    answer_right(&mut app, *last);
+    let text = screen(&app);
+    assert!(!text.contains("I = ?"), "{text}");
+    assert!(text.contains("I = 0."), "{text}");
+}
+
+/// A right answer is kept: the exercise list marks it, and so do a new session's exercise list
+/// and lesson list.
+#[test]
+fn right_answers_are_marked_and_kept_between_sessions() {
+    let dir = hidden_lesson("progress");
+    std::fs::write(
+        dir.join("exercises.yaml"),
+        std::fs::read_to_string("lessons/05-reflection/exercises.yaml").unwrap(),
+    )
+    .unwrap();
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    answer_right(&mut app, 4);
+    let solved = |app: &App| app.lesson.as_ref().unwrap().solved.clone();
+    assert_eq!(solved(&app).len(), 1);
+    let mut again = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    assert_eq!(solved(&again), solved(&app));
+    press(&mut again, KeyCode::Char('a'));
+    let text = screen(&again);
+    assert!(text.contains("✓ mirror-local"), "{text}");
+    let mut list = App::open_lessons(dir.parent().unwrap(), ColorMode::TrueColor);
+    update(&mut list, Msg::Resize(100, 30));
+    let at = list
+        .list
+        .as_ref()
+        .unwrap()
+        .entries
+        .iter()
+        .position(|e| e.dir == dir)
+        .unwrap();
+    for _ in 0..at {
+        update(&mut list, Msg::Down);
+    }
+    let text = screen(&list);
+    assert!(text.contains(" 1/9"), "{text}");
+    assert!(text.contains("✓ mirror-local"), "{text}");
+}

@@ -366,6 +366,12 @@ impl App {
         if !self.focusable().contains(&self.focus) {
             self.focus = Focus::Preview;
         }
+        let scene = self.scene_name();
+        let hidden = self
+            .lesson
+            .as_ref()
+            .is_some_and(|l| l.hides_intensities(&scene));
+        self.tree.set_hidden(hidden);
         let body = self.tree_body_height();
         self.tree.keep_selection_visible(body);
     }

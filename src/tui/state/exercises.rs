@@ -59,6 +59,7 @@ pub fn rows(l: &LessonPanel, body: Rect) -> (Vec<ExRow>, Vec<ExRow>) {
                 Ok(_) => "✗",
                 Err(_) => "?",
             },
+            None if l.solved.contains(&ex.id) => "✓",
             None => " ",
         };
         let selected = i == l.exercise;

@@ -9,7 +9,10 @@ use super::exercises;
 use super::scene::{signature, FileSig};
 use super::{max_scroll, scrolled, Note, Tone};
 use crate::geometry::Ray;
-use crate::lessons::{self, Lesson, Verdict};
+use std::collections::BTreeSet;
+
+use crate::lessons::progress::Progress;
+use crate::lessons::{self, Ask, Lesson, Solutions, Verdict};
 use crate::scene::Scene;
 use crate::trace::text;
 use crate::tui::layout::inner;
@@ -42,6 +45,8 @@ pub struct LessonPanel {
     pub work: Option<Result<Vec<String>, String>>,
     /// Scroll of the selected exercise's text in the exercises view.
     pub exercise_scroll: u16,
+    /// The exercises answered right, now or in an earlier session (the user's progress).
+    pub solved: BTreeSet<String>,
     signature: [Option<FileSig>; 2],
 }
 
@@ -76,6 +81,7 @@ impl LessonPanel {
         let n = lesson.exercises.len();
         LessonPanel {
             signature: lesson_signature(&lesson.dir),
+            solved: Progress::load().solved(&lesson),
             lesson,
             open: true,
             view: LessonView::Readme,
@@ -192,8 +198,24 @@ impl LessonPanel {
         Some((aim, (note, Tone::Info)))
     }
 
+    /// In a lesson whose solutions are hidden, the intensities of scene `scene` stay hidden
+    /// while an exercise about an intensity on it is not answered right.
+    pub fn hides_intensities(&self, scene: &str) -> bool {
+        self.lesson.solutions == Solutions::Hidden
+            && self.lesson.exercises.iter().any(|ex| {
+                let on = ex.scene.as_deref().unwrap_or("scene.yaml") == scene;
+                on && about_intensity(ex.ask) && !self.solved.contains(&ex.id)
+            })
+    }
+
     /// w: shows (or hides) the worked solution of the selected exercise.
     pub fn toggle_work(&mut self) -> Option<Note> {
+        if self.lesson.solutions == Solutions::Hidden {
+            return Some((
+                "the worked solutions of this lesson are hidden (solutions: hidden)".into(),
+                Tone::Bad,
+            ));
+        }
         if !self.in_exercises() {
             return Some((
                 "w shows a worked solution in the exercises (press a)".into(),
@@ -222,7 +244,7 @@ impl LessonPanel {
     pub fn answer(&mut self, exercise: usize, given: String) -> Option<Note> {
         let ex = self.lesson.exercises.get(exercise)?;
         let result = lessons::check(&self.lesson, ex, &given);
-        let note = match &result {
+        let mut note = match &result {
             Ok(v) => (
                 format!(
                     "{}: {}",
@@ -233,6 +255,12 @@ impl LessonPanel {
             ),
             Err(e) => (format!("{}: {e}", ex.id), Tone::Bad),
         };
+        if result.as_ref().is_ok_and(|v| v.correct) {
+            self.solved.insert(ex.id.clone());
+            if let Err(e) = Progress::record(&self.lesson, &ex.id) {
+                note.0.push_str(&format!(" (progress not saved: {e})"));
+            }
+        }
         self.answers[exercise] = Some(Answered { given, result });
         Some(note)
     }
@@ -293,6 +321,14 @@ impl LessonPanel {
     pub fn scroll_exercise(&mut self, delta: i32, pane: Option<Rect>) {
         self.exercise_scroll = scrolled(self.exercise_scroll, delta, self.max_scroll(pane));
     }
+}
+
+/// The kinds of question whose answer is an intensity (or a term of one).
+fn about_intensity(ask: Ask) -> bool {
+    matches!(
+        ask,
+        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue
+    )
 }
 
 /// The pixel whose primary ray (through its centre) is this ray, if there is one.

@@ -45,6 +45,8 @@ pub struct RayTree {
     pixel_value: Option<(DVec3, String)>,
     /// A path-traced pixel's estimate and some of the paths it averages.
     paths: Option<Paths>,
+    /// Intensities are not shown (a lesson's hidden solutions, not yet answered).
+    hidden: bool,
     /// Open and selected rays, scrolling.
     view: TreeState,
 }
@@ -75,6 +77,7 @@ impl Default for RayTree {
             stats: Stats::default(),
             pixel_value: None,
             paths: None,
+            hidden: false,
             view: TreeState::default(),
         }
     }
@@ -96,6 +99,15 @@ impl RayTree {
     /// A path-traced pixel's estimate and sampled paths.
     pub fn paths(&self) -> Option<&Paths> {
         self.paths.as_ref()
+    }
+
+    /// Intensities are hidden until the lesson's exercises about them are answered.
+    pub fn hidden(&self) -> bool {
+        self.hidden
+    }
+
+    pub fn set_hidden(&mut self, hidden: bool) {
+        self.hidden = hidden;
     }
 
     /// The lines the tree pane shows above the tree: the rendered value, or the path tracer's
@@ -169,7 +181,7 @@ impl RayTree {
     /// The selected ray's details at a width.
     pub fn detail_rows(&self, width: usize) -> Vec<DetailRow> {
         self.selected_node()
-            .map_or(vec![], |n| details::rows(n, self.depth, width))
+            .map_or(vec![], |n| details::rows(n, self.depth, width, self.hidden))
     }
 
     /// How far the details can scroll in the lower pane (none without the pane).
@@ -310,6 +322,9 @@ impl RayTree {
     /// What the level being stepped adds to the pixel's intensity.
     pub fn level_note(&self) -> Option<Note> {
         let k = self.level?;
+        if self.hidden {
+            return Some((format!("level {k} of {}", self.depth), Tone::Info));
+        }
         let i = self
             .partials
             .get(k as usize - 1)
@@ -330,6 +345,12 @@ impl RayTree {
 
     /// Level stepping is over: the intensity of all levels together.
     pub fn collected_note(&self) -> Note {
+        if self.hidden {
+            return (
+                format!("all {} levels collected (n steps again)", self.depth),
+                Tone::Info,
+            );
+        }
         let i = self.full.as_ref().map_or(DVec3::ZERO, |t| t.color);
         (
             format!(

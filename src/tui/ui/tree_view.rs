@@ -41,17 +41,28 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let mut lines: Vec<Line> = Vec::new();
     let yellow = themed(app, Style::new().fg(Color::Yellow));
     if let Some(p) = t.paths() {
-        lines.push(Line::from(vec![
-            Span::styled(
-                format!("path traced: estimate {} ", short_color(p.estimate)),
-                yellow,
-            ),
-            swatch(app, p.estimate),
-            Span::raw(format!(" of {} paths", p.spp)),
-        ]));
+        let estimate = if t.hidden() {
+            vec![Span::styled("path traced: estimate ? ", yellow)]
+        } else {
+            vec![
+                Span::styled(
+                    format!("path traced: estimate {} ", short_color(p.estimate)),
+                    yellow,
+                ),
+                swatch(app, p.estimate),
+            ]
+        };
+        lines.push(Line::from(
+            [estimate, vec![Span::raw(format!(" of {} paths", p.spp))]].concat(),
+        ));
         for (k, (value, steps)) in p.shown.iter().enumerate() {
+            let value = if t.hidden() {
+                "?".to_string()
+            } else {
+                short_color(*value)
+            };
             lines.push(Line::from(vec![
-                Span::raw(format!(" path {}: {} ", k + 1, short_color(*value))),
+                Span::raw(format!(" path {}: {value} ", k + 1)),
                 Span::styled(
                     format!("eye → {steps}"),
                     themed(app, Style::new().fg(Color::DarkGray)),
@@ -63,7 +74,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             yellow,
         ));
     }
-    if let Some((value, how)) = t.pixel_value() {
+    if let Some((value, how)) = t.pixel_value().filter(|_| !t.hidden()) {
         lines.push(Line::from(vec![
             Span::styled(
                 format!("pixel = {} ", short_color(*value)),
@@ -79,7 +90,12 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             themed(app, Style::new().fg(Color::Yellow)),
         )];
         for (i, c) in t.partials().iter().enumerate().take(k as usize) {
-            spans.push(Span::raw(format!(" {}: {}", i + 1, short_color(*c))));
+            let c = if t.hidden() {
+                "?".to_string()
+            } else {
+                short_color(*c)
+            };
+            spans.push(Span::raw(format!(" {}: {c}", i + 1)));
             if i + 1 < k as usize {
                 spans.push(Span::raw(" →"));
             }
@@ -112,7 +128,9 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             label(n),
             themed(app, Style::new().fg(kind_color)),
         ));
-        if n.kind != RayKind::Shadow {
+        if n.kind != RayKind::Shadow && t.hidden() {
+            spans.push(Span::raw("  I = ?"));
+        } else if n.kind != RayKind::Shadow {
             spans.push(Span::raw(format!("  I = {} ", short_color(n.color))));
             spans.push(swatch(app, n.color));
         }
