@@ -68,8 +68,11 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// A lesson folder, and its lesson or why it does not load.
+type Loaded = (PathBuf, Result<Lesson, String>);
+
 /// Every lesson folder under `root` in name order, loaded or with why it does not load.
-fn load_all(root: &Path) -> Result<Vec<(PathBuf, Result<Lesson, String>)>, Failure> {
+fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
     if root.join("exercises.yaml").is_file() {
         return Ok(vec![(root.to_path_buf(), Lesson::load(root))]);
     }

@@ -162,8 +162,8 @@ pub fn written(
     paths: impl Iterator<Item = String>,
 ) -> BTreeMap<String, String> {
     let parsed: Vec<(&String, yaml_spans::Node)> = files
-        .iter()
-        .filter_map(|(_, text)| yaml_spans::parse(text).ok().map(|n| (text, n)))
+        .values()
+        .filter_map(|text| yaml_spans::parse(text).ok().map(|n| (text, n)))
         .collect();
     paths
         .filter_map(|path| {

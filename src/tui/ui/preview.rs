@@ -72,7 +72,8 @@ pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
             }
         }
     }
-    if w > 0 && h > 0 {
+    // An exercise's ray that is no pixel's has no place on the image to mark.
+    if w > 0 && h > 0 && app.tree.aimed_ray().is_none() {
         if let Some((cx, cy)) = pixel_cell(p, (w, h), app.tree.pixel()) {
             if let (true, Some(cell)) = (
                 r.contains(ratatui::layout::Position::new(cx, cy)),
