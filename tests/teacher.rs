@@ -405,6 +405,16 @@ fn two_students_homework_differ_and_grade_against_their_own_values() {
     assert_eq!(right(0), true, "alice");
     assert_eq!(right(1), true, "bob");
     assert_eq!(right(2), false, "carol copied alice's answer");
+    let carol = report["students"][2]["exercises"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["exercise"] == "diffuse")
+        .unwrap()["hint"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(carol.contains("alice's answer"), "{carol}");
 }
 
 /// `check --format json` carries the contract's fields, and a right answer is remembered:

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
+use super::answer::{parse_answer, Answer};
 use super::check::check;
 use super::exercise::Lesson;
 
@@ -143,8 +144,16 @@ pub fn grade(lesson: &Lesson, rows: &[Row], mut problems: Vec<Problem>) -> Resul
         }
     }
     let mut students = Vec::new();
+    // Each student's expected answers, to tell a copied answer from a plain mistake.
+    let mut expected_of: Vec<Vec<Option<Answer>>> = Vec::new();
     for student in order {
         let own = lesson.variant(&student)?;
+        expected_of.push(
+            own.exercises
+                .iter()
+                .map(|ex| super::check::work(&own, ex).ok().map(|w| w.expected))
+                .collect(),
+        );
         let mut exercises = Vec::new();
         for ex in &own.exercises {
             let row = answers.get(&(student.clone(), ex.id.clone()));
@@ -182,12 +191,50 @@ pub fn grade(lesson: &Lesson, rows: &[Row], mut problems: Vec<Problem>) -> Resul
             exercises,
         });
     }
+    if !lesson.vary.is_empty() {
+        name_copies(lesson, &mut students, &expected_of);
+    }
     problems.sort_by_key(|p| p.line);
     Ok(Report {
         lesson: lesson.id.clone(),
         students,
         problems,
     })
+}
+
+/// A wrong answer that is another student's expected answer was worked out with that student's
+/// values: the hint says whose.
+fn name_copies(
+    lesson: &Lesson,
+    students: &mut [StudentReport],
+    expected_of: &[Vec<Option<Answer>>],
+) {
+    let names: Vec<String> = students.iter().map(|s| s.student.clone()).collect();
+    for (k, s) in students.iter_mut().enumerate() {
+        for (j, g) in s.exercises.iter_mut().enumerate() {
+            let (Some(answer), false) = (&g.answer, g.correct) else {
+                continue;
+            };
+            let Ok(ex) = lesson.exercise(&g.exercise) else {
+                continue;
+            };
+            let Ok(given) = parse_answer(answer, ex.ask == super::exercise::Ask::Segments) else {
+                continue;
+            };
+            let other = (0..names.len()).find(|&o| {
+                o != k
+                    && expected_of[o][j]
+                        .as_ref()
+                        .is_some_and(|e| given.matches(e, &ex.tolerance))
+            });
+            if let Some(o) = other {
+                g.hint = Some(format!(
+                    "that is {}'s answer, worked out with {}'s values, not this student's",
+                    names[o], names[o]
+                ));
+            }
+        }
+    }
 }
 
 fn expected(lesson: &Lesson, ex: &super::exercise::Exercise) -> Option<String> {
