@@ -8,6 +8,11 @@ fn raytree(args: &[&str]) -> Output {
         .args(args)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("NO_COLOR", "1")
+        // A right answer is remembered: in a folder of the test's, not the user's.
+        .env(
+            "RAYTREE_DATA",
+            std::env::temp_dir().join("raytree-cli-data"),
+        )
         .output()
         .expect("runs")
 }

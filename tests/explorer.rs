@@ -16,8 +16,18 @@ use raytree::tui::{input, ui, update, App, Msg};
 const MIRROR: &str = "tests/scenes/explorer-mirror.yaml";
 const CSG: &str = "tests/scenes/explorer-csg.yaml";
 
+/// Progress (answers right) goes to a data folder of this test binary, not the user's.
+fn private_data() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let dir = std::env::temp_dir().join(format!("raytree-explorer-{}", std::process::id()));
+        std::env::set_var("RAYTREE_DATA", dir);
+    });
+}
+
 /// An explorer on `target` in a `w` × `h` terminal, its preview rendered.
 fn open(target: &str, color: ColorMode, (w, h): (u16, u16)) -> App {
+    private_data();
     let mut app = App::open(Some(Path::new(target)), color).expect("opens");
     update(&mut app, Msg::Resize(w, h));
     app.render_now();
@@ -1249,4 +1259,252 @@ fn a_supersampled_pixel_shows_its_rendered_value_above_the_centre_ray() {
     // A one-ray scene needs no such line.
     let plain = open(MIRROR, ColorMode::TrueColor, (160, 48));
     assert!(plain.tree.pixel_value().is_none());
+}
+
+// ---------------------------------------------------------------------------------------
+// A class relies on it (issue 28)
+
+/// The exercise selected with `a` and moved to with ↓ (`n` times).
+fn select_exercise(app: &mut App, n: usize) {
+    press(app, KeyCode::Char('a'));
+    for _ in 0..n {
+        press(app, KeyCode::Down);
+    }
+}
+
+fn scene_name(app: &App) -> String {
+    app.file
+        .path
+        .as_ref()
+        .and_then(|p| p.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default()
+}
+
+/// Defect 7: a lesson's extra scene belongs to the lesson: opened alone, `a` still finds the
+/// lesson's exercises.
+#[test]
+fn an_extra_scene_of_a_lesson_opens_with_its_lesson() {
+    let mut app = open(
+        "lessons/03-local-illumination/phong.yaml",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    assert_eq!(scene_name(&app), "phong.yaml");
+    press(&mut app, KeyCode::Char('a'));
+    assert!(app.exercises_active(), "{}", screen(&app));
+    assert!(!screen(&app).contains("no lesson here"));
+}
+
+/// Defect 7: `s` steps through the lesson's scenes; an exercise posed on another scene switches
+/// the view to it.
+#[test]
+fn exercises_and_the_s_key_switch_between_a_lessons_scenes() {
+    let mut app = open(
+        "lessons/03-local-illumination",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    assert_eq!(scene_name(&app), "scene.yaml");
+    // specular-phong, the fourth exercise, is posed on phong.yaml.
+    select_exercise(&mut app, 3);
+    let l = app.lesson.as_ref().unwrap();
+    assert_eq!(l.lesson.exercises[l.exercise].id, "specular-phong");
+    assert_eq!(scene_name(&app), "phong.yaml");
+    assert_eq!(app.tree.pixel(), (80, 60));
+    // Back up to an exercise of scene.yaml.
+    press(&mut app, KeyCode::Up);
+    assert_eq!(scene_name(&app), "scene.yaml");
+    press(&mut app, KeyCode::Esc);
+    let mut seen = vec![scene_name(&app)];
+    for _ in 0..3 {
+        press(&mut app, KeyCode::Char('s'));
+        seen.push(scene_name(&app));
+        assert!(app.lesson.is_some());
+    }
+    assert_eq!(
+        seen,
+        ["scene.yaml", "color.yaml", "phong.yaml", "scene.yaml"]
+    );
+}
+
+/// Defect 7: a ray exercise shows the tree of its ray and selects the node asked about. In
+/// lesson 06, the ray from (−3, 4, 0) along (0.6, −0.8, 0) meets the slab's top at t = 5 and its
+/// refraction leaves the bottom at (0.436436, −1, 0) (README).
+#[test]
+fn a_ray_exercise_shows_the_tree_of_its_ray() {
+    let mut app = open("lessons/06-refraction", ColorMode::TrueColor, (160, 48));
+    // exit-point, the second exercise: node refraction.
+    select_exercise(&mut app, 1);
+    let root = app.tree.full_tree().unwrap();
+    assert!((root.origin - glam::DVec3::new(-3.0, 4.0, 0.0)).length() < 1e-12);
+    assert!((root.direction - glam::DVec3::new(0.6, -0.8, 0.0)).length() < 1e-12);
+    assert!((root.hit.as_ref().unwrap().t - 5.0).abs() < 1e-9);
+    let node = app.tree.selected_node().unwrap();
+    assert_eq!(node.kind, RayKind::Refraction);
+    let p = node.hit.as_ref().unwrap().point;
+    assert!(
+        (p - glam::DVec3::new(0.436436, -1.0, 0.0)).length() < 1e-6,
+        "{p}"
+    );
+    let text = screen(&app);
+    assert!(text.contains("ray (-3, 4, 0)"), "{text}");
+    // Moving the cursor goes back to the pixels.
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::BackTab);
+    update(&mut app, Msg::Pick(10, 10));
+    assert_eq!(
+        app.tree.full_tree().unwrap().origin,
+        app.file.scene.as_ref().unwrap().camera.eye()
+    );
+}
+
+/// Defect 8: in a path-traced scene the tree pane first shows the pixel's rendered estimate and
+/// the paths sampled for it; the Whitted tree below is labelled as a reading of the centre ray
+/// only. It must fit at 100 columns.
+#[test]
+fn a_path_traced_pixel_shows_its_estimate_and_paths_before_the_whitted_reading() {
+    let mut app = open("lessons/15-path-tracing", ColorMode::TrueColor, (100, 40));
+    update(&mut app, Msg::Pick(32, 20));
+    let scene = app.file.scene.clone().unwrap();
+    let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
+    let rendered = film.lone_pixel(&mut film.tracer(), 32, 20);
+    let text = screen(&app);
+    let estimate = format!("{:.4}", rendered.x);
+    let lines: Vec<&str> = text.lines().collect();
+    let at = |what: &str| lines.iter().position(|l| l.contains(what));
+    let est = at("estimate").unwrap_or_else(|| panic!("no estimate:\n{text}"));
+    assert!(
+        lines[est].contains(&estimate[..5]),
+        "{}\n{text}",
+        lines[est]
+    );
+    let path = at("path 1").unwrap_or_else(|| panic!("no sampled path:\n{text}"));
+    let whitted = at("Whitted reading").unwrap_or_else(|| panic!("no label:\n{text}"));
+    let root = at("primary").unwrap();
+    assert!(est < path && path < whitted && whitted < root, "{text}");
+}
+
+/// Defect 3 as the issue saw it: lesson 14, pixel 80,60, where 15 of the sphere light's 16
+/// shadow rays pass the shelf.
+#[test]
+fn the_tree_says_how_much_of_a_soft_shadow_is_blocked() {
+    let mut app = open(
+        "lessons/14-monte-carlo-glossy",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    update(&mut app, Msg::Pick(80, 60));
+    let text = screen(&app);
+    assert!(text.contains("partly blocked (15 of 16 clear)"), "{text}");
+    assert!(!text.contains("blocked by shelf, s"), "{text}");
+}
+
+/// A copy of lesson 05 (a mirror, a ball) in a scratch folder, with `solutions: hidden`.
+fn hidden_lesson(name: &str) -> PathBuf {
+    let dir = scratch(name);
+    for f in ["scene.yaml", "README.md"] {
+        std::fs::copy(Path::new("lessons/05-reflection").join(f), dir.join(f)).unwrap();
+    }
+    let exercises = std::fs::read_to_string("lessons/05-reflection/exercises.yaml").unwrap();
+    std::fs::write(
+        dir.join("exercises.yaml"),
+        exercises.replacen("exercises:", "solutions: hidden\nexercises:", 1),
+    )
+    .unwrap();
+    dir
+}
+
+/// Answers exercise `i` of the open lesson with raytree's own value.
+fn answer_right(app: &mut App, i: usize) {
+    let l = &app.lesson.as_ref().unwrap().lesson;
+    let ex = &l.exercises[i];
+    let value = raytree::lessons::work(l, ex).unwrap().expected.show();
+    update(app, Msg::Exercises);
+    let at = app.lesson.as_ref().unwrap().exercise;
+    for _ in at..i {
+        update(app, Msg::Down);
+    }
+    for _ in i..at {
+        update(app, Msg::Up);
+    }
+    update(app, Msg::Submit);
+    for c in value.chars() {
+        update(app, Msg::Input(c));
+    }
+    update(app, Msg::Submit);
+}
+
+/// With `solutions: hidden`, no worked solutions, and the tree and details show no intensity
+/// until every intensity exercise of the scene is answered right.
+#[test]
+fn hidden_solutions_hide_intensities_until_answered() {
+    let dir = hidden_lesson("hidden-solutions");
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(80, 60));
+    let text = screen(&app);
+    assert!(text.contains("I = ?"), "{text}");
+    assert!(!text.contains("I = 0."), "{text}");
+    press(&mut app, KeyCode::Char('a'));
+    press(&mut app, KeyCode::Char('w'));
+    assert!(screen(&app).contains("hidden"), "{}", screen(&app));
+    assert!(!screen(&app).contains("worked solution (w hides):"));
+    let asks: Vec<usize> = {
+        let l = &app.lesson.as_ref().unwrap().lesson;
+        l.exercises
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| {
+                use raytree::lessons::Ask::*;
+                matches!(e.ask, Intensity | Local | Diffuse | Specular | PixelValue)
+            })
+            .map(|(k, _)| k)
+            .collect()
+    };
+    let (last, rest) = asks.split_last().unwrap();
+    for &k in rest {
+        answer_right(&mut app, k);
+    }
+    assert!(screen(&app).contains("I = ?"), "one left: still hidden");
+    answer_right(&mut app, *last);
+    let text = screen(&app);
+    assert!(!text.contains("I = ?"), "{text}");
+    assert!(text.contains("I = 0."), "{text}");
+}
+
+/// A right answer is kept: the exercise list marks it, and so do a new session's exercise list
+/// and lesson list.
+#[test]
+fn right_answers_are_marked_and_kept_between_sessions() {
+    let dir = hidden_lesson("progress");
+    std::fs::write(
+        dir.join("exercises.yaml"),
+        std::fs::read_to_string("lessons/05-reflection/exercises.yaml").unwrap(),
+    )
+    .unwrap();
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    answer_right(&mut app, 4);
+    let solved = |app: &App| app.lesson.as_ref().unwrap().solved.clone();
+    assert_eq!(solved(&app).len(), 1);
+    let mut again = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    assert_eq!(solved(&again), solved(&app));
+    press(&mut again, KeyCode::Char('a'));
+    let text = screen(&again);
+    assert!(text.contains("✓ mirror-local"), "{text}");
+    let mut list = App::open_lessons(dir.parent().unwrap(), ColorMode::TrueColor);
+    update(&mut list, Msg::Resize(100, 30));
+    let at = list
+        .list
+        .as_ref()
+        .unwrap()
+        .entries
+        .iter()
+        .position(|e| e.dir == dir)
+        .unwrap();
+    for _ in 0..at {
+        update(&mut list, Msg::Down);
+    }
+    let text = screen(&list);
+    assert!(text.contains(" 1/9"), "{text}");
+    assert!(text.contains("✓ mirror-local"), "{text}");
 }

@@ -3,7 +3,11 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use serde_json::json;
+
+use super::args::Format;
 use super::Failure;
+use crate::lessons::progress::Progress;
 use crate::lessons::{check, explain, Lesson};
 
 #[derive(clap::Args, Debug)]
@@ -16,27 +20,75 @@ pub struct Args {
     /// Your answer: a number, a vector `x,y,z`, a segment list `a,b; c,d`, `none` or `tir`.
     #[arg(long, allow_hyphen_values = true, required_unless_present = "explain")]
     answer: Option<String>,
-    /// Show the worked derivation, step by step.
+    /// Show the worked derivation, step by step (not for lessons whose solutions are hidden).
     #[arg(long)]
     explain: bool,
+    /// Check against this student's own variant of the lesson (see `raytree homework`).
+    #[arg(long)]
+    student: Option<String>,
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let lesson = Lesson::load(&a.lesson)?;
+    let mut lesson = Lesson::load(&a.lesson)?;
+    if let Some(student) = &a.student {
+        lesson = lesson.variant(student)?;
+    }
     let ex = lesson.exercise(&a.exercise)?;
-    let mut code = ExitCode::SUCCESS;
-    if let Some(answer) = &a.answer {
-        let verdict = check(&lesson, ex, answer)?;
-        println!("{}", verdict.message());
-        if !verdict.correct {
-            code = ExitCode::from(1);
+    let verdict = match &a.answer {
+        Some(answer) => Some(check(&lesson, ex, answer)?),
+        None => None,
+    };
+    let explanation = if a.explain {
+        Some(explain(&lesson, ex)?)
+    } else {
+        None
+    };
+    if verdict.as_ref().is_some_and(|v| v.correct) {
+        // Progress is a convenience: a data folder that cannot be written does not fail a check.
+        if let Err(e) = Progress::record(&lesson, &ex.id) {
+            eprintln!("raytree: progress not saved: {e}");
         }
     }
-    if a.explain {
-        println!();
-        for line in explain(&lesson, ex)? {
-            println!("{line}");
+    match a.format {
+        Format::Json => {
+            let mut doc = json!({
+                "raytree_version": env!("CARGO_PKG_VERSION"),
+                "lesson": lesson.id,
+                "exercise": ex.id,
+            });
+            if let Some(s) = &a.student {
+                doc["student"] = json!(s);
+            }
+            if let Some(v) = &verdict {
+                doc["correct"] = json!(v.correct);
+                doc["answer"] = v.given.to_json();
+                doc["expected"] = v.expected.to_json();
+                doc["tolerance"] = json!(v.expected.allowance(&v.tolerance));
+                doc["tolerance_rule"] = json!(v.tolerance);
+                doc["hint"] = json!(v.hint);
+                doc["model"] = json!(v.model);
+            }
+            if let Some(lines) = &explanation {
+                doc["explanation"] = json!(lines);
+            }
+            println!("{}", serde_json::to_string_pretty(&doc)?);
+        }
+        Format::Text => {
+            if let Some(v) = &verdict {
+                println!("{}", v.message());
+            }
+            if let Some(lines) = &explanation {
+                println!();
+                for line in lines {
+                    println!("{line}");
+                }
+            }
         }
     }
-    Ok(code)
+    Ok(match verdict {
+        Some(v) if !v.correct => ExitCode::from(1),
+        _ => ExitCode::SUCCESS,
+    })
 }

@@ -59,23 +59,33 @@ pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let scene = a.scene.load()?;
     let ray = a.target.ray(&scene)?;
-    let objects = scene.csg_traces(&ray, a.all);
+    let survey = text::csg_survey(&scene, &ray, a.all);
     match a.format {
         Format::Json => {
             let doc = json!({
                 "ray": { "origin": ray.origin.to_array(), "direction": ray.dir.to_array() },
-                "objects": objects.iter().map(|(name, t)| json!({ "object": name, "node": trace_json(&scene, &ray, t) })).collect::<Vec<_>>(),
+                "objects": survey.met.iter().map(|(name, t)| json!({ "object": name, "node": trace_json(&scene, &ray, t) })).collect::<Vec<_>>(),
+                "not_met": survey.unmet,
             });
             println!("{}", serde_json::to_string_pretty(&doc)?);
         }
         Format::Text => {
             println!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir));
-            if objects.is_empty() {
+            if survey.met.is_empty() {
                 println!("the ray meets no object");
             }
-            for (name, t) in &objects {
+            for (name, t) in &survey.met {
                 println!("\nobject {name}");
                 print!("{}", text::csg_trace(&scene, &ray, t));
+            }
+            if !survey.unmet.is_empty() {
+                println!();
+            }
+            for line in &survey.unmet {
+                println!("{line}");
+            }
+            if survey.unmet.iter().any(|l| l.contains("culled")) {
+                println!("(--all evaluates every object whole, without bounding boxes)");
             }
         }
     }

@@ -1,23 +1,194 @@
-//! `raytree lessons`: the course at a glance.
+//! `raytree lessons`: the course at a glance, with a ✓ for every exercise answered right; a
+//! teacher's own folder of lessons; `lessons validate DIR` checks a folder of lessons.
 
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use serde_json::json;
+
+use super::args::Format;
 use super::Failure;
-use crate::lessons::{all_lessons, lessons_root};
+use crate::lessons::progress::Progress;
+use crate::lessons::validate::validate;
+use crate::lessons::{lessons_root, Lesson, Solutions};
 
 #[derive(clap::Args, Debug)]
-pub struct Args {}
+#[command(args_conflicts_with_subcommands = true)]
+pub struct Args {
+    #[command(subcommand)]
+    action: Option<Action>,
+    /// A folder of lessons (default: raytree's own, or RAYTREE_LESSONS).
+    dir: Option<PathBuf>,
+    #[arg(long, value_enum, default_value_t = Format::Text)]
+    format: Format,
+}
 
-pub fn run(_: Args) -> Result<ExitCode, Failure> {
-    let root = lessons_root();
-    for lesson in all_lessons(&root)? {
-        println!("{}  {}", lesson.dir.display(), lesson.title);
-        println!("    {}", lesson.summary.trim());
-        for ex in &lesson.exercises {
-            let q = ex.question.split_whitespace().collect::<Vec<_>>().join(" ");
-            println!("    - {:<24} {}", ex.id, q);
+#[derive(clap::Subcommand, Debug)]
+enum Action {
+    /// Every exercise of every lesson in DIR can be worked out, and every answer a README
+    /// states equals raytree's (exit 1 naming each disagreement).
+    Validate {
+        /// A lesson folder, or a folder of lessons.
+        dir: PathBuf,
+    },
+}
+
+pub fn run(a: Args) -> Result<ExitCode, Failure> {
+    if let Some(Action::Validate { dir }) = a.action {
+        return run_validate(&dir);
+    }
+    let root = a.dir.unwrap_or_else(lessons_root);
+    let lessons = load_all(&root)?;
+    let progress = Progress::load();
+    match a.format {
+        Format::Json => {
+            let list: Vec<_> = lessons
+                .iter()
+                .map(|(dir, l)| match l {
+                    Ok(l) => lesson_json(l, &progress),
+                    Err(e) => json!({ "dir": dir.display().to_string(), "error": e }),
+                })
+                .collect();
+            let doc = json!({
+                "raytree_version": env!("CARGO_PKG_VERSION"),
+                "root": root.display().to_string(),
+                "lessons": list,
+            });
+            println!("{}", serde_json::to_string_pretty(&doc)?);
         }
-        println!();
+        Format::Text => {
+            for (dir, lesson) in &lessons {
+                match lesson {
+                    Ok(l) => print_lesson(l, &progress),
+                    Err(e) => println!("{}  (does not load: {e})\n", dir.display()),
+                }
+            }
+        }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// A lesson folder, and its lesson or why it does not load.
+type Loaded = (PathBuf, Result<Lesson, String>);
+
+/// Every lesson folder under `root` in name order, loaded or with why it does not load.
+fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
+    if root.join("exercises.yaml").is_file() {
+        return Ok(vec![(root.to_path_buf(), Lesson::load(root))]);
+    }
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
+        .map_err(|e| Failure(format!("{}: cannot list lessons: {e}", root.display())))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.join("exercises.yaml").is_file())
+        .collect();
+    if dirs.is_empty() {
+        return Err(Failure(format!(
+            "{}: no lessons (folders with an exercises.yaml)",
+            root.display()
+        )));
+    }
+    dirs.sort();
+    Ok(dirs
+        .into_iter()
+        .map(|d| {
+            let l = Lesson::load(&d);
+            (d, l)
+        })
+        .collect())
+}
+
+fn print_lesson(lesson: &Lesson, progress: &Progress) {
+    let solved = progress.solved(lesson);
+    let done = lesson
+        .exercises
+        .iter()
+        .filter(|e| solved.contains(&e.id))
+        .count();
+    println!(
+        "{}  {}  ({done}/{} done)",
+        lesson.dir.display(),
+        lesson.title,
+        lesson.exercises.len()
+    );
+    println!("    {}", lesson.summary.trim());
+    let mut notes = vec![];
+    if let Some(v) = &lesson.variant {
+        notes.push(format!("homework of {} (lesson {})", v.student, v.lesson));
+    }
+    if !lesson.vary.is_empty() {
+        notes.push(format!(
+            "varies per student: {}",
+            lesson.vary.keys().cloned().collect::<Vec<_>>().join(", ")
+        ));
+    }
+    if lesson.solutions == Solutions::Hidden {
+        notes.push("solutions hidden".into());
+    }
+    if !notes.is_empty() {
+        println!("    ({})", notes.join("; "));
+    }
+    for ex in &lesson.exercises {
+        let q = ex.question.split_whitespace().collect::<Vec<_>>().join(" ");
+        let mark = if solved.contains(&ex.id) { "✓" } else { "-" };
+        println!("    {mark} {:<24} {}", ex.id, q);
+    }
+    println!();
+}
+
+fn lesson_json(lesson: &Lesson, progress: &Progress) -> serde_json::Value {
+    let solved = progress.solved(lesson);
+    let exercises: Vec<_> = lesson
+        .exercises
+        .iter()
+        .map(|ex| {
+            json!({
+                "id": ex.id,
+                "question": ex.question.split_whitespace().collect::<Vec<_>>().join(" "),
+                "ask": ex.ask,
+                "solved": solved.contains(&ex.id),
+            })
+        })
+        .collect();
+    let mut doc = json!({
+        "id": lesson.id,
+        "dir": lesson.dir.display().to_string(),
+        "title": lesson.title,
+        "summary": lesson.summary.trim(),
+        "solutions": lesson.solutions,
+        "vary": lesson.vary.keys().collect::<Vec<_>>(),
+        "solved": exercises.iter().filter(|e| e["solved"] == true).count(),
+        "total": exercises.len(),
+        "exercises": exercises,
+    });
+    if let Some(v) = &lesson.variant {
+        doc["variant"] = json!(v);
+    }
+    doc
+}
+
+fn run_validate(dir: &Path) -> Result<ExitCode, Failure> {
+    let v = validate(dir)?;
+    for p in &v.problems {
+        println!("✗ {p}");
+    }
+    let summary = format!(
+        "{} lesson{}, {} exercise{}, {} README answer{} compared",
+        v.lessons,
+        if v.lessons == 1 { "" } else { "s" },
+        v.exercises,
+        if v.exercises == 1 { "" } else { "s" },
+        v.answers,
+        if v.answers == 1 { "" } else { "s" }
+    );
+    if v.problems.is_empty() {
+        println!("ok: {summary}; every exercise computable, every answer equal to raytree's");
+        Ok(ExitCode::SUCCESS)
+    } else {
+        println!(
+            "{} disagreement{} in {summary}",
+            v.problems.len(),
+            if v.problems.len() == 1 { "" } else { "s" }
+        );
+        Ok(ExitCode::from(1))
+    }
 }

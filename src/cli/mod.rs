@@ -6,6 +6,8 @@ mod check;
 pub mod csg;
 mod diagram;
 mod explore;
+mod grade;
+mod homework;
 mod inspect;
 mod lessons;
 mod preview;
@@ -39,10 +41,14 @@ enum Command {
     Explore(explore::Args),
     /// Measured sweeps: run time against error (sweep), time per ray against scene size (scaling).
     Bench(bench::Args),
-    /// List the lessons and their exercises.
+    /// List the lessons and their exercises (or a folder's); `lessons validate DIR` checks them.
     Lessons(lessons::Args),
     /// Check a homework answer against raytree's computation (exit 0 right, 1 wrong).
     Check(check::Args),
+    /// Grade a class's answers (CSV student,exercise,answer), each against the student's own variant.
+    Grade(grade::Args),
+    /// Write one student's own variant of a lesson (its `vary:` values drawn for their ID).
+    Homework(homework::Args),
 }
 
 /// An error for the user: printed as one line, exit status 2.
@@ -67,6 +73,8 @@ pub fn run() -> ExitCode {
         Command::Bench(a) => bench::run(a),
         Command::Lessons(a) => lessons::run(a),
         Command::Check(a) => check::run(a),
+        Command::Grade(a) => grade::run(a),
+        Command::Homework(a) => homework::run(a),
     };
     match result {
         Ok(code) => code,

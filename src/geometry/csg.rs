@@ -68,6 +68,8 @@ pub enum Pruned {
     EmptyIntersection,
     /// The left operand of a difference was empty.
     EmptyDifference,
+    /// Not evaluated because a node above it was pruned (whatever the ray does near it).
+    ParentPruned,
 }
 
 /// What a CSG evaluation did at each node, for `raytree csg` and the inspector.
@@ -204,7 +206,8 @@ impl CsgNode {
         }
     }
 
-    /// The trace of a subtree that was not evaluated: every node in it is marked.
+    /// The trace of a subtree that was not evaluated: its root for `why`, every node below it
+    /// for its parent.
     fn skipped(&self, env: &impl LeafSegments, why: Pruned) -> CsgTrace {
         match self {
             CsgNode::Leaf { leaf, .. } => CsgTrace {
@@ -223,7 +226,10 @@ impl CsgNode {
                 leaf: None,
                 segments: SegmentList::new(),
                 pruned: Some(why),
-                children: children.iter().map(|c| c.skipped(env, why)).collect(),
+                children: children
+                    .iter()
+                    .map(|c| c.skipped(env, Pruned::ParentPruned))
+                    .collect(),
             },
         }
     }

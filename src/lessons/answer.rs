@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use super::tolerance::Tolerance;
+
 #[derive(Clone, Debug, PartialEq)]
 pub enum Answer {
     Number(f64),
@@ -37,20 +39,60 @@ impl Answer {
         }
     }
 
-    /// Equal within `tol` per component. A single number matches a grey colour.
-    pub fn matches(&self, other: &Answer, tol: f64) -> bool {
-        let close = |a: f64, b: f64| (a - b).abs() <= tol || (a.is_infinite() && a == b);
-        match (self, other) {
-            (Answer::Number(a), Answer::Number(b)) => close(*a, *b),
-            (Answer::Vector(a), Answer::Vector(b)) => (0..3).all(|i| close(a[i], b[i])),
-            (Answer::Number(a), Answer::Vector(b)) | (Answer::Vector(b), Answer::Number(a)) => {
-                (0..3).all(|i| close(*a, b[i]))
+    /// The answer as JSON: a number, [x, y, z], [[t_in, t_out], ...], or "tir".
+    pub fn to_json(&self) -> serde_json::Value {
+        use serde_json::json;
+        let t = |x: f64| {
+            if x.is_finite() {
+                json!(x)
+            } else {
+                json!(crate::trace::text::num(x))
             }
+        };
+        match self {
+            Answer::Number(x) => t(*x),
+            Answer::Vector(v) => json!([t(v.x), t(v.y), t(v.z)]),
+            Answer::Segments(s) => json!(s
+                .iter()
+                .map(|(a, b)| json!([t(*a), t(*b)]))
+                .collect::<Vec<_>>()),
+            Answer::Tir => json!("tir"),
+        }
+    }
+
+    /// The room `tol` leaves around this (expected) answer: for its largest number.
+    pub fn allowance(&self, tol: &Tolerance) -> f64 {
+        let largest = match self {
+            Answer::Number(x) => x.abs(),
+            Answer::Vector(v) => v.abs().max_element(),
+            Answer::Segments(s) => s
+                .iter()
+                .flat_map(|(a, b)| [a.abs(), b.abs()])
+                .filter(|x| x.is_finite())
+                .fold(0.0, f64::max),
+            Answer::Tir => 0.0,
+        };
+        tol.around(largest)
+    }
+
+    /// Within the tolerance of `expected`, component by component, each allowed
+    /// `tol.around(scale)`: the scale is the expected number itself, or the largest component
+    /// of an expected vector. A single number matches a grey colour.
+    pub fn matches(&self, expected: &Answer, tol: &Tolerance) -> bool {
+        let close = |a: f64, b: f64, scale: f64| {
+            (a - b).abs() <= tol.around(scale) || (a.is_infinite() && a == b)
+        };
+        let largest = |v: &DVec3| v.abs().max_element();
+        match (self, expected) {
+            (Answer::Number(a), Answer::Number(b)) => close(*a, *b, *b),
+            (Answer::Vector(a), Answer::Vector(b)) => (0..3).all(|i| close(a[i], b[i], largest(b))),
+            (Answer::Number(a), Answer::Vector(b)) => (0..3).all(|i| close(*a, b[i], largest(b))),
+            (Answer::Vector(a), Answer::Number(b)) => (0..3).all(|i| close(a[i], *b, *b)),
             (Answer::Segments(a), Answer::Segments(b)) => {
                 a.len() == b.len()
                     && a.iter()
                         .zip(b)
-                        .all(|(x, y)| close(x.0, y.0) && close(x.1, y.1))
+                        .all(|(x, y)| close(x.0, y.0, y.0) && close(x.1, y.1, y.1))
             }
             (Answer::Tir, Answer::Tir) => true,
             _ => false,
@@ -151,10 +193,15 @@ mod tests {
     }
 
     #[test]
-    fn tolerance_is_per_component() {
+    fn tolerance_is_per_component_on_the_vector_scale() {
         let a = Answer::Vector(DVec3::new(1.0, 2.0, 3.0));
-        assert!(a.matches(&Answer::Vector(DVec3::new(1.0009, 2.0, 3.0)), 1e-3));
-        assert!(!a.matches(&Answer::Vector(DVec3::new(1.0011, 2.0, 3.0)), 1e-3));
-        assert!(Answer::Number(0.5).matches(&Answer::Vector(DVec3::splat(0.5)), 1e-9));
+        let tol = Tolerance::absolute(1e-3);
+        assert!(Answer::Vector(DVec3::new(1.0009, 2.0, 3.0)).matches(&a, &tol));
+        assert!(!Answer::Vector(DVec3::new(1.0011, 2.0, 3.0)).matches(&a, &tol));
+        // 0.1% of the largest component, 3: 0.003 on each.
+        let rel = Tolerance::default();
+        assert!(Answer::Vector(DVec3::new(1.0029, 2.0, 3.0)).matches(&a, &rel));
+        assert!(!Answer::Vector(DVec3::new(1.0031, 2.0, 3.0)).matches(&a, &rel));
+        assert!(Answer::Number(0.5).matches(&Answer::Vector(DVec3::splat(0.5)), &rel));
     }
 }

@@ -3,10 +3,16 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use serde::Deserialize;
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+use super::tolerance::Tolerance;
+use super::vary::{self, Range};
+use crate::shading::Highlight;
 
 /// What an exercise asks for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Ask {
     WindowPoint,
@@ -41,14 +47,14 @@ impl Ask {
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RaySpec {
     pub origin: DVec3,
     pub direction: DVec3,
 }
 
-#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Exercise {
     pub id: String,
@@ -65,14 +71,37 @@ pub struct Exercise {
     pub scene: Option<String>,
     /// Overrides the scene's max_depth (for the ray tree, and for rendering a pixel).
     pub depth: Option<u32>,
-    #[serde(default = "default_tolerance")]
-    pub tolerance: f64,
+    /// The highlight model the exercise is worked in (`phong` or `blinn`), for every material
+    /// of its scene; without it, each material's own.
+    pub model: Option<Highlight>,
+    /// How close an answer must be (see `Tolerance`).
+    #[serde(default)]
+    pub tolerance: Tolerance,
     /// Shown on request before the answer.
     pub hint: Option<String>,
 }
 
-fn default_tolerance() -> f64 {
-    1e-3
+/// Whether the worked solutions are shown.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Solutions {
+    /// `check --explain` and the explorer's worked solutions, all numbers in the explorer.
+    #[default]
+    Shown,
+    /// For homework: no worked solutions, and the explorer hides the intensities that would
+    /// give an answer away until it is answered.
+    Hidden,
+}
+
+/// Whose homework a lesson folder is: written by `raytree homework` into its exercises.yaml.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct VariantOf {
+    /// The lesson it was made from (its folder name).
+    pub lesson: String,
+    pub student: String,
+    /// The varied values this student got, as written in the scene.
+    pub values: BTreeMap<String, String>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -80,10 +109,15 @@ fn default_tolerance() -> f64 {
 struct ExerciseFile {
     title: String,
     summary: String,
+    #[serde(default)]
+    solutions: Solutions,
+    #[serde(default)]
+    vary: BTreeMap<String, Range>,
+    variant: Option<VariantOf>,
     exercises: Vec<Exercise>,
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct Lesson {
     pub dir: PathBuf,
     /// The folder name, e.g. "08-pixel-intensity".
@@ -92,6 +126,15 @@ pub struct Lesson {
     pub summary: String,
     pub readme: String,
     pub exercises: Vec<Exercise>,
+    pub solutions: Solutions,
+    /// Scene values that vary from student to student (see `vary.rs`).
+    pub vary: BTreeMap<String, Range>,
+    /// Set in a student's homework folder, and in a lesson made for a student.
+    pub variant: Option<VariantOf>,
+    /// Scene texts that replace the files of the same name (a student's variant, in memory).
+    pub sources: BTreeMap<String, String>,
+    /// The questions as written, with `{path}` where they quote a varied value.
+    pub templates: Vec<String>,
 }
 
 impl Lesson {
@@ -127,14 +170,90 @@ impl Lesson {
                 ));
             }
         }
-        Ok(Lesson {
+        let templates = file.exercises.iter().map(|e| e.question.clone()).collect();
+        let mut lesson = Lesson {
             dir: dir.to_path_buf(),
             id,
             title: file.title,
             summary: file.summary,
             readme,
             exercises: file.exercises,
-        })
+            solutions: file.solutions,
+            vary: file.vary,
+            variant: file.variant,
+            sources: BTreeMap::new(),
+            templates,
+        };
+        if !lesson.vary.is_empty() {
+            for (p, range) in &lesson.vary {
+                range
+                    .check()
+                    .map_err(|e| format!("{}: vary `{p}`: {e}", path.display()))?;
+            }
+            let files = lesson.scene_files()?;
+            let base = vary::written(&files, lesson.vary.keys().cloned());
+            if let Some(p) = lesson.vary.keys().find(|p| !base.contains_key(*p)) {
+                return Err(format!(
+                    "{}: vary `{p}`: no scene of the lesson writes that value (write it out to vary it)",
+                    path.display()
+                ));
+            }
+            lesson.fill_questions(&base);
+        }
+        Ok(lesson)
+    }
+
+    /// The texts of the lesson's scene files (scene.yaml and every scene an exercise names),
+    /// as a student's variant has them.
+    pub fn scene_files(&self) -> Result<BTreeMap<String, String>, String> {
+        let mut files = vary::scene_files(
+            &self.dir,
+            self.exercises.iter().filter_map(|e| e.scene.clone()),
+        )?;
+        for (name, text) in &self.sources {
+            files.insert(name.clone(), text.clone());
+        }
+        Ok(files)
+    }
+
+    fn fill_questions(&mut self, values: &BTreeMap<String, String>) {
+        for (ex, template) in self.exercises.iter_mut().zip(&self.templates) {
+            ex.question = vary::fill(template, values);
+        }
+    }
+
+    /// The lesson as a student gets it: the varied values drawn for that student written into
+    /// its scenes (in memory) and its questions. A lesson that varies nothing is the same for
+    /// everyone.
+    pub fn variant(&self, student: &str) -> Result<Lesson, String> {
+        let student = student.trim();
+        if student.is_empty() {
+            return Err("a student ID must not be empty".into());
+        }
+        let mut out = self.clone();
+        if self.vary.is_empty() {
+            return Ok(out);
+        }
+        let drawn = vary::draw(&self.id, student, &self.vary);
+        out.sources = vary::rewrite(&self.scene_files()?, &drawn)?;
+        let shown: BTreeMap<String, String> = drawn
+            .iter()
+            .map(|(p, v)| (p.clone(), vary::show(v)))
+            .collect();
+        out.fill_questions(&shown);
+        out.variant = Some(VariantOf {
+            lesson: self.id.clone(),
+            student: student.to_string(),
+            values: shown,
+        });
+        Ok(out)
+    }
+
+    /// The text of an exercise's scene when the lesson holds it in memory (a variant).
+    pub fn scene_source(&self, ex: &Exercise) -> Option<&str> {
+        self.sources
+            .get(ex.scene.as_deref().unwrap_or("scene.yaml"))
+            .map(String::as_str)
     }
 
     pub fn exercise(&self, id: &str) -> Result<&Exercise, String> {

@@ -3,7 +3,16 @@
 mod answer;
 mod check;
 mod exercise;
+pub mod grade;
+pub mod homework;
+pub mod progress;
+mod tolerance;
+pub mod validate;
+mod vary;
+mod yaml_spans;
 
 pub use answer::{parse_answer, Answer};
 pub use check::{check, explain, work, Verdict, Worked};
-pub use exercise::{all_lessons, lessons_root, Ask, Exercise, Lesson};
+pub use exercise::{all_lessons, lessons_root, Ask, Exercise, Lesson, Solutions, VariantOf};
+pub use tolerance::Tolerance;
+pub use vary::Range;

@@ -22,7 +22,9 @@ pub trait Recorder {
     fn hit(&mut self, hit: HitInfo);
     fn local(&mut self, local: Local);
     fn indices(&mut self, indices: Indices);
-    fn shadow(&mut self, light: &str, t_max: f64, s: f64);
+    /// The open node is the shadow test of `light`: s is the fraction of its `rays` shadow
+    /// rays that got through.
+    fn shadow(&mut self, light: &str, t_max: f64, s: f64, rays: u32);
     /// The open node is a cone of n sampled rays (glossy or frosted), not a ray.
     fn samples(&mut self, n: u32);
     fn end(&mut self, color: DVec3, terminated: Option<Termination>);
@@ -36,7 +38,7 @@ impl Recorder for NoRecorder {
     fn hit(&mut self, _: HitInfo) {}
     fn local(&mut self, _: Local) {}
     fn indices(&mut self, _: Indices) {}
-    fn shadow(&mut self, _: &str, _: f64, _: f64) {}
+    fn shadow(&mut self, _: &str, _: f64, _: f64, _: u32) {}
     fn samples(&mut self, _: u32) {}
     fn end(&mut self, _: DVec3, _: Option<Termination>) {}
 }
@@ -77,6 +79,7 @@ impl Recorder for TreeRecorder {
             light: None,
             t_max: None,
             shadow: None,
+            shadow_rays: None,
             samples: None,
             hit: None,
             local: None,
@@ -98,11 +101,12 @@ impl Recorder for TreeRecorder {
         self.current().indices = Some(indices);
     }
 
-    fn shadow(&mut self, light: &str, t_max: f64, s: f64) {
+    fn shadow(&mut self, light: &str, t_max: f64, s: f64, rays: u32) {
         let node = self.current();
         node.light = Some(light.to_string());
         node.t_max = Some(t_max);
         node.shadow = Some(s);
+        node.shadow_rays = (rays > 1).then_some(rays);
     }
 
     fn samples(&mut self, n: u32) {

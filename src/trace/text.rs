@@ -50,8 +50,7 @@ pub fn node_title(n: &RayNode) -> String {
             super::Termination::Adaptive => "not traced: adaptive cut-off".to_string(),
             super::Termination::TotalInternalReflection => "total internal reflection".to_string(),
         },
-        (Some(h), _) if n.kind == RayKind::Shadow => format!("blocked by {}", h.object),
-        (None, _) if n.kind == RayKind::Shadow => "clear".to_string(),
+        (_, _) if n.kind == RayKind::Shadow => shadow_outcome(n),
         (Some(h), _) => format!("hit {}", h.object),
         (None, _) => "no hit".to_string(),
     };
@@ -75,6 +74,21 @@ pub fn node_title(n: &RayNode) -> String {
             n.depth,
             color(n.color)
         ),
+    }
+}
+
+/// What a shadow test found: blocked or clear, and for a light sampled by several shadow rays
+/// how many got through.
+pub fn shadow_outcome(n: &RayNode) -> String {
+    let blocker = n.hit.as_ref().map(|h| h.object.as_str());
+    let Some(rays) = n.shadow_rays else {
+        return blocker.map_or("clear".into(), |b| format!("blocked by {b}"));
+    };
+    let clear = (n.shadow.unwrap_or(0.0) * rays as f64).round() as u32;
+    match blocker {
+        None => format!("clear (all {rays} rays)"),
+        Some(b) if clear == 0 => format!("blocked by {b} (all {rays} rays)"),
+        Some(b) => format!("partly blocked by {b} ({clear} of {rays} clear)"),
     }
 }
 
@@ -253,11 +267,74 @@ pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String 
         .join("  ")
 }
 
+/// What the CSG listing of one ray holds: the objects it meets, each with its trace, and a
+/// line for every other object saying why it is not shown.
+pub struct CsgSurvey {
+    pub met: Vec<(String, CsgTrace)>,
+    /// "object X (op): culled: …" for a CSG object skipped whole, "object X: the ray meets none
+    /// of its parts" for one evaluated to nothing, and one line naming the plain shapes the
+    /// ray misses.
+    pub unmet: Vec<String>,
+}
+
+/// The plain shapes the ray misses are named up to this many.
+const MISSED_NAMED: usize = 8;
+
+/// Every object along the ray's line: traced through bounding boxes (as the image is), or with
+/// `all` every object evaluated whole without them.
+pub fn csg_survey(scene: &Scene, ray: &Ray, all: bool) -> CsgSurvey {
+    fn has_segments(t: &CsgTrace) -> bool {
+        !t.segments.is_empty() || t.children.iter().any(has_segments)
+    }
+    let mut survey = CsgSurvey {
+        met: vec![],
+        unmet: vec![],
+    };
+    let mut missed = vec![];
+    for o in 0..scene.objects.len() as u32 {
+        let name = scene.objects[o as usize].name.clone();
+        let (list, trace) = scene.object_trace(o, ray, !all);
+        if all || !list.is_empty() || has_segments(&trace) {
+            survey.met.push((name, trace));
+        } else if let Some(p) = trace.pruned {
+            survey.unmet.push(format!(
+                "object {name} ({}): culled: {}",
+                trace.op.map_or("shape", |op| op.name()),
+                pruned_reason(p)
+            ));
+        } else if trace.op.is_some() {
+            survey.unmet.push(format!(
+                "object {name}: the ray meets none of its parts (every segment list is empty)"
+            ));
+        } else {
+            missed.push(name);
+        }
+    }
+    if !missed.is_empty() {
+        let n = missed.len();
+        let mut names = missed[..n.min(MISSED_NAMED)].join(", ");
+        if n > MISSED_NAMED {
+            names.push_str(&format!(", … ({} more)", n - MISSED_NAMED));
+        }
+        let other = if survey.met.is_empty() && survey.unmet.is_empty() {
+            ""
+        } else {
+            " other"
+        };
+        let objects = if n == 1 { "object" } else { "objects" };
+        survey
+            .unmet
+            .push(format!("the ray misses {n}{other} {objects}: {names}"));
+    }
+    survey
+}
+
 pub fn pruned_reason(p: Pruned) -> &'static str {
     match p {
         Pruned::Bounds => "ray misses its bounding box",
         Pruned::EmptyIntersection => "an earlier operand of the intersection is empty",
         Pruned::EmptyDifference => "the left operand of the difference is empty",
+        Pruned::ParentPruned => "its parent was pruned",
     }
 }
 
@@ -273,6 +350,7 @@ fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out
         format!("{kind} {}", t.node)
     };
     let body = match t.pruned {
+        Some(Pruned::ParentPruned) => "not evaluated: its parent was pruned".to_string(),
         Some(p) => format!("pruned: {}", pruned_reason(p)),
         None => segment_list(ray, &t.segments),
     };

@@ -142,8 +142,12 @@ impl<'s, R: Recorder> Tracer<'s, R> {
             weight: 1.0,
             coefficient: 1.0,
         });
-        self.rec
-            .shadow(&light.name, shadow_reach(distance, moved), s);
+        self.rec.shadow(
+            &light.name,
+            shadow_reach(distance, moved),
+            s,
+            light.shadow_rays(),
+        );
         if let Some((ray, h)) = first_blocker {
             let bsi = self.scene.interaction(&ray, &h);
             self.rec.hit(self.hit_info(&ray, h.t, &bsi));

@@ -139,6 +139,10 @@ pub struct RayNode {
     /// The shadow factor s found by a shadow ray.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shadow: Option<f64>,
+    /// How many shadow rays s is the fraction of, for a light sampled by more than one (area
+    /// and sphere lights).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shadow_rays: Option<u32>,
     /// A glossy reflection or frosted refraction: this node stands for the cone about the
     /// principal direction, its colour the mean of its `samples` children (the sampled rays,
     /// each with coefficient 1/n).

@@ -125,7 +125,9 @@ pub fn update(app: &mut App, msg: Msg) {
         | Msg::Pan(..)
         | Msg::Drag(..)
         | Msg::Release => app.diagram_update(&msg),
+        Msg::CsgAll => app.csg_all(),
         Msg::ToggleReadme | Msg::Exercises | Msg::Work => app.lesson_update(&msg),
+        Msg::NextScene => app.next_scene(),
         Msg::Goto => app.prompt = Some(Prompt::Goto(String::new())),
     }
     app.settle();
@@ -189,9 +191,14 @@ impl App {
             path,
             scene,
             lesson,
+            folder,
         } = SceneFile::open(target)?;
         self.file.watch(path);
-        self.lesson = lesson.map(LessonPanel::new);
+        self.lesson = lesson.map(|l| {
+            let mut panel = LessonPanel::new(l);
+            panel.open = folder;
+            panel
+        });
         self.screen = Screen::Scene;
         self.tree.restart((scene.camera.width, scene.camera.height));
         self.focus = Focus::Preview;
@@ -377,6 +384,12 @@ impl App {
         if !self.focusable().contains(&self.focus) {
             self.focus = Focus::Preview;
         }
+        let scene = self.scene_name();
+        let hidden = self
+            .lesson
+            .as_ref()
+            .is_some_and(|l| l.hides_intensities(&scene));
+        self.tree.set_hidden(hidden);
         let body = self.tree_body_height();
         self.tree.keep_selection_visible(body);
     }

@@ -48,8 +48,12 @@ pub enum Msg {
     Drag(u16, u16),
     /// The mouse button let go.
     Release,
+    /// The CSG panel with every object evaluated whole, or the objects met only (`C`).
+    CsgAll,
     ToggleReadme,
     ToggleHelp,
+    /// The lesson's next scene (`s`).
+    NextScene,
     /// Opens the exercises (`a`).
     Exercises,
     /// Shows or hides the selected exercise's worked solution (`w`).

@@ -183,9 +183,13 @@ pub fn short_color(c: glam::DVec3) -> String {
 pub fn outcome(n: &RayNode) -> String {
     use crate::trace::Termination as T;
     if n.kind == RayKind::Shadow {
-        return match &n.hit {
-            Some(h) => format!("blocked by {}", h.object),
-            None => "clear".into(),
+        // A soft shadow's blocker is named in the details: the line stays short.
+        return match (n.shadow_rays, &n.hit) {
+            (Some(rays), Some(_)) if n.shadow.unwrap_or(0.0) > 0.0 => format!(
+                "partly blocked ({} of {rays} clear)",
+                (n.shadow.unwrap_or(0.0) * rays as f64).round()
+            ),
+            _ => crate::trace::text::shadow_outcome(n),
         };
     }
     match (n.terminated, &n.hit) {

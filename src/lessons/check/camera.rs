@@ -20,6 +20,16 @@ impl Question for WindowPoint {
         Ok(Answer::Vector(pixel_centre(&q.scene.camera, pixel)))
     }
 
+    fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
+        ex.pixel
+            .map(|pixel| Mistake {
+                answer: Answer::Vector(camera_point(&w.scene.camera, pixel)),
+                hint: CAMERA_COORDINATES.into(),
+            })
+            .into_iter()
+            .collect()
+    }
+
     fn explain(&self, w: &Worked, ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
         Ok(through_the_pixel(w, ex, n))
     }
@@ -37,11 +47,22 @@ impl Question for RayDirection {
             return Vec::new();
         };
         let cam = &w.scene.camera;
-        vec![Mistake {
-            answer: Answer::Vector(pixel_centre(cam, pixel) - cam.eye()),
-            hint:
-                "normalise the direction: raytree's directions are unit vectors, so t is a distance",
-        }]
+        let camera = camera_point(cam, pixel);
+        vec![
+            Mistake {
+                answer: Answer::Vector(pixel_centre(cam, pixel) - cam.eye()),
+                hint:
+                    "normalise the direction: raytree's directions are unit vectors, so t is a distance".into(),
+            },
+            Mistake {
+                answer: Answer::Vector(camera.normalize()),
+                hint: CAMERA_COORDINATES.into(),
+            },
+            Mistake {
+                answer: Answer::Vector(camera),
+                hint: CAMERA_COORDINATES.into(),
+            },
+        ]
     }
 
     fn explain(&self, w: &Worked, ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
@@ -59,6 +80,48 @@ impl Question for RayOrigin {
     fn explain(&self, _w: &Worked, _ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
         Ok(tree_explanation(n))
     }
+}
+
+const CAMERA_COORDINATES: &str = "that is in camera coordinates (p_C, with the eye at the origin): the answer is in world coordinates, p_W = e + p_C.x·u + p_C.y·v + p_C.z·w";
+
+/// The pixel's point in camera coordinates: the window model's p_C, or for the look-at camera
+/// the image point in its frame (right, up, forward).
+fn camera_point(cam: &Camera, pixel: [u32; 2]) -> DVec3 {
+    match &cam.projection {
+        Projection::Window { f, window, .. } => window_pc(cam, pixel, *f, *window),
+        Projection::LookAt {
+            eye,
+            forward,
+            right,
+            up,
+            ..
+        } => {
+            let p = pixel_centre(cam, pixel) - *eye;
+            DVec3::new(p.dot(*right), p.dot(*up), p.dot(*forward))
+        }
+    }
+}
+
+/// Δu and Δv of the window model (0 for a single column or row).
+fn window_steps(cam: &Camera, [wl, wr, wt, wb]: [f64; 4]) -> (f64, f64) {
+    let (nc, nr) = (cam.width as f64, cam.height as f64);
+    let du = if nc > 1.0 {
+        (wr - wl) / (nc - 1.0)
+    } else {
+        0.0
+    };
+    let dv = if nr > 1.0 {
+        (wb - wt) / (nr - 1.0)
+    } else {
+        0.0
+    };
+    (du, dv)
+}
+
+/// p_C = (wl + i·Δu, wt + j·Δv, f).
+fn window_pc(cam: &Camera, [x, y]: [u32; 2], f: f64, window: [f64; 4]) -> DVec3 {
+    let (du, dv) = window_steps(cam, window);
+    DVec3::new(window[0] + x as f64 * du, window[2] + y as f64 * dv, f)
 }
 
 /// The point of the image plane a pixel's primary ray passes through: the pixel's centre.
@@ -96,17 +159,8 @@ fn window_model(
     [wl, wr, wt, wb]: [f64; 4],
 ) -> Vec<String> {
     let (nc, nr) = (cam.width as f64, cam.height as f64);
-    let du = if nc > 1.0 {
-        (wr - wl) / (nc - 1.0)
-    } else {
-        0.0
-    };
-    let dv = if nr > 1.0 {
-        (wb - wt) / (nr - 1.0)
-    } else {
-        0.0
-    };
-    let pc = DVec3::new(wl + x as f64 * du, wt + y as f64 * dv, f);
+    let (du, dv) = window_steps(cam, [wl, wr, wt, wb]);
+    let pc = window_pc(cam, [x, y], f, [wl, wr, wt, wb]);
     // The camera's own answer, so the derivation cannot drift from what is traced.
     let pw = pixel_centre(cam, [x, y]);
     vec![

@@ -1,7 +1,7 @@
 //! CSG questions: the segment list of an object along the ray, combined bottom-up through the
 //! object's tree of unions, intersections and differences.
 
-use super::{Question, Traced, Worked};
+use super::{Mistake, Question, Traced, Worked};
 use crate::lessons::{Answer, Exercise};
 use crate::trace::{text, RayNode};
 
@@ -27,6 +27,23 @@ impl Question for Segments {
                 .map(|s| (s.t_in, s.t_out))
                 .collect(),
         ))
+    }
+
+    /// The lecture draws CSG along the z axis; a student may read the z-coordinates of the
+    /// points off the drawing instead of the ray's t.
+    fn mistakes(&self, w: &Worked, _ex: &Exercise) -> Vec<Mistake> {
+        let Answer::Segments(list) = &w.expected else {
+            return Vec::new();
+        };
+        let z = |t: f64| w.ray.at(t).z;
+        vec![Mistake {
+            answer: Answer::Segments(list.iter().map(|(a, b)| (z(*a), z(*b))).collect()),
+            hint: format!(
+                "those are the z-coordinates of the points: a segment list holds the ray's parameters t (distances from its origin along it; here z = {} + {}·t)",
+                text::num(w.ray.origin.z),
+                text::num(w.ray.dir.z)
+            ),
+        }]
     }
 
     fn explain(&self, w: &Worked, ex: &Exercise, _n: &RayNode) -> Result<Vec<String>, String> {

@@ -30,13 +30,13 @@ impl Question for PixelValue {
         if w.scene.integrator == Integrator::Whitted && (options.spp > 1 || is_adaptive(&options)) {
             tries.push(Mistake {
                 answer: Answer::color(w.tree.color),
-                hint: "that is the ray through the pixel's centre alone: the pixel is the mean of all its rays",
+                hint: "that is the ray through the pixel's centre alone: the pixel is the mean of all its rays".into(),
             });
         }
         if let Some((value, _)) = full_grid(w, ex) {
             tries.push(Mistake {
                 answer: Answer::color(value),
-                hint: FULL_GRID,
+                hint: FULL_GRID.into(),
             });
         }
         tries
@@ -60,7 +60,7 @@ impl Question for PrimaryRays {
         if let Some((_, stats)) = full_grid(w, ex) {
             tries.push(Mistake {
                 answer: Answer::Number(stats.primary_rays as f64),
-                hint: FULL_GRID,
+                hint: FULL_GRID.into(),
             });
         }
         if is_adaptive(&render_options(&w.scene, ex)) && ex.pixel.is_none() {
@@ -69,7 +69,7 @@ impl Question for PrimaryRays {
                 let (nc, nr) = (w.scene.camera.width as f64, w.scene.camera.height as f64);
                 tries.push(Mistake {
                     answer: Answer::Number(n - (nc + 1.0) * (nr + 1.0) + 4.0 * nc * nr),
-                    hint: "neighbouring pixels share their corners: each of the (w + 1)·(h + 1) corners of the image is traced once",
+                    hint: "neighbouring pixels share their corners: each of the (w + 1)·(h + 1) corners of the image is traced once".into(),
                 });
             }
         }
@@ -228,7 +228,9 @@ fn one_pixel(r: &Rendering, w: &Worked, ex: &Exercise, [x, y]: [u32; 2]) -> Vec<
         Antialias::Grid | Antialias::Jittered => samples(r, [x, y], path, &mut out),
         Antialias::Adaptive { threshold } => adaptive::pixel(r, threshold, [x, y], &mut out),
     };
-    if ex.ask == Ask::PixelValue && !Answer::color(value).matches(&w.expected, 1e-12) {
+    if ex.ask == Ask::PixelValue
+        && !Answer::color(value).matches(&w.expected, &crate::lessons::Tolerance::absolute(1e-12))
+    {
         out.push(format!(
             "(the render gives {}: the steps above do not follow it exactly)",
             w.expected.show()

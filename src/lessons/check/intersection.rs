@@ -23,7 +23,7 @@ impl Question for HitT {
         far_exit(w, ex)
             .map(|(_, t)| Mistake {
                 answer: Answer::Number(t),
-                hint: FAR_ROOT,
+                hint: FAR_ROOT.into(),
             })
             .into_iter()
             .collect()
@@ -45,7 +45,7 @@ impl Question for HitPoint {
         far_exit(w, ex)
             .map(|(ray, t)| Mistake {
                 answer: Answer::Vector(ray.at(t)),
-                hint: FAR_ROOT,
+                hint: FAR_ROOT.into(),
             })
             .into_iter()
             .collect()
@@ -69,7 +69,7 @@ impl Question for Normal {
         };
         vec![Mistake {
             answer: Answer::Vector(-*v),
-            hint: "the normal used for shading faces the incoming ray (flip it when the ray is inside)",
+            hint: "the normal used for shading faces the incoming ray (flip it when the ray is inside)".into(),
         }]
     }
 

@@ -4,13 +4,13 @@
 
 use glam::DVec3;
 
+use super::derive;
+use super::mistakes::tree_mistakes;
 use super::tree::tree_explanation;
-use super::{answer, trace, Mistake, Question, Traced, Worked};
+use super::{Mistake, Question, Traced, Worked};
 use crate::lessons::{Answer, Exercise};
-use crate::scene::Scene;
 use crate::shading::{Highlight, Light, LightKind, Material};
 use crate::trace::tree::{HitInfo, LightTerm};
-use crate::trace::TraceOptions;
 use crate::trace::{text, RayNode};
 
 pub(super) struct Intensity;
@@ -21,11 +21,11 @@ impl Question for Intensity {
     }
 
     fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
-        model_mistakes(w, ex)
+        tree_mistakes(w, ex)
     }
 
-    fn explain(&self, _w: &Worked, _ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
-        Ok(tree_explanation(n))
+    fn explain(&self, w: &Worked, ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
+        Ok(derive::explain(w, ex, n, true))
     }
 }
 
@@ -39,11 +39,11 @@ impl Question for Local {
     }
 
     fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
-        model_mistakes(w, ex)
+        tree_mistakes(w, ex)
     }
 
-    fn explain(&self, _w: &Worked, _ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
-        Ok(tree_explanation(n))
+    fn explain(&self, w: &Worked, ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
+        Ok(derive::explain(w, ex, n, false))
     }
 }
 
@@ -52,6 +52,10 @@ pub(super) struct ShadowFactor;
 impl Question for ShadowFactor {
     fn answer(&self, q: &Traced) -> Result<Answer, String> {
         Ok(Answer::Number(light_term(q)?.shadow))
+    }
+
+    fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
+        tree_mistakes(w, ex)
     }
 
     fn explain(&self, w: &Worked, ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
@@ -67,7 +71,7 @@ impl Question for Diffuse {
     }
 
     fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
-        model_mistakes(w, ex)
+        tree_mistakes(w, ex)
     }
 
     fn explain(&self, w: &Worked, ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
@@ -83,7 +87,7 @@ impl Question for Specular {
     }
 
     fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
-        model_mistakes(w, ex)
+        tree_mistakes(w, ex)
     }
 
     fn explain(&self, w: &Worked, ex: &Exercise, n: &RayNode) -> Result<Vec<String>, String> {
@@ -108,87 +112,6 @@ fn light_term<'a>(q: &Traced<'a>) -> Result<&'a LightTerm, String> {
                 ex.id
             )
         })
-}
-
-// --- Mistakes: a term of the model left out or changed ---
-
-/// The answer again, with one term of the model left out or changed: the exercise retraced
-/// with other options or in a changed copy of the scene.
-fn model_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
-    let full = TraceOptions {
-        max_depth: w.depth,
-        shadows: true,
-    };
-    let no_shadows = TraceOptions {
-        shadows: false,
-        ..full
-    };
-    let mut tries = vec![
-        (
-            retrace(w, ex, &w.scene, no_shadows),
-            "you left out the shadow term: a shadow ray toward a light is blocked here, so s = 0 for it",
-        ),
-        (
-            retrace(w, ex, &other_highlight(&w.scene), full),
-            "you used the other highlight model: check whether the material uses Blinn (h·n)^m or Phong (r·v)^m",
-        ),
-        (
-            retrace(w, ex, &without_ambient(&w.scene), full),
-            "you ignored the ambient term ka·Ia·O",
-        ),
-        (
-            retrace(w, ex, &unattenuated(&w.scene), full),
-            "you left out the distance attenuation fatt = 1/(c0 + c1·d + c2·d²)",
-        ),
-    ];
-    if w.depth > 1 {
-        let local_only = TraceOptions {
-            max_depth: 1,
-            ..full
-        };
-        tries.push((
-            retrace(w, ex, &w.scene, local_only),
-            "you stopped at the local term: add kr·I_r and kt·I_t from the secondary rays",
-        ));
-    }
-    tries
-        .into_iter()
-        .filter_map(|(a, hint)| Some(Mistake { answer: a?, hint }))
-        .collect()
-}
-
-fn retrace(w: &Worked, ex: &Exercise, scene: &Scene, options: TraceOptions) -> Option<Answer> {
-    answer(scene, &w.ray, &trace(scene, &w.ray, options), ex).ok()
-}
-
-/// Every material with Phong highlights where it has Blinn, and Blinn where it has Phong.
-fn other_highlight(scene: &Scene) -> Scene {
-    let mut swapped = scene.clone();
-    for m in &mut swapped.materials {
-        m.highlight = if m.highlight == Highlight::Blinn {
-            Highlight::Phong
-        } else {
-            Highlight::Blinn
-        };
-    }
-    swapped
-}
-
-fn without_ambient(scene: &Scene) -> Scene {
-    let mut dark = scene.clone();
-    dark.ambient = DVec3::ZERO;
-    dark
-}
-
-/// Every point light with fatt = 1 at any distance.
-fn unattenuated(scene: &Scene) -> Scene {
-    let mut unattenuated = scene.clone();
-    for l in &mut unattenuated.lights {
-        if let LightKind::Point { attenuation, .. } = &mut l.kind {
-            *attenuation = [1.0, 0.0, 0.0];
-        }
-    }
-    unattenuated
 }
 
 // --- Explanation: one light's terms ---

@@ -17,9 +17,11 @@
 mod adaptive;
 mod camera;
 mod csg;
+mod derive;
 mod image;
 mod intersection;
 mod lighting;
+mod mistakes;
 mod optics;
 mod tree;
 
@@ -27,6 +29,7 @@ use glam::DVec3;
 
 use super::answer::{parse_answer, Answer};
 use super::exercise::{Ask, Exercise, Lesson};
+use super::tolerance::Tolerance;
 use crate::geometry::Ray;
 use crate::scene::{Limits, Scene};
 use crate::trace::tree::HitInfo;
@@ -47,31 +50,48 @@ pub struct Verdict {
     pub correct: bool,
     pub given: Answer,
     pub expected: Answer,
-    pub tolerance: f64,
+    /// The rule the answer was held to.
+    pub tolerance: Tolerance,
     /// A common mistake that explains a wrong answer.
     pub hint: Option<String>,
+    /// The highlight model an intensity was computed in, and why (stated by the exercise,
+    /// or set by the materials); None where no specular term enters the answer.
+    pub model: Option<String>,
 }
 
 impl Verdict {
     pub fn message(&self) -> String {
-        if self.correct {
+        let mut out = if self.correct {
             format!(
                 "right: {} (expected {}, tolerance {})",
                 self.given.show(),
                 self.expected.show(),
-                text::num(self.tolerance)
+                self.tolerance.describe()
             )
         } else {
-            let mut s = format!(
-                "wrong: {} is not within {} of the expected answer",
-                self.given.show(),
-                text::num(self.tolerance)
-            );
+            let same_kind =
+                std::mem::discriminant(&self.given) == std::mem::discriminant(&self.expected);
+            let mut s = if same_kind {
+                format!(
+                    "wrong: {} is not within {} of the expected answer",
+                    self.given.show(),
+                    self.tolerance.describe()
+                )
+            } else {
+                format!(
+                    "wrong: {} is not the kind of answer asked",
+                    self.given.show()
+                )
+            };
             if let Some(h) = &self.hint {
                 s.push_str(&format!("\nhint: {h}"));
             }
             s
+        };
+        if let Some(m) = &self.model {
+            out.push_str(&format!("\n{m}"));
         }
+        out
     }
 }
 
@@ -96,7 +116,7 @@ trait Question {
 /// The answer a common mistake gives, and the hint that names the mistake.
 struct Mistake {
     answer: Answer,
-    hint: &'static str,
+    hint: String,
 }
 
 /// The kind of question an `Ask` names.
@@ -144,8 +164,25 @@ impl<'a> Traced<'a> {
 
 // --- Working an exercise out ---
 
+/// The exercise's scene, in the highlight model the exercise states.
 fn load(lesson: &Lesson, ex: &Exercise) -> Result<Scene, String> {
-    crate::scene::load(&lesson.scene_path(ex), &Limits::default()).map_err(|e| e.to_string())
+    let path = lesson.scene_path(ex);
+    let mut scene = match lesson.scene_source(ex) {
+        Some(text) => crate::scene::parse(
+            text,
+            &path.display().to_string(),
+            Some(&path),
+            &Limits::default(),
+        ),
+        None => crate::scene::load(&path, &Limits::default()),
+    }
+    .map_err(|e| e.to_string())?;
+    if let Some(model) = ex.model {
+        for m in &mut scene.materials {
+            m.highlight = model;
+        }
+    }
+    Ok(scene)
 }
 
 fn exercise_ray(scene: &Scene, ex: &Exercise) -> Result<Ray, String> {
@@ -220,30 +257,144 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
 pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, String> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
-    let correct = given.matches(&w.expected, ex.tolerance);
-    let hint = if correct { None } else { hint(&w, ex, &given) };
+    let correct = given.matches(&w.expected, &ex.tolerance);
+    let hint = if correct {
+        None
+    } else {
+        kind_hint(ex.ask, &given, &w.expected).or_else(|| hint(&w, ex, &given))
+    };
+    let model = highlight_model(&w, ex);
     Ok(Verdict {
         correct,
         given,
         expected: w.expected,
         tolerance: ex.tolerance,
         hint,
+        model,
     })
+}
+
+/// The kinds of question whose answer is an intensity, in which the highlight model matters.
+fn asks_intensity(ask: Ask) -> bool {
+    matches!(
+        ask,
+        Ask::Intensity | Ask::Local | Ask::Specular | Ask::PixelValue
+    )
+}
+
+/// Which highlight model an intensity exercise is worked in, in words: the one it states, or
+/// the one of the shiny surfaces (ks > 0) in its tree. None for other questions, and where no
+/// surface with a specular term is hit.
+pub fn highlight_model(w: &Worked, ex: &Exercise) -> Option<String> {
+    use crate::shading::Highlight;
+    if !asks_intensity(ex.ask) || w.scene.integrator == crate::scene::Integrator::Path {
+        return None;
+    }
+    if let Some(m) = ex.model {
+        return Some(format!(
+            "highlight model: {}, as the exercise states",
+            mistakes::model_name(m)
+        ));
+    }
+    let mut shiny: Vec<(String, Highlight)> = Vec::new();
+    fn walk(n: &RayNode, scene: &Scene, out: &mut Vec<(String, Highlight)>) {
+        if let Some(h) = &n.hit {
+            if let Some(m) = scene.materials.iter().find(|m| m.name == h.material) {
+                if m.ks > 0.0 && n.local.is_some() && !out.iter().any(|(name, _)| *name == m.name) {
+                    out.push((m.name.clone(), m.highlight));
+                }
+            }
+        }
+        for c in n.secondary() {
+            walk(c, scene, out);
+        }
+    }
+    walk(node(&w.tree, ex).ok()?, &w.scene, &mut shiny);
+    let (_, first) = shiny.first()?;
+    if shiny.iter().all(|(_, h)| h == first) {
+        Some(format!(
+            "highlight model: {}, as the material{} set{}",
+            mistakes::model_name(*first),
+            if shiny.len() == 1 { "" } else { "s" },
+            if shiny.len() == 1 { "s" } else { "" }
+        ))
+    } else {
+        let each: Vec<String> = shiny
+            .iter()
+            .map(|(name, h)| format!("{} for {name}", mistakes::model_name(*h)))
+            .collect();
+        Some(format!(
+            "highlight model: each material's own ({})",
+            each.join(", ")
+        ))
+    }
+}
+
+/// A hint for an answer of the wrong kind: one number where a vector is asked, a vector where
+/// one number is, `tir` where Snell's law gives a ray, a ray where it gives none.
+fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
+    let what = match ask {
+        Ask::WindowPoint | Ask::HitPoint => "a point",
+        Ask::RayDirection | Ask::ReflectedDirection | Ask::RefractedDirection => "a direction",
+        Ask::RayOrigin => "the ray's origin, a point,",
+        Ask::Normal => "a normal",
+        Ask::Barycentric => "the barycentric coordinates (λ1, λ2, λ3)",
+        Ask::HitT => "t",
+        Ask::ShadowFactor => "the shadow factor s",
+        Ask::PrimaryRays | Ask::SquaresSplit => "a count",
+        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue => {
+            "this intensity"
+        }
+        Ask::Segments => "a segment list",
+    };
+    Some(match (given, expected) {
+        (Answer::Number(_), Answer::Vector(_)) if asks_colour(ask) => {
+            "this intensity is a colour, not grey: give it as r, g, b".into()
+        }
+        (Answer::Number(_), Answer::Vector(_)) => {
+            format!("{what} is a vector: give it as x, y, z")
+        }
+        (Answer::Vector(_), Answer::Number(_)) if !asks_colour(ask) => {
+            format!("{what} is one number, not a vector")
+        }
+        (Answer::Tir, Answer::Vector(_)) if ask == Ask::RefractedDirection => {
+            "Snell's law gives a refracted ray here: 1 − η²(1 − c1²) is positive, so there is no total internal reflection".into()
+        }
+        (Answer::Vector(_), Answer::Tir) => {
+            "1 − η²(1 − c1²) is negative here: there is no refracted ray (total internal reflection, answer tir)".into()
+        }
+        (Answer::Tir, _) => format!("tir is an answer for a refracted direction only; {what} is asked"),
+        _ => return None,
+    })
+}
+
+fn asks_colour(ask: Ask) -> bool {
+    matches!(
+        ask,
+        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue
+    )
 }
 
 /// The first common mistake that gives the student's answer. A mistake that happens to give
 /// the right answer here explains nothing, so it is passed over.
 fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
-    let tol = ex.tolerance;
+    let tol = &ex.tolerance;
     question(ex.ask)
         .mistakes(w, ex)
         .into_iter()
         .find(|m| given.matches(&m.answer, tol) && !m.answer.matches(&w.expected, tol))
-        .map(|m| m.hint.to_string())
+        .map(|m| m.hint)
 }
 
-/// The worked derivation, step by step, with the numbers filled in.
+/// The worked derivation, step by step, with the numbers filled in (refused for a lesson whose
+/// solutions are hidden).
 pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
+    if lesson.solutions == super::exercise::Solutions::Hidden {
+        return Err(format!(
+            "lesson {}: the worked solutions are hidden (solutions: hidden)",
+            lesson.id
+        ));
+    }
     let w = work(lesson, ex)?;
     let n = node(&w.tree, ex)?;
     let mut out = vec![format!("{}: {}", ex.id, ex.question.trim())];

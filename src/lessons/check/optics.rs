@@ -24,7 +24,8 @@ impl Question for ReflectedDirection {
         };
         vec![Mistake {
             answer: Answer::Vector(-*v),
-            hint: "sign: with v pointing toward the surface, v' = v − 2(v·n)n points away from it",
+            hint: "sign: with v pointing toward the surface, v' = v − 2(v·n)n points away from it"
+                .into(),
         }]
     }
 
@@ -75,7 +76,8 @@ impl Question for RefractedDirection {
         refract(n.direction, h.normal, n2, n1)
             .map(|t| Mistake {
                 answer: Answer::Vector(t),
-                hint: "n1 and n2 are swapped: η = n1/n2 with n1 the medium the ray comes from",
+                hint: "n1 and n2 are swapped: η = n1/n2 with n1 the medium the ray comes from"
+                    .into(),
             })
             .into_iter()
             .collect()

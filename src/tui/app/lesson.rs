@@ -4,9 +4,10 @@
 
 use super::{App, Focus, Screen};
 use crate::lessons;
+use crate::scene::Limits;
 use crate::tui::layout;
 use crate::tui::msg::Msg;
-use crate::tui::state::lesson::NO_LESSON;
+use crate::tui::state::lesson::{AimAt, NO_LESSON};
 use crate::tui::state::list::LessonList;
 use crate::tui::state::prompt::{parse_pixel, Prompt};
 use crate::tui::state::Tone;
@@ -75,15 +76,29 @@ impl App {
         }
     }
 
-    /// Selects an exercise, and points the ray tree at what it asks about.
+    /// Selects an exercise, switches to the scene it is posed on, and points the ray tree at
+    /// what it asks about.
     pub(super) fn select_exercise(&mut self, i: usize) {
+        let Some(l) = &self.lesson else { return };
+        let n = l.lesson.exercises.len();
+        if let Some(wanted) = l.scene_of(i.min(n.saturating_sub(1))) {
+            if wanted != self.scene_name() {
+                if let Err(e) = self.switch_scene(&wanted) {
+                    self.message = Some((e, Tone::Bad));
+                    return;
+                }
+            }
+        }
         let size = self.image_size();
         let Some(l) = &mut self.lesson else { return };
         let Some((aim, note)) = l.select_exercise(i, self.file.scene.as_deref(), size) else {
             return;
         };
         if let Some(aim) = aim {
-            self.tree.aim(aim.pixel, aim.depth);
+            match aim.at {
+                AimAt::Pixel(x, y) => self.tree.aim((x, y), aim.depth),
+                AimAt::Ray(r) => self.tree.aim_ray(r, aim.depth),
+            }
             if aim.depth.is_some() {
                 self.request_render();
             }
@@ -92,6 +107,55 @@ impl App {
             self.follow_selection(moved);
         }
         self.message = Some(note);
+    }
+
+    /// The file name of the scene shown ("scene.yaml").
+    pub(super) fn scene_name(&self) -> String {
+        self.file
+            .path
+            .as_ref()
+            .and_then(|p| p.file_name())
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned())
+    }
+
+    /// Shows another scene of the lesson (its file name), the lesson kept.
+    pub(super) fn switch_scene(&mut self, name: &str) -> Result<(), String> {
+        let Some(l) = &self.lesson else {
+            return Err(NO_LESSON.into());
+        };
+        let path = l.lesson.dir.join(name);
+        let scene = crate::scene::load(&path, &Limits::default()).map_err(|e| e.to_string())?;
+        self.file.watch(path);
+        self.tree.restart((scene.camera.width, scene.camera.height));
+        self.preview.clear();
+        self.set_scene(scene);
+        Ok(())
+    }
+
+    /// s: the lesson's next scene.
+    pub(super) fn next_scene(&mut self) {
+        let Some(l) = &self.lesson else {
+            self.message = Some((NO_LESSON.into(), Tone::Bad));
+            return;
+        };
+        let scenes = l.scenes();
+        let current = self.scene_name();
+        let k = scenes
+            .iter()
+            .position(|s| *s == current)
+            .map_or(0, |k| (k + 1) % scenes.len());
+        let name = scenes[k].clone();
+        self.message = Some(match self.switch_scene(&name) {
+            Ok(()) => (
+                format!(
+                    "scene {name} ({} of {}) · s: the lesson's next scene",
+                    k + 1,
+                    scenes.len()
+                ),
+                Tone::Info,
+            ),
+            Err(e) => (e, Tone::Bad),
+        });
     }
 
     pub(super) fn open_list(&mut self) {

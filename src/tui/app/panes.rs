@@ -102,6 +102,24 @@ impl App {
         }
     }
 
+    /// C: every object evaluated whole in the CSG panel, or back to the objects met.
+    pub(super) fn csg_all(&mut self) {
+        let was_shown = self.csg.shown();
+        self.csg.toggle_all();
+        if !was_shown && self.size.0 < layout::WIDE {
+            if let Some(l) = &mut self.lesson {
+                l.open = false;
+            }
+        }
+        self.refresh_csg();
+        let note = if self.csg.all() {
+            "CSG panel: every object, evaluated whole without bounding boxes (C: the objects met)"
+        } else {
+            "CSG panel: the objects the rays meet, through their bounding boxes (C: every object)"
+        };
+        self.message = Some((note.into(), Tone::Info));
+    }
+
     pub(super) fn click(&mut self, col: u16, row: u16) {
         let at = Position::new(col, row);
         let p = self.panes();
@@ -111,7 +129,7 @@ impl App {
         } else if p.tree.contains(at) {
             self.focus = Focus::Tree;
             let body = inner(p.tree);
-            let top = body.y + self.tree.level().is_some() as u16;
+            let top = body.y + self.tree.head_lines() as u16;
             if row >= top && row < body.bottom() {
                 let moved = self.tree.click((row - top) as usize);
                 self.follow_selection(moved);

@@ -1,5 +1,7 @@
 //! The CSG panel: for every ray of the picked pixel's tree, the segment list at every node of
-//! every object it meets, pruned nodes included; it scrolls to the selected ray's section.
+//! every object it meets, pruned nodes included, and why the others are not shown (culled by
+//! a bounding box, or missed); it scrolls to the selected ray's section. Like `raytree csg
+//! --all`, it can show every object evaluated whole instead.
 
 use ratatui::layout::Rect;
 
@@ -27,7 +29,7 @@ pub struct CsgLine {
 pub enum CsgKind {
     /// The first line of a ray's section.
     Header,
-    /// A node skipped because the ray misses its bounds.
+    /// A node or object skipped (pruned, culled) or missed.
     Pruned,
     Plain,
 }
@@ -43,6 +45,8 @@ pub struct CsgRow {
 #[derive(Default)]
 pub struct CsgPanel {
     shown: bool,
+    /// Every object, evaluated whole without bounding boxes (`raytree csg --all`).
+    all: bool,
     lines: Vec<CsgLine>,
     scroll: u16,
 }
@@ -68,6 +72,18 @@ impl CsgPanel {
 
     pub fn hide(&mut self) {
         self.shown = false;
+    }
+
+    /// Every object evaluated whole, or only those the rays meet through the boxes.
+    pub fn all(&self) -> bool {
+        self.all
+    }
+
+    /// Switches between every object and the objects met; shows the panel (it wants
+    /// `compute`).
+    pub fn toggle_all(&mut self) {
+        self.all = !self.all;
+        self.shown = true;
     }
 
     /// No segment list at all: no ray meets an object.
@@ -115,15 +131,15 @@ impl CsgPanel {
                     text::vec3(ray.dir)
                 ),
             });
-            let traces = scene.csg_traces(&ray, false);
-            if traces.is_empty() {
+            let survey = text::csg_survey(scene, &ray, self.all);
+            if survey.met.is_empty() {
                 lines.push(CsgLine {
                     node: path.clone(),
                     header: false,
                     text: "  meets no object".into(),
                 });
             }
-            for (object, t) in traces {
+            for (object, t) in survey.met {
                 lines.push(CsgLine {
                     node: path.clone(),
                     header: false,
@@ -136,6 +152,13 @@ impl CsgPanel {
                         text: format!("    {l}"),
                     });
                 }
+            }
+            for l in survey.unmet {
+                lines.push(CsgLine {
+                    node: path.clone(),
+                    header: false,
+                    text: format!("  {l}"),
+                });
             }
         }
         if more > 0 {
@@ -193,7 +216,16 @@ impl CsgPanel {
             }
             let kind = if l.header {
                 CsgKind::Header
-            } else if l.text.contains("pruned:") {
+            } else if [
+                "pruned:",
+                "not evaluated:",
+                "culled:",
+                "misses",
+                "meets none",
+            ]
+            .iter()
+            .any(|w| l.text.contains(w))
+            {
                 CsgKind::Pruned
             } else {
                 CsgKind::Plain

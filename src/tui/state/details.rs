@@ -45,14 +45,23 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
             if let Some(t) = n.t_max {
                 out.push(plain(format!("looks for blockers up to t = {}", num(t))));
             }
-            out.push(plain(match &n.hit {
-                Some(h) => format!(
+            let s = n.shadow.unwrap_or(0.0);
+            out.push(plain(match (&n.hit, n.shadow_rays) {
+                (Some(h), Some(rays)) => format!(
+                    "{} of {rays} shadow rays reach the light (the first blocked meets {} at t = {}): s = {}",
+                    (s * rays as f64).round(),
+                    h.object,
+                    num(h.t),
+                    num(s)
+                ),
+                (None, Some(rays)) => format!("all {rays} shadow rays reach the light: s = 1"),
+                (Some(h), None) => format!(
                     "blocked by {} at t = {}: s = {}",
                     h.object,
                     num(h.t),
                     num(n.shadow.unwrap_or(0.0))
                 ),
-                None => format!(
+                (None, None) => format!(
                     "nothing in the way: s = {}",
                     num(n.shadow.unwrap_or(1.0))
                 ),
@@ -121,10 +130,56 @@ pub struct DetailRow {
     pub swatch: Option<DVec3>,
 }
 
-/// The details of a node wrapped to `width` cells (a swatch takes three of them).
-pub fn rows(n: &RayNode, max_depth: u32, width: usize) -> Vec<DetailRow> {
+/// What stands in for the terms of the model while a lesson hides its solutions.
+pub const HIDDEN: &str =
+    "intensities hidden until this scene's exercises about them are answered (solutions: hidden)";
+
+/// The detail lines without the intensities and the terms that make them up: where the ray
+/// goes and what it hits stay.
+fn without_intensities(
+    n: &RayNode,
+    lines: Vec<(String, Option<DVec3>)>,
+) -> Vec<(String, Option<DVec3>)> {
+    let terms = [
+        "ambient",
+        "light ",
+        "  diffuse",
+        "  specular",
+        "kr·I_r",
+        "kt·I_t",
+        "I = ",
+        "sum ",
+        "hit nothing",
+        I_FORMULA_START,
+    ];
+    let mut out: Vec<(String, Option<DVec3>)> = lines
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, (s, _))| {
+            if i == 0 {
+                return Some((s.split(" · I = ").next().unwrap_or(&s).to_string(), None));
+            }
+            (!terms.iter().any(|t| s.starts_with(t))).then_some((s, None))
+        })
+        .collect();
+    if n.kind != RayKind::Shadow {
+        out.push((HIDDEN.into(), None));
+    }
+    out
+}
+
+/// The start of the formula line.
+const I_FORMULA_START: &str = "I = ka";
+
+/// The details of a node wrapped to `width` cells (a swatch takes three of them), without the
+/// intensities when they are `hidden`.
+pub fn rows(n: &RayNode, max_depth: u32, width: usize, hidden: bool) -> Vec<DetailRow> {
     let mut rows = Vec::new();
-    for (i, (s, sw)) in details_lines(n, max_depth).into_iter().enumerate() {
+    let mut lines = details_lines(n, max_depth);
+    if hidden {
+        lines = without_intensities(n, lines);
+    }
+    for (i, (s, sw)) in lines.into_iter().enumerate() {
         let kind = if i == 0 {
             DetailKind::Title
         } else if s.starts_with("I = ka") {

@@ -6,7 +6,7 @@ use ratatui::layout::Rect;
 
 use super::lesson::LessonPanel;
 use crate::lessons::Ask;
-use crate::trace::text::{num, vec3};
+use crate::trace::text::vec3;
 use crate::tui::layout::list_offset;
 use crate::tui::wrap::{width, wrap, wrap_hang};
 
@@ -59,6 +59,7 @@ pub fn rows(l: &LessonPanel, body: Rect) -> (Vec<ExRow>, Vec<ExRow>) {
                 Ok(_) => "✗",
                 Err(_) => "?",
             },
+            None if l.solved.contains(&ex.id) => "✓",
             None => " ",
         };
         let selected = i == l.exercise;
@@ -101,7 +102,7 @@ pub fn rows(l: &LessonPanel, body: Rect) -> (Vec<ExRow>, Vec<ExRow>) {
         if let Some(object) = &ex.object {
             about.push_str(&format!(" · object {object}"));
         }
-        about.push_str(&format!(" · tolerance {}", num(ex.tolerance)));
+        about.push_str(&format!(" · tolerance {}", ex.tolerance.describe()));
         for part in wrap(&about, width) {
             rows.push(row(part, ExKind::Dim));
         }

@@ -9,7 +9,10 @@ use super::exercises;
 use super::scene::{signature, FileSig};
 use super::{max_scroll, scrolled, Note, Tone};
 use crate::geometry::Ray;
-use crate::lessons::{self, Lesson, Verdict};
+use std::collections::BTreeSet;
+
+use crate::lessons::progress::Progress;
+use crate::lessons::{self, Ask, Lesson, Solutions, Verdict};
 use crate::scene::Scene;
 use crate::trace::text;
 use crate::tui::layout::inner;
@@ -42,15 +45,25 @@ pub struct LessonPanel {
     pub work: Option<Result<Vec<String>, String>>,
     /// Scroll of the selected exercise's text in the exercises view.
     pub exercise_scroll: u16,
+    /// The exercises answered right, now or in an earlier session (the user's progress).
+    pub solved: BTreeSet<String>,
     signature: [Option<FileSig>; 2],
 }
 
-/// Where an exercise points the ray tree: a pixel of the scene, a depth, a ray of the tree.
+/// Where an exercise points the ray tree: a pixel of the scene or a ray, a depth, a ray of the
+/// tree.
 pub struct Aim {
-    pub pixel: (u32, u32),
+    pub at: AimAt,
     pub depth: Option<u32>,
     /// The kinds on the path to the ray asked about ("reflection.refraction").
     pub node: String,
+}
+
+/// What the tree follows for an exercise.
+pub enum AimAt {
+    Pixel(u32, u32),
+    /// A ray that is no pixel's primary ray.
+    Ray(Ray),
 }
 
 /// What the explorer says when there is no lesson to act on.
@@ -68,6 +81,7 @@ impl LessonPanel {
         let n = lesson.exercises.len();
         LessonPanel {
             signature: lesson_signature(&lesson.dir),
+            solved: Progress::load().solved(&lesson),
             lesson,
             open: true,
             view: LessonView::Readme,
@@ -100,9 +114,32 @@ impl LessonPanel {
         self.view = LessonView::Exercises;
     }
 
-    /// Selects exercise `i` (clamped); None without exercises. When the exercise is about a
-    /// pixel of a `w` × `h` image of this scene (or a ray that is one's primary ray), the
-    /// `Aim` says where the ray tree should go; the note says what the exercise is about.
+    /// The scene file an exercise is posed on.
+    pub fn scene_of(&self, i: usize) -> Option<String> {
+        let ex = self.lesson.exercises.get(i)?;
+        Some(ex.scene.clone().unwrap_or_else(|| "scene.yaml".into()))
+    }
+
+    /// The lesson's scenes: scene.yaml, then the other scene files of its folder in name order.
+    pub fn scenes(&self) -> Vec<String> {
+        let mut others: Vec<String> = std::fs::read_dir(&self.lesson.dir)
+            .map(|rd| {
+                rd.filter_map(|e| e.ok())
+                    .map(|e| e.file_name().to_string_lossy().into_owned())
+                    .filter(|n| n.ends_with(".yaml") && n != "exercises.yaml" && n != "scene.yaml")
+                    .collect()
+            })
+            .unwrap_or_default();
+        others.sort();
+        let mut all = vec!["scene.yaml".to_string()];
+        all.extend(others);
+        all
+    }
+
+    /// Selects exercise `i` (clamped); None without exercises. `scene` is the exercise's own
+    /// scene (the caller switches to it first): the `Aim` says where the ray tree should go, a
+    /// pixel of its `w` × `h` image (also for a ray that is a pixel's primary ray) or the
+    /// exercise's ray; the note says what the exercise is about.
     pub fn select_exercise(
         &mut self,
         i: usize,
@@ -119,14 +156,12 @@ impl LessonPanel {
         }
         self.exercise = i;
         let ex = &self.lesson.exercises[i];
-        let same_scene = ex.scene.as_deref().is_none_or(|s| s == "scene.yaml");
         let mut note = format!("exercise {}", ex.id);
+        let ray = ex.ray.as_ref().map(|r| Ray::new(r.origin, r.direction));
         // A ray exercise whose ray is a primary ray of the scene is that pixel's.
-        let pixel = match (ex.pixel, &ex.ray, scene) {
+        let pixel = match (ex.pixel, &ray, scene) {
             (Some(p), ..) => Some(p),
-            (None, Some(r), Some(scene)) if same_scene => {
-                pixel_of_ray(scene, &Ray::new(r.origin, r.direction)).map(|(x, y)| [x, y])
-            }
+            (None, Some(r), Some(scene)) => pixel_of_ray(scene, r).map(|(x, y)| [x, y]),
             _ => None,
         };
         if let (Some(r), None) = (&ex.ray, ex.pixel) {
@@ -139,21 +174,23 @@ impl LessonPanel {
                 note.push_str(", the primary ray of");
             }
         }
-        let mut aim = None;
-        if let (Some([x, y]), true) = (pixel, same_scene) {
-            if x < w && y < h {
-                aim = Some(Aim {
-                    pixel: (x, y),
-                    depth: ex.depth,
-                    node: ex.node.clone(),
-                });
+        let at = match (pixel, ray) {
+            (Some([x, y]), _) if x < w && y < h => {
                 let sep = if ex.pixel.is_some() { ":" } else { "" };
                 note.push_str(&format!("{sep} pixel {x},{y}"));
-                if !ex.node.is_empty() {
-                    note.push_str(&format!(", node {}", ex.node));
-                }
+                Some(AimAt::Pixel(x, y))
             }
+            (_, Some(r)) if r.dir.is_finite() && r.dir != glam::DVec3::ZERO => Some(AimAt::Ray(r)),
+            _ => None,
+        };
+        if at.is_some() && !ex.node.is_empty() {
+            note.push_str(&format!(", node {}", ex.node));
         }
+        let aim = at.map(|at| Aim {
+            at,
+            depth: ex.depth,
+            node: ex.node.clone(),
+        });
         if let Some(s) = &ex.scene {
             note.push_str(&format!(" (scene {s})"));
         }
@@ -161,8 +198,24 @@ impl LessonPanel {
         Some((aim, (note, Tone::Info)))
     }
 
+    /// In a lesson whose solutions are hidden, the intensities of scene `scene` stay hidden
+    /// while an exercise about an intensity on it is not answered right.
+    pub fn hides_intensities(&self, scene: &str) -> bool {
+        self.lesson.solutions == Solutions::Hidden
+            && self.lesson.exercises.iter().any(|ex| {
+                let on = ex.scene.as_deref().unwrap_or("scene.yaml") == scene;
+                on && about_intensity(ex.ask) && !self.solved.contains(&ex.id)
+            })
+    }
+
     /// w: shows (or hides) the worked solution of the selected exercise.
     pub fn toggle_work(&mut self) -> Option<Note> {
+        if self.lesson.solutions == Solutions::Hidden {
+            return Some((
+                "the worked solutions of this lesson are hidden (solutions: hidden)".into(),
+                Tone::Bad,
+            ));
+        }
         if !self.in_exercises() {
             return Some((
                 "w shows a worked solution in the exercises (press a)".into(),
@@ -191,7 +244,7 @@ impl LessonPanel {
     pub fn answer(&mut self, exercise: usize, given: String) -> Option<Note> {
         let ex = self.lesson.exercises.get(exercise)?;
         let result = lessons::check(&self.lesson, ex, &given);
-        let note = match &result {
+        let mut note = match &result {
             Ok(v) => (
                 format!(
                     "{}: {}",
@@ -202,6 +255,12 @@ impl LessonPanel {
             ),
             Err(e) => (format!("{}: {e}", ex.id), Tone::Bad),
         };
+        if result.as_ref().is_ok_and(|v| v.correct) {
+            self.solved.insert(ex.id.clone());
+            if let Err(e) = Progress::record(&self.lesson, &ex.id) {
+                note.0.push_str(&format!(" (progress not saved: {e})"));
+            }
+        }
         self.answers[exercise] = Some(Answered { given, result });
         Some(note)
     }
@@ -262,6 +321,14 @@ impl LessonPanel {
     pub fn scroll_exercise(&mut self, delta: i32, pane: Option<Rect>) {
         self.exercise_scroll = scrolled(self.exercise_scroll, delta, self.max_scroll(pane));
     }
+}
+
+/// The kinds of question whose answer is an intensity (or a term of one).
+fn about_intensity(ask: Ask) -> bool {
+    matches!(
+        ask,
+        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue
+    )
 }
 
 /// The pixel whose primary ray (through its centre) is this ray, if there is one.

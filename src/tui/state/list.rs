@@ -5,6 +5,9 @@ use std::path::{Path, PathBuf};
 
 use ratatui::layout::{Position, Rect};
 
+use std::collections::BTreeSet;
+
+use crate::lessons::progress::Progress;
 use crate::lessons::Lesson;
 use crate::tui::layout::{inner, list_offset};
 use crate::tui::msg::Msg;
@@ -13,6 +16,8 @@ use crate::tui::msg::Msg;
 pub struct LessonEntry {
     pub dir: PathBuf,
     pub lesson: Result<Lesson, String>,
+    /// Its exercises answered right (the user's progress).
+    pub solved: BTreeSet<String>,
 }
 
 pub struct LessonList {
@@ -45,11 +50,19 @@ impl LessonList {
             }
         };
         dirs.sort();
+        let progress = Progress::load();
         list.entries = dirs
             .into_iter()
-            .map(|dir| LessonEntry {
-                lesson: Lesson::load(&dir),
-                dir,
+            .map(|dir| {
+                let lesson = Lesson::load(&dir);
+                LessonEntry {
+                    solved: lesson
+                        .as_ref()
+                        .map(|l| progress.solved(l))
+                        .unwrap_or_default(),
+                    lesson,
+                    dir,
+                }
             })
             .collect();
         list.error = list.entries.is_empty().then(|| {
@@ -111,6 +124,7 @@ mod tests {
                 .map(|i| LessonEntry {
                     dir: PathBuf::from(format!("lessons/{i:02}")),
                     lesson: Err("does not load".into()),
+                    solved: Default::default(),
                 })
                 .collect(),
             selected: 0,

@@ -1,5 +1,6 @@
 //! The picked pixel and its ray tree: the depth it is traced to, level stepping, and (in
-//! tree_state.rs) which rays are open and selected.
+//! tree_state.rs) which rays are open and selected. An exercise about a ray that is no pixel's
+//! aims the tree at that ray instead, until a pixel is picked again.
 //!
 //! The tree is traced by the tracer itself (`Tracer::inspect`), so what is shown is the
 //! computation that coloured the pixel. The methods that change the pixel, the depth or the
@@ -12,6 +13,7 @@ use ratatui::layout::Rect;
 use super::details::{self, DetailRow};
 use super::tree_state::TreeState;
 use super::{max_scroll, Note, Tone};
+use crate::geometry::Ray;
 use crate::sampling::Rng;
 use crate::scene::Scene;
 use crate::stats::Stats;
@@ -25,6 +27,8 @@ pub const MAX_DEPTH: u32 = 16;
 
 pub struct RayTree {
     pixel: (u32, u32),
+    /// An exercise's ray, traced instead of the picked pixel's.
+    ray: Option<Ray>,
     /// The maximum depth the tree and the preview are traced with.
     depth: u32,
     /// The depth was chosen (keys, an exercise), so a reloaded scene does not reset it.
@@ -39,14 +43,31 @@ pub struct RayTree {
     level_tree: Option<RayNode>,
     stats: Stats,
     pixel_value: Option<(DVec3, String)>,
+    /// A path-traced pixel's estimate and some of the paths it averages.
+    paths: Option<Paths>,
+    /// Intensities are not shown (a lesson's hidden solutions, not yet answered).
+    hidden: bool,
     /// Open and selected rays, scrolling.
     view: TreeState,
 }
+
+/// What a path tracer made of a pixel: its rendered estimate over `spp` paths, and the first
+/// paths replayed with the same random numbers, each as its value and the surfaces it met.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Paths {
+    pub estimate: DVec3,
+    pub spp: u32,
+    pub shown: Vec<(DVec3, String)>,
+}
+
+/// Sampled paths shown above a path-traced pixel's tree.
+pub const PATHS_SHOWN: usize = 3;
 
 impl Default for RayTree {
     fn default() -> RayTree {
         RayTree {
             pixel: (0, 0),
+            ray: None,
             depth: 1,
             depth_from_user: false,
             level: None,
@@ -55,6 +76,8 @@ impl Default for RayTree {
             level_tree: None,
             stats: Stats::default(),
             pixel_value: None,
+            paths: None,
+            hidden: false,
             view: TreeState::default(),
         }
     }
@@ -66,6 +89,32 @@ impl RayTree {
     /// The picked pixel.
     pub fn pixel(&self) -> (u32, u32) {
         self.pixel
+    }
+
+    /// The exercise's ray the tree follows instead of the picked pixel's, if any.
+    pub fn aimed_ray(&self) -> Option<&Ray> {
+        self.ray.as_ref()
+    }
+
+    /// A path-traced pixel's estimate and sampled paths.
+    pub fn paths(&self) -> Option<&Paths> {
+        self.paths.as_ref()
+    }
+
+    /// Intensities are hidden until the lesson's exercises about them are answered.
+    pub fn hidden(&self) -> bool {
+        self.hidden
+    }
+
+    pub fn set_hidden(&mut self, hidden: bool) {
+        self.hidden = hidden;
+    }
+
+    /// The lines the tree pane shows above the tree: the rendered value, or the path tracer's
+    /// estimate and paths, and the level line.
+    pub fn head_lines(&self) -> usize {
+        let paths = self.paths.as_ref().map_or(0, |p| p.shown.len() + 2);
+        paths + self.level.is_some() as usize + self.pixel_value.is_some() as usize
     }
 
     pub fn depth(&self) -> u32 {
@@ -123,16 +172,16 @@ impl RayTree {
         self.view.details_scroll()
     }
 
-    /// Lines the tree pane gives to rows (the pixel value and the level line take one each).
+    /// Lines the tree pane gives to rows (below the `head_lines`).
     pub fn body_height(&self, pane: Rect) -> usize {
         let lines = inner(pane).height as usize;
-        lines.saturating_sub(self.level.is_some() as usize + self.pixel_value.is_some() as usize)
+        lines.saturating_sub(self.head_lines())
     }
 
     /// The selected ray's details at a width.
     pub fn detail_rows(&self, width: usize) -> Vec<DetailRow> {
         self.selected_node()
-            .map_or(vec![], |n| details::rows(n, self.depth, width))
+            .map_or(vec![], |n| details::rows(n, self.depth, width, self.hidden))
     }
 
     /// How far the details can scroll in the lower pane (none without the pane).
@@ -150,6 +199,7 @@ impl RayTree {
     /// A new scene: its centre pixel, the whole tree, the scene's depth, the root selected.
     pub fn restart(&mut self, (w, h): (u32, u32)) {
         self.level = None;
+        self.ray = None;
         self.depth_from_user = false;
         self.view.select_root();
         self.pixel = (w / 2, h / 2);
@@ -176,8 +226,9 @@ impl RayTree {
         }
         let x = (self.pixel.0 as i64 + dx as i64).clamp(0, w as i64 - 1) as u32;
         let y = (self.pixel.1 as i64 + dy as i64).clamp(0, h as i64 - 1) as u32;
-        let moved = (x, y) != self.pixel;
+        let moved = (x, y) != self.pixel || self.ray.is_some();
         self.pixel = (x, y);
+        self.ray = None;
         moved
     }
 
@@ -190,12 +241,24 @@ impl RayTree {
             ));
         }
         self.pixel = (x, y);
+        self.ray = None;
         Ok(())
     }
 
     /// An exercise's pixel, and its depth when it names one (then the preview renders again).
     pub fn aim(&mut self, pixel: (u32, u32), depth: Option<u32>) {
         self.pixel = pixel;
+        self.ray = None;
+        self.aim_depth(depth);
+    }
+
+    /// An exercise's ray (not a pixel's), and its depth when it names one.
+    pub fn aim_ray(&mut self, ray: Ray, depth: Option<u32>) {
+        self.ray = Some(ray);
+        self.aim_depth(depth);
+    }
+
+    fn aim_depth(&mut self, depth: Option<u32>) {
         if let Some(d) = depth {
             self.depth = d.clamp(1, MAX_DEPTH);
             self.depth_from_user = true;
@@ -259,6 +322,9 @@ impl RayTree {
     /// What the level being stepped adds to the pixel's intensity.
     pub fn level_note(&self) -> Option<Note> {
         let k = self.level?;
+        if self.hidden {
+            return Some((format!("level {k} of {}", self.depth), Tone::Info));
+        }
         let i = self
             .partials
             .get(k as usize - 1)
@@ -279,6 +345,12 @@ impl RayTree {
 
     /// Level stepping is over: the intensity of all levels together.
     pub fn collected_note(&self) -> Note {
+        if self.hidden {
+            return (
+                format!("all {} levels collected (n steps again)", self.depth),
+                Tone::Info,
+            );
+        }
         let i = self.full.as_ref().map_or(DVec3::ZERO, |t| t.color);
         (
             format!(
@@ -290,16 +362,30 @@ impl RayTree {
         )
     }
 
-    /// Traces the picked pixel again (new pixel, depth, level or scene).
+    /// Traces the picked pixel (or the aimed ray) again (new pixel, depth, level or scene).
     pub fn retrace(&mut self, scene: &Scene) {
         let (x, y) = self.pixel;
-        let ray = scene.camera.pixel_ray(x, y);
-        // Glossy and frosted rays drawn from the pixel's own generator, as the renderer does.
-        let rng = || Rng::for_pixel(0, x, y);
+        let ray = self.ray.unwrap_or_else(|| scene.camera.pixel_ray(x, y));
+        // Glossy and frosted rays drawn from the pixel's own generator, as the renderer does;
+        // an exercise's ray from the generator `raytree check` uses.
+        let aimed = self.ray.is_some();
+        let rng = || {
+            if aimed {
+                Rng::for_pixel(0, 0, 0)
+            } else {
+                Rng::for_pixel(0, x, y)
+            }
+        };
         let mut tracer = Tracer::new(scene).with_depth(self.depth).with_rng(rng());
         let full = tracer.inspect(&ray);
         self.stats = tracer.stats;
-        self.pixel_value = pixel_value(scene, self.depth, x, y);
+        let path = scene.integrator == crate::scene::Integrator::Path;
+        self.paths = (path && !aimed).then(|| sampled_paths(scene, self.depth, x, y));
+        self.pixel_value = if aimed || path {
+            None
+        } else {
+            pixel_value(scene, self.depth, x, y)
+        };
         self.full = Some(full);
         if let Some(k) = self.level {
             let k = k.clamp(1, self.depth);
@@ -375,8 +461,7 @@ impl RayTree {
 }
 
 /// The rendered value of pixel (x, y) and how it was sampled, when the pixel is more than its
-/// centre ray: several samples, corners, or a path tracer (whose tree is only the Whitted
-/// reading of the scene).
+/// centre ray: several samples or corners.
 fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
     use crate::render::film::Film;
     use crate::render::RenderOptions;
@@ -386,8 +471,7 @@ fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, Stri
         ..RenderOptions::of(scene)
     };
     let film = Film::new(scene, options);
-    let path = scene.integrator == crate::scene::Integrator::Path;
-    if options.spp <= 1 && options.antialias == Antialias::Grid && !path {
+    if options.spp <= 1 && options.antialias == Antialias::Grid {
         return None;
     }
     let value = film.lone_pixel(&mut film.tracer(), x, y);
@@ -395,10 +479,48 @@ fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, Stri
     if film.splats() {
         how.push_str(" gaussian");
     }
-    if path {
-        how = format!("path, {how} · tree: Whitted reading of its centre ray");
-    } else {
-        how.push_str(" · tree: its centre ray");
-    }
+    how.push_str(" · tree: its centre ray");
     Some((value, how))
+}
+
+/// A path-traced pixel as rendered (seed 0), and its first paths replayed with the same random
+/// numbers as `raytree inspect` replays them, so the paths shown are ones that went into it.
+fn sampled_paths(scene: &Scene, depth: u32, x: u32, y: u32) -> Paths {
+    use crate::render::antialias::{cell, grid_offsets, jitter};
+    use crate::render::film::Film;
+    use crate::render::RenderOptions;
+    use crate::trace::path::PathTracer;
+    let options = RenderOptions {
+        max_depth: depth,
+        ..RenderOptions::of(scene)
+    };
+    let film = Film::new(scene, options);
+    let estimate = film.lone_pixel(&mut film.tracer(), x, y);
+    let spp = options.spp.max(1);
+    let offsets = grid_offsets(spp);
+    let cell = cell(offsets.len());
+    let tracer = PathTracer::new(scene, depth);
+    let mut rng = Rng::for_pixel(options.seed, x, y);
+    let mut shown = vec![];
+    for o in offsets.iter().take(PATHS_SHOWN) {
+        let j = jitter(*o, cell, &mut rng);
+        let ray = scene.camera.ray(x as f64 + j.x, y as f64 + j.y);
+        let mut log = vec![];
+        let value = tracer.sample(&ray, &mut rng, &mut Stats::default(), Some(&mut log));
+        // Each vertex as the surface met (the light named as such), or what ended the path.
+        let steps: Vec<String> = log
+            .iter()
+            .map(|v| match (&v.object, v.event) {
+                (Some(o), "light") => format!("light {o}"),
+                (Some(o), _) => o.clone(),
+                (None, event) => event.to_string(),
+            })
+            .collect();
+        shown.push((value, steps.join(" → ")));
+    }
+    Paths {
+        estimate,
+        spp,
+        shown,
+    }
 }

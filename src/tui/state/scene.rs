@@ -27,11 +27,14 @@ pub struct SceneFile {
     signature: Option<FileSig>,
 }
 
-/// What `raytree explore TARGET` opens: a scene, and the lesson when TARGET is a lesson folder.
+/// What `raytree explore TARGET` opens: a scene, and its lesson when TARGET is a lesson folder
+/// or one of a lesson's scene files.
 pub struct Opened {
     pub path: PathBuf,
     pub scene: Scene,
     pub lesson: Option<Lesson>,
+    /// TARGET was the lesson folder (its README opens beside the scene).
+    pub folder: bool,
 }
 
 impl SceneFile {
@@ -51,13 +54,18 @@ impl SceneFile {
                 ));
             }
         } else {
-            (target.clone(), None)
+            // A scene file beside an exercises.yaml is one of that lesson's scenes.
+            let dir = target
+                .parent()
+                .filter(|d| d.join("exercises.yaml").is_file());
+            (target.clone(), dir.and_then(|d| Lesson::load(d).ok()))
         };
         let scene = crate::scene::load(&path, &Limits::default()).map_err(|e| e.to_string())?;
         Ok(Opened {
             path,
             scene,
             lesson,
+            folder: target.is_dir(),
         })
     }
 

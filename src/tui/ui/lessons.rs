@@ -29,7 +29,19 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             .file_name()
             .map_or(String::new(), |n| n.to_string_lossy().into_owned());
         let title = match &e.lesson {
-            Ok(l) => l.title.clone(),
+            Ok(l) => {
+                let done = l
+                    .exercises
+                    .iter()
+                    .filter(|x| e.solved.contains(&x.id))
+                    .count();
+                let mark = if done == l.exercises.len() {
+                    "✓"
+                } else {
+                    " "
+                };
+                format!("{done:>2}/{:<2} {mark} {}", l.exercises.len(), l.title)
+            }
             Err(_) => "(does not load)".into(),
         };
         let sel = i == list.selected;
@@ -67,7 +79,12 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
                 info.push(Line::from(""));
                 info.push(Line::from(format!("{} exercises:", l.exercises.len())));
                 for ex in &l.exercises {
-                    info.push(Line::from(format!("  {}", ex.id)));
+                    let mark = if e.solved.contains(&ex.id) {
+                        "✓"
+                    } else {
+                        " "
+                    };
+                    info.push(Line::from(format!(" {mark} {}", ex.id)));
                 }
             }
             Err(err) => {

@@ -94,7 +94,8 @@ fn cursor(f: &mut Frame, app: &App, p: &Panes) {
     let (w, h) = app.image_size();
     let r = p.image;
     let buf = f.buffer_mut();
-    if w > 0 && h > 0 {
+    // An exercise's ray that is no pixel's has no place on the image to mark.
+    if w > 0 && h > 0 && app.tree.aimed_ray().is_none() {
         if let Some((cx, cy)) = pixel_cell(p, (w, h), app.tree.pixel()) {
             if let (true, Some(cell)) = (
                 r.contains(ratatui::layout::Position::new(cx, cy)),

@@ -59,7 +59,10 @@ pub fn status_text(app: &App) -> String {
         .map_or(String::new(), |f| f.to_string_lossy().into_owned());
     let core = [
         format!("{w}×{h}"),
-        format!("pixel {x},{y}"),
+        match app.tree.aimed_ray() {
+            Some(_) => "an exercise's ray".to_string(),
+            None => format!("pixel {x},{y}"),
+        },
         depth,
         progress,
     ];

@@ -8,16 +8,20 @@ use ratatui::widgets::Paragraph;
 use ratatui::Frame;
 
 use super::{pane, position_note, swatch, themed};
-use crate::trace::{RayKind, Termination};
+use crate::trace::{text, RayKind, Termination};
 use crate::tui::app::{App, Focus};
 use crate::tui::tree::{self, intensity_text, label, short_color};
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let t = &app.tree;
     let (x, y) = t.pixel();
+    let at = match t.aimed_ray() {
+        Some(r) => format!("ray {} → {}", text::vec3(r.origin), text::vec3(r.dir)),
+        None => format!("pixel {x},{y}"),
+    };
     let title = match t.level() {
-        Some(k) => format!(" ray tree · pixel {x},{y} · level {k} of {} ", t.depth()),
-        None => format!(" ray tree · pixel {x},{y} · depth {} ", t.depth()),
+        Some(k) => format!(" ray tree · {at} · level {k} of {} ", t.depth()),
+        None => format!(" ray tree · {at} · depth {} ", t.depth()),
     };
     let Some(root) = t.shown_tree() else {
         f.render_widget(
@@ -35,7 +39,42 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
     let mut lines: Vec<Line> = Vec::new();
-    if let Some((value, how)) = t.pixel_value() {
+    let yellow = themed(app, Style::new().fg(Color::Yellow));
+    if let Some(p) = t.paths() {
+        let estimate = if t.hidden() {
+            vec![Span::styled("path traced: estimate ? ", yellow)]
+        } else {
+            vec![
+                Span::styled(
+                    format!("path traced: estimate {} ", short_color(p.estimate)),
+                    yellow,
+                ),
+                swatch(app, p.estimate),
+            ]
+        };
+        lines.push(Line::from(
+            [estimate, vec![Span::raw(format!(" of {} paths", p.spp))]].concat(),
+        ));
+        for (k, (value, steps)) in p.shown.iter().enumerate() {
+            let value = if t.hidden() {
+                "?".to_string()
+            } else {
+                short_color(*value)
+            };
+            lines.push(Line::from(vec![
+                Span::raw(format!(" path {}: {value} ", k + 1)),
+                Span::styled(
+                    format!("eye → {steps}"),
+                    themed(app, Style::new().fg(Color::DarkGray)),
+                ),
+            ]));
+        }
+        lines.push(Line::styled(
+            "▼ Whitted reading of the centre ray, not the estimate:",
+            yellow,
+        ));
+    }
+    if let Some((value, how)) = t.pixel_value().filter(|_| !t.hidden()) {
         lines.push(Line::from(vec![
             Span::styled(
                 format!("pixel = {} ", short_color(*value)),
@@ -51,7 +90,12 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             themed(app, Style::new().fg(Color::Yellow)),
         )];
         for (i, c) in t.partials().iter().enumerate().take(k as usize) {
-            spans.push(Span::raw(format!(" {}: {}", i + 1, short_color(*c))));
+            let c = if t.hidden() {
+                "?".to_string()
+            } else {
+                short_color(*c)
+            };
+            spans.push(Span::raw(format!(" {}: {c}", i + 1)));
             if i + 1 < k as usize {
                 spans.push(Span::raw(" →"));
             }
@@ -86,7 +130,9 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             text = text.replace("not traced: max depth", "not yet revealed");
         }
         spans.push(Span::styled(text, themed(app, Style::new().fg(kind_color))));
-        if let Some(i) = intensity_text(n) {
+        if n.kind != RayKind::Shadow && t.hidden() {
+            spans.push(Span::raw("  I = ?"));
+        } else if let Some(i) = intensity_text(n) {
             spans.push(Span::raw(i));
             spans.push(swatch(app, n.color));
         }

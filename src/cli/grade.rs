@@ -1,0 +1,133 @@
+//! `raytree grade LESSON --answers FILE.csv`: a class's answers graded, each student against
+//! their own variant of the lesson; a report per student and per exercise.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use serde_json::json;
+
+use super::Failure;
+use crate::lessons::grade::{grade, read_answers, Report};
+use crate::lessons::Lesson;
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum GradeFormat {
+    #[default]
+    Text,
+    Csv,
+    Json,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The lesson folder the homework was made from.
+    lesson: PathBuf,
+    /// The answers: CSV with the columns student,exercise,answer (a header line is optional;
+    /// quote an answer with commas, "0.6, -0.8, 0").
+    #[arg(long)]
+    answers: PathBuf,
+    #[arg(long, value_enum, default_value_t = GradeFormat::Text)]
+    format: GradeFormat,
+}
+
+pub fn run(a: Args) -> Result<ExitCode, Failure> {
+    let lesson = Lesson::load(&a.lesson)?;
+    let text = std::fs::read_to_string(&a.answers)
+        .map_err(|e| Failure(format!("{}: cannot read: {e}", a.answers.display())))?;
+    let (rows, problems) = read_answers(&text);
+    let report = grade(&lesson, &rows, problems)?;
+    let file = a.answers.display().to_string();
+    match a.format {
+        GradeFormat::Json => println!("{}", serde_json::to_string_pretty(&json_report(&report))?),
+        GradeFormat::Csv => write_csv(&report)?,
+        GradeFormat::Text => print_text(&report, &file),
+    }
+    // Whatever the format, the rows not graded are said on stderr too.
+    if a.format != GradeFormat::Text {
+        for p in &report.problems {
+            eprintln!("{file}:{}: {}", p.line, p.message);
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn json_report(r: &Report) -> serde_json::Value {
+    json!({
+        "raytree_version": env!("CARGO_PKG_VERSION"),
+        "lesson": r.lesson,
+        "students": r.students,
+        "exercises": r.per_exercise().iter().map(|(id, right, of)| json!({ "exercise": id, "right": right, "students": of })).collect::<Vec<_>>(),
+        "problems": r.problems,
+    })
+}
+
+fn write_csv(r: &Report) -> Result<(), Failure> {
+    let stdout = std::io::stdout();
+    let mut w = csv::Writer::from_writer(stdout.lock());
+    w.write_record([
+        "student", "exercise", "answer", "correct", "expected", "hint",
+    ])?;
+    for s in &r.students {
+        for g in &s.exercises {
+            w.write_record([
+                s.student.as_str(),
+                g.exercise.as_str(),
+                g.answer.as_deref().unwrap_or(""),
+                if g.correct { "true" } else { "false" },
+                g.expected.as_deref().unwrap_or(""),
+                g.hint.as_deref().unwrap_or(""),
+            ])?;
+        }
+    }
+    w.flush()?;
+    Ok(())
+}
+
+fn print_text(r: &Report, file: &str) {
+    let mut out = std::io::stdout().lock();
+    let width = r
+        .students
+        .iter()
+        .map(|s| s.student.chars().count())
+        .max()
+        .unwrap_or(7)
+        .max(7);
+    let _ = writeln!(
+        out,
+        "lesson {}: {} student{}",
+        r.lesson,
+        r.students.len(),
+        if r.students.len() == 1 { "" } else { "s" }
+    );
+    let _ = writeln!(out);
+    for s in &r.students {
+        let _ = writeln!(out, "{:<width$}  {}/{}", s.student, s.score, s.total);
+        for g in s.exercises.iter().filter(|g| !g.correct) {
+            let expected = g.expected.as_deref().unwrap_or("?");
+            let line = match &g.answer {
+                None => format!("{}: not answered (expected {expected})", g.exercise),
+                Some(a) => format!(
+                    "{} = {a} (expected {expected}){}",
+                    g.exercise,
+                    g.hint
+                        .as_deref()
+                        .map_or(String::new(), |h| format!(": {h}"))
+                ),
+            };
+            let _ = writeln!(out, "{:<width$}    ✗ {line}", "");
+        }
+    }
+    let _ = writeln!(out);
+    let _ = writeln!(out, "per exercise:");
+    for (id, right, of) in r.per_exercise() {
+        let _ = writeln!(out, "  {id:<24} {right}/{of} right");
+    }
+    if !r.problems.is_empty() {
+        let _ = writeln!(out);
+        let _ = writeln!(out, "rows not graded:");
+        for p in &r.problems {
+            let _ = writeln!(out, "  {file}:{}: {}", p.line, p.message);
+        }
+    }
+}

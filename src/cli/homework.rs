@@ -1,0 +1,40 @@
+//! `raytree homework LESSON --student ID -o DIR`: one student's own variant of a lesson.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use super::Failure;
+use crate::lessons::{homework, Lesson};
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// The lesson folder (its exercises.yaml may declare `vary:` values).
+    lesson: PathBuf,
+    /// The student's ID: the same ID always gets the same values.
+    #[arg(long)]
+    student: String,
+    /// The folder to write (it must not exist yet, or be empty).
+    #[arg(short, long)]
+    output: PathBuf,
+}
+
+pub fn run(a: Args) -> Result<ExitCode, Failure> {
+    let lesson = Lesson::load(&a.lesson)?;
+    let hw = homework::write(&lesson, &a.student, &a.output)?;
+    println!(
+        "{}: homework of {} ({} exercises) from {}",
+        a.output.display(),
+        a.student.trim(),
+        hw.exercises.len(),
+        a.lesson.display()
+    );
+    match &hw.variant {
+        Some(v) => {
+            for (path, value) in &v.values {
+                println!("  {path} = {value}");
+            }
+        }
+        None => println!("  (the lesson declares no `vary:` values: everyone gets the same)"),
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,150 @@
+//! A student's homework folder: the lesson's scenes with that student's values written in, its
+//! exercises (the questions quoting those values, no `vary:` left, and a `variant:` record of
+//! whose homework it is), and a README with the questions and without the answers.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+use super::exercise::Lesson;
+use super::exercise::Solutions;
+
+/// Writes the homework of `student` for `lesson` into `out`, a folder that must not exist yet
+/// (or be empty). The folder is written whole, under a temporary name renamed at the end.
+pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, String> {
+    let hw = lesson.variant(student)?;
+    if out.exists() && std::fs::read_dir(out).map_or(true, |mut d| d.next().is_some()) {
+        return Err(format!(
+            "{}: already exists (remove it, or choose another folder)",
+            out.display()
+        ));
+    }
+    let name = out
+        .file_name()
+        .ok_or_else(|| format!("{}: not a folder name", out.display()))?;
+    let parent = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+    let tmp = parent.join(format!(
+        ".{}.{}.tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let written = fill(lesson, &hw, &tmp).and_then(|()| {
+        if out.exists() {
+            std::fs::remove_dir(out).map_err(|e| format!("{}: {e}", out.display()))?;
+        }
+        std::fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))
+    });
+    if let Err(e) = written {
+        let _ = std::fs::remove_dir_all(&tmp);
+        return Err(e);
+    }
+    Lesson::load(out)
+}
+
+/// Everything of the homework folder, written into `dir`.
+fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), String> {
+    let fail = |p: &Path, e: std::io::Error| format!("{}: {e}", p.display());
+    std::fs::create_dir_all(dir).map_err(|e| fail(dir, e))?;
+    // The lesson's other files (meshes, textures, extra scenes) as they are.
+    let entries = std::fs::read_dir(&lesson.dir).map_err(|e| fail(&lesson.dir, e))?;
+    for entry in entries.flatten() {
+        let from: PathBuf = entry.path();
+        let file = entry.file_name();
+        let skip = file == "README.md" || file == "exercises.yaml" || !from.is_file();
+        if !skip {
+            std::fs::copy(&from, dir.join(&file)).map_err(|e| fail(&from, e))?;
+        }
+    }
+    for (name, text) in &hw.sources {
+        let to = dir.join(name);
+        std::fs::write(&to, text).map_err(|e| fail(&to, e))?;
+    }
+    let exercises = dir.join("exercises.yaml");
+    std::fs::write(&exercises, exercises_yaml(hw)?).map_err(|e| fail(&exercises, e))?;
+    let readme = dir.join("README.md");
+    std::fs::write(&readme, readme_md(hw)).map_err(|e| fail(&readme, e))?;
+    Ok(())
+}
+
+/// A value in YAML: JSON is YAML's flow style, and strings come out double-quoted.
+fn yaml(v: &Value) -> String {
+    v.to_string()
+}
+
+/// The homework's exercises.yaml: the lesson's, with the student's questions and the record of
+/// whose variant it is.
+fn exercises_yaml(hw: &Lesson) -> Result<String, String> {
+    let mut out =
+        String::from("# Written by `raytree homework`: one student's variant of a lesson.\n");
+    out.push_str(&format!("title: {}\n", yaml(&hw.title.clone().into())));
+    out.push_str(&format!("summary: {}\n", yaml(&hw.summary.clone().into())));
+    if hw.solutions == Solutions::Hidden {
+        out.push_str("solutions: hidden\n");
+    }
+    if let Some(v) = &hw.variant {
+        let record = serde_json::to_value(v).map_err(|e| e.to_string())?;
+        out.push_str(&format!("variant: {}\n", yaml(&record)));
+    }
+    out.push_str("exercises:\n");
+    for ex in &hw.exercises {
+        let mut ex = ex.clone();
+        ex.question = ex.question.trim().to_string();
+        let Value::Object(fields) = serde_json::to_value(&ex).map_err(|e| e.to_string())? else {
+            continue;
+        };
+        out.push_str(&format!("  - id: {}\n", yaml(&fields["id"])));
+        for (k, v) in &fields {
+            let empty = v.is_null() || *v == Value::String(String::new());
+            if k != "id" && !empty {
+                out.push_str(&format!("    {k}: {}\n", yaml(v)));
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The homework's README: the questions, the student's own values, and how to answer.
+fn readme_md(hw: &Lesson) -> String {
+    let mut out = format!("# {} — homework\n\n", hw.title);
+    if let Some(v) = &hw.variant {
+        out.push_str(&format!(
+            "Homework of **{}**, made from lesson `{}` with values of your own: your answers are \
+             not your neighbour's. {}\n\n",
+            v.student,
+            v.lesson,
+            hw.summary.trim()
+        ));
+        if !v.values.is_empty() {
+            out.push_str("Your values (already written into the scene files here):\n\n");
+            for (path, value) in &v.values {
+                out.push_str(&format!("- `{path}` = {value}\n"));
+            }
+            out.push('\n');
+        }
+    } else {
+        out.push_str(&format!("{}\n\n", hw.summary.trim()));
+    }
+    out.push_str("## Exercises\n\n");
+    for (k, ex) in hw.exercises.iter().enumerate() {
+        let question = ex.question.split_whitespace().collect::<Vec<_>>().join(" ");
+        out.push_str(&format!("{}. **{}** — {question}\n", k + 1, ex.id));
+    }
+    out.push_str(
+        "\n## Answering\n\nLook at the scene, work the answers out by hand, and check them:\n\n",
+    );
+    out.push_str(
+        "    raytree explore .                                  # the scene and its ray trees\n",
+    );
+    out.push_str(
+        "    raytree check . --exercise ID --answer VALUE       # right or wrong, with a hint\n\n",
+    );
+    out.push_str(
+        "An answer is a number, a vector `x, y, z`, a segment list `t_in, t_out; t_in, t_out`, \
+         `none` for an empty segment list, or `tir`.\n",
+    );
+    out
+}

@@ -1,0 +1,102 @@
+//! A teacher's check of a folder of lessons: every lesson loads, every exercise can be worked
+//! out, and every answer its README states (`**Answer (ID):** value`) is the one raytree
+//! computes. A homework folder states no answers, so only the first two are asked of it.
+
+use std::path::Path;
+
+use super::check::{check, work};
+use super::exercise::Lesson;
+
+/// What a validation found.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Validation {
+    pub lessons: usize,
+    pub exercises: usize,
+    /// README answers compared.
+    pub answers: usize,
+    /// One line per disagreement, naming the lesson and the exercise.
+    pub problems: Vec<String>,
+}
+
+/// Validates a lesson folder, or every lesson folder in a folder.
+pub fn validate(dir: &Path) -> Result<Validation, String> {
+    let lessons: Vec<Result<Lesson, String>> = if dir.join("exercises.yaml").is_file() {
+        vec![Lesson::load(dir)]
+    } else {
+        let found = all_lessons_or_errors(dir)?;
+        if found.is_empty() {
+            return Err(format!(
+                "{}: no lessons (folders with an exercises.yaml)",
+                dir.display()
+            ));
+        }
+        found
+    };
+    let mut v = Validation::default();
+    for lesson in lessons {
+        match lesson {
+            Ok(l) => validate_lesson(&l, &mut v),
+            Err(e) => v.problems.push(e),
+        }
+    }
+    Ok(v)
+}
+
+/// Every lesson folder of `root`, each loaded or with the reason it does not load.
+fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, String> {
+    // Unlike `all_lessons`, which stops at the first lesson that does not load, a validation
+    // reports them all.
+    let mut dirs: Vec<_> = std::fs::read_dir(root)
+        .map_err(|e| format!("{}: cannot list lessons: {e}", root.display()))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.join("exercises.yaml").is_file())
+        .collect();
+    dirs.sort();
+    Ok(dirs.iter().map(|d| Lesson::load(d)).collect())
+}
+
+fn validate_lesson(l: &Lesson, v: &mut Validation) {
+    v.lessons += 1;
+    let name = l.dir.display();
+    let stated = l.stated_answers();
+    let homework = l.variant.is_some();
+    for ex in &l.exercises {
+        v.exercises += 1;
+        if let Err(e) = work(l, ex) {
+            v.problems
+                .push(format!("{name}/{}: cannot be worked out: {e}", ex.id));
+            continue;
+        }
+        if homework {
+            continue;
+        }
+        let Some((_, value)) = stated.iter().find(|(id, _)| *id == ex.id) else {
+            v.problems.push(format!(
+                "{name}/{}: the README states no answer (a line **Answer ({}):** value)",
+                ex.id, ex.id
+            ));
+            continue;
+        };
+        v.answers += 1;
+        match check(l, ex, value) {
+            Ok(verdict) if verdict.correct => {}
+            Ok(verdict) => v.problems.push(format!(
+                "{name}/{}: the README says {value}, raytree computes {} (tolerance {})",
+                ex.id,
+                verdict.expected.show(),
+                ex.tolerance.describe()
+            )),
+            Err(e) => v.problems.push(format!(
+                "{name}/{}: the README's answer `{value}` does not read: {e}",
+                ex.id
+            )),
+        }
+    }
+    for (id, _) in &stated {
+        if l.exercise(id).is_err() {
+            v.problems.push(format!(
+                "{name}: the README states an answer for `{id}`, which is not an exercise"
+            ));
+        }
+    }
+}

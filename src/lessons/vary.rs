@@ -1,0 +1,246 @@
+//! Homework that cannot be copied: a lesson's `exercises.yaml` may declare scene values that
+//! vary from student to student,
+//!
+//! ```yaml
+//! vary:
+//!   materials.a.kd: [0.1, 0.4]                  # a number in [0.1, 0.4], in steps of 0.01
+//!   lights.L.intensity: { between: [0.8, 1.2], step: 0.05 }
+//!   objects.ball.sphere.center: [[-1, 0, 7], [1, 0, 9]]   # each coordinate in its range
+//!   ambient: { one_of: [0.2, 0.3, 0.4] }
+//! ```
+//!
+//! A path names a key of the scene file, a list item by its `name` (or index). Each student's
+//! values are drawn from a generator seeded by the lesson and the student ID alone, so the same
+//! student always gets the same homework, and they are written into every scene file of the
+//! lesson where the path exists. A question may quote a varied value as `{materials.a.kd}`.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::Deserialize;
+
+use super::yaml_spans::{self, Edit};
+use crate::sampling::Rng;
+use crate::trace::text::num;
+
+/// How one value varies.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum Range {
+    /// `[lo, hi]`, in steps of 0.01.
+    Numbers([f64; 2]),
+    /// `[[x, y, z], [x, y, z]]`: each coordinate in its own range, in steps of 0.01.
+    Vectors([[f64; 3]; 2]),
+    /// `{ between: [lo, hi], step: s }`.
+    Stepped { between: [f64; 2], step: f64 },
+    /// `{ one_of: [...] }`: one of the values listed (numbers or vectors).
+    OneOf { one_of: Vec<Pick> },
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(untagged)]
+pub enum Pick {
+    Number(f64),
+    Vector([f64; 3]),
+}
+
+/// The step of a range written without one.
+const STEP: f64 = 0.01;
+
+impl Range {
+    /// Checks the range can be drawn from.
+    pub fn check(&self) -> Result<(), String> {
+        let ok = |lo: f64, hi: f64, step: f64| {
+            lo.is_finite() && hi.is_finite() && lo <= hi && step > 0.0 && step.is_finite()
+        };
+        let fine = match self {
+            Range::Numbers([lo, hi]) => ok(*lo, *hi, STEP),
+            Range::Vectors([lo, hi]) => (0..3).all(|i| ok(lo[i], hi[i], STEP)),
+            Range::Stepped { between, step } => ok(between[0], between[1], *step),
+            Range::OneOf { one_of } => !one_of.is_empty(),
+        };
+        if fine {
+            Ok(())
+        } else {
+            Err("a range is [lo, hi] with lo ≤ hi, [[x, y, z], [x, y, z]], { between: [lo, hi], step: s > 0 } or { one_of: [...] } (not empty)".into())
+        }
+    }
+
+    /// One value drawn from the range, as the texts of its numbers.
+    fn draw(&self, rng: &mut Rng) -> Vec<String> {
+        let stepped = |lo: f64, hi: f64, step: f64, rng: &mut Rng| {
+            let steps = ((hi - lo) / step + 1e-9).floor() as u64;
+            let k = ((rng.uniform() * (steps + 1) as f64) as u64).min(steps);
+            num(lo + k as f64 * step)
+        };
+        match self {
+            Range::Numbers([lo, hi]) => vec![stepped(*lo, *hi, STEP, rng)],
+            Range::Stepped { between, step } => vec![stepped(between[0], between[1], *step, rng)],
+            Range::Vectors([lo, hi]) => (0..3).map(|i| stepped(lo[i], hi[i], STEP, rng)).collect(),
+            Range::OneOf { one_of } => {
+                let k = ((rng.uniform() * one_of.len() as f64) as usize).min(one_of.len() - 1);
+                match &one_of[k] {
+                    Pick::Number(x) => vec![num(*x)],
+                    Pick::Vector(v) => v.iter().map(|x| num(*x)).collect(),
+                }
+            }
+        }
+    }
+}
+
+/// A number from a text, stable across platforms and versions (FNV-1a, 64 bits).
+fn fnv1a(text: &str) -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for b in text.bytes() {
+        h ^= b as u64;
+        h = h.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    h
+}
+
+/// The values one student gets: for every varied path, the texts of its numbers.
+pub fn draw(
+    lesson_id: &str,
+    student: &str,
+    vary: &BTreeMap<String, Range>,
+) -> BTreeMap<String, Vec<String>> {
+    vary.iter()
+        .map(|(path, range)| {
+            let mut rng = Rng::for_pixel(
+                fnv1a(&format!("{lesson_id}\u{0}{student}\u{0}{path}")),
+                0,
+                0,
+            );
+            (path.clone(), range.draw(&mut rng))
+        })
+        .collect()
+}
+
+/// A value as a student reads it: `0.27`, or `[1, 0, 8.5]`.
+pub fn show(values: &[String]) -> String {
+    match values {
+        [one] => one.clone(),
+        many => format!("[{}]", many.join(", ")),
+    }
+}
+
+/// The scene files' texts with the values written in: for every file (name → text), its new
+/// text where a path exists in it. Every path must exist in at least one file.
+pub fn rewrite(
+    files: &BTreeMap<String, String>,
+    values: &BTreeMap<String, Vec<String>>,
+) -> Result<BTreeMap<String, String>, String> {
+    let mut out = BTreeMap::new();
+    let mut used: BTreeMap<&str, bool> = values.keys().map(|p| (p.as_str(), false)).collect();
+    for (name, text) in files {
+        let root = yaml_spans::parse(text).map_err(|e| format!("{name}: {e}"))?;
+        let mut edits: Vec<Edit> = Vec::new();
+        for (path, vals) in values {
+            if let Some(node) = yaml_spans::find(&root, path) {
+                edits.extend(
+                    yaml_spans::edits(text, node, vals)
+                        .map_err(|e| format!("vary `{path}` in {name}: {e}"))?,
+                );
+                used.insert(path, true);
+            }
+        }
+        if !edits.is_empty() {
+            out.insert(name.clone(), yaml_spans::apply(text, edits));
+        }
+    }
+    if let Some((path, _)) = used.iter().find(|(_, u)| !**u) {
+        return Err(format!(
+            "vary `{path}`: no scene of the lesson writes that value (write it out to vary it)"
+        ));
+    }
+    Ok(out)
+}
+
+/// The values as written in the scene files (the first file that has each path).
+pub fn written(
+    files: &BTreeMap<String, String>,
+    paths: impl Iterator<Item = String>,
+) -> BTreeMap<String, String> {
+    let parsed: Vec<(&String, yaml_spans::Node)> = files
+        .values()
+        .filter_map(|text| yaml_spans::parse(text).ok().map(|n| (text, n)))
+        .collect();
+    paths
+        .filter_map(|path| {
+            parsed.iter().find_map(|(text, root)| {
+                let node = yaml_spans::find(root, &path)?;
+                Some((path.clone(), yaml_spans::shown(text, node)?))
+            })
+        })
+        .collect()
+}
+
+/// A question with `{path}` replaced by the value of each varied path.
+pub fn fill(question: &str, values: &BTreeMap<String, String>) -> String {
+    let mut q = question.to_string();
+    for (path, value) in values {
+        q = q.replace(&format!("{{{path}}}"), value);
+    }
+    q
+}
+
+/// The texts of the lesson's scene files: scene.yaml and every scene an exercise names.
+pub fn scene_files(
+    dir: &Path,
+    names: impl Iterator<Item = String>,
+) -> Result<BTreeMap<String, String>, String> {
+    let mut out = BTreeMap::new();
+    for name in std::iter::once("scene.yaml".to_string()).chain(names) {
+        if out.contains_key(&name) {
+            continue;
+        }
+        let path = dir.join(&name);
+        let text = std::fs::read_to_string(&path)
+            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        out.insert(name, text);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vary(yaml: &str) -> BTreeMap<String, Range> {
+        serde_saphyr::from_str(yaml).unwrap()
+    }
+
+    #[test]
+    fn a_student_always_gets_the_same_values_and_others_get_others() {
+        let v = vary("materials.a.kd: [0.1, 0.4]\nobjects.ball.sphere.center: [[-1, 0, 7], [1, 0, 9]]\nambient: { one_of: [0.2, 0.3] }\nlights.L.intensity: { between: [0.8, 1.2], step: 0.05 }\n");
+        let alice = draw("03", "alice", &v);
+        assert_eq!(alice, draw("03", "alice", &v));
+        let kd: f64 = alice["materials.a.kd"][0].parse().unwrap();
+        assert!((0.1..=0.4).contains(&kd));
+        assert!(((kd * 100.0).round() - kd * 100.0).abs() < 1e-9, "{kd}");
+        let i: f64 = alice["lights.L.intensity"][0].parse().unwrap();
+        assert!(((i * 20.0).round() - i * 20.0).abs() < 1e-9, "{i}");
+        assert_eq!(alice["objects.ball.sphere.center"].len(), 3);
+        let students: Vec<_> = (0..20).map(|k| draw("03", &format!("s{k}"), &v)).collect();
+        let distinct: std::collections::HashSet<String> =
+            students.iter().map(|s| format!("{s:?}")).collect();
+        assert!(distinct.len() >= 19, "{} distinct of 20", distinct.len());
+    }
+
+    #[test]
+    fn every_path_must_exist_somewhere() {
+        let files: BTreeMap<String, String> =
+            [("scene.yaml".to_string(), "ambient: 0.3\n".to_string())].into();
+        let values: BTreeMap<String, Vec<String>> =
+            [("ambient".to_string(), vec!["0.25".to_string()])].into();
+        assert_eq!(
+            rewrite(&files, &values).unwrap()["scene.yaml"],
+            "ambient: 0.25\n"
+        );
+        let missing: BTreeMap<String, Vec<String>> =
+            [("materials.a.kd".to_string(), vec!["1".to_string()])].into();
+        assert!(rewrite(&files, &missing)
+            .unwrap_err()
+            .contains("materials.a.kd"));
+    }
+}

@@ -1,0 +1,508 @@
+//! raytree as a teacher uses it (issue 28): grading a class from a CSV file, validating a
+//! folder of lessons, handing out homework that differs per student, and the JSON a script
+//! reads. Every expected number comes from a lesson's hand-worked README or is worked out here.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+/// A scratch folder of this test binary; progress goes to its own data folder.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir()
+        .join(format!("raytree-teacher-{}", std::process::id()))
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.parent().unwrap()).unwrap();
+    dir
+}
+
+fn raytree_in(data: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("RAYTREE_DATA", data)
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap()
+}
+
+fn raytree(args: &[&str]) -> Output {
+    raytree_in(&scratch_data(), args)
+}
+
+fn scratch_data() -> PathBuf {
+    std::env::temp_dir().join(format!("raytree-teacher-{}-data", std::process::id()))
+}
+
+fn out(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn err(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The `**Answer (ID):** value` lines of a lesson's README.
+fn readme_answers(lesson: &str) -> Vec<(String, String)> {
+    let text =
+        std::fs::read_to_string(Path::new("lessons").join(lesson).join("README.md")).unwrap();
+    text.lines()
+        .filter_map(|l| {
+            let rest = l.trim().strip_prefix("**Answer (")?;
+            let (id, v) = rest.split_once("):**")?;
+            Some((id.to_string(), v.trim().to_string()))
+        })
+        .collect()
+}
+
+/// A wrong answer of the same kind: every number moved by a half and more.
+fn spoil(answer: &str) -> String {
+    answer
+        .split(',')
+        .map(|x| format!("{}", x.trim().parse::<f64>().unwrap() + 0.75))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains(',') {
+        format!("\"{s}\"")
+    } else {
+        s.to_string()
+    }
+}
+
+/// A class of 30 answers lesson 05: student k gets exercise j wrong when (3k + 2j) % 7 == 0,
+/// leaves it out when (k + j) % 10 == 3, and answers it right otherwise (the README's
+/// hand-worked value). Three rows are broken on purpose and one student changes an answer.
+/// The report must give every student the score the seeding gives, and name the broken rows
+/// by their line.
+#[test]
+fn a_class_of_30_is_graded_as_seeded() {
+    let dir = scratch("class");
+    std::fs::create_dir_all(&dir).unwrap();
+    let answers = readme_answers("05-reflection");
+    assert_eq!(answers.len(), 9);
+    let mut csv = String::from("student,exercise,answer\n");
+    let mut line = 1;
+    let mut expected_scores = vec![];
+    let mut expected_wrong: Vec<(String, String)> = vec![];
+    let mut broken_lines = vec![];
+    for k in 0..30 {
+        let student = format!("student{k:02}");
+        let mut score = 0;
+        for (j, (id, right)) in answers.iter().enumerate() {
+            if (k + j) % 10 == 3 {
+                expected_wrong.push((student.clone(), id.clone()));
+                continue;
+            }
+            let wrong = (3 * k + 2 * j) % 7 == 0;
+            let given = if wrong { spoil(right) } else { right.clone() };
+            if wrong {
+                expected_wrong.push((student.clone(), id.clone()));
+            } else {
+                score += 1;
+            }
+            csv.push_str(&format!("{student},{id},{}\n", csv_field(&given)));
+            line += 1;
+        }
+        expected_scores.push((student, score));
+        if k == 5 {
+            csv.push_str("student05\n");
+            line += 1;
+            broken_lines.push(line);
+        }
+        if k == 11 {
+            csv.push_str("student11,no-such-exercise,1\n");
+            line += 1;
+            broken_lines.push(line);
+        }
+        if k == 17 {
+            csv.push_str(",mirror-local,0.23\n");
+            line += 1;
+            broken_lines.push(line);
+        }
+    }
+    // student29 first answered mirror-local wrong, then right: the later row counts.
+    let (_, mirror) = answers.iter().find(|(id, _)| id == "mirror-local").unwrap();
+    let k = 29;
+    let j = answers
+        .iter()
+        .position(|(id, _)| id == "mirror-local")
+        .unwrap();
+    assert!(
+        (3 * k + 2 * j) % 7 != 0 && (k + j) % 10 != 3,
+        "seeded right already"
+    );
+    csv.push_str(&format!("student29,mirror-local,{mirror}\n"));
+    line += 1;
+    let _ = line;
+    let file = dir.join("answers.csv");
+    std::fs::write(&file, &csv).unwrap();
+
+    let o = raytree(&[
+        "grade",
+        "lessons/05-reflection",
+        "--answers",
+        file.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", err(&o));
+    let report: Value = serde_json::from_str(&out(&o)).unwrap();
+    assert!(report["raytree_version"].is_string());
+    let students = report["students"].as_array().unwrap();
+    assert_eq!(students.len(), 30);
+    for (s, (name, score)) in students.iter().zip(&expected_scores) {
+        assert_eq!(s["student"], name.as_str());
+        assert_eq!(s["score"], *score as u64, "{name}");
+        assert_eq!(s["total"], 9);
+        for e in s["exercises"].as_array().unwrap() {
+            let wrong = expected_wrong
+                .iter()
+                .any(|(st, ex)| st == name && e["exercise"] == ex.as_str());
+            assert_eq!(e["correct"], !wrong, "{name} {}", e["exercise"]);
+            assert!(e.get("answer").is_some() && e.get("hint").is_some());
+        }
+    }
+    let problems: Vec<u64> = report["problems"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["line"].as_u64().unwrap())
+        .collect();
+    for l in &broken_lines {
+        assert!(
+            problems.contains(&(*l as u64)),
+            "line {l} not reported: {problems:?}"
+        );
+    }
+    // The replaced answer is reported too (four problems in all).
+    assert_eq!(problems.len(), broken_lines.len() + 1, "{problems:?}");
+    for l in &broken_lines {
+        assert!(
+            err(&o).contains(&format!("answers.csv:{l}:")),
+            "{}",
+            err(&o)
+        );
+    }
+
+    // The same report as text and as CSV.
+    let text = out(&raytree(&[
+        "grade",
+        "lessons/05-reflection",
+        "--answers",
+        file.to_str().unwrap(),
+    ]));
+    let (name, score) = &expected_scores[7];
+    assert!(text.contains(&format!("{name}  {score}/9")), "{text}");
+    assert!(text.contains("rows not graded:"));
+    let csv_out = out(&raytree(&[
+        "grade",
+        "lessons/05-reflection",
+        "--answers",
+        file.to_str().unwrap(),
+        "--format",
+        "csv",
+    ]));
+    assert!(csv_out.starts_with("student,exercise,answer,correct,expected,hint\n"));
+    assert_eq!(csv_out.lines().count(), 1 + 30 * 9);
+}
+
+/// A copy of lesson 03 whose README states one answer wrong (0.093 for the Blinn specular term,
+/// 0.093623 by hand) fails validation, naming that exercise and no other; the shipped lessons pass.
+#[test]
+fn validation_names_a_corrupted_readme_answer() {
+    let dir = scratch("validate/03-local-illumination");
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in std::fs::read_dir("lessons/03-local-illumination").unwrap() {
+        let f = f.unwrap();
+        std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+    }
+    let readme = dir.join("README.md");
+    let text = std::fs::read_to_string(&readme).unwrap();
+    let corrupted = text.replace(
+        "**Answer (specular-blinn):** 0.093623",
+        "**Answer (specular-blinn):** 0.093",
+    );
+    assert_ne!(text, corrupted);
+    std::fs::write(&readme, corrupted).unwrap();
+    let o = raytree(&[
+        "lessons",
+        "validate",
+        dir.parent().unwrap().to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", out(&o));
+    let report = out(&o);
+    let problems: Vec<&str> = report.lines().filter(|l| l.starts_with('✗')).collect();
+    assert_eq!(problems.len(), 1, "{report}");
+    assert!(problems[0].contains("specular-blinn"), "{report}");
+    assert!(problems[0].contains("0.093623"), "{report}");
+
+    let shipped = raytree(&["lessons", "validate", "lessons"]);
+    assert!(shipped.status.success(), "{}", out(&shipped));
+    assert!(
+        out(&shipped).starts_with("ok: 15 lessons"),
+        "{}",
+        out(&shipped)
+    );
+}
+
+/// The light position, kd and ks a homework scene of lesson 03 was given.
+fn lesson03_values(scene: &str) -> ([f64; 3], f64, f64) {
+    let light = scene.lines().find(|l| l.contains("name: L")).unwrap();
+    let point = light
+        .split("point: [")
+        .nth(1)
+        .unwrap()
+        .split(']')
+        .next()
+        .unwrap();
+    let p: Vec<f64> = point
+        .split(',')
+        .map(|x| x.trim().parse().unwrap())
+        .collect();
+    let plastic = scene
+        .lines()
+        .find(|l| l.trim_start().starts_with("plastic:"))
+        .unwrap();
+    let field = |k: &str| -> f64 {
+        plastic
+            .split(&format!(" {k}: "))
+            .nth(1)
+            .unwrap()
+            .split([',', ' '])
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    ([p[0], p[1], p[2]], field("kd"), field("ks"))
+}
+
+/// Lesson 03's diffuse term at P = (0, 0, −1), n = (0, 0, −1), O = 0.8, IL = 1,
+/// attenuation [1, 0.1, 0.01], worked out from the light position and kd.
+fn diffuse_by_hand([lx, ly, lz]: [f64; 3], kd: f64) -> f64 {
+    let to = [lx, ly, lz + 1.0];
+    let d = (to[0] * to[0] + to[1] * to[1] + to[2] * to[2]).sqrt();
+    let n_dot_l = -to[2] / d;
+    let fatt = 1.0 / (1.0 + 0.1 * d + 0.01 * d * d);
+    fatt * kd * 0.8 * n_dot_l
+}
+
+/// Two students' homework of lesson 03 differ; each one's hand-worked diffuse term is right
+/// for their own homework (checked in their folder, with --student, and by grade) and wrong for
+/// the other's. The same ID always gets the same folder.
+#[test]
+fn two_students_homework_differ_and_grade_against_their_own_values() {
+    let root = scratch("homework");
+    let (alice, bob, again) = (
+        root.join("alice"),
+        root.join("bob"),
+        root.join("alice-again"),
+    );
+    for (student, dir) in [("alice", &alice), ("bob", &bob), ("alice", &again)] {
+        let o = raytree(&[
+            "homework",
+            "lessons/03-local-illumination",
+            "--student",
+            student,
+            "-o",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", err(&o));
+    }
+    for f in [
+        "scene.yaml",
+        "phong.yaml",
+        "color.yaml",
+        "exercises.yaml",
+        "README.md",
+    ] {
+        assert_eq!(
+            std::fs::read(alice.join(f)).unwrap(),
+            std::fs::read(again.join(f)).unwrap(),
+            "{f} differs for the same student"
+        );
+    }
+    let a_scene = std::fs::read_to_string(alice.join("scene.yaml")).unwrap();
+    let b_scene = std::fs::read_to_string(bob.join("scene.yaml")).unwrap();
+    assert_ne!(a_scene, b_scene);
+    let readme = std::fs::read_to_string(alice.join("README.md")).unwrap();
+    assert!(
+        !readme.contains("**Answer ("),
+        "the homework README gives answers away"
+    );
+    assert!(readme.contains("diffuse"));
+
+    let (la, kda, _) = lesson03_values(&a_scene);
+    let (lb, kdb, _) = lesson03_values(&b_scene);
+    let (da, db) = (diffuse_by_hand(la, kda), diffuse_by_hand(lb, kdb));
+    assert!(
+        (da - db).abs() > 0.01 * da.max(db),
+        "{da} {db}: too close to tell apart"
+    );
+    let (da, db) = (format!("{da:.6}"), format!("{db:.6}"));
+
+    let check = |dir: &Path, answer: &str| {
+        raytree(&[
+            "check",
+            dir.to_str().unwrap(),
+            "--exercise",
+            "diffuse",
+            "--answer",
+            answer,
+        ])
+        .status
+        .code()
+    };
+    assert_eq!(check(&alice, &da), Some(0));
+    assert_eq!(check(&alice, &db), Some(1));
+    assert_eq!(check(&bob, &db), Some(0));
+    assert_eq!(check(&bob, &da), Some(1));
+    let with_id = |student: &str, answer: &str| {
+        raytree(&[
+            "check",
+            "lessons/03-local-illumination",
+            "--student",
+            student,
+            "--exercise",
+            "diffuse",
+            "--answer",
+            answer,
+        ])
+        .status
+        .code()
+    };
+    assert_eq!(with_id("alice", &da), Some(0));
+    assert_eq!(with_id("bob", &da), Some(1));
+
+    let csv = root.join("answers.csv");
+    std::fs::write(
+        &csv,
+        format!("alice,diffuse,{da}\nbob,diffuse,{db}\ncarol,diffuse,{da}\n"),
+    )
+    .unwrap();
+    let o = raytree(&[
+        "grade",
+        "lessons/03-local-illumination",
+        "--answers",
+        csv.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let report: Value = serde_json::from_str(&out(&o)).unwrap();
+    let right = |k: usize| {
+        report["students"][k]["exercises"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["exercise"] == "diffuse")
+            .unwrap()["correct"]
+            .clone()
+    };
+    assert_eq!(right(0), true, "alice");
+    assert_eq!(right(1), true, "bob");
+    assert_eq!(right(2), false, "carol copied alice's answer");
+    let carol = report["students"][2]["exercises"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["exercise"] == "diffuse")
+        .unwrap()["hint"]
+        .as_str()
+        .unwrap()
+        .to_string();
+    assert!(carol.contains("alice's answer"), "{carol}");
+}
+
+/// `check --format json` carries the contract's fields, and a right answer is remembered:
+/// `lessons --format json` marks it solved, in the data folder RAYTREE_DATA names.
+#[test]
+fn check_json_and_progress() {
+    let data = scratch("progress-data");
+    let o = raytree_in(
+        &data,
+        &[
+            "check",
+            "lessons/05-reflection",
+            "--exercise",
+            "mirror-local",
+            "--answer",
+            "0.3",
+            "--format",
+            "json",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    let v: Value = serde_json::from_str(&out(&o)).unwrap();
+    for field in [
+        "correct",
+        "answer",
+        "expected",
+        "tolerance",
+        "hint",
+        "raytree_version",
+    ] {
+        assert!(v.get(field).is_some(), "{field} missing: {v}");
+    }
+    assert_eq!(v["correct"], false);
+    // The mirror's local term, 0.23 by hand (README).
+    assert!(
+        (v["expected"].as_f64().unwrap() - 0.23).abs() < 1e-12,
+        "{v}"
+    );
+    let solved = |data: &Path| -> Vec<String> {
+        let o = raytree_in(data, &["lessons", "--format", "json"]);
+        let v: Value = serde_json::from_str(&out(&o)).unwrap();
+        v["lessons"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|l| l["id"] == "05-reflection")
+            .flat_map(|l| l["exercises"].as_array().unwrap().clone())
+            .filter(|e| e["solved"] == true)
+            .map(|e| e["id"].as_str().unwrap().to_string())
+            .collect()
+    };
+    assert!(solved(&data).is_empty());
+    let o = raytree_in(
+        &data,
+        &[
+            "check",
+            "lessons/05-reflection",
+            "--exercise",
+            "mirror-local",
+            "--answer",
+            "0.23",
+        ],
+    );
+    assert!(o.status.success());
+    assert_eq!(solved(&data), vec!["mirror-local".to_string()]);
+    let text = out(&raytree_in(&data, &["lessons"]));
+    assert!(text.contains("✓ mirror-local"), "{text}");
+    assert!(text.contains("(1/9 done)"), "{text}");
+}
+
+/// A lesson with `solutions: hidden` refuses --explain (a usage error) but checks answers.
+#[test]
+fn hidden_solutions_are_not_explained() {
+    let dir = scratch("hidden");
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in ["scene.yaml", "README.md"] {
+        std::fs::copy(Path::new("lessons/05-reflection").join(f), dir.join(f)).unwrap();
+    }
+    let exercises = std::fs::read_to_string("lessons/05-reflection/exercises.yaml").unwrap();
+    std::fs::write(
+        dir.join("exercises.yaml"),
+        exercises.replacen("exercises:", "solutions: hidden\nexercises:", 1),
+    )
+    .unwrap();
+    let d = dir.to_str().unwrap();
+    let o = raytree(&["check", d, "--exercise", "mirror-local", "--explain"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err(&o).contains("hidden"), "{}", err(&o));
+    let o = raytree(&["check", d, "--exercise", "mirror-local", "--answer", "0.23"]);
+    assert!(o.status.success());
+}
