@@ -13,7 +13,8 @@ pub struct Args {
     /// The exercise id (see `raytree lessons`).
     #[arg(long)]
     exercise: String,
-    /// Your answer: a number, a vector `x,y,z`, a segment list `a,b; c,d`, `none` or `tir`.
+    /// Your answer: a number, a vector `x,y,z`, a segment list `a,b; c,d` (`none` for an empty
+    /// one) or `tir`.
     #[arg(long, allow_hyphen_values = true, required_unless_present = "explain")]
     answer: Option<String>,
     /// Show the worked derivation, step by step.
@@ -25,18 +26,20 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let lesson = Lesson::load(&a.lesson)?;
     let ex = lesson.exercise(&a.exercise)?;
     let mut code = ExitCode::SUCCESS;
+    let mut out = String::new();
     if let Some(answer) = &a.answer {
         let verdict = check(&lesson, ex, answer)?;
-        println!("{}", verdict.message());
+        out += &format!("{}\n", verdict.message());
         if !verdict.correct {
             code = ExitCode::from(1);
         }
     }
     if a.explain {
-        println!();
+        out += "\n";
         for line in explain(&lesson, ex)? {
-            println!("{line}");
+            out += &format!("{line}\n");
         }
     }
+    super::output::print(&out)?;
     Ok(code)
 }

@@ -5,6 +5,7 @@ use std::process::ExitCode;
 use serde_json::{json, Value};
 
 use super::args::{Format, SceneArgs, Target};
+use super::output::{print, println};
 use super::Failure;
 use crate::geometry::csg::CsgTrace;
 use crate::geometry::Ray;
@@ -66,17 +67,18 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 "ray": { "origin": ray.origin.to_array(), "direction": ray.dir.to_array() },
                 "objects": objects.iter().map(|(name, t)| json!({ "object": name, "node": trace_json(&scene, &ray, t) })).collect::<Vec<_>>(),
             });
-            println!("{}", serde_json::to_string_pretty(&doc)?);
+            println(&serde_json::to_string_pretty(&doc)?)?;
         }
         Format::Text => {
-            println!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir));
+            let mut out = format!("ray {} → {}\n", text::vec3(ray.origin), text::vec3(ray.dir));
             if objects.is_empty() {
-                println!("the ray meets no object");
+                out += "the ray meets no object\n";
             }
             for (name, t) in &objects {
-                println!("\nobject {name}");
-                print!("{}", text::csg_trace(&scene, &ray, t));
+                out += &format!("\nobject {name}\n");
+                out += &text::csg_trace(&scene, &ray, t);
             }
+            print(&out)?;
         }
     }
     Ok(ExitCode::SUCCESS)

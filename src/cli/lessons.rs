@@ -10,14 +10,16 @@ pub struct Args {}
 
 pub fn run(_: Args) -> Result<ExitCode, Failure> {
     let root = lessons_root();
+    let mut out = String::new();
     for lesson in all_lessons(&root)? {
-        println!("{}  {}", lesson.dir.display(), lesson.title);
-        println!("    {}", lesson.summary.trim());
+        out += &format!("{}  {}\n", lesson.dir.display(), lesson.title);
+        out += &format!("    {}\n", lesson.summary.trim());
         for ex in &lesson.exercises {
             let q = ex.question.split_whitespace().collect::<Vec<_>>().join(" ");
-            println!("    - {:<24} {}", ex.id, q);
+            out += &format!("    - {:<24} {}\n", ex.id, q);
         }
-        println!();
+        out += "\n";
     }
+    super::output::print(&out)?;
     Ok(ExitCode::SUCCESS)
 }
