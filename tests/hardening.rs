@@ -1004,3 +1004,102 @@ fn bench_scaling_prints_each_row_once() {
     }
     assert_eq!(both.matches("BVH ns/ray").count(), 1, "{both}");
 }
+
+// ---------------------------------------------------------------------------------------
+// The parallel loader
+
+/// An object named `x[` at the end of a list over 64 KiB and a light named `y]` after it:
+/// brackets in plain scalars, not a collection. Every thread count loads the same scene.
+#[test]
+fn a_scene_loads_the_same_for_every_thread_count() {
+    let mut text = String::from(
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 16, height: 12 }\n\
+         ambient: 0.2\nmaterials: { m: { color: [1, 0.5, 0.25], ka: 1, kd: 0.8 } }\nobjects:\n",
+    );
+    for i in 0..1500 {
+        text += &format!(
+            "  - {{ sphere: {{ center: [{}, {}, 30], radius: 0.05 }}, material: m }}\n",
+            i % 40,
+            i / 40
+        );
+    }
+    text += "  - name: x[\n    sphere: { center: [0, 0, 0], radius: 1.5 }\n    material: m\n";
+    text += "lights:\n  - name: y]\n    point: [-2, 3, -4]\n";
+    assert!(text.len() > 64 * 1024);
+    let scene = write("brackets.yaml", &text);
+    let mut images = vec![];
+    for threads in ["1", "2", "3"] {
+        let out = scratch(&format!("brackets-{threads}.png"));
+        let r = run(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+            OsStr::new("--threads"),
+            OsStr::new(threads),
+        ]);
+        assert_eq!(r.code(), Some(0), "--threads {threads}: {}", r.stderr);
+        images.push(std::fs::read(&out).unwrap());
+    }
+    assert!(images.iter().all(|i| *i == images[0]));
+}
+
+/// The budget of objects is checked before the objects are compiled, with where and how to
+/// raise it.
+#[test]
+fn the_objects_budget_names_the_first_object_over_it() {
+    use raytree::scene::{parse, Limits};
+    let mut text = String::from(
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects:\n",
+    );
+    for i in 0..12 {
+        text += &format!("  - {{ sphere: {{ center: [{i}, 0, 0], radius: 0.5 }}, material: m }}\n");
+    }
+    let limits = Limits {
+        max_objects: 10,
+        ..Limits::default()
+    };
+    let e = parse(&text, "many.yaml", None, &limits).unwrap_err();
+    assert_eq!((e.line, e.column), (14, 5), "{e}");
+    assert!(
+        e.message.contains("more than 10 objects") && e.message.contains("--allow-huge"),
+        "{e}"
+    );
+    assert!(parse(&text, "many.yaml", None, &Limits::default()).is_ok());
+}
+
+/// On a terminal a scene error also shows the line it points at, with a caret under the
+/// column; piped, it stays one line (scripts and the tests above read that line).
+#[cfg(unix)]
+#[test]
+fn on_a_terminal_a_scene_error_shows_its_line_and_a_caret() {
+    if Command::new("script").arg("--version").output().is_err() {
+        println!("skipping: `script` is not on PATH");
+        return;
+    }
+    let scene = write(
+        "caret.yaml",
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nbackground: [0.4, 0.4\nspp: 4\n",
+    );
+    let inner = format!(
+        "'{}' inspect '{}' --pixel 0,0",
+        bin().display(),
+        scene.display()
+    );
+    let out = Command::new("script")
+        .args(["-qec", &inner, "/dev/null"])
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let shown = String::from_utf8_lossy(&out.stdout).replace('\r', "");
+    let lines: Vec<&str> = shown.lines().collect();
+    assert!(lines.len() >= 3, "{shown}");
+    assert!(
+        lines[0].ends_with(
+            ":2:13: the list opened here (`[`) is never closed with `]`: it runs into line 3"
+        ),
+        "{shown}"
+    );
+    assert_eq!(lines[1], "  2 | background: [0.4, 0.4");
+    assert_eq!(lines[2], "    |             ^");
+}
