@@ -33,6 +33,8 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use raytree::render::{render_simple, RenderOptions};
 use raytree::scene::{parse, Limits};
 
+// `text_of` is for the cargo-fuzz target and the saved inputs (tests/fuzz_regressions.rs).
+#[allow(dead_code)]
 #[path = "fuzz/checks/split.rs"]
 mod split;
 
@@ -877,7 +879,8 @@ fn large_scenes_load_alike_on_any_number_of_threads() {
         failure_persistence: None,
         ..Config::default()
     };
-    let mut runner = TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &SEED));
+    let mut runner =
+        TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &SEED));
     // Quoted strings, anchors and tabs keep a file whole; the mutations that add them are
     // tried too, but most files stay plain enough to be cut.
     let strategy = (

@@ -10,8 +10,12 @@ use raytree::scene::{parse, Limits};
 pub const SPLIT_BYTES: usize = 64 * 1024;
 
 fn pool(threads: usize) -> &'static rayon::ThreadPool {
-    static POOLS: [OnceLock<rayon::ThreadPool>; 4] =
-        [OnceLock::new(), OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    static POOLS: [OnceLock<rayon::ThreadPool>; 4] = [
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+    ];
     POOLS[threads - 1].get_or_init(|| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -23,10 +27,12 @@ fn pool(threads: usize) -> &'static rayon::ThreadPool {
 
 /// What loading `text` on `threads` threads gives, as text to compare.
 fn load(text: &str, threads: usize) -> String {
-    pool(threads).install(|| match parse(text, "split.yaml", None, &Limits::default()) {
-        Ok(scene) => format!("{scene:?}"),
-        Err(e) => format!("error {e}"),
-    })
+    pool(threads).install(
+        || match parse(text, "split.yaml", None, &Limits::default()) {
+            Ok(scene) => format!("{scene:?}"),
+            Err(e) => format!("error {e}"),
+        },
+    )
 }
 
 /// Panics when loading `text` on 2, 3 or 4 threads differs from loading it on one.
