@@ -1,4 +1,8 @@
 //! The command line: one module per subcommand; this one parses and dispatches.
+//!
+//! Output goes through `output` (`print!` and `eprintln!` panic when the write fails, as on a
+//! closed pipe or a full device); clippy refuses them here.
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod args;
 mod bench;
