@@ -326,13 +326,16 @@ fn every_sidecar_belongs_to_a_case() {
     }
 }
 
-/// Bombs and deep nesting are stopped by the parser's budgets, quickly and in little memory.
+/// Bombs, deep nesting and meshes over the budget are stopped before they cost much: quickly and
+/// in little memory.
 #[test]
 fn budgets_stop_bombs_and_deep_nesting_fast() {
     for name in [
         "57-alias-bomb.yaml",
         "59-deep-nesting-10000.yaml",
         "60-csg-nested-2000-deep.yaml",
+        "101-icospheres-over-the-triangle-budget.yaml",
+        "102-mesh-is-proc-pagemap.yaml",
     ] {
         let shown = format!("{CORPUS}/{name}");
         let run = raytree(&["inspect", shown.as_str(), "--pixel", "0,0"])

@@ -767,7 +767,11 @@ fn inspect_reports_the_rendered_value() {
         (gaussian.clone(), 0, vec![[8, 6], [6, 5], [10, 7], [0, 0]]),
         (gaussian, 7, vec![[8, 6], [6, 5]]),
         (PathBuf::from(L08), 0, vec![[30, 30]]),
-        (PathBuf::from("lessons/13-antialiasing/scene.yaml"), 3, vec![[1, 0], [2, 1]]),
+        (
+            PathBuf::from("lessons/13-antialiasing/scene.yaml"),
+            3,
+            vec![[1, 0], [2, 1]],
+        ),
     ];
     for (scene, seed, pixels) in cases {
         let exr = scratch("rendered.exr");

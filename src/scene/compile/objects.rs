@@ -33,6 +33,7 @@ pub fn of(
             ),
         );
     }
+    icospheres_within_budget(file, limits)?;
     let base = source
         .and_then(|p| p.parent())
         .map(|p| p.to_path_buf())
@@ -93,6 +94,44 @@ pub fn of(
         });
     }
     Ok((builder.leaves, objects))
+}
+
+/// The icospheres' triangles (20·4^k each) are known from the file: all of them are counted
+/// before any is built, and the first that brings the scene over its budget is named.
+fn icospheres_within_budget(file: &SceneFile, limits: &Limits) -> Result<(), Invalid> {
+    fn visit(o: &Spanned<ObjectSpec>, total: &mut u64, limits: &Limits) -> Result<(), Invalid> {
+        let spec = &o.value;
+        if let Some(i) = &spec.icosphere {
+            let k = i.subdivisions.value;
+            if (0..=8).contains(&k) {
+                let count = 20u64 << (2 * k);
+                *total += count;
+                if *total > limits.max_triangles {
+                    return invalid(
+                        pos(&i.subdivisions),
+                        format!(
+                            "this icosphere's {count} triangles bring the scene over its budget of {} triangles ({})",
+                            limits.max_triangles,
+                            Limits::RAISE
+                        ),
+                    );
+                }
+            }
+        }
+        let children = [&spec.union, &spec.intersection, &spec.difference];
+        for child in children.into_iter().flatten().flatten() {
+            visit(child, total, limits)?;
+        }
+        if let Some(child) = &spec.complement {
+            visit(child, total, limits)?;
+        }
+        Ok(())
+    }
+    let mut total = 0;
+    for o in &file.objects {
+        visit(o, &mut total, limits)?;
+    }
+    Ok(())
 }
 
 struct Builder<'a> {
