@@ -237,7 +237,8 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
 /// own, whatever the length of the output's), then renamed over it. A failed write, or one
 /// given up because `cancel` was set, removes the temporary file and leaves the old output as
 /// it was. An output that is a symbolic link is written through: the file it points to is
-/// replaced and the link stays. A read-only output is refused rather than replaced.
+/// replaced and the link stays. A read-only output, or one that is not a regular file (a
+/// device such as /dev/full), is refused rather than replaced.
 pub fn write_atomically_with(
     path: &Path,
     cancel: &AtomicBool,
@@ -249,6 +250,11 @@ pub fn write_atomically_with(
     if let Some(meta) = &existing {
         if meta.is_dir() {
             return Err(format!("{shown}: is a directory"));
+        }
+        if !meta.is_file() {
+            return Err(format!(
+                "{shown}: not a regular file (a device, a pipe or a socket): not replaced"
+            ));
         }
         if meta.permissions().readonly() {
             return Err(format!("{shown}: is read-only: not replaced"));
@@ -346,8 +352,10 @@ impl<W: Seek> Seek for Cancellable<'_, W> {
 mod tests {
     use super::*;
 
-    fn scratch(name: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("raytree-image-{}", std::process::id()));
+    /// A file in a folder of its own per test (tests run in parallel; each looks for
+    /// temporary files left in its folder).
+    fn scratch(test: &str, name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("raytree-image-{}-{test}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         dir.join(name)
     }
@@ -364,19 +372,19 @@ mod tests {
     fn names_up_to_the_filesystem_limit_are_written() {
         for len in [245, 251, 255] {
             let name = format!("{}.ppm", "n".repeat(len - 4));
-            let path = scratch(&name);
+            let path = scratch("names", &name);
             Image::new(2, 1).save(&path, Encoding::Srgb).unwrap();
             assert_eq!(std::fs::read(&path).unwrap().len(), 11 + 6, "{len} bytes");
         }
-        assert!(leftovers(scratch("").as_path()).is_empty());
+        assert!(leftovers(scratch("names", "").as_path()).is_empty());
     }
 
     #[cfg(unix)]
     #[test]
     fn a_symlinked_output_is_written_through_and_a_read_only_one_is_kept() {
-        use std::os::unix::fs::{symlink, PermissionsExt};
-        let target = scratch("target.ppm");
-        let link = scratch("link.ppm");
+        use std::os::unix::fs::{symlink, FileTypeExt, PermissionsExt};
+        let target = scratch("links", "target.ppm");
+        let link = scratch("links", "link.ppm");
         std::fs::write(&target, b"old").unwrap();
         let _ = std::fs::remove_file(&link);
         symlink("target.ppm", &link).unwrap();
@@ -387,18 +395,29 @@ mod tests {
             .is_symlink());
         assert!(std::fs::read(&target).unwrap().starts_with(b"P6"));
 
-        let locked = scratch("locked.ppm");
+        let locked = scratch("links", "locked.ppm");
         let _ = std::fs::remove_file(&locked);
         std::fs::write(&locked, b"keep me").unwrap();
         std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o444)).unwrap();
         let e = Image::new(1, 1).save(&locked, Encoding::Srgb).unwrap_err();
         assert!(e.contains("read-only"), "{e}");
         assert_eq!(std::fs::read(&locked).unwrap(), b"keep me");
+
+        // Renaming over a device would replace the device node by a file.
+        let device = scratch("links", "device.ppm");
+        let _ = std::fs::remove_file(&device);
+        symlink("/dev/null", &device).unwrap();
+        let e = Image::new(1, 1).save(&device, Encoding::Srgb).unwrap_err();
+        assert!(e.contains("not a regular file"), "{e}");
+        assert!(std::fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device());
     }
 
     #[test]
     fn a_cancelled_write_leaves_the_old_file_and_no_temporary_one() {
-        let path = scratch("cancelled.ppm");
+        let path = scratch("cancel", "cancelled.ppm");
         std::fs::write(&path, b"previous").unwrap();
         let e = Image::new(64, 64)
             .save_unless(&path, Encoding::Srgb, &AtomicBool::new(true))
