@@ -228,31 +228,43 @@ impl Mesh {
     }
 
     /// Loads a Wavefront OBJ file (all its objects, triangulated); `smooth` keeps its vertex
-    /// normals.
-    pub fn load_obj(path: &Path, smooth: bool) -> Result<(Mesh, usize), String> {
-        // Only regular files of sane size: `/dev/zero` or a pipe must not eat memory or hang.
-        const MAX_BYTES: u64 = 512 << 20;
-        let meta =
-            std::fs::metadata(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        if meta.is_dir() {
+    /// normals. The file and its triangles are budgeted before they are read and built; the
+    /// second value is the number of degenerate (zero-area) triangles dropped.
+    pub fn load_obj(
+        path: &Path,
+        smooth: bool,
+        budget: &ObjBudget,
+    ) -> Result<(Mesh, usize), String> {
+        use crate::files::ReadError;
+        let shown = path.display();
+        let bytes = crate::files::read_bounded(path, budget.max_bytes).map_err(|e| match e {
+            ReadError::Directory => format!("{shown}: is a directory, not a mesh file"),
+            ReadError::TooLarge { budget: b } => format!(
+                "{shown}: larger than the budget of {} for mesh files ({})",
+                crate::files::bytes(b),
+                budget.raise
+            ),
+            e => format!("{shown}: {e}"),
+        })?;
+        // A UTF-8 byte-order mark (as some Windows editors write) is not part of the first line.
+        let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+        let triangles = face_triangles(text);
+        if triangles > budget.max_triangles {
             return Err(format!(
-                "{}: is a directory, not a mesh file",
-                path.display()
+                "{shown}: {triangles} triangles bring the scene over its budget of {} triangles ({})",
+                budget.total, budget.raise
             ));
-        }
-        if !meta.is_file() {
-            return Err(format!("{}: not a regular file", path.display()));
-        }
-        if meta.len() > MAX_BYTES {
-            return Err(format!("{}: larger than 512 MiB", path.display()));
         }
         let options = tobj::LoadOptions {
             triangulate: true,
             single_index: true,
             ..Default::default()
         };
-        let (models, _) =
-            tobj::load_obj(path, &options).map_err(|e| format!("{}: {e}", path.display()))?;
+        // Materials come from the scene file, not from the OBJ's `mtllib`.
+        let (models, _) = tobj::load_obj_buf(&mut &text[..], &options, |_| {
+            Ok((vec![], Default::default()))
+        })
+        .map_err(|e| format!("{shown}: {e}"))?;
         let (mut positions, mut normals, mut triangles) = (vec![], vec![], vec![]);
         for m in models {
             let base = positions.len() as u32;
@@ -277,21 +289,91 @@ impl Mesh {
             );
         }
         if triangles.is_empty() {
-            return Err(format!("{}: the OBJ file has no triangles", path.display()));
+            return Err(format!("{shown}: the OBJ file has no triangles"));
         }
         if positions.iter().any(|p| !p.is_finite()) {
-            return Err(format!(
-                "{}: the OBJ file has a non-finite vertex",
-                path.display()
-            ));
+            return Err(format!("{shown}: the OBJ file has a non-finite vertex"));
         }
         Ok(Mesh::new(positions, normals, triangles))
     }
 }
 
+/// What an OBJ file may hold: bytes, and triangles (what is left of the scene's budget).
+#[derive(Clone, Copy, Debug)]
+pub struct ObjBudget {
+    pub max_bytes: u64,
+    pub max_triangles: u64,
+    /// The scene's whole triangle budget (for the message).
+    pub total: u64,
+    /// How to raise the budgets (for the message).
+    pub raise: &'static str,
+}
+
+/// The triangles an OBJ file's faces make (a face of n vertices makes n − 2), counted from
+/// the text before it is parsed.
+fn face_triangles(text: &[u8]) -> u64 {
+    text.split(|&b| b == b'\n')
+        .filter_map(|line| {
+            line.strip_prefix(b"f")
+                .filter(|r| r.first().is_some_and(u8::is_ascii_whitespace))
+        })
+        .map(|rest| {
+            let vertices = rest
+                .split(u8::is_ascii_whitespace)
+                .filter(|w| !w.is_empty())
+                .count() as u64;
+            vertices.saturating_sub(2)
+        })
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const BUDGET: ObjBudget = ObjBudget {
+        max_bytes: 1 << 20,
+        max_triangles: 1000,
+        total: 1000,
+        raise: "raise it",
+    };
+
+    fn obj(name: &str, text: &[u8]) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("raytree-mesh-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+
+    /// A byte-order mark before the first vertex must not hide it: the triangle keeps its
+    /// three corners where the file puts them.
+    #[test]
+    fn a_byte_order_mark_does_not_lose_the_first_vertex() {
+        let text = b"v 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 2 3\n";
+        let plain = obj("plain.obj", text);
+        let marked = obj("bom.obj", &[b"\xEF\xBB\xBF".as_slice(), text].concat());
+        let (a, _) = Mesh::load_obj(&plain, false, &BUDGET).unwrap();
+        let (b, _) = Mesh::load_obj(&marked, false, &BUDGET).unwrap();
+        assert_eq!(b.positions, a.positions);
+        assert_eq!(b.positions[0], DVec3::new(5.0, 0.0, 0.0));
+        assert_eq!(b.triangles, vec![[0, 1, 2]]);
+    }
+
+    #[test]
+    fn faces_are_counted_against_the_triangle_budget_before_parsing() {
+        assert_eq!(
+            face_triangles(b"f 1 2 3\nf 1 2 3 4\nfoo\n# f 1 2 3\nf\t1 2 3 4 5"),
+            6
+        );
+        let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        text += &"f 1 2 3\n".repeat(1001);
+        let e = Mesh::load_obj(&obj("many.obj", text.as_bytes()), false, &BUDGET).unwrap_err();
+        assert!(
+            e.contains("1001 triangles") && e.contains("budget of 1000"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn icosphere_is_watertight_through_edges_and_vertices() {

@@ -17,7 +17,7 @@ mod triangle;
 pub use aabox::Aabox;
 pub use cone::Cone;
 pub use cylinder::Cylinder;
-pub use mesh::Mesh;
+pub use mesh::{Mesh, ObjBudget};
 pub use plane::Plane;
 pub use ray::Ray;
 pub use segment::{first_crossing, Segment, SegmentList, Surface};

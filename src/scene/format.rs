@@ -187,8 +187,8 @@ impl<'de> Deserialize<'de> for Bias {
 pub struct SceneFile {
     /// `camera:` with nothing after it is `Some(None)`, so its position can be reported.
     pub camera: Option<Spanned<Option<CameraSpec>>>,
-    pub background: Option<Triple>,
-    pub ambient: Option<Triple>,
+    pub background: Option<Spanned<Triple>>,
+    pub ambient: Option<Spanned<Triple>>,
     pub max_depth: Option<Spanned<i64>>,
     pub adaptive_threshold: Option<Spanned<Num>>,
     pub shadow_bias: Option<Spanned<Bias>>,

@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 use serde_saphyr::Spanned;
 
-use super::{invalid, pos, Invalid, Pos};
+use super::{invalid, pos, printable_name, Invalid, Pos};
 use crate::scene::format::{LobeSpec, MaterialSpec, SceneFile};
 use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material};
 
@@ -15,6 +15,7 @@ pub fn of(file: &SceneFile) -> Result<(Vec<Material>, BTreeMap<String, u32>), In
     let mut materials = Vec::new();
     let mut material_index = BTreeMap::new();
     for (name, m) in &file.materials {
+        printable_name(name, pos(m), "material")?;
         material_index.insert(name.clone(), materials.len() as u32);
         materials.push(material(name, &m.value, pos(m))?);
     }

@@ -8,7 +8,7 @@ use std::path::Path;
 use glam::{DAffine3, DVec3};
 use serde_saphyr::Spanned;
 
-use super::{invalid, nonzero, pos, Invalid, Limits, Pos};
+use super::{invalid, nonzero, pos, printable_name, Invalid, Limits, Pos};
 use crate::accel::{Aabb, Ball};
 use crate::geometry::csg::{CsgNode, CsgOp};
 use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
@@ -21,7 +21,19 @@ pub fn of(
     material_index: &BTreeMap<String, u32>,
     source: Option<&Path>,
     limits: &Limits,
+    warnings: &mut Vec<(Pos, String)>,
 ) -> Result<(Vec<Leaf>, Vec<Object>), Invalid> {
+    if file.objects.len() > limits.max_objects {
+        return invalid(
+            pos(&file.objects[limits.max_objects]),
+            format!(
+                "more than {} objects: over the budget of objects per scene ({})",
+                limits.max_objects,
+                Limits::RAISE
+            ),
+        );
+    }
+    icospheres_within_budget(file, limits)?;
     let base = source
         .and_then(|p| p.parent())
         .map(|p| p.to_path_buf())
@@ -31,6 +43,8 @@ pub fn of(
         leaves: Vec::new(),
         limits,
         base: &base,
+        triangles: 0,
+        warnings,
     };
     let mut objects = Vec::new();
     let mut names = HashSet::new();
@@ -40,6 +54,7 @@ pub fn of(
             .name
             .clone()
             .unwrap_or_else(|| format!("object{}", i + 1));
+        printable_name(&name, pos(o), "object")?;
         if !names.insert(name.clone()) {
             return invalid(pos(o), format!("duplicate object name `{name}`"));
         }
@@ -81,12 +96,53 @@ pub fn of(
     Ok((builder.leaves, objects))
 }
 
+/// The icospheres' triangles (20·4^k each) are known from the file: all of them are counted
+/// before any is built, and the first that brings the scene over its budget is named.
+fn icospheres_within_budget(file: &SceneFile, limits: &Limits) -> Result<(), Invalid> {
+    fn visit(o: &Spanned<ObjectSpec>, total: &mut u64, limits: &Limits) -> Result<(), Invalid> {
+        let spec = &o.value;
+        if let Some(i) = &spec.icosphere {
+            let k = i.subdivisions.value;
+            if (0..=8).contains(&k) {
+                let count = 20u64 << (2 * k);
+                *total += count;
+                if *total > limits.max_triangles {
+                    return invalid(
+                        pos(&i.subdivisions),
+                        format!(
+                            "this icosphere's {count} triangles bring the scene over its budget of {} triangles ({})",
+                            limits.max_triangles,
+                            Limits::RAISE
+                        ),
+                    );
+                }
+            }
+        }
+        let children = [&spec.union, &spec.intersection, &spec.difference];
+        for child in children.into_iter().flatten().flatten() {
+            visit(child, total, limits)?;
+        }
+        if let Some(child) = &spec.complement {
+            visit(child, total, limits)?;
+        }
+        Ok(())
+    }
+    let mut total = 0;
+    for o in &file.objects {
+        visit(o, &mut total, limits)?;
+    }
+    Ok(())
+}
+
 struct Builder<'a> {
     materials: &'a BTreeMap<String, u32>,
     leaves: Vec<Leaf>,
     limits: &'a Limits,
     /// Folder of the scene file: mesh files are found relative to it.
     base: &'a std::path::Path,
+    /// Triangles in the meshes built so far (budgeted by `Limits::max_triangles`).
+    triangles: u64,
+    warnings: &'a mut Vec<(Pos, String)>,
 }
 
 /// Where in an object's CSG tree the builder is.
@@ -126,6 +182,9 @@ impl Builder<'_> {
     ) -> Result<CsgNode, Invalid> {
         let spec = &o.value;
         let p = pos(o);
+        if let Some(name) = &spec.name {
+            printable_name(name, p, "object")?;
+        }
         if ctx.depth > self.limits.max_csg_depth {
             return invalid(
                 p,
@@ -189,7 +248,7 @@ impl Builder<'_> {
                 ctx,
             );
         }
-        let shape = shape(spec, p, self.base)?;
+        let shape = self.shape(spec, p, ctx.object_name)?;
         if !top && !shape.is_convex_solid() {
             return invalid(
                 p,
@@ -290,6 +349,65 @@ impl Builder<'_> {
     }
 }
 
+impl Builder<'_> {
+    /// A leaf's shape; meshes and icospheres are counted against the triangle budget before
+    /// they are built.
+    fn shape(&mut self, spec: &ObjectSpec, p: Pos, object: &str) -> Result<Shape, Invalid> {
+        if let Some(m) = &spec.mesh {
+            let path = self.base.join(&m.file.value);
+            let left = self.limits.max_triangles.saturating_sub(self.triangles);
+            let budget = crate::geometry::ObjBudget {
+                max_bytes: self.limits.max_mesh_bytes,
+                max_triangles: left,
+                total: self.limits.max_triangles,
+                raise: Limits::RAISE,
+            };
+            let (mesh, dropped) =
+                crate::geometry::Mesh::load_obj(&path, m.smooth.unwrap_or(true), &budget)
+                    .or_else(|e| invalid(pos(&m.file), e))?;
+            if mesh.triangles.is_empty() {
+                self.warnings.push((
+                    pos(&m.file),
+                    format!(
+                        "object `{object}`: all {dropped} triangles of {} are degenerate (zero area): the mesh is invisible",
+                        path.display()
+                    ),
+                ));
+            }
+            self.triangles += mesh.triangles.len() as u64;
+            return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+        }
+        if let Some(i) = &spec.icosphere {
+            let k = i.subdivisions.value;
+            if !(0..=8).contains(&k) {
+                return invalid(
+                    pos(&i.subdivisions),
+                    format!("icosphere subdivisions must be between 0 and 8, got {k}"),
+                );
+            }
+            // 20·4^k triangles.
+            let count = 20u64 << (2 * k);
+            if self.triangles + count > self.limits.max_triangles {
+                return invalid(
+                    pos(&i.subdivisions),
+                    format!(
+                        "this icosphere's {count} triangles bring the scene over its budget of {} triangles ({})",
+                        self.limits.max_triangles,
+                        Limits::RAISE
+                    ),
+                );
+            }
+            self.triangles += count;
+            let mut mesh = crate::geometry::Mesh::icosphere(k as u32);
+            if i.smooth == Some(false) {
+                mesh = crate::geometry::Mesh::new(mesh.positions, vec![], mesh.triangles).0;
+            }
+            return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+        }
+        shape(spec, p)
+    }
+}
+
 /// The steps compose in the order written: the first step is applied first.
 fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
     let mut m = DAffine3::IDENTITY;
@@ -311,7 +429,9 @@ fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
     Ok(Transform::new(m))
 }
 
-fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Invalid> {
+/// The shape of a leaf: its numbers checked (meshes are built by the builder, which budgets
+/// their triangles).
+fn shape(spec: &ObjectSpec, p: Pos) -> Result<Shape, Invalid> {
     let positive = |r: &Spanned<crate::scene::format::Num>, what: &str| -> Result<f64, Invalid> {
         if r.value.0 > 0.0 {
             Ok(r.value.0)
@@ -379,26 +499,6 @@ fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Inv
             );
         }
         return Ok(Shape::Triangle(tri));
-    }
-    if let Some(m) = &spec.mesh {
-        let path = base.join(&m.file.value);
-        let (mesh, _) = crate::geometry::Mesh::load_obj(&path, m.smooth.unwrap_or(true))
-            .or_else(|e| invalid(pos(&m.file), e))?;
-        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
-    }
-    if let Some(i) = &spec.icosphere {
-        let k = i.subdivisions.value;
-        if !(0..=8).contains(&k) {
-            return invalid(
-                pos(&i.subdivisions),
-                format!("icosphere subdivisions must be between 0 and 8, got {k}"),
-            );
-        }
-        let mut mesh = crate::geometry::Mesh::icosphere(k as u32);
-        if i.smooth == Some(false) {
-            mesh = crate::geometry::Mesh::new(mesh.positions, vec![], mesh.triangles).0;
-        }
-        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
     }
     invalid(p, "no shape")
 }
