@@ -146,8 +146,9 @@ impl Shape {
     /// The shape's own (u, v) at a point p of its surface (in the shape's space) on `face`:
     ///
     /// - sphere: the spherical projection about its centre;
-    /// - plane: unit tiles from its `point`, u along n × y (x for a floor), v along u × n (z for
-    ///   a floor, up for a wall);
+    /// - plane: the distances from its `point` along two axes, u along n × y (x for a floor), v
+    ///   along u × n (z for a floor, up for a wall); not wrapped into the unit square, so that a
+    ///   pattern's transform can set the size of its tiles (an image repeats every unit);
     /// - box: the cube projection of the face hit, unfolded into the cross;
     /// - cylinder and cone: u round the axis (as the cylindrical projection round an upright
     ///   axis: 0 towards −z), v along it, 0 at the base and 1 at the top or apex; a cap's disc
@@ -161,7 +162,7 @@ impl Shape {
             Shape::Plane(s) => {
                 let (eu, ev) = plane_axes(s.normal);
                 let w = p - s.point;
-                DVec2::new(wrap(w.dot(eu)), wrap(w.dot(ev)))
+                DVec2::new(w.dot(eu), w.dot(ev))
             }
             Shape::Box(b) => {
                 let q = (p - 0.5 * (b.min + b.max)) / (0.5 * (b.max - b.min));
