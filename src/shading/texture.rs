@@ -153,26 +153,55 @@ impl Image {
     }
 
     /// The texel in column i, row j (both wrapped round the image).
-    fn texel(&self, i: i64, j: i64) -> DVec3 {
+    pub fn texel(&self, i: i64, j: i64) -> DVec3 {
         let i = i.rem_euclid(self.width as i64) as usize;
         let j = j.rem_euclid(self.height as i64) as usize;
         let [r, g, b] = self.texels[j * self.width as usize + i];
         DVec3::new(r as f64, g as f64, b as f64)
     }
 
-    /// The colour at (u, v), bilinearly filtered: texel (i, j) is centred at
-    /// ((i + ½)/width, 1 − (j + ½)/height), and a point between four centres blends them by
-    /// its distances to them. The image repeats beyond the unit square, in u and in v.
-    pub fn bilinear(&self, uv: DVec2) -> DVec3 {
+    /// Where (u, v) falls among the texel centres: texel (i, j) is centred at
+    /// ((i + ½)/width, 1 − (j + ½)/height), so (u, v) lies at column x = u·width − ½ and row
+    /// y = (1 − v)·height − ½ of the grid of centres, between columns ⌊x⌋, ⌊x⌋ + 1 and rows ⌊y⌋,
+    /// ⌊y⌋ + 1. The image repeats beyond the unit square, in u and in v.
+    pub fn footprint(&self, uv: DVec2) -> Footprint {
         let x = wrap(uv.x) * self.width as f64 - 0.5;
         let y = (1.0 - wrap(uv.y)) * self.height as f64 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
-        let (fx, fy) = (x - x0, y - y0);
-        let (i, j) = (x0 as i64, y0 as i64);
-        let top = self.texel(i, j).lerp(self.texel(i + 1, j), fx);
-        let bottom = self.texel(i, j + 1).lerp(self.texel(i + 1, j + 1), fx);
-        top.lerp(bottom, fy)
+        Footprint {
+            x,
+            y,
+            i: x0 as i64,
+            j: y0 as i64,
+            fx: x - x0,
+            fy: y - y0,
+        }
     }
+
+    /// The colour at (u, v), bilinearly filtered: the four texels around it blended by its
+    /// distances to their centres, first along the rows, then between them.
+    pub fn bilinear(&self, uv: DVec2) -> DVec3 {
+        let f = self.footprint(uv);
+        let top = self.texel(f.i, f.j).lerp(self.texel(f.i + 1, f.j), f.fx);
+        let bottom = self
+            .texel(f.i, f.j + 1)
+            .lerp(self.texel(f.i + 1, f.j + 1), f.fx);
+        top.lerp(bottom, f.fy)
+    }
+}
+
+/// Where a point falls among an image's texel centres (`Image::footprint`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Footprint {
+    /// Column and row in the grid of texel centres (0 at the first centre).
+    pub x: f64,
+    pub y: f64,
+    /// The texel at the top left of the four around it.
+    pub i: i64,
+    pub j: i64,
+    /// How far past that texel's centre, in texels.
+    pub fx: f64,
+    pub fy: f64,
 }
 
 #[cfg(test)]

@@ -12,7 +12,8 @@
 //! - `optics`: reflected and refracted directions;
 //! - `csg`: segment lists;
 //! - `image`: rendered pixel values, primary rays, squares split by adaptive antialiasing
-//!   (whose steps `adaptive` explains).
+//!   (whose steps `adaptive` explains);
+//! - `texture`: texture coordinates and the colour of a patterned surface.
 
 mod adaptive;
 mod camera;
@@ -21,6 +22,7 @@ mod image;
 mod intersection;
 mod lighting;
 mod optics;
+mod texture;
 mod tree;
 
 use glam::DVec3;
@@ -120,6 +122,9 @@ fn question(ask: Ask) -> &'static dyn Question {
         Ask::PixelValue => &image::PixelValue,
         Ask::PrimaryRays => &image::PrimaryRays,
         Ask::SquaresSplit => &image::SquaresSplit,
+        Ask::U => &texture::TextureCoordinate { v: false },
+        Ask::V => &texture::TextureCoordinate { v: true },
+        Ask::SurfaceColor => &texture::SurfaceColor,
     }
 }
 
