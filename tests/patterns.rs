@@ -644,3 +644,65 @@ materials:
     assert!(!dir.join("out.png").exists());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Whitted's picture: a ray through the glass sphere refracts twice and lands on the board,
+/// whose checker gives O there: ⌊−0.75⌋ + ⌊0⌋ + ⌊4.25⌋ = −1 + 0 + 4 = 3, odd, the red cell.
+/// The tree, with the pattern's line at the board, is pinned.
+#[test]
+fn a_checker_seen_through_glass_in_whitteds_picture() {
+    let s = common::scene_file("lessons/examples/whitted-1980.yaml");
+    let tree = Tracer::new(&s).with_depth(3).inspect_pixel(250, 200).tree;
+    let board = tree
+        .find("refraction/refraction")
+        .expect("through the glass");
+    let h = board.hit.as_ref().unwrap();
+    assert_eq!(h.object, "board");
+    assert!((h.point.x + 0.751938).abs() < 1e-6 && (h.point.z - 4.254888).abs() < 1e-6);
+    assert_eq!(
+        board.local.as_ref().unwrap().color,
+        Some(DVec3::new(0.85, 0.12, 0.1))
+    );
+    insta::assert_snapshot!(
+        "whitted_1980_through_glass",
+        raytree::trace::text::tree(&tree)
+    );
+}
+
+/// A mesh's texture coordinates (OBJ `vt`) are blended with the hit's barycentric coordinates:
+/// at (0.5, 0.5, 0) of the triangle (0, 0, 0), (2, 0, 0), (0, 2, 0) the weights are
+/// (0.5, 0.25, 0.25), so (u, v) = 0.5·(0.1, 0.2) + 0.25·(0.9, 0.3) + 0.25·(0.4, 0.8)
+/// = (0.375, 0.375). Moved by a transform, the mesh keeps them.
+#[test]
+fn a_meshs_vt_coordinates_are_blended_barycentrically() {
+    let dir = std::env::temp_dir().join(format!("raytree-vt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("tri.obj"),
+        "v 0 0 0\nv 2 0 0\nv 0 2 0\nvt 0.1 0.2\nvt 0.9 0.3\nvt 0.4 0.8\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let path = dir.join("scene.yaml");
+    std::fs::write(
+        &path,
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], width: 8, height: 6 }
+ambient: 1
+materials:
+  m: { color: { pattern: uv_checker, width: 2, height: 2, colors: [0, 1] }, ka: 1 }
+objects:
+  - { name: tri, mesh: { file: tri.obj }, material: m }
+  - { name: moved, mesh: { file: tri.obj }, material: m, transform: [ { translate: [10, 0, 0] } ] }
+",
+    )
+    .unwrap();
+    let s = raytree::scene::load(&path, &Limits::default()).unwrap();
+    for x in [0.5, 10.5] {
+        let uv = trace(&s, [x, 0.5, -1.0], [0.0, 0.0, 1.0])
+            .hit
+            .unwrap()
+            .uv
+            .unwrap();
+        // The OBJ reader keeps single-precision numbers: 0.1 is 0.1 to 1e-8.
+        assert!((uv - DVec2::new(0.375, 0.375)).length() < 1e-7, "{uv}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
