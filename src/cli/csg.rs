@@ -29,7 +29,7 @@ pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
     let op = match (t.op, t.leaf) {
         (Some(op), _) => op.name(),
         (None, Some(leaf)) => scene.leaves[leaf as usize].shape.kind(),
-        _ => "?",
+        (None, None) => "group",
     };
     let point = |t: f64| {
         if t.is_finite() {

@@ -1,11 +1,12 @@
 //! Triangle meshes: many triangles as one object, with their own BVH (seed 002: "the cost comes
 //! from ray–triangle intersections, reduced by a BVH") and smooth shading by interpolating the
-//! vertex normals with the hit's barycentric coordinates.
+//! vertex normals with the hit's barycentric coordinates; texture coordinates (OBJ `vt`) are
+//! blended with the same weights.
 
 use std::fmt;
 use std::path::Path;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::{Ray, Triangle};
 use crate::accel::bvh::Visits;
@@ -15,6 +16,8 @@ pub struct Mesh {
     pub positions: Vec<DVec3>,
     /// One per position, or empty for flat shading.
     pub normals: Vec<DVec3>,
+    /// Texture coordinates (u, v), one per position, or empty.
+    pub texcoords: Vec<DVec2>,
     pub triangles: Vec<[u32; 3]>,
     bvh: Bvh,
     bounds: Aabb,
@@ -72,12 +75,33 @@ impl Mesh {
             Mesh {
                 positions,
                 normals,
+                texcoords: vec![],
                 triangles,
                 bvh,
                 bounds,
             },
             dropped,
         )
+    }
+
+    /// The mesh with texture coordinates, one per position (others are ignored).
+    pub fn with_texcoords(mut self, texcoords: Vec<DVec2>) -> Mesh {
+        if texcoords.len() == self.positions.len() {
+            self.texcoords = texcoords;
+        }
+        self
+    }
+
+    /// The texture coordinates at p on triangle `face`: its vertices' blended by the
+    /// barycentric coordinates, uv = λ1·uv1 + λ2·uv2 + λ3·uv3; without them, the triangle's
+    /// own (λ2, λ3).
+    pub fn uv(&self, p: DVec3, face: u32) -> DVec2 {
+        let l = self.triangle(face).barycentric(p);
+        if self.texcoords.is_empty() {
+            return DVec2::new(l.y, l.z);
+        }
+        let [a, b, c] = self.triangles[face as usize].map(|v| self.texcoords[v as usize]);
+        l.x * a + l.y * b + l.z * c
     }
 
     pub fn triangle(&self, i: u32) -> Triangle {
@@ -266,6 +290,7 @@ impl Mesh {
         })
         .map_err(|e| format!("{shown}: {e}"))?;
         let (mut positions, mut normals, mut triangles) = (vec![], vec![], vec![]);
+        let mut texcoords = vec![];
         for m in models {
             let base = positions.len() as u32;
             let p = &m.mesh.positions;
@@ -281,6 +306,14 @@ impl Mesh {
                         .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)),
                 );
             }
+            if m.mesh.texcoords.len() / 2 == p.len() / 3 {
+                texcoords.extend(
+                    m.mesh
+                        .texcoords
+                        .chunks_exact(2)
+                        .map(|t| DVec2::new(t[0] as f64, t[1] as f64)),
+                );
+            }
             triangles.extend(
                 m.mesh
                     .indices
@@ -294,7 +327,8 @@ impl Mesh {
         if positions.iter().any(|p| !p.is_finite()) {
             return Err(format!("{shown}: the OBJ file has a non-finite vertex"));
         }
-        Ok(Mesh::new(positions, normals, triangles))
+        let (mesh, dropped) = Mesh::new(positions, normals, triangles);
+        Ok((mesh.with_texcoords(texcoords), dropped))
     }
 }
 

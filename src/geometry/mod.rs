@@ -13,6 +13,7 @@ mod shape;
 pub mod sphere;
 mod transform;
 mod triangle;
+pub mod uv;
 
 pub use aabox::Aabox;
 pub use cone::Cone;

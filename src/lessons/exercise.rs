@@ -38,6 +38,12 @@ pub enum Ask {
     PrimaryRays,
     /// Squares split by adaptive antialiasing: in `pixel`, or in the whole image.
     SquaresSplit,
+    /// The texture coordinate u of the hit (a texture's or a uv pattern's).
+    U,
+    /// The texture coordinate v of the hit.
+    V,
+    /// The surface's colour O at the hit: its pattern's or texture's value there.
+    SurfaceColor,
 }
 
 impl Ask {

@@ -31,7 +31,7 @@ pub use features::Features;
 pub use format::Integrator;
 pub use hit::{Hit, Interaction};
 pub use load::{load, parse};
-pub use objects::{Geometry, Leaf, Object};
+pub use objects::{Geometry, Group, Leaf, Object};
 pub use search::{Accel, Search, SearchIndex, Visited};
 pub use settings::{Antialias, Filter, DEFAULT_THRESHOLD};
 

@@ -260,10 +260,13 @@ impl Light {
             LightKind::Sphere { center, radius, .. } => {
                 let to = *center - p;
                 let d = to.length();
-                if d <= *radius {
+                let spread = one_minus_cos_max(*radius, d);
+                if d <= *radius || spread == 0.0 {
+                    // Inside the light, or the light so small from here that the cone it
+                    // subtends is below what f64 can hold (its density would be 1/0).
                     return None;
                 }
-                let cos_theta = 1.0 - u1 * one_minus_cos_max(*radius, d);
+                let cos_theta = 1.0 - u1 * spread;
                 let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
                 let phi = 2.0 * std::f64::consts::PI * u2;
                 let axis = to / d;
@@ -415,6 +418,24 @@ mod tests {
             let hit = light.emitter_hit(&ray, f64::INFINITY).unwrap();
             assert!((hit.t - e.distance).abs() < 1e-9);
             assert!((hit.pdf - e.pdf).abs() < 1e-9 * e.pdf);
+        }
+    }
+
+    /// Fuzzing finding (a mutated Cornell box): a sphere light of radius 1e−308 subtends a cone
+    /// whose 1 − cos θmax underflows to 0, and its density 1/0 = ∞ made the path tracer's
+    /// weights ∞/∞ = NaN. Such a light cannot be sampled: no sample, never an infinite density.
+    #[test]
+    fn a_sphere_light_too_small_to_subtend_a_cone_gives_no_sample() {
+        let mut light = ball();
+        if let LightKind::Sphere { radius, .. } = &mut light.kind {
+            *radius = 1e-308;
+        }
+        let mut rng = Rng::for_pixel(0, 0, 0);
+        for _ in 0..100 {
+            let pdf = light
+                .sample_emitter(DVec3::ZERO, rng.uniform(), rng.uniform())
+                .map(|e| e.pdf);
+            assert!(pdf.is_none_or(f64::is_finite), "{pdf:?}");
         }
     }
 }

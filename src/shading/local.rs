@@ -1,9 +1,12 @@
 //! The local illumination model of the lecture notes:
 //! I_local = ka·Ia·O + Σ_ℓ s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m).
+//!
+//! O, kd and ks are the surface's at the shaded point (`Paint`: a material's constants, or its
+//! patterns looked up there); ka, the exponent m and the kind of highlight are the material's.
 
 use glam::DVec3;
 
-use super::{Highlight, Material};
+use super::{Highlight, Material, Paint};
 
 /// The diffuse and specular terms of one light, before the shadow factor.
 #[derive(Clone, Copy, Debug)]
@@ -19,8 +22,8 @@ pub struct LightTerms {
 }
 
 /// Ambient term ka·Ia·O.
-pub fn ambient(m: &Material, ia: DVec3) -> DVec3 {
-    m.ka * ia * m.color
+pub fn ambient(m: &Material, at: &Paint, ia: DVec3) -> DVec3 {
+    m.ka * ia * at.color
 }
 
 /// Diffuse (Lambert) and specular terms for a light seen along l with strength fatt·Iℓ = `light`.
@@ -33,6 +36,7 @@ pub fn ambient(m: &Material, ia: DVec3) -> DVec3 {
 #[inline(always)]
 pub fn light_terms(
     m: &Material,
+    at: &Paint,
     n: DVec3,
     v: DVec3,
     l: DVec3,
@@ -40,15 +44,15 @@ pub fn light_terms(
     shows: bool,
 ) -> LightTerms {
     let n_dot_l = n.dot(l);
-    let lights_highlight = m.ks > 0.0 && n_dot_l > 0.0;
+    let lights_highlight = at.ks > 0.0 && n_dot_l > 0.0;
     let highlight_cos = if lights_highlight || shows {
         highlight_cos(m, n, v, l, n_dot_l)
     } else {
         0.0
     };
-    let diffuse = light * m.kd * m.color * n_dot_l.max(0.0);
+    let diffuse = light * at.kd * at.color * n_dot_l.max(0.0);
     let specular = if lights_highlight {
-        light * m.ks * highlight_power(highlight_cos, m.shininess)
+        light * at.ks * highlight_power(highlight_cos, m.shininess)
     } else {
         // No highlight from a light behind the surface: it does not light this side at all
         // (the tracer's shadow factor is 0 there anyway, so this only saves the power).

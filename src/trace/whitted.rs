@@ -80,9 +80,7 @@ impl<R: Recorder> Tracer<'_, R> {
     /// The node's total from its local intensity: the secondary rays' kr·I_r + kt·I_t added.
     #[inline(always)]
     pub(crate) fn finish(&mut self, task: &Task, si: &Interaction, mut color: DVec3) -> DVec3 {
-        let scene = self.scene;
-        let m = scene.material(si.material);
-        if m.kr > 0.0 || m.kt > 0.0 {
+        if si.paint.kr > 0.0 || si.paint.kt > 0.0 {
             color += self.secondary(task, si);
         }
         self.rec.end(color, None);
@@ -96,7 +94,7 @@ impl<R: Recorder> Tracer<'_, R> {
         let scene = self.scene;
         let m = scene.material(si.material);
         let v = -task.ray.dir;
-        let mut color = ambient(m, scene.ambient);
+        let mut color = ambient(m, &si.paint, scene.ambient);
         let mut terms = Vec::new();
         for (k, light) in scene.lights.iter().enumerate() {
             let (sample, lit, skipped) = self.light_share(m, si, v, k, R::ACTIVE);
@@ -121,8 +119,9 @@ impl<R: Recorder> Tracer<'_, R> {
         }
         if R::ACTIVE {
             self.rec.local(Local {
-                ambient: ambient(m, scene.ambient),
+                ambient: ambient(m, &si.paint, scene.ambient),
                 lights: terms,
+                ..self.surface(si)
             });
         }
         color
@@ -143,7 +142,7 @@ impl<R: Recorder> Tracer<'_, R> {
         let light = &scene.lights[k];
         let sample = light.sample(si.point);
         let strength = sample.attenuation * light.intensity;
-        let lit = light_terms(m, si.normal, v, sample.l, strength, shows);
+        let lit = light_terms(m, &si.paint, si.normal, v, sample.l, strength, shows);
         let skipped = if lit.n_dot_l <= 0.0 {
             self.stats.shadow_skipped_backfacing += 1;
             Some("light behind the surface (n·l ≤ 0)")
@@ -253,16 +252,17 @@ impl<R: Recorder> Tracer<'_, R> {
         let d = task.ray.dir;
         let across = self.across(task, si, m);
         let (n1, n2) = (across.n1, across.n2);
-        let transmitted = if m.kt > 0.0 {
+        let (kr, kt) = (si.paint.kr, si.paint.kt);
+        let transmitted = if kt > 0.0 {
             refract(d, si.normal, n1, n2)
         } else {
             None
         };
         let (kr, kt) = match m.fresnel {
-            Fresnel::None => (m.kr, m.kt),
+            Fresnel::None => (kr, kt),
             Fresnel::Schlick => {
                 let r = schlick(-d.dot(si.normal), n1, n2);
-                (m.kr * r, m.kt * (1.0 - r))
+                (kr * r, kt * (1.0 - r))
             }
         };
         let mirror = reflect(d, si.normal);

@@ -12,7 +12,8 @@
 //! - `optics`: reflected and refracted directions;
 //! - `csg`: segment lists;
 //! - `image`: rendered pixel values, primary rays, squares split by adaptive antialiasing
-//!   (whose steps `adaptive` explains).
+//!   (whose steps `adaptive` explains);
+//! - `texture`: texture coordinates and the colour of a patterned surface.
 
 mod adaptive;
 mod camera;
@@ -23,6 +24,7 @@ mod intersection;
 mod lighting;
 mod mistakes;
 mod optics;
+mod texture;
 mod tree;
 
 use glam::DVec3;
@@ -140,6 +142,9 @@ fn question(ask: Ask) -> &'static dyn Question {
         Ask::PixelValue => &image::PixelValue,
         Ask::PrimaryRays => &image::PrimaryRays,
         Ask::SquaresSplit => &image::SquaresSplit,
+        Ask::U => &texture::TextureCoordinate { v: false },
+        Ask::V => &texture::TextureCoordinate { v: true },
+        Ask::SurfaceColor => &texture::SurfaceColor,
     }
 }
 
@@ -346,6 +351,8 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
             "this intensity"
         }
         Ask::Segments => "a segment list",
+        Ask::U | Ask::V => "a texture coordinate",
+        Ask::SurfaceColor => "the surface colour",
     };
     Some(match (given, expected) {
         (Answer::Number(_), Answer::Vector(_)) if asks_colour(ask) => {
@@ -371,7 +378,12 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
 fn asks_colour(ask: Ask) -> bool {
     matches!(
         ask,
-        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue
+        Ask::Intensity
+            | Ask::Local
+            | Ask::Diffuse
+            | Ask::Specular
+            | Ask::PixelValue
+            | Ask::SurfaceColor
     )
 }
 

@@ -7,6 +7,7 @@ mod camera;
 mod lights;
 mod materials;
 mod objects;
+mod patterns;
 mod settings;
 
 use std::path::PathBuf;
@@ -87,10 +88,17 @@ pub fn compile(
 ) -> Result<Scene, Invalid> {
     let camera = camera::of(&file, limits)?;
     let settings = settings::Settings::of(&file, limits)?;
-    let (materials, by_name) = materials::of(&file)?;
+    let (materials, by_name) = materials::of(&file, source.as_deref())?;
     let lights = lights::of(&file, &by_name)?;
     let mut warnings = Vec::new();
-    let (leaves, objects) = objects::of(&file, &by_name, source.as_deref(), limits, &mut warnings)?;
+    let (leaves, objects) = objects::of(
+        &file,
+        &by_name,
+        &materials,
+        source.as_deref(),
+        limits,
+        &mut warnings,
+    )?;
     let background = file.background.as_ref().map_or(Ok(DVec3::ZERO), |b| {
         not_negative(b.value.0, pos(b), "background")
     })?;
