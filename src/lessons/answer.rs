@@ -195,6 +195,20 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
 mod tests {
     use super::*;
 
+    /// A colour is one number only when all three channels are equal; two equal channels
+    /// and a third different (either side) is a colour.
+    #[test]
+    fn a_colour_is_one_number_only_when_grey() {
+        assert_eq!(Answer::color(DVec3::splat(0.5)), Answer::Number(0.5));
+        for c in [
+            DVec3::new(0.5, 0.5, 0.3),
+            DVec3::new(0.3, 0.5, 0.5),
+            DVec3::new(0.5, 0.3, 0.5),
+        ] {
+            assert_eq!(Answer::color(c), Answer::Vector(c));
+        }
+    }
+
     #[test]
     fn parses_what_students_write() {
         assert_eq!(parse_answer(" 0.25 ", false).unwrap(), Answer::Number(0.25));
