@@ -270,6 +270,30 @@ mod tests {
         assert!(e.len() < 100 && e.contains("too large"), "{e}");
     }
 
+    /// Each end of each segment is held to the tolerance around itself: half of it off is
+    /// accepted, twice off is refused, and so is a list with a segment missing or added.
+    #[test]
+    fn segment_lists_are_held_to_the_tolerance_end_by_end() {
+        let expected = Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY)]);
+        let tol = Tolerance::default();
+        for (end, scale) in [(0, 2.0), (1, 4.0), (2, 10.0)] {
+            let shifted = |by: f64| {
+                let mut ends = [2.0, 4.0, 10.0];
+                ends[end] += by * tol.around(scale);
+                Answer::Segments(vec![(ends[0], ends[1]), (ends[2], f64::INFINITY)])
+            };
+            assert!(shifted(0.5).matches(&expected, &tol), "end {end}");
+            assert!(shifted(-0.5).matches(&expected, &tol), "end {end}");
+            assert!(!shifted(2.0).matches(&expected, &tol), "end {end}");
+            assert!(!shifted(-2.0).matches(&expected, &tol), "end {end}");
+        }
+        assert!(!Answer::Segments(vec![(2.0, 4.0)]).matches(&expected, &tol));
+        let three = Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY), (20.0, 30.0)]);
+        assert!(!three.matches(&expected, &tol));
+        let finite = Answer::Segments(vec![(2.0, 4.0), (10.0, 1e300)]);
+        assert!(!finite.matches(&expected, &tol));
+    }
+
     #[test]
     fn tolerance_is_per_component_on_the_vector_scale() {
         let a = Answer::Vector(DVec3::new(1.0, 2.0, 3.0));
