@@ -270,6 +270,24 @@ mod tests {
         assert!(e.len() < 100 && e.contains("too large"), "{e}");
     }
 
+    /// The JSON forms `check --format json` prints: a number, [x, y, z], a list of [t_in, t_out]
+    /// with an open end written "∞", and "tir".
+    #[test]
+    fn answers_as_json() {
+        use serde_json::json;
+        assert_eq!(Answer::Number(0.25).to_json(), json!(0.25));
+        assert_eq!(
+            Answer::Vector(DVec3::new(0.6, -0.8, 0.0)).to_json(),
+            json!([0.6, -0.8, 0.0])
+        );
+        assert_eq!(
+            Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY)]).to_json(),
+            json!([[2.0, 4.0], [10.0, "∞"]])
+        );
+        assert_eq!(Answer::Segments(vec![]).to_json(), json!([]));
+        assert_eq!(Answer::Tir.to_json(), json!("tir"));
+    }
+
     /// Each end of each segment is held to the tolerance around itself: half of it off is
     /// accepted, twice off is refused, and so is a list with a segment missing or added.
     #[test]
