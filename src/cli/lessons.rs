@@ -31,13 +31,27 @@ enum Action {
         /// A lesson folder, or a folder of lessons.
         dir: PathBuf,
     },
+    /// Writes raytree's built-in lessons to DIR (new or empty), to read or to change.
+    Export {
+        /// The folder to write them to.
+        dir: PathBuf,
+    },
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    if let Some(Action::Validate { dir }) = a.action {
-        return run_validate(&dir);
+    match a.action {
+        Some(Action::Validate { dir }) => return run_validate(&dir),
+        Some(Action::Export { dir }) => {
+            crate::lessons::builtin::export(&dir)?;
+            super::output::println(&format!("wrote the lessons to {}", dir.display()))?;
+            return Ok(ExitCode::SUCCESS);
+        }
+        None => {}
     }
-    let root = a.dir.unwrap_or_else(lessons_root);
+    let root = match a.dir {
+        Some(dir) => dir,
+        None => lessons_root()?,
+    };
     let lessons = load_all(&root)?;
     let progress = Progress::load();
     match a.format {

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::error::LessonError;
 use super::tolerance::Tolerance;
 use super::vary::{self, Range};
 use crate::shading::Highlight;
@@ -290,16 +291,42 @@ impl Lesson {
     }
 }
 
-/// The lessons folder: `RAYTREE_LESSONS`, else `./lessons`, else the one beside the sources.
-pub fn lessons_root() -> PathBuf {
+/// The lessons folder chosen on the command line (`--lessons DIR`), before any other.
+static CHOSEN_ROOT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+
+/// Makes `dir` the lessons folder of this run, as `--lessons DIR` does (the first call wins).
+pub fn use_lessons_root(dir: PathBuf) {
+    let _ = CHOSEN_ROOT.set(dir);
+}
+
+/// The lessons folder: `--lessons DIR`, else `RAYTREE_LESSONS`, else `./lessons`, else the
+/// built-in lessons (written to the user's cache folder on first use).
+pub fn lessons_root() -> Result<PathBuf, LessonError> {
+    if let Some(p) = CHOSEN_ROOT.get() {
+        return Ok(p.clone());
+    }
     if let Some(p) = std::env::var_os("RAYTREE_LESSONS") {
-        return PathBuf::from(p);
+        return Ok(PathBuf::from(p));
     }
     let local = PathBuf::from("lessons");
     if local.is_dir() {
-        return local;
+        return Ok(local);
     }
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lessons")
+    super::builtin::cached()
+}
+
+/// The lesson folder a user names: the path itself when it exists, else the lesson of that
+/// name in the lessons folder, so `08-pixel-intensity` and `lessons/08-pixel-intensity` work
+/// from any folder.
+pub fn find_lesson(path: &Path) -> PathBuf {
+    if path.exists() {
+        return path.to_path_buf();
+    }
+    let name = path.strip_prefix("lessons").unwrap_or(path);
+    match lessons_root() {
+        Ok(root) if !name.as_os_str().is_empty() && root.join(name).exists() => root.join(name),
+        _ => path.to_path_buf(),
+    }
 }
 
 /// All lessons, in folder order.

@@ -30,6 +30,20 @@ pub struct LessonList {
 }
 
 impl LessonList {
+    /// The lessons of `lessons::lessons_root()`, or the list saying why there are none.
+    pub fn load_default() -> LessonList {
+        match crate::lessons::lessons_root() {
+            Ok(root) => LessonList::load(&root),
+            Err(e) => LessonList {
+                root: PathBuf::new(),
+                entries: vec![],
+                selected: 0,
+                error: Some(e.to_string()),
+                from_scene: false,
+            },
+        }
+    }
+
     /// Every folder under `root` with an exercises.yaml, in name order.
     pub fn load(root: &Path) -> LessonList {
         let mut list = LessonList {

@@ -1,0 +1,35 @@
+//! Why lessons cannot be found or written out.
+
+use std::path::PathBuf;
+
+/// An error of the lessons' files, naming the path and what was being done to it.
+#[derive(Debug, thiserror::Error)]
+pub enum LessonError {
+    /// Reading or writing a file or folder failed.
+    #[error("{}: cannot {action}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What was being done, as a verb phrase ("create the folder").
+        action: &'static str,
+        /// The system's reason.
+        source: std::io::Error,
+    },
+    /// The platform gives no cache folder to write the built-in lessons to.
+    #[error("no cache folder to write the built-in lessons to: set RAYTREE_LESSONS, or run `raytree lessons export DIR`")]
+    NoCacheDir,
+    /// An export would overwrite a folder that already has files in it.
+    #[error("{}: the folder is not empty; export the lessons to a new or empty folder", .0.display())]
+    NotEmpty(PathBuf),
+}
+
+impl LessonError {
+    /// An I/O error on `path` while doing `action`.
+    pub fn io(path: impl Into<PathBuf>, action: &'static str, source: std::io::Error) -> Self {
+        LessonError::Io {
+            path: path.into(),
+            action,
+            source,
+        }
+    }
+}
