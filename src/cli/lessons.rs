@@ -91,7 +91,10 @@ type Loaded = (PathBuf, Result<Lesson, String>);
 /// Every lesson folder under `root` in name order, loaded or with why it does not load.
 fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
     if root.join("exercises.yaml").is_file() {
-        return Ok(vec![(root.to_path_buf(), Lesson::load(root))]);
+        return Ok(vec![(
+            root.to_path_buf(),
+            Lesson::load(root).map_err(String::from),
+        )]);
     }
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
         .map_err(|e| Failure(format!("{}: cannot list lessons: {e}", root.display())))?
@@ -108,7 +111,7 @@ fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
     Ok(dirs
         .into_iter()
         .map(|d| {
-            let l = Lesson::load(&d);
+            let l = Lesson::load(&d).map_err(String::from);
             (d, l)
         })
         .collect())

@@ -145,36 +145,39 @@ pub struct Lesson {
 }
 
 impl Lesson {
-    pub fn load(dir: &Path) -> Result<Lesson, String> {
+    /// Loads the lesson of a folder: its exercises.yaml and README.md.
+    pub fn load(dir: &Path) -> Result<Lesson, LessonError> {
         let id = dir
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         let path = dir.join("exercises.yaml");
         let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+            .map_err(|e| LessonError::io(&path, "read", e))?;
         let file: ExerciseFile = serde_saphyr::from_str(&text).map_err(|e| {
-            let (line, col) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
+            let (line, column) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
             let msg = e.to_string();
-            let first = msg.lines().next().unwrap_or("").to_string();
-            format!("{}:{line}:{col}: {first}", path.display())
+            LessonError::Format {
+                file: path.clone(),
+                line,
+                column,
+                message: msg.lines().next().unwrap_or("").to_string(),
+            }
         })?;
         let readme = std::fs::read_to_string(dir.join("README.md")).unwrap_or_default();
         let mut seen = std::collections::HashSet::new();
         for ex in &file.exercises {
             if !seen.insert(&ex.id) {
-                return Err(format!(
-                    "{}: duplicate exercise id `{}`",
-                    path.display(),
-                    ex.id
-                ));
+                return Err(LessonError::Invalid {
+                    file: path,
+                    message: format!("duplicate exercise id `{}`", ex.id),
+                });
             }
             if ex.pixel.is_none() && ex.ray.is_none() && !ex.ask.about_image() {
-                return Err(format!(
-                    "{}: exercise `{}` needs `pixel` or `ray`",
-                    path.display(),
-                    ex.id
-                ));
+                return Err(LessonError::Invalid {
+                    file: path,
+                    message: format!("exercise `{}` needs `pixel` or `ray`", ex.id),
+                });
             }
         }
         let templates = file.exercises.iter().map(|e| e.question.clone()).collect();
@@ -195,15 +198,20 @@ impl Lesson {
             for (p, range) in &lesson.vary {
                 range
                     .check()
-                    .map_err(|e| format!("{}: vary `{p}`: {e}", path.display()))?;
+                    .map_err(|e| LessonError::Invalid {
+                        file: path.clone(),
+                        message: format!("vary `{p}`: {e}"),
+                    })?;
             }
-            let files = lesson.scene_files()?;
+            let files = lesson.scene_files().map_err(LessonError::Scenes)?;
             let base = vary::written(&files, lesson.vary.keys().cloned());
             if let Some(p) = lesson.vary.keys().find(|p| !base.contains_key(*p)) {
-                return Err(format!(
-                    "{}: vary `{p}`: no scene of the lesson writes that value (write it out to vary it)",
-                    path.display()
-                ));
+                return Err(LessonError::Invalid {
+                    file: path,
+                    message: format!(
+                        "vary `{p}`: no scene of the lesson writes that value (write it out to vary it)"
+                    ),
+                });
             }
             lesson.fill_questions(&base);
         }
@@ -330,9 +338,9 @@ pub fn find_lesson(path: &Path) -> PathBuf {
 }
 
 /// All lessons, in folder order.
-pub fn all_lessons(root: &Path) -> Result<Vec<Lesson>, String> {
+pub fn all_lessons(root: &Path) -> Result<Vec<Lesson>, LessonError> {
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
-        .map_err(|e| format!("{}: cannot list lessons: {e}", root.display()))?
+        .map_err(|e| LessonError::io(root, "list lessons", e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.join("exercises.yaml").is_file())
         .collect();

@@ -68,7 +68,7 @@ impl LessonList {
         list.entries = dirs
             .into_iter()
             .map(|dir| {
-                let lesson = Lesson::load(&dir);
+                let lesson = Lesson::load(&dir).map_err(String::from);
                 LessonEntry {
                     solved: lesson
                         .as_ref()
