@@ -152,8 +152,7 @@ impl Lesson {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         let path = dir.join("exercises.yaml");
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| LessonError::io(&path, "read", e))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| LessonError::io(&path, "read", e))?;
         let file: ExerciseFile = serde_saphyr::from_str(&text).map_err(|e| {
             let (line, column) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
             let msg = e.to_string();
@@ -196,12 +195,10 @@ impl Lesson {
         };
         if !lesson.vary.is_empty() {
             for (p, range) in &lesson.vary {
-                range
-                    .check()
-                    .map_err(|e| LessonError::Invalid {
-                        file: path.clone(),
-                        message: format!("vary `{p}`: {e}"),
-                    })?;
+                range.check().map_err(|e| LessonError::Invalid {
+                    file: path.clone(),
+                    message: format!("vary `{p}`: {e}"),
+                })?;
             }
             let files = lesson.scene_files().map_err(LessonError::Scenes)?;
             let base = vary::written(&files, lesson.vary.keys().cloned());
