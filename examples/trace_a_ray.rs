@@ -1,7 +1,7 @@
-//! A scene built in Rust code: a red ball before a mirror, lit by one point light. One ray is
-//! traced from the eye through the middle of the picture, and its ray tree printed node by
-//! node: the primary ray, the shadow ray to the light, the reflection off the ball and what
-//! the mirror shows.
+//! A scene built in Rust code: a red ball, a mirror behind the eye, one point light. One ray
+//! is traced from the eye through the middle of the picture, and its ray tree printed node by
+//! node: the primary ray and its shadow ray to the light, the reflection off the ball back to
+//! the mirror, and the mirror's reflection onto the ball again, until `max_depth` rays.
 //!
 //! ```text
 //! cargo run --example trace_a_ray
@@ -31,7 +31,7 @@ fn main() -> Result<(), SceneError> {
         .material("mirror", MaterialDesc::new(DVec3::ONE).kd(0.1).kr(0.8))
         .sphere(DVec3::ZERO, 1.0, "red")
         .named("ball")
-        .plane(DVec3::new(0.0, 0.0, 3.0), DVec3::NEG_Z, "mirror")
+        .plane(DVec3::new(0.0, 0.0, -8.0), DVec3::Z, "mirror")
         .named("mirror")
         .build()?;
 

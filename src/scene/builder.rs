@@ -163,7 +163,7 @@ impl SceneBuilder {
 
     fn camera_spec(&mut self) -> &mut CameraSpec {
         let camera = self.file.camera.get_or_insert_with(|| at(None));
-        camera.value.get_or_insert_with(|| CameraSpec {
+        camera.value.get_or_insert(CameraSpec {
             eye: None,
             look_at: None,
             up: None,
