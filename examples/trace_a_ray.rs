@@ -10,7 +10,7 @@
 use glam::DVec3;
 use raytree::geometry::Ray;
 use raytree::scene::{MaterialDesc, SceneBuilder, SceneError};
-use raytree::trace::{RayNode, Tracer};
+use raytree::trace::{RayNode, Termination, Tracer};
 
 fn main() -> Result<(), SceneError> {
     let scene = SceneBuilder::new()
@@ -54,7 +54,10 @@ fn print_tree(node: &RayNode) {
                 "reaches light {} with s = {s}",
                 node.light.as_deref().unwrap_or("?")
             ),
-            None => "hits nothing".to_string(),
+            None => match node.terminated {
+                Some(Termination::Background) | None => "hits nothing".to_string(),
+                Some(why) => format!("not traced ({})", why.name()),
+            },
         },
     };
     println!(
