@@ -325,6 +325,9 @@ mod tests {
         assert!(!three.matches(&expected, &tol));
         let finite = Answer::Segments(vec![(2.0, 4.0), (10.0, 1e300)]);
         assert!(!finite.matches(&expected, &tol));
+        let open = Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY)]);
+        let closed = Answer::Segments(vec![(2.0, 4.0), (10.0, 12.0)]);
+        assert!(!open.matches(&closed, &tol), "an open end for a closed one");
     }
 
     #[test]
