@@ -24,7 +24,6 @@ pub mod fast;
 pub mod files;
 pub mod geometry;
 pub mod lessons;
-mod plot_font;
 pub mod render;
 pub mod sampling;
 pub mod scene;

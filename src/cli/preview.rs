@@ -8,6 +8,10 @@ use crate::render::preview::{to_text, ColorMode};
 use crate::render::{render_simple, RenderOptions};
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree preview lessons/05-reflection/scene.yaml
+  raytree preview lessons/06-refraction/scene.yaml --columns 60 --ascii
+  raytree preview lessons/05-reflection/scene.yaml --color always | less -R")]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
@@ -17,6 +21,7 @@ pub struct Args {
     /// Plain ASCII intensity ramp instead of colour (also chosen by NO_COLOR or TERM=dumb).
     #[arg(long)]
     ascii: bool,
+    /// Rays per path, primary included (overrides the scene's max_depth).
     #[arg(long)]
     depth: Option<u32>,
 }
