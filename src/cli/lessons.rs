@@ -32,6 +32,9 @@ pub struct Args {
 enum Action {
     /// Every exercise of every lesson in DIR can be worked out, and every answer a README
     /// states equals raytree's (exit 1 naming each disagreement).
+    #[command(after_help = "Examples:
+  raytree lessons validate lessons
+  raytree lessons validate my-course/03-shading")]
     Validate {
         /// A lesson folder, or a folder of lessons.
         dir: PathBuf,

@@ -24,7 +24,8 @@ pub enum Gamma {
 #[command(after_help = "Examples:
   raytree render lessons/06-refraction/scene.yaml -o refraction.png --stats
   raytree render lessons/07-recursion-depth/scene.yaml --depth-strip 4 -o strip.png
-  raytree render lessons/examples/cornell.yaml --spp 64 --width 200 --height 200 -o cornell.exr")]
+  raytree render lessons/examples/cornell.yaml --spp 64 --width 200 --height 200 -o cornell.exr
+  raytree render lessons/05-reflection/scene.yaml -o - | display   (PPM on stdout)")]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
