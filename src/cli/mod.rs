@@ -34,7 +34,7 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Render a scene to a PNG or PPM image.
+    /// Render a scene to a PNG, PPM or EXR image (or, with -o -, to standard output).
     Render(render::Args),
     /// Print the ray tree of a pixel or of any ray.
     Inspect(inspect::Args),
