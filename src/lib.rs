@@ -30,8 +30,6 @@ pub mod fast;
 pub mod files;
 pub mod geometry;
 pub mod lessons;
-#[cfg(feature = "bench")]
-mod plot_font;
 pub mod render;
 pub mod sampling;
 pub mod scene;

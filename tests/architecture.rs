@@ -27,7 +27,6 @@ fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
             "render",
             vec!["fast", "trace", "scene", "shading", "geometry", "accel"],
         ),
-        ("plot_font", vec![]),
         // Ray diagrams: the projection and outlines the explorer and the figures share.
         (
             "diagram",
@@ -37,20 +36,16 @@ fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
     // The applications, on top: everything but the fast wing, which the renderer alone runs.
     let below_apps = ["render", "trace", "scene", "shading", "geometry", "accel"];
     layers.push(("lessons", below_apps.to_vec()));
-    layers.push(("bench", [&below_apps[..], &["plot_font"]].concat()));
+    layers.push(("bench", below_apps.to_vec()));
     layers.push(("tui", [&below_apps[..], &["lessons", "diagram"]].concat()));
     layers.push((
         "cli",
-        [
-            &below_apps[..],
-            &["lessons", "bench", "tui", "diagram", "plot_font"],
-        ]
-        .concat(),
+        [&below_apps[..], &["lessons", "bench", "tui", "diagram"]].concat(),
     ));
     layers
         .into_iter()
         .map(|(m, mut deps)| {
-            if !base.contains(&m) && m != "plot_font" {
+            if !base.contains(&m) {
                 deps.extend(base);
             }
             (m, deps)

@@ -212,6 +212,32 @@ fn demo_lesson(name: &str) -> PathBuf {
     root
 }
 
+/// A README as teachers write them: emphasis, a nested list, a table, code and a link, laid
+/// out as Markdown (no `**` or `|` left over, columns lined up, items hanging under their text).
+#[test]
+fn lesson_readme_renders_markdown() {
+    let root = demo_lesson("lesson-markdown");
+    let dir = root.join("01-demo");
+    std::fs::write(
+        dir.join("README.md"),
+        "# 01 — Markdown\n\nThe *local* term is **ka·Ia·O**, written `I = ka Ia O` in the \
+         [notes](https://example.org/notes).\n\n\
+         1. Trace the primary ray through the pixel centre and find its nearest hit point on \
+         the mirror ball.\n   - then its shadow ray,\n   - then its reflection.\n\
+         2. Add the terms.\n\n\
+         | term | symbol | value |\n|---|---|---:|\n| ambient | ka·Ia | 0.1 |\n\
+         | diffuse | kd·(n·l) | 0.45 |\n\n\
+         ```\nI = 0.1 + 0.45\n  = 0.55\n```\n\n> A quote, *softly*.\n",
+    )
+    .unwrap();
+    let app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    assert!(app.lesson_open());
+    let text = screen(&app);
+    assert!(!text.contains("**") && !text.contains("|---"), "{text}");
+    assert!(text.contains("ambient │ ka·Ia"), "{text}");
+    insta::assert_snapshot!("lesson_markdown_160x48", text);
+}
+
 #[test]
 fn lesson_panel_with_a_checked_answer() {
     let root = demo_lesson("lesson-panel");

@@ -73,15 +73,19 @@ pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Failure>
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AccelArg {
+    /// Test every object against every ray.
     None,
+    /// A bounding volume hierarchy.
     #[default]
     Bvh,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Format {
+    /// Lines for people to read.
     #[default]
     Text,
+    /// One JSON document (with "raytree_version") for programs.
     Json,
 }
 

@@ -3,11 +3,19 @@
 
 use std::process::ExitCode;
 
-use super::output::{eprintln, print};
+use super::args::Format;
+use super::output::{eprintln, print, print_json};
 use super::Failure;
-use crate::bench::{measure, mesh, spheres, table_header, table_row, thread_rounds, threads_table};
+use crate::bench::{
+    measure, mesh, spheres, table_header, table_row, thread_rounds, threads_table, Row,
+};
+use crate::diagram::raster;
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree bench sweep lessons/examples/glossy.yaml --knob spp --values 1,4,16,64 --plot sweep.svg
+  raytree bench scaling --max-spheres 10000 --max-subdivisions 6 --format json
+  raytree bench threads benches/peers/whitted.yaml --runs 3")]
 pub struct Args {
     #[command(subcommand)]
     measure: Measure,
@@ -18,33 +26,49 @@ enum Measure {
     /// Run time against error: renders SCENE at each value of one knob, compares every image
     /// with a reference (an EXR/PNG file, or the scene at a much higher setting) and prints
     /// seconds, rays, RMSE, relative MSE, max error, PSNR and efficiency 1/(seconds·MSE).
+    #[command(after_help = "Examples:
+  raytree bench sweep lessons/examples/glossy.yaml --knob spp --values 1,4,16,64 --plot sweep.svg
+  raytree bench sweep benches/peers/whitted.yaml --knob adaptive --values 0,0.001,0.01,0.1 --plot adaptive.png
+  raytree bench sweep scene.yaml --knob depth --values 1,2,4,8 --reference truth.exr --csv depth.csv")]
     Sweep {
+        /// The scene file (YAML).
         scene: std::path::PathBuf,
+        /// The setting turned from one render to the next.
         #[arg(long, value_enum)]
         knob: crate::bench::Knob,
         /// Comma-separated values, e.g. 1,4,16,64.
         #[arg(long, value_delimiter = ',', required = true)]
         values: Vec<f64>,
-        /// Reference image (linear EXR, or PNG decoded from sRGB).
-        #[arg(long)]
+        /// Reference image: a linear EXR, or a PNG decoded from sRGB (default: the scene
+        /// rendered at a much higher setting, cached).
+        #[arg(long, value_name = "FILE")]
         reference: Option<std::path::PathBuf>,
+        /// Seed of the random numbers, as for `render`.
         #[arg(long, default_value_t = 0)]
         seed: u64,
+        /// Worker threads (default: all cores).
         #[arg(long)]
         threads: Option<usize>,
-        /// Write the table as CSV.
-        #[arg(long)]
+        /// Also write the table as CSV to FILE.
+        #[arg(long, value_name = "FILE")]
         csv: Option<std::path::PathBuf>,
-        /// Draw error against time (log-log) as a PNG.
-        #[arg(long)]
+        /// Plot error against time (log-log): FILE.svg, or FILE.png (the same plot drawn by
+        /// resvg).
+        #[arg(long, value_name = "FILE")]
         plot: Option<std::path::PathBuf>,
         /// Compare display values (clamped to [0, 1]) instead of raw radiance, so the few
         /// pixels of a bright emitter do not dominate the error.
         #[arg(long)]
         clamp: bool,
+        /// Output: the table to read, or JSON for programs.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
     },
     /// Time per ray against the number of spheres (10 … 100 000) and mesh triangles
     /// (≈10³ … 10⁶), with and without the BVH, on one thread.
+    #[command(after_help = "Examples:
+  raytree bench scaling
+  raytree bench scaling --max-spheres 10000 --max-subdivisions 6 --format json")]
     Scaling {
         /// Largest number of spheres (10, 100, … up to this).
         #[arg(long, default_value_t = 100_000)]
@@ -55,18 +79,54 @@ enum Measure {
         /// Largest icosphere subdivision level (20·4^k triangles; 8 is 1.3 million).
         #[arg(long, default_value_t = 8)]
         max_subdivisions: u32,
+        /// Output: the table to read (a row as each is measured), or JSON at the end.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
     },
     /// Speed-up with threads: SCENE rendered on 1 thread and on N, alternately, beside a
     /// control job of pure arithmetic split the same way, whose speed-up is the most this
     /// machine gives N threads. Prints medians over the runs.
+    #[command(after_help = "Examples:
+  raytree bench threads benches/peers/whitted.yaml
+  raytree bench threads lessons/examples/cornell.yaml --threads 2 --runs 3 --format json")]
     Threads {
+        /// The scene file (YAML).
         scene: std::path::PathBuf,
         /// N (default: every core, at least 2).
         #[arg(long, value_parser = clap::value_parser!(u64).range(2..=super::args::MAX_THREADS as u64))]
         threads: Option<u64>,
+        /// Rounds of 1 and N threads; the table shows their medians.
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
         runs: u64,
+        /// Output: the table to read, or JSON for programs.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
     },
+}
+
+/// A number for JSON, which has no infinity: PSNR is infinite for an exact image.
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+/// The plot's format, from its file name; checked before anything is rendered.
+#[derive(Clone, Copy)]
+enum PlotKind {
+    Svg,
+    Png,
+}
+
+impl PlotKind {
+    fn of(path: &std::path::Path) -> Result<PlotKind, Failure> {
+        match path.extension().and_then(|e| e.to_str()) {
+            Some(e) if e.eq_ignore_ascii_case("svg") => Ok(PlotKind::Svg),
+            Some(e) if e.eq_ignore_ascii_case("png") => Ok(PlotKind::Png),
+            _ => Err(Failure(format!(
+                "{}: the plot is written as .svg or .png",
+                path.display()
+            ))),
+        }
+    }
 }
 
 /// A reference image as linear intensities: EXR as stored, PNG/others decoded from sRGB.
@@ -137,10 +197,12 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             csv,
             plot,
             clamp,
+            format,
         } => {
             for &v in &values {
                 knob.check(v).map_err(Failure)?;
             }
+            let plot_kind = plot.as_deref().map(PlotKind::of).transpose()?;
             let pool = super::args::thread_pool(threads)?;
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
             let (w, h) = (scene.camera.width, scene.camera.height);
@@ -171,47 +233,96 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             };
             let rows = pool
                 .install(|| crate::bench::sweep(&scene, knob, &values, &reference, seed, clamp));
-            print(&crate::bench::sweep_table(knob, &rows))?;
+            match format {
+                Format::Text => print(&crate::bench::sweep_table(knob, &rows))?,
+                Format::Json => print_json(serde_json::json!({
+                    "scene": scene_path.display().to_string(),
+                    "knob": knob.name(),
+                    "seed": seed,
+                    "clamp": clamp,
+                    "rows": rows.iter().map(|r| serde_json::json!({
+                        "value": r.value,
+                        "seconds": r.seconds,
+                        "rays": r.rays,
+                        "rmse": r.rmse,
+                        "rel_mse": r.rel_mse,
+                        "max_abs": r.max_abs,
+                        "psnr": finite(r.psnr),
+                    })).collect::<Vec<_>>(),
+                }))?,
+            }
             if let Some(path) = csv {
                 crate::render::write_atomically(
                     &path,
                     crate::bench::sweep_csv(knob, &rows).as_bytes(),
                 )?;
             }
-            if let Some(path) = plot {
-                crate::bench::sweep_plot(knob, &rows).save(&path, crate::render::Encoding::Srgb)?;
+            if let (Some(path), Some(kind)) = (plot, plot_kind) {
+                let svg = crate::bench::sweep_plot_svg(knob, &rows).map_err(Failure)?;
+                let bytes = match kind {
+                    PlotKind::Svg => svg.into_bytes(),
+                    PlotKind::Png => {
+                        if !raster::have_fonts() {
+                            eprintln(
+                                "warning: no fonts found on this system: the PNG has no labels",
+                            );
+                        }
+                        raster::png(&svg)?
+                    }
+                };
+                crate::render::write_atomically(&path, &bytes)?;
             }
         }
         Measure::Scaling {
             max_spheres,
             max_brute,
             max_subdivisions,
+            format,
         } => {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
             // The sweep is long: the table is printed a row at a time, as each is measured.
-            print(&table_header())?;
-            pool.install(|| -> Result<(), Failure> {
+            let text = format == Format::Text;
+            if text {
+                print(&table_header())?;
+            }
+            let rows = pool.install(|| -> Result<Vec<Row>, Failure> {
+                let mut rows = vec![];
+                let mut show = |row: Row| -> Result<(), Failure> {
+                    if text {
+                        print(&table_row(&row))?;
+                    }
+                    rows.push(row);
+                    Ok(())
+                };
                 let sizes = [10, 100, 1_000, 10_000, 100_000];
                 for n in sizes.into_iter().filter(|&n| n <= max_spheres.max(10)) {
-                    print(&table_row(&measure(
-                        "spheres",
-                        n,
-                        &spheres(n),
-                        n <= max_brute,
-                    )?))?;
+                    show(measure("spheres", n, &spheres(n), n <= max_brute)?)?;
                 }
                 for k in 3..=max_subdivisions {
                     let n = 20 * 4usize.pow(k);
-                    let row = measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?;
-                    print(&table_row(&row))?;
+                    show(measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?)?;
                 }
-                Ok(())
+                Ok(rows)
             })?;
+            if !text {
+                print_json(serde_json::json!({
+                    "rows": rows.iter().map(|r| serde_json::json!({
+                        "kind": r.kind,
+                        "n": r.n,
+                        "build_seconds": r.build,
+                        "bvh_ns_per_ray": r.bvh_ns,
+                        "brute_ns_per_ray": r.brute_ns,
+                        "nodes_per_ray": r.nodes_per_ray,
+                        "primitives_per_ray": r.prims_per_ray,
+                    })).collect::<Vec<_>>(),
+                }))?;
+            }
         }
         Measure::Threads {
             scene: scene_path,
             threads: n,
             runs,
+            format,
         } => {
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
             let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
@@ -221,7 +332,20 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 scene_path.display()
             ));
             let (rounds, rays) = thread_rounds(&scene, n, runs as usize)?;
-            print(&threads_table(&rounds, n, rays))?;
+            match format {
+                Format::Text => print(&threads_table(&rounds, n, rays))?,
+                Format::Json => print_json(serde_json::json!({
+                    "scene": scene_path.display().to_string(),
+                    "threads": n,
+                    "rays": rays,
+                    "runs": rounds.iter().map(|r| serde_json::json!({
+                        "render_one_thread_seconds": r.render_one,
+                        "render_seconds": r.render_many,
+                        "control_one_thread_seconds": r.control_one,
+                        "control_seconds": r.control_many,
+                    })).collect::<Vec<_>>(),
+                }))?,
+            }
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -11,6 +11,10 @@ use crate::lessons::progress::Progress;
 use crate::lessons::{check, explain, Lesson};
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree check lessons/08-pixel-intensity --exercise pixel-p --answer 0.87
+  raytree check lessons/10-csg --exercise b-difference --answer \"13, 16; 22, 23\" --explain
+  raytree check lessons/08-pixel-intensity --exercise pixel-p --answer 0.87 --format json")]
 pub struct Args {
     /// The lesson folder (e.g. lessons/08-pixel-intensity).
     lesson: PathBuf,
@@ -26,6 +30,7 @@ pub struct Args {
     /// Check against this student's own variant of the lesson (see `raytree homework`).
     #[arg(long)]
     student: Option<String>,
+    /// Output: text to read, or JSON for programs.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
 }
@@ -54,7 +59,6 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.format {
         Format::Json => {
             let mut doc = json!({
-                "raytree_version": env!("CARGO_PKG_VERSION"),
                 "lesson": lesson.id,
                 "exercise": ex.id,
             });
@@ -73,7 +77,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             if let Some(lines) = &explanation {
                 doc["explanation"] = json!(lines);
             }
-            super::output::println(&serde_json::to_string_pretty(&doc)?.to_string())?;
+            super::output::print_json(doc)?;
         }
         Format::Text => {
             if let Some(v) = &verdict {

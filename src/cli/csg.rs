@@ -12,6 +12,10 @@ use crate::scene::Scene;
 use crate::trace::text;
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree csg lessons/10-csg/scene.yaml --ray 0,0,-10:0,0,1
+  raytree csg lessons/examples/csg.yaml --pixel 160,120 --all
+  raytree csg lessons/10-csg/scene.yaml --ray 0,0,-10:0,0,1 --format json")]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
@@ -21,6 +25,7 @@ pub struct Args {
     /// notes' pruning rules (empty operands of ∩ and −) skip work.
     #[arg(long)]
     all: bool,
+    /// Output: text to read, or JSON for programs.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
 }
@@ -67,7 +72,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 "objects": survey.met.iter().map(|(name, t)| json!({ "object": name, "node": trace_json(&scene, &ray, t) })).collect::<Vec<_>>(),
                 "not_met": survey.unmet,
             });
-            super::output::println(&serde_json::to_string_pretty(&doc)?.to_string())?;
+            super::output::print_json(doc)?;
         }
         Format::Text => {
             super::output::println(&format!(

@@ -13,6 +13,9 @@ use crate::sampling::Rng;
 use crate::trace::{text, Tracer};
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree diagram lessons/08-pixel-intensity/scene.yaml --pixel 30,30 -o pixel.svg
+  raytree diagram lessons/06-refraction/scene.yaml --pixel 80,60 --view side -o refraction.png")]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,

@@ -7,6 +7,10 @@ use super::args::parse_pixel;
 use super::Failure;
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree explore
+  raytree explore lessons/08-pixel-intensity
+  raytree explore lessons/examples/cornell.yaml --pixel 100,120 --depth 3")]
 pub struct Args {
     /// A scene file or a lesson folder; none opens the lesson list.
     pub target: Option<PathBuf>,

@@ -13,13 +13,19 @@ use crate::lessons::Lesson;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GradeFormat {
+    /// A report to read.
     #[default]
     Text,
+    /// One row per student and exercise.
     Csv,
+    /// One JSON document (with "raytree_version").
     Json,
 }
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree grade lessons/03-local-illumination --answers class.csv
+  raytree grade lessons/03-local-illumination --answers class.csv --format json")]
 pub struct Args {
     /// The lesson folder the homework was made from.
     lesson: PathBuf,
@@ -27,6 +33,7 @@ pub struct Args {
     /// quote an answer with commas, "0.6, -0.8, 0").
     #[arg(long)]
     answers: PathBuf,
+    /// Output: a report to read, CSV, or JSON.
     #[arg(long, value_enum, default_value_t = GradeFormat::Text)]
     format: GradeFormat,
 }
@@ -39,9 +46,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let report = grade(&lesson, &rows, problems)?;
     let file = a.answers.display().to_string();
     match a.format {
-        GradeFormat::Json => super::output::println(
-            &serde_json::to_string_pretty(&json_report(&report))?.to_string(),
-        )?,
+        GradeFormat::Json => super::output::print_json(json_report(&report))?,
         GradeFormat::Csv => write_csv(&report)?,
         GradeFormat::Text => print_text(&report, &file),
     }
@@ -56,7 +61,6 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
 
 fn json_report(r: &Report) -> serde_json::Value {
     json!({
-        "raytree_version": env!("CARGO_PKG_VERSION"),
         "lesson": r.lesson,
         "students": r.students,
         "exercises": r.per_exercise().iter().map(|(id, right, of)| json!({ "exercise": id, "right": right, "students": of })).collect::<Vec<_>>(),

@@ -7,6 +7,9 @@ use super::Failure;
 use crate::lessons::{homework, Lesson};
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree homework lessons/03-local-illumination --student s1234 -o hw/s1234
+  raytree check lessons/03-local-illumination --student s1234 --exercise diffuse --answer 0.5")]
 pub struct Args {
     /// The lesson folder (its exercises.yaml may declare `vary:` values).
     lesson: PathBuf,

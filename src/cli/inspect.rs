@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use glam::{DVec2, DVec3};
 
 use super::args::{depth, SceneArgs, Target};
-use super::output::{print, println};
+use super::output::print;
 use super::Failure;
 use crate::diagram::dot::dot;
 use crate::render::antialias::{cell, grid_offsets, jitter};
@@ -22,6 +22,10 @@ use crate::trace::tree::Inspection;
 use crate::trace::{text, Tracer};
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree inspect lessons/08-pixel-intensity/scene.yaml --pixel 30,30
+  raytree inspect lessons/05-reflection/scene.yaml --ray 0,0,-10:0,0,1 --format json
+  raytree inspect lessons/08-pixel-intensity/scene.yaml --pixel 30,30 --format dot | dot -Tsvg > tree.svg")]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
@@ -36,6 +40,7 @@ pub struct Args {
     /// Show the tree of the pixel's K-th sample (1 … spp) instead of its centre ray.
     #[arg(long, value_name = "K", requires = "pixel")]
     sample: Option<u32>,
+    /// Output: text to read, JSON for programs, or Graphviz (dot).
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
 }
@@ -43,8 +48,10 @@ pub struct Args {
 /// How the tree is printed.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Format {
+    /// The tree as indented lines to read.
     #[default]
     Text,
+    /// One JSON document (with "raytree_version") for programs.
     Json,
     /// Graphviz: one node per ray, edges labelled with their coefficients.
     Dot,
@@ -97,7 +104,7 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
                 "color": estimate.to_array(),
                 "paths": shown.iter().map(|(v, log)| serde_json::json!({ "value": v.to_array(), "vertices": log })).collect::<Vec<_>>(),
             });
-            println(&serde_json::to_string_pretty(&doc)?)?;
+            super::output::print_json(doc)?;
         }
         Format::Text | Format::Dot => {
             let mut out = format!(
@@ -262,7 +269,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                     }
                 };
             }
-            println(&serde_json::to_string_pretty(&doc)?)?;
+            super::output::print_json(doc)?;
         }
         Format::Dot => {
             let title = match inspection.pixel {

@@ -14,11 +14,16 @@ use crate::lessons::{lessons_root, Lesson, Solutions};
 
 #[derive(clap::Args, Debug)]
 #[command(args_conflicts_with_subcommands = true)]
+#[command(after_help = "Examples:
+  raytree lessons
+  raytree lessons --format json
+  raytree lessons validate my-course/")]
 pub struct Args {
     #[command(subcommand)]
     action: Option<Action>,
     /// A folder of lessons (default: raytree's own, or RAYTREE_LESSONS).
     dir: Option<PathBuf>,
+    /// Output: text to read, or JSON for programs.
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
 }
@@ -27,6 +32,9 @@ pub struct Args {
 enum Action {
     /// Every exercise of every lesson in DIR can be worked out, and every answer a README
     /// states equals raytree's (exit 1 naming each disagreement).
+    #[command(after_help = "Examples:
+  raytree lessons validate lessons
+  raytree lessons validate my-course/03-shading")]
     Validate {
         /// A lesson folder, or a folder of lessons.
         dir: PathBuf,
@@ -64,11 +72,10 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 })
                 .collect();
             let doc = json!({
-                "raytree_version": env!("CARGO_PKG_VERSION"),
                 "root": root.display().to_string(),
                 "lessons": list,
             });
-            super::output::println(&serde_json::to_string_pretty(&doc)?.to_string())?;
+            super::output::print_json(doc)?;
         }
         Format::Text => {
             for (dir, lesson) in &lessons {

@@ -7,6 +7,7 @@
 mod args;
 mod bench;
 mod check;
+mod completions;
 pub mod csg;
 mod diagram;
 mod explore;
@@ -14,6 +15,7 @@ mod grade;
 mod homework;
 mod inspect;
 mod lessons;
+mod man;
 mod output;
 mod preview;
 mod render;
@@ -35,7 +37,7 @@ pub struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
-    /// Render a scene to a PNG or PPM image.
+    /// Render a scene to a PNG, PPM or EXR image (or, with -o -, to standard output).
     Render(render::Args),
     /// Print the ray tree of a pixel or of any ray.
     Inspect(inspect::Args),
@@ -57,6 +59,10 @@ enum Command {
     Grade(grade::Args),
     /// Write one student's own variant of a lesson (its `vary:` values drawn for their ID).
     Homework(homework::Args),
+    /// Shell completions (bash, zsh, fish, elvish, powershell) on stdout.
+    Completions(completions::Args),
+    /// The manual page (roff) on stdout, or a page per command into a folder.
+    Man(man::Args),
 }
 
 /// An error for the user: printed as one line, exit status 2.
@@ -115,6 +121,8 @@ pub fn run() -> ExitCode {
         Command::Check(a) => check::run(a),
         Command::Grade(a) => grade::run(a),
         Command::Homework(a) => homework::run(a),
+        Command::Completions(a) => completions::run(a),
+        Command::Man(a) => man::run(a),
     };
     match result {
         Ok(code) => code,

@@ -19,6 +19,15 @@ pub fn println(text: &str) -> Result<(), Failure> {
     print(&format!("{text}\n"))
 }
 
+/// Prints a JSON document, pretty, with `"raytree_version"` added to its top level: every JSON
+/// document raytree prints says which raytree wrote it.
+pub fn print_json(mut doc: serde_json::Value) -> Result<(), Failure> {
+    if let Some(fields) = doc.as_object_mut() {
+        fields.insert("raytree_version".into(), env!("CARGO_PKG_VERSION").into());
+    }
+    println(&serde_json::to_string_pretty(&doc)?)
+}
+
 /// Writes bytes to stdout as they are (the preview's own colour escapes).
 pub fn print_raw(bytes: &[u8]) -> Result<(), Failure> {
     write_stdout(bytes)

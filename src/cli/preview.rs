@@ -1,5 +1,6 @@
 //! `raytree preview`: the scene as half-block characters (or ASCII) on stdout.
 
+use std::io::IsTerminal;
 use std::process::ExitCode;
 
 use super::args::{depth, SceneArgs};
@@ -8,17 +9,68 @@ use crate::render::preview::{to_text, ColorMode};
 use crate::render::{render_simple, RenderOptions};
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree preview lessons/05-reflection/scene.yaml
+  raytree preview lessons/06-refraction/scene.yaml --columns 60 --ascii
+  raytree preview lessons/05-reflection/scene.yaml --color always | less -R")]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
     /// Width in characters (default: the terminal's, or 80).
     #[arg(long)]
     columns: Option<u32>,
-    /// Plain ASCII intensity ramp instead of colour (also chosen by NO_COLOR or TERM=dumb).
+    /// Plain ASCII intensity ramp instead of colour.
     #[arg(long)]
     ascii: bool,
+    /// Colour escapes: auto writes them only to a terminal (not with NO_COLOR or TERM=dumb;
+    /// CLICOLOR_FORCE writes them to a pipe too); without colour the preview is ASCII.
+    #[arg(long, value_enum, default_value_t = ColorChoice::Auto, value_name = "WHEN")]
+    color: ColorChoice,
+    /// Rays per path, primary included (overrides the scene's max_depth).
     #[arg(long)]
     depth: Option<u32>,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum ColorChoice {
+    /// Colour on a terminal, as the environment allows.
+    Auto,
+    /// Colour wherever the output goes.
+    Always,
+    /// No colour: the ASCII ramp.
+    Never,
+}
+
+/// Whether the preview is in colour, and which: `--color`, then (for auto) NO_COLOR (set and
+/// not empty: no colour), CLICOLOR_FORCE (set and not 0: colour even into a pipe), TERM=dumb,
+/// and whether stdout is a terminal; COLORTERM=truecolor|24bit chooses 24-bit colour over the
+/// 256 colours.
+fn color_mode(
+    choice: ColorChoice,
+    terminal: bool,
+    var: impl Fn(&str) -> Option<String>,
+) -> ColorMode {
+    let set = |k: &str| var(k).is_some_and(|v| !v.is_empty());
+    let colour = match choice {
+        ColorChoice::Always => true,
+        ColorChoice::Never => false,
+        ColorChoice::Auto => {
+            if set("NO_COLOR") {
+                false
+            } else if set("CLICOLOR_FORCE") && var("CLICOLOR_FORCE").as_deref() != Some("0") {
+                true
+            } else {
+                terminal && var("TERM").as_deref() != Some("dumb")
+            }
+        }
+    };
+    if !colour {
+        ColorMode::Ascii
+    } else if matches!(var("COLORTERM").as_deref(), Some("truecolor" | "24bit")) {
+        ColorMode::TrueColor
+    } else {
+        ColorMode::Ansi256
+    }
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
@@ -42,8 +94,63 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let mode = if a.ascii {
         ColorMode::Ascii
     } else {
-        ColorMode::detect()
+        color_mode(a.color, std::io::stdout().is_terminal(), |k| {
+            std::env::var(k).ok()
+        })
     };
     super::output::print_raw(to_text(&image, mode).as_bytes())?;
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{color_mode, ColorChoice};
+    use crate::render::preview::ColorMode;
+
+    fn mode(choice: ColorChoice, terminal: bool, env: &[(&str, &str)]) -> ColorMode {
+        color_mode(choice, terminal, |k| {
+            env.iter()
+                .find(|(n, _)| *n == k)
+                .map(|(_, v)| v.to_string())
+        })
+    }
+
+    #[test]
+    fn colour_only_on_a_terminal_unless_asked() {
+        use ColorChoice::*;
+        assert_eq!(mode(Auto, true, &[]), ColorMode::Ansi256);
+        assert_eq!(mode(Auto, false, &[]), ColorMode::Ascii);
+        assert_eq!(mode(Always, false, &[]), ColorMode::Ansi256);
+        assert_eq!(mode(Never, true, &[]), ColorMode::Ascii);
+        assert_eq!(
+            mode(Auto, true, &[("COLORTERM", "truecolor")]),
+            ColorMode::TrueColor
+        );
+    }
+
+    #[test]
+    fn no_color_clicolor_force_and_dumb_terminals() {
+        use ColorChoice::*;
+        assert_eq!(mode(Auto, true, &[("NO_COLOR", "1")]), ColorMode::Ascii);
+        // An empty NO_COLOR does not count.
+        assert_eq!(mode(Auto, true, &[("NO_COLOR", "")]), ColorMode::Ansi256);
+        assert_eq!(
+            mode(Auto, false, &[("CLICOLOR_FORCE", "1")]),
+            ColorMode::Ansi256
+        );
+        assert_eq!(
+            mode(Auto, false, &[("CLICOLOR_FORCE", "0")]),
+            ColorMode::Ascii
+        );
+        assert_eq!(
+            mode(Auto, false, &[("CLICOLOR_FORCE", "1"), ("NO_COLOR", "1")]),
+            ColorMode::Ascii
+        );
+        assert_eq!(mode(Auto, true, &[("TERM", "dumb")]), ColorMode::Ascii);
+        // --color always is the user's word: it wins over the environment.
+        assert_eq!(
+            mode(Always, false, &[("NO_COLOR", "1")]),
+            ColorMode::Ansi256
+        );
+    }
 }

@@ -6,27 +6,41 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use super::args::{depth, SceneArgs};
+use super::args::{depth, Format, SceneArgs};
 use super::output::eprintln;
 use super::Failure;
-use crate::render::{render, Encoding, Engine, RenderOptions};
+use crate::render::{render, Encoding, Engine, ImageFormat, RenderOptions};
 use crate::scene::Antialias;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Gamma {
+    /// The sRGB curve, as screens and image viewers expect.
     Srgb,
+    /// The intensities as computed (the lecture's raw values), clamped to [0, 1].
     Linear,
 }
 
 #[derive(clap::Args, Debug)]
+#[command(after_help = "Examples:
+  raytree render lessons/06-refraction/scene.yaml -o refraction.png --stats
+  raytree render lessons/07-recursion-depth/scene.yaml --depth-strip 4 -o strip.png
+  raytree render lessons/examples/cornell.yaml --spp 64 --width 200 --height 200 -o cornell.exr
+  raytree render lessons/05-reflection/scene.yaml -o - | display   (PPM on stdout)")]
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
-    /// Output image (.png, .ppm or .exr), written whole or not at all.
+    /// Output image: PNG, PPM or EXR (.png, .ppm, .exr; EXR keeps linear, unclamped values),
+    /// written whole or not at all; `-` writes to standard output (see --image-format).
     #[arg(short, long)]
     output: PathBuf,
+    /// The image format of `-o -` (standard output): PPM, PNG or EXR. A file's format is
+    /// its extension's.
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    image_format: Option<ImageFormatArg>,
+    /// Image width in pixels (default: the scene camera's); the field of view is kept.
     #[arg(long)]
     width: Option<u32>,
+    /// Image height in pixels (default: the scene camera's).
     #[arg(long)]
     height: Option<u32>,
     /// Rays per path, primary included (overrides the scene's max_depth).
@@ -54,9 +68,12 @@ pub struct Args {
     /// Turn off CSG bounding boxes and pruning (to measure what they save).
     #[arg(long)]
     no_csg_pruning: bool,
-    /// Print ray counts and the work skipped.
+    /// Print ray counts and the work skipped (on stderr; with --format json, on stdout).
     #[arg(long)]
     stats: bool,
+    /// The statistics of --stats: lines to read, or one JSON document for programs.
+    #[arg(long, value_enum, default_value_t = Format::Text, requires = "stats")]
+    format: Format,
     /// Encoding of the output: sRGB, or the lecture's raw linear values.
     #[arg(long, value_enum, default_value_t = Gamma::Srgb)]
     gamma: Gamma,
@@ -66,21 +83,32 @@ pub struct Args {
     engine: EngineArg,
 }
 
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum ImageFormatArg {
+    /// Binary PPM (P6): 8-bit RGB, the simplest to read.
+    Ppm,
+    /// 8-bit RGB PNG.
+    Png,
+    /// OpenEXR: linear, unclamped 32-bit floats.
+    Exr,
+}
+
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
 enum EngineArg {
+    /// Packets, SIMD lanes and fast paths (`src/fast/`).
     Fast,
+    /// The scalar Whitted recursion of `src/trace/whitted.rs`, one ray at a time.
     Core,
 }
 
-/// Images side by side, separated by a white gap of 4 pixels.
-/// The frames side by side, each under a label "DEPTH k" (frame k is depth k).
-fn strip(frames: &[crate::render::Image]) -> crate::render::Image {
+/// The frames side by side, 4 white pixels apart, each under a label "depth k" (frame k is
+/// depth k; just "k" where the frame is too narrow for the word).
+fn strip(frames: &[crate::render::Image]) -> Result<crate::render::Image, Failure> {
     const GAP: u32 = 4;
-    // The label band: a 3 × 5 font at 2 pixels per dot, or 1 in small frames.
     let (w, h) = (frames[0].width, frames[0].height);
-    let scale = if w >= 60 { 2.0 } else { 1.0 };
-    let band = (5.0 * scale) as u32 + 6;
     let n = frames.len() as u32;
+    let font = if w >= 60 { 14 } else { 9 };
+    let band = font + 8;
     let mut out = crate::render::Image::new(n * w + (n - 1) * GAP, h + band);
     out.pixels.iter_mut().for_each(|p| *p = glam::DVec3::ONE);
     for (k, f) in frames.iter().enumerate() {
@@ -90,20 +118,49 @@ fn strip(frames: &[crate::render::Image]) -> crate::render::Image {
                 out.pixels[((y + band) * out.width + left + x) as usize] = f.get(x, y);
             }
         }
-        let label = format!("DEPTH {}", k + 1);
-        let label = if crate::plot_font::width(&label, scale) <= w as f64 {
-            label
+    }
+    // The labels: an SVG of the band drawn by resvg, each label clipped to its own frame.
+    let mut svg = format!(
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{band}"><rect width="100%" height="100%" fill="white"/>"#,
+        out.width
+    );
+    for k in 0..n {
+        let left = k * (w + GAP);
+        let word = format!("depth {}", k + 1);
+        // About 0.6 em per character in a sans-serif face.
+        let label = if word.len() as f64 * 0.6 * font as f64 + 4.0 <= w as f64 {
+            word
         } else {
             format!("{}", k + 1)
         };
-        for (x, y) in crate::plot_font::pixels(&label, left as f64 + 2.0, 3.0, scale) {
-            let (x, y) = (x as u32, y as u32);
-            if x < left + w && y < band {
-                out.pixels[(y * out.width + x) as usize] = glam::DVec3::ZERO;
-            }
+        svg.push_str(&format!(
+            r#"<clipPath id="f{k}"><rect x="{left}" y="0" width="{w}" height="{band}"/></clipPath><text clip-path="url(#f{k})" x="{}" y="{}" font-family="sans-serif" font-size="{font}" font-weight="bold" fill="black">{label}</text>"#,
+            left + 2,
+            font + 2
+        ));
+    }
+    svg.push_str("</svg>");
+    if !crate::diagram::raster::have_fonts() {
+        eprintln("warning: no fonts found on this system: the strip has no labels");
+    }
+    let (bw, _, rgba) = crate::diagram::raster::rasterize(&svg).map_err(Failure)?;
+    // The band's pixels are sRGB; the image holds linear intensities, encoded when saved.
+    let linear = |c: u8| {
+        let c = c as f64 / 255.0;
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    for (i, px) in rgba.chunks_exact(4).enumerate() {
+        let (x, y) = (i as u32 % bw, i as u32 / bw);
+        if x < out.width && y < band {
+            out.pixels[(y * out.width + x) as usize] =
+                glam::DVec3::new(linear(px[0]), linear(px[1]), linear(px[2]));
         }
     }
-    out
+    Ok(out)
 }
 
 /// Checks that an image of `pixels` pixels fits the budget and that memory for it can be had
@@ -143,12 +200,50 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     result
 }
 
+/// Where the image goes: a file (its format from its extension), or standard output.
+enum Destination {
+    File,
+    Stdout(ImageFormat),
+}
+
+/// `-o -` and `--image-format`, checked before anything is rendered.
+fn destination(a: &Args) -> Result<Destination, Failure> {
+    if a.output.as_os_str() != "-" {
+        if a.image_format.is_some() {
+            return Err(Failure(
+                "--image-format is for -o - (standard output); a file's format is its extension's"
+                    .into(),
+            ));
+        }
+        return Ok(Destination::File);
+    }
+    if a.stats && a.format == Format::Json {
+        return Err(Failure(
+            "--stats --format json prints to standard output, which -o - takes for the image: write the image to a file".into(),
+        ));
+    }
+    if std::io::stdout().is_terminal() {
+        return Err(Failure(
+            "-o - writes the image to standard output, which is a terminal: redirect it (> image.ppm) or pipe it".into(),
+        ));
+    }
+    Ok(Destination::Stdout(match a.image_format {
+        None | Some(ImageFormatArg::Ppm) => ImageFormat::Ppm,
+        Some(ImageFormatArg::Png) => ImageFormat::Png,
+        Some(ImageFormatArg::Exr) => ImageFormat::Exr,
+    }))
+}
+
 fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
+    let destination = destination(a)?;
     let pool = super::args::thread_pool(a.threads)?;
     // Large scene files parse on the pool's threads too (and only on those).
     let mut scene = pool.install(|| a.scene.load())?;
     let same = |p: &std::path::Path| p.canonicalize().ok();
-    if a.output.exists() && same(&a.output) == same(&a.scene.scene) {
+    if matches!(destination, Destination::File)
+        && a.output.exists()
+        && same(&a.output) == same(&a.scene.scene)
+    {
         return Err(Failure(format!(
             "{}: refusing to write the image over the scene file itself",
             a.output.display()
@@ -245,7 +340,7 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
                     b.set_position(depth as u64 * h as u64 / n as u64);
                 }
             }
-            (strip(&frames), total)
+            (strip(&frames)?, total)
         }
     };
     let elapsed = start.elapsed();
@@ -257,14 +352,37 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
     } else {
         Encoding::Srgb
     };
-    image.save_unless(&a.output, encoding, stop)?;
+    match destination {
+        Destination::File => image.save_unless(&a.output, encoding, stop)?,
+        Destination::Stdout(format) => {
+            let bytes = image.encoded(format, encoding)?;
+            if stop.load(std::sync::atomic::Ordering::SeqCst) {
+                return Err(interrupted());
+            }
+            super::output::print_raw(&bytes)?;
+        }
+    }
     if let Some((x, y)) = image.first_non_finite() {
         eprintln(&format!(
             "warning: pixel {x},{y} is not finite (NaN or ∞); replay it with: raytree inspect {} --pixel {x},{y}",
             a.scene.scene.display()
         ));
     }
-    if a.stats {
+    if a.stats && a.format == Format::Json {
+        let seconds = elapsed.as_secs_f64();
+        super::output::print_json(serde_json::json!({
+            "scene": a.scene.scene.display().to_string(),
+            "width": w,
+            "height": h,
+            "spp": spp,
+            "antialias": options.antialias.name(),
+            "max_depth": options.max_depth,
+            "seconds": seconds,
+            "rays": stats.rays(),
+            "rays_per_second": stats.rays() as f64 / seconds.max(1e-9),
+            "stats": stats,
+        }))?;
+    } else if a.stats {
         eprintln(&format!(
             "{} × {} pixels, {} spp ({}), depth {}, {:.3} s",
             w,
@@ -289,8 +407,11 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
 /// `--aa`: the antialiasing modes.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 pub enum AaArg {
+    /// A regular √spp × √spp grid in each pixel.
     Grid,
+    /// One random point in each cell of that grid.
     Jittered,
+    /// Corners first, squares split where they differ by more than --aa-threshold.
     Adaptive,
 }
 

@@ -11,6 +11,26 @@ fn fonts() -> Arc<usvg::fontdb::Database> {
         .get_or_init(|| {
             let mut db = usvg::fontdb::Database::new();
             db.load_system_fonts();
+            // The generic `sans-serif` (all that plotters' SVG names) means Arial to fontdb:
+            // point it at a sans-serif face this system has.
+            let families: Vec<String> = db
+                .faces()
+                .filter_map(|f| f.families.first().map(|(name, _)| name.clone()))
+                .collect();
+            let chosen = [
+                "DejaVu Sans",
+                "Liberation Sans",
+                "Noto Sans",
+                "Arial",
+                "Helvetica",
+            ]
+            .iter()
+            .find(|name| families.iter().any(|f| f == *name))
+            .map(|name| name.to_string())
+            .or_else(|| families.first().cloned());
+            if let Some(family) = chosen {
+                db.set_sans_serif_family(family);
+            }
             Arc::new(db)
         })
         .clone()

@@ -82,6 +82,14 @@ impl Image {
         write_atomically_with(path, cancel, |out| self.encode_to(format, encoding, out))
     }
 
+    /// The whole file in memory: for a stream that cannot seek, as standard output.
+    pub fn encoded(&self, format: Format, encoding: Encoding) -> Result<Vec<u8>, String> {
+        let mut out = io::Cursor::new(Vec::new());
+        self.encode_to(format, encoding, &mut out)
+            .map_err(|e| format!("cannot encode the image: {e}"))?;
+        Ok(out.into_inner())
+    }
+
     /// The image encoded into `out`, streamed (no second copy of a large image in memory).
     fn encode_to(
         &self,
@@ -135,8 +143,9 @@ impl Image {
     }
 }
 
-#[derive(Clone, Copy)]
-enum Format {
+/// An image file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
     Png,
     Ppm,
     Exr,

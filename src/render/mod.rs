@@ -7,4 +7,4 @@ mod image;
 pub mod preview;
 
 pub use film::{render, render_simple, Engine, RenderOptions};
-pub use image::{encode, write_atomically, Encoding, Image};
+pub use image::{encode, write_atomically, Encoding, Format as ImageFormat, Image};

@@ -44,18 +44,34 @@ pub fn rgb8(c: DVec3) -> [u8; 3] {
     c.to_array().map(|v| encode(v, Encoding::Srgb))
 }
 
-/// The xterm 256-colour cube index nearest to an sRGB colour.
+/// The xterm 256-colour index nearest to an sRGB colour: the nearest of the 6×6×6 cube
+/// (levels 0, 95, 135, 175, 215, 255), or of the 24-step grey ramp (232 … 255: 8, 18, …, 238)
+/// when that is nearer, as greys mostly are: the cube has only six greys, the ramp 24.
 pub fn ansi256(rgb: [u8; 3]) -> u8 {
-    let level = |v: u8| {
+    const CUBE: [i32; 6] = [0, 95, 135, 175, 215, 255];
+    let level = |v: u8| -> usize {
         if v < 48 {
             0
         } else if v < 115 {
             1
         } else {
-            ((v as u16 - 35) / 40) as u8
+            (v as usize - 35) / 40
         }
     };
-    16 + 36 * level(rgb[0]) + 6 * level(rgb[1]) + level(rgb[2])
+    let [r, g, b] = rgb.map(i32::from);
+    let q = rgb.map(level);
+    let cube = 16 + 36 * q[0] + 6 * q[1] + q[2];
+    let dist = |x: i32, y: i32, z: i32| (x - r).pow(2) + (y - g).pow(2) + (z - b).pow(2);
+    let cube_dist = dist(CUBE[q[0]], CUBE[q[1]], CUBE[q[2]]);
+    // The ramp step nearest the colour's mean: step k is 8 + 10·k.
+    let mean = (r + g + b) / 3;
+    let step = ((mean - 3) / 10).clamp(0, 23);
+    let grey = 8 + 10 * step;
+    if dist(grey, grey, grey) < cube_dist {
+        (232 + step) as u8
+    } else {
+        cube as u8
+    }
 }
 
 /// The image as lines of text. Half-block modes use two image rows per line.
@@ -98,4 +114,30 @@ pub fn to_text(image: &Image, mode: ColorMode) -> String {
         out.push_str("\x1b[0m\n");
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ansi256;
+
+    #[test]
+    fn greys_take_the_grey_ramp() {
+        // xterm 244 is #808080 exactly; the cube's nearest grey (102, #878787) is 7 away.
+        assert_eq!(ansi256([128, 128, 128]), 244);
+        // #1c1c1c is ramp step 2 (8 + 20 = 28): 234.
+        assert_eq!(ansi256([30, 30, 30]), 234);
+        assert_eq!(ansi256([8, 8, 8]), 232);
+        assert_eq!(ansi256([238, 238, 238]), 255);
+        // Black, white and the cube's own greys are the cube's.
+        assert_eq!(ansi256([0, 0, 0]), 16);
+        assert_eq!(ansi256([255, 255, 255]), 231);
+        assert_eq!(ansi256([135, 135, 135]), 102);
+    }
+
+    #[test]
+    fn colours_take_the_cube() {
+        assert_eq!(ansi256([255, 0, 0]), 196);
+        // 200 → 215 (level 4), 100 → 95 (1), 50 → 95 (1): 16 + 144 + 6 + 1.
+        assert_eq!(ansi256([200, 100, 50]), 167);
+    }
 }

@@ -1,129 +1,499 @@
-//! A lesson README reflowed to a pane's width, each row tagged with how it is drawn. The
-//! lesson panel scrolls through these rows and the drawing code styles them.
+//! A lesson README laid out for a pane of a given width: parsed as Markdown (pulldown-cmark),
+//! paragraphs and list items word-wrapped (textwrap's first-fit over styled words), tables
+//! aligned in columns, code blocks kept line for line. Each row is a list of spans tagged with
+//! how they are drawn; the lesson panel scrolls through the rows and the drawing code styles
+//! them.
 
-use super::wrap::wrap_hang;
+use pulldown_cmark::{Alignment, Event, Options, Parser, Tag, TagEnd};
+use textwrap::core::Fragment;
+use textwrap::wrap_algorithms::wrap_first_fit;
 
-/// How a README line is drawn.
+use super::wrap::{width as cells, wrap_hang};
+
+/// How a piece of a README is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Md {
     Heading,
+    /// A line of a code block.
     Code,
     Text,
+    /// A paragraph that starts "Answer (": the worked solution's result.
     Answer,
+    Strong,
+    Emphasis,
+    /// `code` within a sentence.
+    InlineCode,
+    Link,
+    /// Table borders and quote bars.
+    Rule,
 }
 
-/// A README reflowed to `width` cells: paragraphs, list items and quotes re-wrapped, code
-/// blocks and tables kept line for line, `**` markers dropped.
-pub fn markdown(text: &str, width: usize) -> Vec<(String, Md)> {
-    struct Para {
-        first: String,
-        hang: String,
-        text: String,
-        quote: bool,
+/// One row of the pane: its spans, left to right.
+pub type Row = Vec<(String, Md)>;
+
+/// The README laid out in rows at most `width` cells wide (a word longer than a row is cut).
+pub fn markdown(text: &str, width: usize) -> Vec<Row> {
+    let mut w = Writer {
+        width: width.max(4),
+        ..Writer::default()
+    };
+    let options = Options::ENABLE_TABLES | Options::ENABLE_STRIKETHROUGH;
+    for event in Parser::new_ext(text, options) {
+        w.event(event);
     }
-    let mut out: Vec<(String, Md)> = Vec::new();
-    let mut para: Option<Para> = None;
-    let flush = |para: &mut Option<Para>, out: &mut Vec<(String, Md)>| {
-        if let Some(p) = para.take() {
-            let kind = if p.text.starts_with("Answer (") {
-                Md::Answer
-            } else {
-                Md::Text
-            };
-            for l in wrap_hang(&format!("{}{}", p.first, p.text), width, &p.hang) {
-                out.push((l, kind));
+    w.flush(None);
+    while w.rows.last().is_some_and(|r| r.is_empty()) {
+        w.rows.pop();
+    }
+    w.rows
+}
+
+/// A word: its pieces, each with its style (`**bold**,` is two pieces, one word).
+#[derive(Debug, Clone)]
+struct Word {
+    pieces: Vec<(String, Md)>,
+    width: usize,
+}
+
+impl Fragment for Word {
+    fn width(&self) -> f64 {
+        self.width as f64
+    }
+    fn whitespace_width(&self) -> f64 {
+        1.0
+    }
+    fn penalty_width(&self) -> f64 {
+        0.0
+    }
+}
+
+#[derive(Default)]
+struct Writer {
+    width: usize,
+    rows: Vec<Row>,
+    /// The inline text of the block being read.
+    spans: Vec<(String, Md)>,
+    /// Emphasis, strong, link: the innermost wins.
+    styles: Vec<Md>,
+    /// Each open list: the next item's number (None for bullets), and the width of its
+    /// current item's marker, under which the item's text hangs.
+    lists: Vec<(Option<u64>, usize)>,
+    /// The marker of the list item whose first line is next ("- ", "2. ").
+    marker: Option<String>,
+    quotes: usize,
+    heading: bool,
+    code: Option<String>,
+    /// Rows of cells of the table being read.
+    table: Option<Vec<Vec<String>>>,
+    aligns: Vec<Alignment>,
+    links: Vec<String>,
+}
+
+impl Writer {
+    fn style(&self) -> Md {
+        self.styles.last().copied().unwrap_or(Md::Text)
+    }
+
+    fn blank(&mut self) {
+        if self.rows.last().is_some_and(|r| !r.is_empty()) {
+            self.rows.push(vec![]);
+        }
+    }
+
+    /// What starts every row of the current block: quote bars, then the list indentation.
+    fn indent(&self) -> (String, String) {
+        let bars = "│ ".repeat(self.quotes);
+        let indent = self.lists.iter().map(|(_, w)| *w).sum::<usize>();
+        (bars, " ".repeat(indent))
+    }
+
+    fn event(&mut self, event: Event) {
+        match event {
+            Event::Start(tag) => self.start(tag),
+            Event::End(tag) => self.end(tag),
+            Event::Text(t) => {
+                if let Some(code) = &mut self.code {
+                    code.push_str(&t);
+                } else if let Some(cell) = self.cell() {
+                    cell.push_str(&t);
+                } else {
+                    let style = self.style();
+                    self.spans.push((t.to_string(), style));
+                }
             }
+            Event::Code(t) => {
+                if let Some(cell) = self.cell() {
+                    cell.push_str(&t);
+                } else {
+                    self.spans.push((t.to_string(), Md::InlineCode));
+                }
+            }
+            Event::SoftBreak => self.spans.push((" ".into(), Md::Text)),
+            Event::HardBreak => self.flush(None),
+            Event::Rule => {
+                self.flush(None);
+                self.rows.push(vec![("─".repeat(self.width), Md::Rule)]);
+                self.blank();
+            }
+            Event::InlineMath(t) | Event::DisplayMath(t) => {
+                self.spans.push((t.to_string(), Md::InlineCode))
+            }
+            Event::TaskListMarker(done) => self
+                .spans
+                .push((if done { "[x] " } else { "[ ] " }.into(), Md::Text)),
+            Event::Html(_) | Event::InlineHtml(_) | Event::FootnoteReference(_) => {}
+        }
+    }
+
+    fn cell(&mut self) -> Option<&mut String> {
+        self.table.as_mut()?.last_mut()?.last_mut()
+    }
+
+    fn start(&mut self, tag: Tag) {
+        match tag {
+            Tag::Heading { .. } => {
+                self.flush(None);
+                self.heading = true;
+            }
+            Tag::List(first) => {
+                self.flush(None);
+                self.lists.push((first, 0));
+            }
+            Tag::Item => {
+                self.flush(None);
+                if let Some((number, width)) = self.lists.last_mut() {
+                    let marker = match number {
+                        Some(n) => {
+                            *n += 1;
+                            format!("{}. ", *n - 1)
+                        }
+                        None => "• ".into(),
+                    };
+                    *width = cells(&marker);
+                    self.marker = Some(marker);
+                }
+            }
+            Tag::BlockQuote(_) => {
+                self.flush(None);
+                self.quotes += 1;
+            }
+            Tag::CodeBlock(_) => {
+                self.flush(None);
+                self.code = Some(String::new());
+            }
+            Tag::Table(aligns) => {
+                self.flush(None);
+                self.table = Some(vec![]);
+                self.aligns = aligns;
+            }
+            Tag::TableHead | Tag::TableRow => {
+                if let Some(t) = &mut self.table {
+                    t.push(vec![]);
+                }
+            }
+            Tag::TableCell => {
+                if let Some(row) = self.table.as_mut().and_then(|t| t.last_mut()) {
+                    row.push(String::new());
+                }
+            }
+            Tag::Emphasis => self.styles.push(Md::Emphasis),
+            Tag::Strong => self.styles.push(Md::Strong),
+            Tag::Link { dest_url, .. } => {
+                self.styles.push(Md::Link);
+                self.links.push(dest_url.to_string());
+            }
+            _ => {}
+        }
+    }
+
+    fn end(&mut self, tag: TagEnd) {
+        match tag {
+            TagEnd::Paragraph => {
+                self.flush(None);
+                if self.lists.is_empty() {
+                    self.blank();
+                }
+            }
+            TagEnd::Heading(_) => {
+                self.flush(Some(Md::Heading));
+                self.heading = false;
+                self.blank();
+            }
+            TagEnd::Item => self.flush(None),
+            TagEnd::List(_) => {
+                self.flush(None);
+                self.lists.pop();
+                if self.lists.is_empty() {
+                    self.blank();
+                }
+            }
+            TagEnd::BlockQuote(_) => {
+                self.flush(None);
+                self.quotes -= 1;
+                self.blank();
+            }
+            TagEnd::CodeBlock => {
+                let code = self.code.take().unwrap_or_default();
+                let (bars, indent) = self.indent();
+                for line in code.lines() {
+                    let mut row = vec![];
+                    if !bars.is_empty() {
+                        row.push((bars.clone(), Md::Rule));
+                    }
+                    let room = self.width.saturating_sub(cells(&bars));
+                    for (k, l) in wrap_hang(&format!("{indent}{line}"), room, "    ")
+                        .into_iter()
+                        .enumerate()
+                    {
+                        if k == 0 {
+                            row.push((l, Md::Code));
+                            self.rows.push(std::mem::take(&mut row));
+                        } else {
+                            self.rows.push(vec![(l, Md::Code)]);
+                        }
+                    }
+                }
+                if self.lists.is_empty() {
+                    self.blank();
+                }
+            }
+            TagEnd::Table => {
+                let table = self.table.take().unwrap_or_default();
+                self.table_rows(&table);
+                self.blank();
+            }
+            TagEnd::Emphasis | TagEnd::Strong => {
+                self.styles.pop();
+            }
+            TagEnd::Link => {
+                self.styles.pop();
+                let dest = self.links.pop().unwrap_or_default();
+                let shown: String = self.spans.iter().map(|(s, _)| s.as_str()).collect();
+                // A terminal cannot follow a link: say where it goes, unless its text does.
+                if !dest.is_empty() && !dest.starts_with('#') && !shown.ends_with(&dest) {
+                    self.spans.push((format!(" ({dest})"), Md::Link));
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// The columns of a table padded to their widest cell, separated by bars, the header row
+    /// strong and underlined; a table wider than the pane is wrapped line by line.
+    fn table_rows(&mut self, table: &[Vec<String>]) {
+        let columns = table.iter().map(Vec::len).max().unwrap_or(0);
+        let widths: Vec<usize> = (0..columns)
+            .map(|c| {
+                table
+                    .iter()
+                    .filter_map(|r| r.get(c))
+                    .map(|s| cells(s.trim()))
+                    .max()
+                    .unwrap_or(0)
+            })
+            .collect();
+        let (bars, indent) = self.indent();
+        let room = self.width.saturating_sub(cells(&bars));
+        for (i, row) in table.iter().enumerate() {
+            let line: Vec<String> = (0..columns)
+                .map(|c| {
+                    let cell = row.get(c).map_or("", |s| s.trim());
+                    let pad = widths[c] - cells(cell);
+                    let (left, right) = match self.aligns.get(c) {
+                        Some(Alignment::Right) => (pad, 0),
+                        Some(Alignment::Center) => (pad / 2, pad - pad / 2),
+                        _ => (0, pad),
+                    };
+                    format!("{}{cell}{}", " ".repeat(left), " ".repeat(right))
+                })
+                .collect();
+            let kind = if i == 0 { Md::Strong } else { Md::Text };
+            let text = format!("{indent}{}", line.join(" │ ").trim_end());
+            for l in wrap_hang(&text, room, "    ") {
+                self.rows.push(vec![(bars.clone(), Md::Rule), (l, kind)]);
+            }
+            if i == 0 {
+                let rule: Vec<String> = widths.iter().map(|w| "─".repeat(*w)).collect();
+                let rule = format!("{indent}{}", rule.join("─┼─"));
+                let rule: String = rule.chars().take(room).collect();
+                self.rows
+                    .push(vec![(bars.clone(), Md::Rule), (rule, Md::Rule)]);
+            }
+        }
+        for r in self.rows.iter_mut() {
+            r.retain(|(s, _)| !s.is_empty());
+        }
+    }
+
+    /// Lays out the inline text read so far as word-wrapped rows (`kind` overrides the
+    /// spans' own styles, as for a heading).
+    fn flush(&mut self, kind: Option<Md>) {
+        let spans = std::mem::take(&mut self.spans);
+        let text: String = spans.iter().map(|(s, _)| s.as_str()).collect();
+        if text.trim().is_empty() {
+            return;
+        }
+        let answer = text.trim_start().starts_with("Answer (");
+        let restyle = |m: Md| match (kind, m) {
+            (Some(k), _) => k,
+            (None, Md::Text | Md::Strong) if answer => Md::Answer,
+            _ => m,
+        };
+        let (bars, indent) = self.indent();
+        let (first, hang) = match self.marker.take() {
+            Some(marker) if !self.lists.is_empty() => {
+                let outer: usize = self.lists.iter().rev().skip(1).map(|(_, w)| *w).sum();
+                (format!("{}{marker}", " ".repeat(outer)), indent)
+            }
+            _ => (indent.clone(), indent),
+        };
+        let room = self.width.saturating_sub(cells(&bars));
+        let words = words(&spans, room.saturating_sub(cells(&hang)).max(1), restyle);
+        let widths = [
+            room.saturating_sub(cells(&first)) as f64,
+            room.saturating_sub(cells(&hang)) as f64,
+        ];
+        for (k, line) in wrap_first_fit(&words, &widths).into_iter().enumerate() {
+            let mut row: Row = vec![];
+            if !bars.is_empty() {
+                row.push((bars.clone(), Md::Rule));
+            }
+            let lead = if k == 0 { &first } else { &hang };
+            if !lead.is_empty() {
+                row.push((lead.clone(), Md::Text));
+            }
+            for (j, word) in line.iter().enumerate() {
+                if j > 0 {
+                    // A space inside styled text (`t = 2`) keeps the style.
+                    let before = line[j - 1].pieces.last().map(|p| p.1);
+                    let after = word.pieces.first().map(|p| p.1);
+                    let style = if before == after {
+                        before.unwrap_or(Md::Text)
+                    } else {
+                        Md::Text
+                    };
+                    row.push((" ".into(), style));
+                }
+                row.extend(word.pieces.iter().cloned());
+            }
+            self.rows.push(merged(row));
+        }
+    }
+}
+
+/// Neighbouring spans of one style joined.
+fn merged(row: Row) -> Row {
+    let mut out: Row = vec![];
+    for (text, style) in row {
+        match out.last_mut() {
+            Some((s, m)) if *m == style => s.push_str(&text),
+            _ => out.push((text, style)),
+        }
+    }
+    out
+}
+
+/// The words of styled text, split at spaces; a word wider than `max` cells is cut into
+/// pieces that fit.
+fn words(spans: &[(String, Md)], max: usize, restyle: impl Fn(Md) -> Md) -> Vec<Word> {
+    let mut out = vec![];
+    let mut cur = Word {
+        pieces: vec![],
+        width: 0,
+    };
+    let end = |cur: &mut Word, out: &mut Vec<Word>| {
+        if cur.width > 0 {
+            out.push(std::mem::replace(
+                cur,
+                Word {
+                    pieces: vec![],
+                    width: 0,
+                },
+            ));
         }
     };
-    let mut in_code = false;
-    for raw in text.lines() {
-        let line = raw.trim_end().replace("**", "");
-        if line.trim_start().starts_with("```") {
-            flush(&mut para, &mut out);
-            in_code = !in_code;
-            continue;
-        }
-        if in_code {
-            out.push((line, Md::Code));
-            continue;
-        }
-        let body = line.trim_start();
-        let indent = &line[..line.len() - body.len()];
-        if body.is_empty() {
-            flush(&mut para, &mut out);
-            out.push((String::new(), Md::Text));
-            continue;
-        }
-        if body.starts_with('#') {
-            flush(&mut para, &mut out);
-            let h = body.trim_start_matches('#').trim_start();
-            for l in wrap_hang(h, width, "") {
-                out.push((l, Md::Heading));
+    for (text, style) in spans {
+        let style = restyle(*style);
+        for c in text.chars() {
+            if c.is_whitespace() {
+                end(&mut cur, &mut out);
+                continue;
             }
-            continue;
-        }
-        if body.starts_with('|') {
-            flush(&mut para, &mut out);
-            for l in wrap_hang(&line, width, "    ") {
-                out.push((l, Md::Text));
+            let w = cells(c.encode_utf8(&mut [0; 4]));
+            if cur.width + w > max {
+                end(&mut cur, &mut out);
             }
-            continue;
-        }
-        let numbered = body
-            .split_once(". ")
-            .is_some_and(|(n, _)| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()));
-        let marker = if ["* ", "- ", "+ "].iter().any(|m| body.starts_with(m)) {
-            Some(2)
-        } else if numbered {
-            body.find(". ").map(|i| i + 2)
-        } else {
-            None
-        };
-        if let Some(m) = marker {
-            flush(&mut para, &mut out);
-            para = Some(Para {
-                first: format!("{indent}{}", &body[..m]),
-                hang: " ".repeat(indent.len() + m),
-                text: body[m..].to_string(),
-                quote: false,
-            });
-            continue;
-        }
-        if let Some(q) = body.strip_prefix('>') {
-            let q = q.trim_start();
-            match &mut para {
-                Some(p) if p.quote => {
-                    p.text.push(' ');
-                    p.text.push_str(q);
-                }
-                _ => {
-                    flush(&mut para, &mut out);
-                    para = Some(Para {
-                        first: "│ ".into(),
-                        hang: "│ ".into(),
-                        text: q.to_string(),
-                        quote: true,
-                    });
-                }
+            match cur.pieces.last_mut() {
+                Some((s, m)) if *m == style => s.push(c),
+                _ => cur.pieces.push((c.to_string(), style)),
             }
-            continue;
-        }
-        match &mut para {
-            Some(p) if !p.quote => {
-                p.text.push(' ');
-                p.text.push_str(body);
-            }
-            _ => {
-                flush(&mut para, &mut out);
-                para = Some(Para {
-                    first: indent.to_string(),
-                    hang: indent.to_string(),
-                    text: body.to_string(),
-                    quote: false,
-                });
-            }
+            cur.width += w;
         }
     }
-    flush(&mut para, &mut out);
+    end(&mut cur, &mut out);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{markdown, Md};
+
+    fn text(rows: &[super::Row]) -> Vec<String> {
+        rows.iter()
+            .map(|r| r.iter().map(|(s, _)| s.as_str()).collect())
+            .collect()
+    }
+
+    #[test]
+    fn emphasis_and_code_are_styled_not_shown_as_markers() {
+        let rows = markdown("A **bold** and *soft* `t = 2` word.", 80);
+        assert_eq!(text(&rows), vec!["A bold and soft t = 2 word."]);
+        let styles: Vec<(String, Md)> = rows[0].clone();
+        assert!(styles.contains(&("bold".into(), Md::Strong)));
+        assert!(styles.contains(&("soft".into(), Md::Emphasis)));
+        assert!(styles.contains(&("t = 2".into(), Md::InlineCode)));
+    }
+
+    #[test]
+    fn list_items_wrap_under_their_text() {
+        let rows = markdown("1. one two three four\n2. five\n\n- six seven", 12);
+        assert_eq!(
+            text(&rows),
+            vec![
+                "1. one two",
+                "   three",
+                "   four",
+                "2. five",
+                "",
+                "• six seven"
+            ]
+        );
+    }
+
+    #[test]
+    fn tables_line_up_in_columns() {
+        let rows = markdown("| a | long b |\n|---|---|\n| 123 | x |\n", 40);
+        assert_eq!(text(&rows), vec!["a   │ long b", "────┼───────", "123 │ x"]);
+    }
+
+    #[test]
+    fn numbers_align_right_where_the_table_says() {
+        let rows = markdown("| a | n |\n|---|--:|\n| x | 1.5 |\n| y | 10 |\n", 40);
+        assert_eq!(
+            text(&rows),
+            vec!["a │   n", "──┼────", "x │ 1.5", "y │  10"]
+        );
+    }
+
+    #[test]
+    fn links_say_where_they_go() {
+        let rows = markdown("See [the tracer](src/trace/whitted.rs).", 80);
+        assert_eq!(text(&rows), vec!["See the tracer (src/trace/whitted.rs)."]);
+    }
+
+    #[test]
+    fn answers_are_marked() {
+        let rows = markdown("**Answer (p):** 0.87.", 80);
+        assert!(rows[0].iter().all(|(_, m)| *m == Md::Answer), "{rows:?}");
+    }
 }

@@ -25,14 +25,12 @@ fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
     let width = inner(area).width as usize;
     let lines: Vec<Line> = markdown(&l.lesson.readme, width.max(10))
         .into_iter()
-        .map(|(text, kind)| {
-            let style = match kind {
-                Md::Heading => Style::new().add_modifier(Modifier::BOLD).fg(Color::Yellow),
-                Md::Code => Style::new().fg(Color::Green),
-                Md::Answer => Style::new().add_modifier(Modifier::BOLD),
-                Md::Text => Style::new(),
-            };
-            Line::styled(text, themed(app, style))
+        .map(|row| {
+            Line::from(
+                row.into_iter()
+                    .map(|(text, kind)| Span::styled(text, themed(app, md_style(kind))))
+                    .collect::<Vec<_>>(),
+            )
         })
         .collect();
     let total = lines.len();
@@ -46,6 +44,21 @@ fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
     f.render_widget(Paragraph::new(shown).block(block), area);
+}
+
+/// How each kind of README text is drawn.
+fn md_style(kind: Md) -> Style {
+    match kind {
+        Md::Heading => Style::new().add_modifier(Modifier::BOLD).fg(Color::Yellow),
+        Md::Code | Md::InlineCode => Style::new().fg(Color::Green),
+        Md::Answer | Md::Strong => Style::new().add_modifier(Modifier::BOLD),
+        Md::Emphasis => Style::new().add_modifier(Modifier::ITALIC),
+        Md::Link => Style::new()
+            .fg(Color::Cyan)
+            .add_modifier(Modifier::UNDERLINED),
+        Md::Rule => Style::new().fg(Color::DarkGray),
+        Md::Text => Style::new(),
+    }
 }
 
 fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
