@@ -40,6 +40,9 @@ enum Action {
         dir: PathBuf,
     },
     /// Writes raytree's built-in lessons to DIR (new or empty), to read or to change.
+    #[command(after_help = "Examples:
+  raytree lessons export my-course
+  raytree --lessons my-course explore 08-pixel-intensity")]
     Export {
         /// The folder to write them to.
         dir: PathBuf,
