@@ -241,7 +241,7 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
         &ray,
         TraceOptions {
             max_depth: depth,
-            shadows: true,
+            ..TraceOptions::of(&scene)
         },
     );
     let expected = answer(&scene, &ray, &tree, ex)?;
