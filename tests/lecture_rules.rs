@@ -210,7 +210,10 @@ objects:
         let pt = PathTracer::new(s, 1);
         let mut stats = Stats::default();
         (0..20_000)
-            .map(|k| pt.radiance(&view, &mut Rng::for_pixel(k, 0, 7), &mut stats).x)
+            .map(|k| {
+                pt.radiance(&view, &mut Rng::for_pixel(k, 0, 7), &mut stats)
+                    .x
+            })
             .collect()
     };
     let on = estimates(&yaml("local_at_max_depth"));

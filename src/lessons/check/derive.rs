@@ -46,7 +46,21 @@ fn node(w: &Worked, n: &RayNode, name: &str, out: &mut Vec<String>) {
         ),
     };
     if let Some((lobe, k)) = n.cone() {
-        let values: Vec<String> = n.secondary().map(|c| text::color(c.color)).collect();
+        let mut values: Vec<String> = n.secondary().map(|c| text::color(c.color)).collect();
+        if values.len() > 16 {
+            // Too many to list: each value once, with how many rays brought it.
+            let mut counts: Vec<(String, usize)> = Vec::new();
+            for v in values {
+                match counts.iter_mut().find(|(x, _)| *x == v) {
+                    Some((_, c)) => *c += 1,
+                    None => counts.push((v, 1)),
+                }
+            }
+            values = counts
+                .into_iter()
+                .map(|(v, c)| format!("{c} × {v}"))
+                .collect();
+        }
         out.push(format!(
             "I({name}): {lobe} about {}: {k} rays sampled about it bring {}; their mean = {}",
             text::vec3(n.direction),

@@ -12,7 +12,8 @@
 //! - `optics`: reflected and refracted directions;
 //! - `csg`: segment lists;
 //! - `image`: rendered pixel values, primary rays, squares split by adaptive antialiasing
-//!   (whose steps `adaptive` explains).
+//!   (whose steps `adaptive` explains);
+//! - `montecarlo`: the standard error of a sampled mean, for answers graded in standard errors.
 
 mod adaptive;
 mod camera;
@@ -22,6 +23,7 @@ mod image;
 mod intersection;
 mod lighting;
 mod mistakes;
+mod montecarlo;
 mod optics;
 mod tree;
 
@@ -43,6 +45,9 @@ pub struct Worked {
     pub depth: u32,
     pub tree: RayNode,
     pub expected: Answer,
+    /// The rule an answer is held to: the exercise's, with a Monte Carlo mean's standard
+    /// error filled in.
+    pub tolerance: Tolerance,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -245,19 +250,21 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
         },
     );
     let expected = answer(&scene, &ray, &tree, ex)?;
+    let tolerance = montecarlo::tolerance(ex, node(&tree, ex)?)?;
     Ok(Worked {
         scene,
         ray,
         depth,
         tree,
         expected,
+        tolerance,
     })
 }
 
 pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, String> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
-    let correct = given.matches(&w.expected, &ex.tolerance);
+    let correct = given.matches(&w.expected, &w.tolerance);
     let hint = if correct {
         None
     } else {
@@ -268,7 +275,7 @@ pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, Str
         correct,
         given,
         expected: w.expected,
-        tolerance: ex.tolerance,
+        tolerance: w.tolerance,
         hint,
         model,
     })
@@ -378,7 +385,7 @@ fn asks_colour(ask: Ask) -> bool {
 /// The first common mistake that gives the student's answer. A mistake that happens to give
 /// the right answer here explains nothing, so it is passed over.
 fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
-    let tol = &ex.tolerance;
+    let tol = &w.tolerance;
     question(ex.ask)
         .mistakes(w, ex)
         .into_iter()
@@ -399,6 +406,7 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
     let n = node(&w.tree, ex)?;
     let mut out = vec![format!("{}: {}", ex.id, ex.question.trim())];
     out.extend(question(ex.ask).explain(&w, ex, n)?);
+    out.extend(montecarlo::explain(&w, n));
     out.push(format!("answer: {}", w.expected.show()));
     Ok(out)
 }
