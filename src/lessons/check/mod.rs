@@ -10,7 +10,7 @@
 //! - `intersection`: hit t, hit point, normal, barycentric coordinates;
 //! - `lighting`: intensity, local term, diffuse, specular, shadow factor;
 //! - `optics`: reflected and refracted directions;
-//! - `csg`: segment lists;
+//! - `csg`: segment lists, and the leaves evaluated (pruning, bounding boxes);
 //! - `image`: rendered pixel values, primary rays, squares split by adaptive antialiasing
 //!   (whose steps `adaptive` explains);
 //! - `montecarlo`: the standard error of a sampled mean, for answers graded in standard errors.
@@ -145,6 +145,7 @@ fn question(ask: Ask) -> &'static dyn Question {
         Ask::PixelValue => &image::PixelValue,
         Ask::PrimaryRays => &image::PrimaryRays,
         Ask::SquaresSplit => &image::SquaresSplit,
+        Ask::LeavesEvaluated => &csg::LeavesEvaluated,
     }
 }
 
@@ -348,7 +349,7 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
         Ask::Barycentric => "the barycentric coordinates (λ1, λ2, λ3)",
         Ask::HitT => "t",
         Ask::ShadowFactor => "the shadow factor s",
-        Ask::PrimaryRays | Ask::SquaresSplit => "a count",
+        Ask::PrimaryRays | Ask::SquaresSplit | Ask::LeavesEvaluated => "a count",
         Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue => {
             "this intensity"
         }

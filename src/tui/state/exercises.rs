@@ -188,7 +188,7 @@ pub fn answer_format(ask: Ask) -> &'static str {
             "a number (or r, g, b for a colour)"
         }
         Ask::HitT | Ask::ShadowFactor => "a number",
-        Ask::PrimaryRays | Ask::SquaresSplit => "a whole number",
+        Ask::PrimaryRays | Ask::SquaresSplit | Ask::LeavesEvaluated => "a whole number",
         Ask::RefractedDirection => "x, y, z (or tir for total internal reflection)",
         Ask::WindowPoint
         | Ask::RayDirection
