@@ -120,11 +120,12 @@ impl Bare<'_> {
         let si = scene.interaction(ray, &hit);
         let m = scene.material(si.material);
         let v = -ray.dir;
-        let mut color = ambient(m, scene.ambient);
+        let mut color = ambient(m, &si.paint, scene.ambient);
         for (k, light) in scene.lights.iter().enumerate() {
             let sample = light.sample(si.point);
             let lit = light_terms(
                 m,
+                &si.paint,
                 si.normal,
                 v,
                 sample.l,

@@ -4,7 +4,8 @@
 //! (`tests/architecture.rs` keeps it so, `docs/architecture.md` maps each concept of the
 //! lecture notes to its file):
 //!
-//! 1. `sampling`, `stats`: random numbers and the counters of work;
+//! 1. `sampling`, `stats`, `files`, `signals`: random numbers, the counters of work, reading
+//!    input files, stopping cleanly on a signal;
 //! 2. `accel`: bounding volumes and the BVH;
 //! 3. `geometry`: rays, shapes, transforms, segment lists, CSG;
 //! 4. `shading`: materials, lights, the local model, optics;
@@ -20,6 +21,7 @@ pub mod bench;
 pub mod cli;
 pub mod diagram;
 pub mod fast;
+pub mod files;
 pub mod geometry;
 pub mod lessons;
 mod plot_font;
@@ -27,6 +29,7 @@ pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod shading;
+pub mod signals;
 pub mod stats;
 pub mod trace;
 pub mod tui;

@@ -8,10 +8,12 @@ use std::path::Path;
 
 /// Each top-level module and the modules it may import.
 fn allowed() -> BTreeMap<&'static str, Vec<&'static str>> {
-    let base = ["sampling", "stats"];
+    let base = ["sampling", "stats", "files", "signals"];
     let mut layers: Vec<(&str, Vec<&str>)> = vec![
         ("sampling", vec![]),
         ("stats", vec![]),
+        ("files", vec![]),
+        ("signals", vec![]),
         ("accel", vec![]),
         ("geometry", vec!["accel"]),
         ("shading", vec!["geometry", "accel"]),

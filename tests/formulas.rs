@@ -39,7 +39,7 @@ fn highlights_with_the_viewer_off_the_normal() {
         highlight: Highlight::Phong,
         ..m.clone()
     };
-    let t = light_terms(&phong, n, v, l, DVec3::ONE, false);
+    let t = light_terms(&phong, &phong.paint(), n, v, l, DVec3::ONE, false);
     assert!(
         (t.highlight_cos - 0.75f64.sqrt()).abs() < E,
         "{}",
@@ -50,7 +50,7 @@ fn highlights_with_the_viewer_off_the_normal() {
         highlight: Highlight::Blinn,
         ..m
     };
-    let t = light_terms(&blinn, n, v, l, DVec3::ONE, false);
+    let t = light_terms(&blinn, &blinn.paint(), n, v, l, DVec3::ONE, false);
     let cos15_squared = (1.0 + 0.75f64.sqrt()) / 2.0;
     assert!((t.specular - DVec3::splat(0.4 * cos15_squared)).length() < E);
 }

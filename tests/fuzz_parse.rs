@@ -33,6 +33,11 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use raytree::render::{render_simple, RenderOptions};
 use raytree::scene::{parse, Limits};
 
+// `text_of` is for the cargo-fuzz target and the saved inputs (tests/fuzz_regressions.rs).
+#[allow(dead_code)]
+#[path = "fuzz/checks/split.rs"]
+mod split;
+
 const DEFAULT_CASES: u32 = 4000;
 const SEED: [u8; 32] = *b"raytree fuzz_parse seed, fixed.!";
 /// A single input taking longer than this to parse and render is a finding.
@@ -846,6 +851,69 @@ fn mutated_lesson_scenes_never_break_parser_or_renderer() {
             String::from_utf8_lossy(&text).into_owned()
         },
     );
+}
+
+/// Items of a large file's object list, in the styles that have fooled a text scan: brackets
+/// in plain scalars, collections across lines, comments, CSG children, odd indentation. `@`
+/// stands for the item's number (names must differ).
+const ITEMS: &[&str] = &[
+    "  - { sphere: { center: [1, 2, 3], radius: 0.5 }, material: m }",
+    "  - name: x[@\n    sphere: { center: [0, 0, 0], radius: 1 }\n    material: m",
+    "  - name: y] {@\n    box: { min: [0, 0, 0], max: [1, 1, 1] }\n    material: m",
+    "  - { cylinder: { base: [0, 0, 0], top: [0, 1, 0],\n radius: 0.25 }, material: m }",
+    "  # - { sphere: { center: [0, 0, 0], radius: 1 } }\n  - { cone: { apex: [0, 1, 0], base: [0, 0, 0], radius: 1 }, material: m } # a#b [",
+    "  - difference:\n      - box: { min: [0, 0, 0], max: [1, 1, 1] }\n      - sphere:\n          center: [0.5, 0.5, 0.5]\n          radius: 0.6\n    material: m",
+    "  -\n    triangle: [[0, 0, 0], [1, 0, 0], [0, 1, 0]]\n    material: m",
+    "  - name: q]x[@\n    icosphere: { subdivisions: 0 }\n    material: m",
+    "  - name: b{c@\n    plane: { point: [0, 0, 9], normal: [0, 0, -1] }\n    material: m",
+    "  - { sphere: { center: [0, 0, 0], radius: 1 }, material: m }\nlights: [ { name: z], point: [0, 5, 0] } ]\nobjects:",
+];
+
+/// The parallel loader gives what one thread gives, for large files of mixed items, mutated
+/// (`tests/fuzz/checks/split.rs`; the cargo-fuzz target `split` runs the same check).
+#[test]
+fn large_scenes_load_alike_on_any_number_of_threads() {
+    let cases = (cases() / 100).max(8);
+    let config = Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner =
+        TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &SEED));
+    // Quoted strings, anchors and tabs keep a file whole; the mutations that add them are
+    // tried too, but most files stay plain enough to be cut.
+    let strategy = (
+        prop::collection::vec(prop::sample::select(ITEMS), 1..12),
+        any::<bool>(),
+        prop_oneof![
+            2 => Just(vec![]),
+            1 => prop::collection::vec(mutation(), 1..3),
+        ],
+    );
+    const HEAD: &str = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }\n\
+                        materials: { m: { kd: 1 } }\nobjects:\n";
+    const TAIL: &str = "lights:\n  - name: y]\n    point: [0, 5, -5]\nspp: 1\n";
+    runner
+        .run(&strategy, |(items, tail, mutations)| {
+            let mut text = String::from(HEAD);
+            let mut k = 0;
+            while text.len() < split::SPLIT_BYTES {
+                text += &items[k % items.len()].replace('@', &k.to_string());
+                text += "\n";
+                k += 1;
+            }
+            if tail {
+                text += TAIL;
+            }
+            let mut bytes = text.into_bytes();
+            for m in &mutations {
+                apply(&mut bytes, m);
+            }
+            split::check(&String::from_utf8_lossy(&bytes));
+            Ok(())
+        })
+        .unwrap();
 }
 
 #[test]

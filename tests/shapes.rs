@@ -286,7 +286,7 @@ fn lighting_terms_match_the_formulas() {
     let n = DVec3::Y;
     let l = DVec3::new(3f64.sqrt() / 2.0, 0.5, 0.0);
     let v = DVec3::Y;
-    let t = light_terms(&m, n, v, l, DVec3::ONE, false);
+    let t = light_terms(&m, &m.paint(), n, v, l, DVec3::ONE, false);
     assert!((t.n_dot_l - 0.5).abs() < E);
     assert!((t.highlight_cos - 0.75f64.sqrt()).abs() < E);
     assert!((t.diffuse - 0.5 * 0.5 * m.color).length() < E);
@@ -297,7 +297,7 @@ fn lighting_terms_match_the_formulas() {
         highlight: Highlight::Phong,
         ..m.clone()
     };
-    let t = light_terms(&phong, n, v, l, DVec3::ONE, false);
+    let t = light_terms(&phong, &phong.paint(), n, v, l, DVec3::ONE, false);
     assert!((t.specular - DVec3::splat(0.4 * 0.25)).length() < E);
     // Without a highlight (ks = 0) the cosine is worked out only where it is shown.
     let matte = Material {
@@ -305,8 +305,8 @@ fn lighting_terms_match_the_formulas() {
         ..m.clone()
     };
     let (unshown, shown) = (
-        light_terms(&matte, n, v, l, DVec3::ONE, false),
-        light_terms(&matte, n, v, l, DVec3::ONE, true),
+        light_terms(&matte, &matte.paint(), n, v, l, DVec3::ONE, false),
+        light_terms(&matte, &matte.paint(), n, v, l, DVec3::ONE, true),
     );
     assert_eq!(
         (unshown.highlight_cos, unshown.specular),
@@ -314,7 +314,7 @@ fn lighting_terms_match_the_formulas() {
     );
     assert!((shown.highlight_cos - 0.75f64.sqrt()).abs() < E);
     assert_eq!(unshown.diffuse, shown.diffuse);
-    assert!((ambient(&m, DVec3::splat(0.3)) - 0.06 * m.color).length() < E);
+    assert!((ambient(&m, &m.paint(), DVec3::splat(0.3)) - 0.06 * m.color).length() < E);
 }
 
 #[test]

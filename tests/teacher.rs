@@ -242,8 +242,12 @@ fn validation_names_a_corrupted_readme_answer() {
 
     let shipped = raytree(&["lessons", "validate", "lessons"]);
     assert!(shipped.status.success(), "{}", out(&shipped));
+    let lessons = std::fs::read_dir("lessons")
+        .unwrap()
+        .filter(|e| e.as_ref().unwrap().path().join("exercises.yaml").is_file())
+        .count();
     assert!(
-        out(&shipped).starts_with("ok: 15 lessons"),
+        out(&shipped).starts_with(&format!("ok: {lessons} lessons")),
         "{}",
         out(&shipped)
     );

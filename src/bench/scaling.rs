@@ -97,20 +97,29 @@ pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<
     })
 }
 
+/// The scaling table: its header and a line per row.
 pub fn table(rows: &[Row]) -> String {
-    let mut s = format!(
-        "{:<8} {:>9} {:>10} {:>14} {:>16} {:>8} {:>12} {:>12}\n",
-        "scene", "N", "load s", "BVH ns/ray", "brute ns/ray", "ratio", "nodes/ray", "prims/ray"
-    );
+    let mut s = table_header();
     for r in rows {
-        let (brute, ratio) = match r.brute_ns {
-            Some(b) => (format!("{b:.0}"), format!("{:.1}×", b / r.bvh_ns)),
-            None => ("(skipped)".into(), "".into()),
-        };
-        s.push_str(&format!(
-            "{:<8} {:>9} {:>10.3} {:>14.0} {:>16} {:>8} {:>12.1} {:>12.1}\n",
-            r.kind, r.n, r.build, r.bvh_ns, brute, ratio, r.nodes_per_ray, r.prims_per_ray
-        ));
+        s.push_str(&table_row(r));
     }
     s
+}
+
+pub fn table_header() -> String {
+    format!(
+        "{:<8} {:>9} {:>10} {:>14} {:>16} {:>8} {:>12} {:>12}\n",
+        "scene", "N", "load s", "BVH ns/ray", "brute ns/ray", "ratio", "nodes/ray", "prims/ray"
+    )
+}
+
+pub fn table_row(r: &Row) -> String {
+    let (brute, ratio) = match r.brute_ns {
+        Some(b) => (format!("{b:.0}"), format!("{:.1}×", b / r.bvh_ns)),
+        None => ("(skipped)".into(), "".into()),
+    };
+    format!(
+        "{:<8} {:>9} {:>10.3} {:>14.0} {:>16} {:>8} {:>12.1} {:>12.1}\n",
+        r.kind, r.n, r.build, r.bvh_ns, brute, ratio, r.nodes_per_ray, r.prims_per_ray
+    )
 }

@@ -22,6 +22,39 @@ pub enum Knob {
 }
 
 impl Knob {
+    /// Whether the knob can take `value`: the bounds `render` and the scene format put on the
+    /// setting it turns, so a sweep renders nothing `render` would refuse.
+    pub fn check(self, value: f64) -> Result<(), String> {
+        let limits = crate::scene::Limits::default();
+        let whole = |lo: u32, hi: u32, what: &str| {
+            if value.fract() == 0.0 && value >= lo as f64 && value <= hi as f64 {
+                Ok(())
+            } else {
+                Err(format!(
+                    "--knob {}: {value} is not a whole number between {lo} and {hi} ({what})",
+                    self.name()
+                ))
+            }
+        };
+        let within = |lo: f64, hi: f64, what: &str| {
+            if (lo..=hi).contains(&value) {
+                Ok(())
+            } else {
+                Err(format!(
+                    "--knob {}: {value} is not between {lo} and {hi} ({what})",
+                    self.name()
+                ))
+            }
+        };
+        match self {
+            Knob::Spp => whole(1, limits.max_spp, "as render's --spp"),
+            Knob::Depth => whole(1, limits.max_depth, "as render's --depth"),
+            Knob::Adaptive => within(0.0, 1.0, "as the scene's adaptive_threshold"),
+            Knob::Glossy => whole(1, 1024, "as a lobe's samples"),
+            Knob::AaThreshold => within(0.0, 3.0, "as render's --aa-threshold"),
+        }
+    }
+
     /// The name used on the command line and in table headers.
     pub fn name(self) -> String {
         use clap::ValueEnum;

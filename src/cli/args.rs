@@ -41,7 +41,34 @@ pub fn parse_ray(s: &str) -> Result<Ray, String> {
     if d == DVec3::ZERO {
         return Err("the ray direction must not be zero".into());
     }
-    Ok(Ray::new(o, d))
+    // Scaled by its largest component first, the direction's length lies in [1, √3]: its
+    // square neither underflows (1e-320) nor overflows (1e308) on the way to a unit vector.
+    Ok(Ray::new(o, d / d.abs().max_element()))
+}
+
+/// Most worker threads asked for: more than any machine raytree runs on has cores, and few
+/// enough to start at once.
+pub const MAX_THREADS: usize = 1024;
+
+/// A pool of `--threads N` workers (default: one per core), or a clear error before any is
+/// started.
+pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Failure> {
+    if let Some(n) = threads {
+        if !(1..=MAX_THREADS).contains(&n) {
+            return Err(Failure(format!(
+                "--threads must be between 1 and {MAX_THREADS}, got {n}"
+            )));
+        }
+    }
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|e| {
+            Failure(format!(
+                "cannot start {} worker threads: {e}",
+                threads.map_or("the".to_string(), |n| n.to_string())
+            ))
+        })
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -63,7 +90,8 @@ pub enum Format {
 pub struct SceneArgs {
     /// The scene file (YAML).
     pub scene: PathBuf,
-    /// Accept images larger than the pixel budget (64 million pixels).
+    /// Go beyond the budgets that keep a mistake from exhausting memory: 64 million pixels,
+    /// 16 MiB scene files, 256 MiB mesh files, 200 000 objects, 4 million triangles.
     #[arg(long)]
     pub allow_huge: bool,
     /// Intersection acceleration: a bounding volume hierarchy, or testing every object.
@@ -77,12 +105,26 @@ impl SceneArgs {
     }
 }
 
-pub fn load_scene(path: &Path, allow_huge: bool, accel: AccelArg) -> Result<Scene, Failure> {
-    let mut limits = Limits::default();
+/// The budgets a command works within: the defaults, or `--allow-huge`'s.
+pub fn limits(allow_huge: bool) -> Limits {
     if allow_huge {
-        limits.max_pixels = u64::MAX;
+        Limits::huge()
+    } else {
+        Limits::default()
     }
-    let mut scene = crate::scene::load(path, &limits)?;
+}
+
+/// Loads a scene, printing its warnings.
+pub fn load_scene(path: &Path, allow_huge: bool, accel: AccelArg) -> Result<Scene, Failure> {
+    let mut scene = crate::scene::load(path, &limits(allow_huge)).map_err(Failure::scene)?;
+    for (pos, warning) in &scene.warnings {
+        super::output::eprintln(&format!(
+            "raytree: {}:{}:{}: warning: {warning}",
+            path.display(),
+            pos.line,
+            pos.column
+        ));
+    }
     if accel == AccelArg::None {
         scene.set_accel(Accel::None);
     }

@@ -3,8 +3,9 @@
 
 use std::process::ExitCode;
 
+use super::output::{eprintln, print};
 use super::Failure;
-use crate::bench::{measure, mesh, spheres, table, thread_rounds, threads_table};
+use crate::bench::{measure, mesh, spheres, table_header, table_row, thread_rounds, threads_table};
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
@@ -45,6 +46,9 @@ enum Measure {
     /// Time per ray against the number of spheres (10 … 100 000) and mesh triangles
     /// (≈10³ … 10⁶), with and without the BVH, on one thread.
     Scaling {
+        /// Largest number of spheres (10, 100, … up to this).
+        #[arg(long, default_value_t = 100_000)]
+        max_spheres: usize,
         /// Largest N to test without the BVH (brute force is O(N) per ray).
         #[arg(long, default_value_t = 100_000)]
         max_brute: usize,
@@ -58,7 +62,7 @@ enum Measure {
     Threads {
         scene: std::path::PathBuf,
         /// N (default: every core, at least 2).
-        #[arg(long, value_parser = clap::value_parser!(u64).range(2..))]
+        #[arg(long, value_parser = clap::value_parser!(u64).range(2..=super::args::MAX_THREADS as u64))]
         threads: Option<u64>,
         #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..))]
         runs: u64,
@@ -134,10 +138,11 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             plot,
             clamp,
         } => {
+            for &v in &values {
+                knob.check(v).map_err(Failure)?;
+            }
+            let pool = super::args::thread_pool(threads)?;
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads.unwrap_or(0))
-                .build()?;
             let (w, h) = (scene.camera.width, scene.camera.height);
             let reference = match reference {
                 Some(path) => load_reference(&path, w, h)?,
@@ -147,7 +152,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                     let cache = reference_cache(&scene_path, knob, &values, seed)?;
                     match load_reference(&cache, w, h) {
                         Ok(image) => {
-                            eprintln!("reference: {} (cached)", cache.display());
+                            eprintln(&format!("reference: {} (cached)", cache.display()));
                             image
                         }
                         Err(_) => {
@@ -155,7 +160,10 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                                 crate::bench::reference_for(&scene, knob, &values, seed)
                             });
                             image.save(&cache, crate::render::Encoding::Linear)?;
-                            eprintln!("reference: rendered, cached in {}", cache.display());
+                            eprintln(&format!(
+                                "reference: rendered, cached in {}",
+                                cache.display()
+                            ));
                             image
                         }
                     }
@@ -163,7 +171,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             };
             let rows = pool
                 .install(|| crate::bench::sweep(&scene, knob, &values, &reference, seed, clamp));
-            print!("{}", crate::bench::sweep_table(knob, &rows));
+            print(&crate::bench::sweep_table(knob, &rows))?;
             if let Some(path) = csv {
                 crate::render::write_atomically(
                     &path,
@@ -175,33 +183,30 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             }
         }
         Measure::Scaling {
+            max_spheres,
             max_brute,
             max_subdivisions,
         } => {
             let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
-            let mut rows = vec![];
+            // The sweep is long: the table is printed a row at a time, as each is measured.
+            print(&table_header())?;
             pool.install(|| -> Result<(), Failure> {
-                // Each row is printed to stderr as soon as it is measured: the sweep is long.
-                let mut add = |row: crate::bench::Row| {
-                    eprintln!(
-                        "{}",
-                        table(std::slice::from_ref(&row))
-                            .lines()
-                            .nth(1)
-                            .unwrap_or("")
-                    );
-                    rows.push(row);
-                };
-                for n in [10, 100, 1_000, 10_000, 100_000] {
-                    add(measure("spheres", n, &spheres(n), n <= max_brute)?);
+                let sizes = [10, 100, 1_000, 10_000, 100_000];
+                for n in sizes.into_iter().filter(|&n| n <= max_spheres.max(10)) {
+                    print(&table_row(&measure(
+                        "spheres",
+                        n,
+                        &spheres(n),
+                        n <= max_brute,
+                    )?))?;
                 }
                 for k in 3..=max_subdivisions {
                     let n = 20 * 4usize.pow(k);
-                    add(measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?);
+                    let row = measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?;
+                    print(&table_row(&row))?;
                 }
                 Ok(())
             })?;
-            print!("{}", table(&rows));
         }
         Measure::Threads {
             scene: scene_path,
@@ -211,12 +216,12 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
             let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
             let n = n.map_or(cores.max(2), |n| n as usize);
-            eprintln!(
+            eprintln(&format!(
                 "{}: {runs} rounds of 1 and {n} threads, scene and control alternating",
                 scene_path.display()
-            );
+            ));
             let (rounds, rays) = thread_rounds(&scene, n, runs as usize)?;
-            print!("{}", threads_table(&rounds, n, rays));
+            print(&threads_table(&rounds, n, rays))?;
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -48,7 +48,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     if verdict.as_ref().is_some_and(|v| v.correct) {
         // Progress is a convenience: a data folder that cannot be written does not fail a check.
         if let Err(e) = Progress::record(&lesson, &ex.id) {
-            eprintln!("raytree: progress not saved: {e}");
+            super::output::eprintln(&format!("raytree: progress not saved: {e}"));
         }
     }
     match a.format {
@@ -73,16 +73,16 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             if let Some(lines) = &explanation {
                 doc["explanation"] = json!(lines);
             }
-            println!("{}", serde_json::to_string_pretty(&doc)?);
+            super::output::println(&serde_json::to_string_pretty(&doc)?.to_string())?;
         }
         Format::Text => {
             if let Some(v) = &verdict {
-                println!("{}", v.message());
+                super::output::println(&v.message().to_string())?;
             }
             if let Some(lines) = &explanation {
-                println!();
+                super::output::println("")?;
                 for line in lines {
-                    println!("{line}");
+                    super::output::println(&line.to_string())?;
                 }
             }
         }

@@ -29,7 +29,7 @@ pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
     let op = match (t.op, t.leaf) {
         (Some(op), _) => op.name(),
         (None, Some(leaf)) => scene.leaves[leaf as usize].shape.kind(),
-        _ => "?",
+        (None, None) => "group",
     };
     let point = |t: f64| {
         if t.is_finite() {
@@ -67,25 +67,31 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 "objects": survey.met.iter().map(|(name, t)| json!({ "object": name, "node": trace_json(&scene, &ray, t) })).collect::<Vec<_>>(),
                 "not_met": survey.unmet,
             });
-            println!("{}", serde_json::to_string_pretty(&doc)?);
+            super::output::println(&serde_json::to_string_pretty(&doc)?.to_string())?;
         }
         Format::Text => {
-            println!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir));
+            super::output::println(&format!(
+                "ray {} → {}",
+                text::vec3(ray.origin),
+                text::vec3(ray.dir)
+            ))?;
             if survey.met.is_empty() {
-                println!("the ray meets no object");
+                super::output::println("the ray meets no object")?;
             }
             for (name, t) in &survey.met {
-                println!("\nobject {name}");
-                print!("{}", text::csg_trace(&scene, &ray, t));
+                super::output::println(&format!("\nobject {name}"))?;
+                super::output::print(&text::csg_trace(&scene, &ray, t).to_string())?;
             }
             if !survey.unmet.is_empty() {
-                println!();
+                super::output::println("")?;
             }
             for line in &survey.unmet {
-                println!("{line}");
+                super::output::println(&line.to_string())?;
             }
             if survey.unmet.iter().any(|l| l.contains("culled")) {
-                println!("(--all evaluates every object whole, without bounding boxes)");
+                super::output::println(
+                    "(--all evaluates every object whole, without bounding boxes)",
+                )?;
             }
         }
     }

@@ -100,7 +100,9 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         Kind::Svg => svg.into_bytes(),
         Kind::Png => {
             if !raster::have_fonts() {
-                eprintln!("warning: no fonts found on this system: the PNG has no labels");
+                super::output::eprintln(
+                    "warning: no fonts found on this system: the PNG has no labels",
+                );
             }
             raster::png(&svg)?
         }

@@ -39,14 +39,16 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let report = grade(&lesson, &rows, problems)?;
     let file = a.answers.display().to_string();
     match a.format {
-        GradeFormat::Json => println!("{}", serde_json::to_string_pretty(&json_report(&report))?),
+        GradeFormat::Json => super::output::println(
+            &serde_json::to_string_pretty(&json_report(&report))?.to_string(),
+        )?,
         GradeFormat::Csv => write_csv(&report)?,
         GradeFormat::Text => print_text(&report, &file),
     }
     // Whatever the format, the rows not graded are said on stderr too.
     if a.format != GradeFormat::Text {
         for p in &report.problems {
-            eprintln!("{file}:{}: {}", p.line, p.message);
+            super::output::eprintln(&format!("{file}:{}: {}", p.line, p.message));
         }
     }
     Ok(ExitCode::SUCCESS)

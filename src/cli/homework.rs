@@ -21,20 +21,22 @@ pub struct Args {
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let lesson = Lesson::load(&a.lesson)?;
     let hw = homework::write(&lesson, &a.student, &a.output)?;
-    println!(
+    super::output::println(&format!(
         "{}: homework of {} ({} exercises) from {}",
         a.output.display(),
         a.student.trim(),
         hw.exercises.len(),
         a.lesson.display()
-    );
+    ))?;
     match &hw.variant {
         Some(v) => {
             for (path, value) in &v.values {
-                println!("  {path} = {value}");
+                super::output::println(&format!("  {path} = {value}"))?;
             }
         }
-        None => println!("  (the lesson declares no `vary:` values: everyone gets the same)"),
+        None => super::output::println(
+            "  (the lesson declares no `vary:` values: everyone gets the same)",
+        )?,
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,11 +1,22 @@
 //! `raytree inspect`: the ray tree of a pixel or of any ray.
+//!
+//! A pixel's value is the one `render` gives it (all its samples, through the scene's filter,
+//! with the same seed), computed by the film on its own; the tree shown is then that of the
+//! ray through the pixel's centre, or of one of its samples (`--sample K`), and says which.
 
 use std::process::ExitCode;
 
+use glam::{DVec2, DVec3};
+
 use super::args::{depth, SceneArgs, Target};
+use super::output::{print, println};
 use super::Failure;
 use crate::diagram::dot::dot;
+use crate::render::antialias::{cell, grid_offsets, jitter};
+use crate::render::film::Film;
+use crate::render::{Engine, RenderOptions};
 use crate::sampling::Rng;
+use crate::scene::{Antialias, Filter, Scene};
 use crate::stats::Stats;
 use crate::trace::tree::Inspection;
 use crate::trace::{text, Tracer};
@@ -19,6 +30,12 @@ pub struct Args {
     /// Rays per path, primary included (overrides the scene's max_depth).
     #[arg(long)]
     depth: Option<u32>,
+    /// Seed of the random numbers, as for `render` (jittered samples, glossy rays, paths).
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Show the tree of the pixel's K-th sample (1 … spp) instead of its centre ray.
+    #[arg(long, value_name = "K", requires = "pixel")]
+    sample: Option<u32>,
     #[arg(long, value_enum, default_value_t = Format::Text)]
     format: Format,
 }
@@ -34,10 +51,7 @@ pub enum Format {
 }
 
 /// A path-traced pixel: its estimate over the scene's samples, and the first few paths.
-fn paths(a: &Args, scene: &crate::scene::Scene) -> Result<ExitCode, Failure> {
-    use crate::render::antialias::{cell, grid_offsets, jitter};
-    use crate::render::film::Film;
-    use crate::render::RenderOptions;
+fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
     use crate::trace::path::PathTracer;
     const SHOWN: usize = 4;
     let [x, y] = a
@@ -49,10 +63,11 @@ fn paths(a: &Args, scene: &crate::scene::Scene) -> Result<ExitCode, Failure> {
     let tracer = PathTracer::new(scene, max_depth);
     let options = RenderOptions {
         max_depth,
+        seed: a.seed,
         ..RenderOptions::of(scene)
     };
-    // The pixel's value as rendered (seed 0), and its first samples replayed with the same
-    // random numbers, so the paths shown are the ones that went into it.
+    // The pixel's value as rendered, and its first samples replayed with the same random
+    // numbers, so the paths shown are the ones that went into it.
     let film = Film::new(scene, options);
     let estimate = film.lone_pixel(&mut film.tracer(), x, y);
     let spp = options.spp.max(1);
@@ -67,32 +82,33 @@ fn paths(a: &Args, scene: &crate::scene::Scene) -> Result<ExitCode, Failure> {
         let value = tracer.sample(&ray, &mut rng, &mut Stats::default(), Some(&mut log));
         shown.push((value, log));
     }
+    if a.format == Format::Dot {
+        return Err(Failure(
+            "--format dot draws a Whitted ray tree; a path-traced pixel has sampled paths (use text or json)".into(),
+        ));
+    }
     match a.format {
-        Format::Dot => {
-            return Err(Failure(
-                "--format dot draws a Whitted ray tree; a path-traced scene has paths, not a tree (use --format json)".into(),
-            ))
-        }
         Format::Json => {
             let doc = serde_json::json!({
                 "pixel": [x, y],
                 "integrator": "path",
                 "samples": spp,
+                "seed": options.seed,
                 "color": estimate.to_array(),
                 "paths": shown.iter().map(|(v, log)| serde_json::json!({ "value": v.to_array(), "vertices": log })).collect::<Vec<_>>(),
             });
-            println!("{}", serde_json::to_string_pretty(&doc)?);
+            println(&serde_json::to_string_pretty(&doc)?)?;
         }
-        Format::Text => {
-            println!(
-                "pixel ({x}, {y}), path traced: estimate {} from {spp} samples",
+        Format::Text | Format::Dot => {
+            let mut out = format!(
+                "pixel ({x}, {y}), path traced: estimate {} from {spp} samples\n",
                 text::color(estimate)
             );
             for (k, (value, log)) in shown.iter().enumerate() {
-                println!("sample {}: {}", k + 1, text::color(*value));
+                out += &format!("sample {}: {}\n", k + 1, text::color(*value));
                 for v in log {
-                    println!(
-                        "  {:<10} {:<14} at {}  throughput {}  adds {}",
+                    out += &format!(
+                        "  {:<10} {:<14} at {}  throughput {}  adds {}\n",
                         v.event,
                         v.object.as_deref().unwrap_or("-"),
                         text::vec3(v.point),
@@ -101,9 +117,95 @@ fn paths(a: &Args, scene: &crate::scene::Scene) -> Result<ExitCode, Failure> {
                     );
                 }
             }
+            print(&out)?;
         }
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Which ray of a pixel the tree follows.
+enum Traced {
+    /// The ray through the pixel's centre.
+    Centre,
+    /// Sample K (from 1) of the pixel, through this image point.
+    Sample(u32, DVec2),
+}
+
+/// What `render` computes for a pixel, and how.
+struct Rendered {
+    value: DVec3,
+    options: RenderOptions,
+    filter: Filter,
+}
+
+impl Rendered {
+    /// A pixel whose one sample is its centre ray, through a box: the tree's value is the
+    /// pixel's, and nothing more needs saying.
+    fn is_centre_ray(&self) -> bool {
+        self.options.spp <= 1
+            && self.options.antialias == Antialias::Grid
+            && self.filter == Filter::Box
+    }
+
+    fn describe(&self) -> String {
+        let spp = self.options.spp.max(1);
+        format!(
+            "{spp} sample{} ({}), {} filter, seed {}",
+            if spp == 1 { "" } else { "s" },
+            self.options.antialias.name(),
+            match self.filter {
+                Filter::Box => "box",
+                Filter::Gaussian => "Gaussian",
+            },
+            self.options.seed
+        )
+    }
+}
+
+/// The ray of pixel (x, y) the tree follows, and the random numbers it starts with: those the
+/// film gives that ray when it renders the pixel (the samples before it are replayed, so
+/// glossy rays draw the same numbers).
+fn pixel_ray(
+    scene: &Scene,
+    film: &Film,
+    options: &RenderOptions,
+    [x, y]: [u32; 2],
+    sample: Option<u32>,
+) -> Result<(crate::geometry::Ray, Rng, Traced), Failure> {
+    let rng = Rng::for_pixel(options.seed, x, y);
+    let Some(k) = sample else {
+        return Ok((scene.camera.pixel_ray(x, y), rng, Traced::Centre));
+    };
+    let spp = options.spp.max(1);
+    if matches!(film.antialias(), Antialias::Adaptive { .. }) {
+        return Err(Failure(
+            "--sample is for grid and jittered sampling (adaptive antialiasing traces the pixel's corners)".into(),
+        ));
+    }
+    if !(1..=spp).contains(&k) {
+        return Err(Failure(format!(
+            "--sample must be between 1 and {spp} (the pixel's samples), got {k}"
+        )));
+    }
+    let offsets = grid_offsets(spp);
+    let cell = cell(offsets.len());
+    let jittered = film.antialias() == Antialias::Jittered;
+    let mut t = film.tracer();
+    t.rng = rng;
+    for (i, o) in offsets.iter().enumerate() {
+        let uv = if jittered {
+            jitter(*o, cell, &mut t.rng)
+        } else {
+            *o
+        };
+        let (px, py) = (x as f64 + uv.x, y as f64 + uv.y);
+        if i as u32 + 1 == k {
+            let at = DVec2::new(px, py);
+            return Ok((scene.camera.ray(px, py), t.rng, Traced::Sample(k, at)));
+        }
+        film.sample(&mut t, px, py);
+    }
+    unreachable!("k is at most the number of offsets")
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
@@ -112,34 +214,88 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         return paths(&a, &scene);
     }
     let ray = a.target.ray(&scene)?;
-    // A pixel's glossy and frosted rays come from its own generator, as in the renderer.
-    let rng = match a.target.pixel {
-        Some([x, y]) => Rng::for_pixel(0, x, y),
-        None => Rng::for_pixel(0, 0, 0),
+    let max_depth = depth(&scene, a.depth)?;
+    let (ray, rng, traced, rendered) = match a.target.pixel {
+        Some([x, y]) => {
+            let options = RenderOptions {
+                max_depth,
+                seed: a.seed,
+                engine: Engine::Core,
+                ..RenderOptions::of(&scene)
+            };
+            let film = Film::new(&scene, options);
+            let value = film.lone_pixel(&mut film.tracer(), x, y);
+            let (ray, rng, traced) = pixel_ray(&scene, &film, &options, [x, y], a.sample)?;
+            let rendered = Rendered {
+                value,
+                options,
+                filter: scene.filter,
+            };
+            (ray, rng, traced, Some(rendered))
+        }
+        // An explicit ray's glossy and frosted rays come from pixel (0, 0)'s generator.
+        None => (ray, Rng::for_pixel(a.seed, 0, 0), Traced::Centre, None),
     };
     let tree = Tracer::new(&scene)
-        .with_depth(depth(&scene, a.depth)?)
+        .with_depth(max_depth)
         .with_rng(rng)
         .inspect(&ray);
     let inspection = Inspection {
         pixel: a.target.pixel,
-        color: tree.color,
+        color: rendered.as_ref().map_or(tree.color, |r| r.value),
         tree,
     };
     match a.format {
-        Format::Json => println!("{}", serde_json::to_string_pretty(&inspection)?),
+        Format::Json => {
+            let mut doc = serde_json::to_value(&inspection)?;
+            if let Some(r) = &rendered {
+                doc["rendered"] = serde_json::json!({
+                    "samples": r.options.spp.max(1),
+                    "antialias": r.options.antialias.name(),
+                    "filter": match r.filter { Filter::Box => "box", Filter::Gaussian => "gaussian" },
+                    "seed": r.options.seed,
+                });
+                doc["traced"] = match traced {
+                    Traced::Centre => serde_json::json!("centre"),
+                    Traced::Sample(k, at) => {
+                        serde_json::json!({ "sample": k, "at": [at.x, at.y] })
+                    }
+                };
+            }
+            println(&serde_json::to_string_pretty(&doc)?)?;
+        }
         Format::Dot => {
             let title = match inspection.pixel {
                 Some([x, y]) => format!("pixel ({x}, {y}): I = {}", text::color(inspection.color)),
                 None => format!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir)),
             };
-            print!("{}", dot(&inspection.tree, Some(&scene), &title));
+            print(&dot(&inspection.tree, Some(&scene), &title))?;
         }
         Format::Text => {
-            if let Some([x, y]) = inspection.pixel {
-                println!("pixel ({x}, {y}) = {}", text::color(inspection.color));
+            let mut out = String::new();
+            if let (Some([x, y]), Some(r)) = (inspection.pixel, &rendered) {
+                out += &format!("pixel ({x}, {y}) = {}", text::color(r.value));
+                if r.is_centre_ray() && a.sample.is_none() {
+                    out += "\n";
+                } else {
+                    out += &format!("  as rendered: {}\n", r.describe());
+                    out += &match traced {
+                        Traced::Centre => format!(
+                            "the tree of the ray through the pixel's centre (I = {}):\n",
+                            text::color(inspection.tree.color)
+                        ),
+                        Traced::Sample(k, at) => format!(
+                            "the tree of sample {k} of {}, through ({}, {}) (I = {}):\n",
+                            r.options.spp.max(1),
+                            text::num(at.x),
+                            text::num(at.y),
+                            text::color(inspection.tree.color)
+                        ),
+                    };
+                }
             }
-            print!("{}", text::tree(&inspection.tree));
+            out += &text::tree(&inspection.tree);
+            print(&out)?;
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -54,13 +54,16 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 "root": root.display().to_string(),
                 "lessons": list,
             });
-            println!("{}", serde_json::to_string_pretty(&doc)?);
+            super::output::println(&serde_json::to_string_pretty(&doc)?.to_string())?;
         }
         Format::Text => {
             for (dir, lesson) in &lessons {
                 match lesson {
-                    Ok(l) => print_lesson(l, &progress),
-                    Err(e) => println!("{}  (does not load: {e})\n", dir.display()),
+                    Ok(l) => print_lesson(l, &progress)?,
+                    Err(e) => super::output::println(&format!(
+                        "{}  (does not load: {e})\n",
+                        dir.display()
+                    ))?,
                 }
             }
         }
@@ -97,20 +100,20 @@ fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
         .collect())
 }
 
-fn print_lesson(lesson: &Lesson, progress: &Progress) {
+fn print_lesson(lesson: &Lesson, progress: &Progress) -> Result<(), Failure> {
     let solved = progress.solved(lesson);
     let done = lesson
         .exercises
         .iter()
         .filter(|e| solved.contains(&e.id))
         .count();
-    println!(
+    super::output::println(&format!(
         "{}  {}  ({done}/{} done)",
         lesson.dir.display(),
         lesson.title,
         lesson.exercises.len()
-    );
-    println!("    {}", lesson.summary.trim());
+    ))?;
+    super::output::println(&format!("    {}", lesson.summary.trim()))?;
     let mut notes = vec![];
     if let Some(v) = &lesson.variant {
         notes.push(format!("homework of {} (lesson {})", v.student, v.lesson));
@@ -125,14 +128,15 @@ fn print_lesson(lesson: &Lesson, progress: &Progress) {
         notes.push("solutions hidden".into());
     }
     if !notes.is_empty() {
-        println!("    ({})", notes.join("; "));
+        super::output::println(&format!("    ({})", notes.join("; ")))?;
     }
     for ex in &lesson.exercises {
         let q = ex.question.split_whitespace().collect::<Vec<_>>().join(" ");
         let mark = if solved.contains(&ex.id) { "✓" } else { "-" };
-        println!("    {mark} {:<24} {}", ex.id, q);
+        super::output::println(&format!("    {mark} {:<24} {}", ex.id, q))?;
     }
-    println!();
+    super::output::println("")?;
+    Ok(())
 }
 
 fn lesson_json(lesson: &Lesson, progress: &Progress) -> serde_json::Value {
@@ -169,7 +173,7 @@ fn lesson_json(lesson: &Lesson, progress: &Progress) -> serde_json::Value {
 fn run_validate(dir: &Path) -> Result<ExitCode, Failure> {
     let v = validate(dir)?;
     for p in &v.problems {
-        println!("✗ {p}");
+        super::output::println(&format!("✗ {p}"))?;
     }
     let summary = format!(
         "{} lesson{}, {} exercise{}, {} README answer{} compared",
@@ -181,14 +185,16 @@ fn run_validate(dir: &Path) -> Result<ExitCode, Failure> {
         if v.answers == 1 { "" } else { "s" }
     );
     if v.problems.is_empty() {
-        println!("ok: {summary}; every exercise computable, every answer equal to raytree's");
+        super::output::println(&format!(
+            "ok: {summary}; every exercise computable, every answer equal to raytree's"
+        ))?;
         Ok(ExitCode::SUCCESS)
     } else {
-        println!(
+        super::output::println(&format!(
             "{} disagreement{} in {summary}",
             v.problems.len(),
             if v.problems.len() == 1 { "" } else { "s" }
-        );
+        ))?;
         Ok(ExitCode::from(1))
     }
 }

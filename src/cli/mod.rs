@@ -1,4 +1,8 @@
 //! The command line: one module per subcommand; this one parses and dispatches.
+//!
+//! Output goes through `output` (`print!` and `eprintln!` panic when the write fails, as on a
+//! closed pipe or a full device); clippy refuses them here.
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod args;
 mod bench;
@@ -10,6 +14,7 @@ mod grade;
 mod homework;
 mod inspect;
 mod lessons;
+mod output;
 mod preview;
 mod render;
 
@@ -55,6 +60,21 @@ enum Command {
 #[derive(Debug)]
 pub struct Failure(pub String);
 
+/// Separates a failure's one line from the lines shown under it on a terminal only (a scene
+/// error's snippet): scripts and tests read the one line.
+const SNIPPET: char = '\u{0}';
+
+impl Failure {
+    /// A scene error: its one line, and (on a terminal) the line of the file it points at with
+    /// a caret under the column.
+    pub fn scene(e: crate::scene::SceneError) -> Failure {
+        match e.snippet() {
+            Some(snippet) => Failure(format!("{e}{SNIPPET}{snippet}")),
+            None => Failure(e.to_string()),
+        }
+    }
+}
+
 impl<E: std::fmt::Display> From<E> for Failure {
     fn from(e: E) -> Failure {
         Failure(e.to_string())
@@ -62,7 +82,21 @@ impl<E: std::fmt::Display> From<E> for Failure {
 }
 
 pub fn run() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        // Help and version go to stdout like any output (a closed pipe or a full device is
+        // no panic); usage errors are clap's own, exit status 2.
+        Err(e) if !e.use_stderr() => {
+            return match output::print(&e.render().to_string()) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(Failure(msg)) => {
+                    output::eprintln(&format!("raytree: {msg}"));
+                    ExitCode::from(2)
+                }
+            };
+        }
+        Err(e) => e.exit(),
+    };
     let result = match cli.command {
         Command::Render(a) => render::run(a),
         Command::Inspect(a) => inspect::run(a),
@@ -79,7 +113,14 @@ pub fn run() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(Failure(msg)) => {
-            eprintln!("raytree: {msg}");
+            let (line, snippet) = match msg.split_once(SNIPPET) {
+                Some((line, snippet)) => (line, Some(snippet)),
+                None => (msg.as_str(), None),
+            };
+            output::eprintln(&format!("raytree: {line}"));
+            if let Some(snippet) = snippet.filter(|_| output::stderr_is_terminal()) {
+                output::eprint_block(snippet);
+            }
             ExitCode::from(2)
         }
     }

@@ -44,6 +44,6 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     } else {
         ColorMode::detect()
     };
-    print!("{}", to_text(&image, mode));
+    super::output::print_raw(to_text(&image, mode).as_bytes())?;
     Ok(ExitCode::SUCCESS)
 }

@@ -7,6 +7,7 @@ use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
 use super::args::{depth, SceneArgs};
+use super::output::eprintln;
 use super::Failure;
 use crate::render::{render, Encoding, Engine, RenderOptions};
 use crate::scene::Antialias;
@@ -21,7 +22,7 @@ pub enum Gamma {
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
-    /// Output image (.png or .ppm).
+    /// Output image (.png, .ppm or .exr), written whole or not at all.
     #[arg(short, long)]
     output: PathBuf,
     #[arg(long)]
@@ -105,10 +106,45 @@ fn strip(frames: &[crate::render::Image]) -> crate::render::Image {
     out
 }
 
+/// Checks that an image of `pixels` pixels fits the budget and that memory for it can be had
+/// (`bytes_per_pixel` of it at once): a clear error instead of an abort when it cannot.
+fn budget_pixels(
+    pixels: u64,
+    what: &str,
+    limits: &crate::scene::Limits,
+    bytes_per_pixel: u64,
+) -> Result<(), Failure> {
+    if pixels > limits.max_pixels {
+        return Err(Failure(format!(
+            "{what} of {pixels} pixels exceeds the budget of {} pixels ({})",
+            limits.max_pixels,
+            crate::scene::Limits::RAISE
+        )));
+    }
+    let bytes = pixels.saturating_mul(bytes_per_pixel);
+    let mut probe: Vec<u8> = Vec::new();
+    usize::try_from(bytes)
+        .ok()
+        .and_then(|n| probe.try_reserve_exact(n).ok())
+        .ok_or_else(|| {
+            Failure(format!(
+                "{what} of {pixels} pixels needs {} of memory, more than can be had",
+                crate::files::bytes(bytes)
+            ))
+        })
+}
+
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(a.threads.unwrap_or(0))
-        .build()?;
+    // From here on an interrupted render winds down (and leaves no temporary file behind)
+    // before the process ends as the signal asks.
+    let signals = crate::signals::Signals::catch()?;
+    let result = render_to_file(&a, signals.stop());
+    signals.finish();
+    result
+}
+
+fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
+    let pool = super::args::thread_pool(a.threads)?;
     // Large scene files parse on the pool's threads too (and only on those).
     let mut scene = pool.install(|| a.scene.load())?;
     let same = |p: &std::path::Path| p.canonicalize().ok();
@@ -128,16 +164,36 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             "image size {w} × {h} must be between 1 and 1000000 pixels each way"
         )));
     }
-    if (w as u64 * h as u64) > 64_000_000 && !a.scene.allow_huge {
-        return Err(Failure(format!(
-            "{w} × {h} exceeds the budget of 64000000 pixels (use --allow-huge)"
-        )));
+    let limits = super::args::limits(a.scene.allow_huge);
+    // The image (three f64 per pixel), the rows rendered before they are joined, and 8-bit
+    // values for encoding; a strip keeps all its frames and the strip besides.
+    const BYTES_PER_PIXEL: u64 = 2 * 24 + 3;
+    let frames = match a.depth_strip {
+        None => 1,
+        Some(n) if (1..=64).contains(&n) => n as u64,
+        Some(n) => {
+            return Err(Failure(format!(
+                "--depth-strip must be between 1 and 64, got {n}"
+            )))
+        }
+    };
+    if frames == 1 {
+        budget_pixels(w as u64 * h as u64, "the image", &limits, BYTES_PER_PIXEL)?;
+    } else {
+        let strip = (frames * w as u64 + (frames - 1) * 4) * h as u64;
+        budget_pixels(
+            strip + frames * w as u64 * h as u64,
+            &format!("a strip of {frames} images of {w} × {h}"),
+            &limits,
+            BYTES_PER_PIXEL,
+        )?;
     }
     scene.camera = scene.camera.resized(w, h);
     let spp = a.spp.unwrap_or(scene.spp);
-    if !(1..=65_536).contains(&spp) {
+    if !(1..=limits.max_spp).contains(&spp) {
         return Err(Failure(format!(
-            "--spp must be between 1 and 65536, got {spp}"
+            "--spp must be between 1 and {}, got {spp}",
+            limits.max_spp
         )));
     }
     let options = RenderOptions {
@@ -167,16 +223,12 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             b.inc(1)
         }
     };
+    let interrupted = || Failure("interrupted".into());
     let (image, stats) = match a.depth_strip {
         None => pool
-            .install(|| render(&scene, options, &on_row, &AtomicBool::new(false)))
-            .expect("not cancelled"),
+            .install(|| render(&scene, options, &on_row, stop))
+            .ok_or_else(interrupted)?,
         Some(n) => {
-            if !(1..=64).contains(&n) {
-                return Err(Failure(format!(
-                    "--depth-strip must be between 1 and 64, got {n}"
-                )));
-            }
             let mut frames = Vec::new();
             let mut total = crate::stats::Stats::default();
             for depth in 1..=n {
@@ -185,8 +237,8 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                     ..options
                 };
                 let (img, st) = pool
-                    .install(|| render(&scene, o, &|_| {}, &AtomicBool::new(false)))
-                    .expect("not cancelled");
+                    .install(|| render(&scene, o, &|_| {}, stop))
+                    .ok_or_else(interrupted)?;
                 total.add(&st);
                 frames.push(img);
                 if let Some(b) = &bar {
@@ -205,15 +257,15 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     } else {
         Encoding::Srgb
     };
-    image.save(&a.output, encoding)?;
+    image.save_unless(&a.output, encoding, stop)?;
     if let Some((x, y)) = image.first_non_finite() {
-        eprintln!(
+        eprintln(&format!(
             "warning: pixel {x},{y} is not finite (NaN or ∞); replay it with: raytree inspect {} --pixel {x},{y}",
             a.scene.scene.display()
-        );
+        ));
     }
     if a.stats {
-        eprintln!(
+        eprintln(&format!(
             "{} × {} pixels, {} spp ({}), depth {}, {:.3} s",
             w,
             h,
@@ -221,13 +273,15 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             options.antialias.name(),
             options.max_depth,
             elapsed.as_secs_f64()
-        );
-        eprintln!(
+        ));
+        eprintln(&format!(
             "{:<40} {:>14.0}",
             "rays per second",
             stats.rays() as f64 / elapsed.as_secs_f64().max(1e-9)
-        );
-        eprint!("{}", stats.report());
+        ));
+        for line in stats.report().lines() {
+            eprintln(line);
+        }
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -104,12 +104,12 @@ pub fn leaf_outline(l: &Leaf, view: View, section: f64) -> Option<Outline> {
                 .collect();
             flat(corners)
         }
-        Shape::Cylinder(c) => {
+        Shape::Cylinder(c) | Shape::OpenCylinder(c) => {
             let mut pts = rim(c.base, c.top - c.base, c.radius);
             pts.extend(rim(c.top, c.top - c.base, c.radius));
             flat(pts)
         }
-        Shape::Cone(c) => {
+        Shape::Cone(c) | Shape::OpenCone(c) => {
             let mut pts = rim(c.base, c.base - c.apex, c.radius);
             pts.push(c.apex);
             flat(pts)

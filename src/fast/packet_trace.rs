@@ -139,7 +139,7 @@ fn shade_packet<L: Lanes + ?Sized>(
             None => out[i] = scene.background,
             Some(hit) => {
                 let si = scene.interaction(tasks.ray(i), hit);
-                out[i] = ambient(scene.material(si.material), scene.ambient);
+                out[i] = ambient(scene.material(si.material), &si.paint, scene.ambient);
                 shaded[i] = Some(si);
             }
         }
@@ -200,14 +200,12 @@ fn secondary_packet<L: Lanes + ?Sized>(
     shaded: &[Option<Interaction>],
     out: &mut [DVec3],
 ) {
-    let scene = t.scene;
     let mut splits: [Option<(f64, f64)>; PACKET] = [None; PACKET];
     let mut reflected = Children::new();
     let mut transmitted = Children::new();
     for (i, si) in shaded.iter().enumerate() {
         let Some(si) = si else { continue };
-        let m = scene.material(si.material);
-        if !(m.kr > 0.0 || m.kt > 0.0) || t.stops_at(m) {
+        if !(si.paint.kr > 0.0 || si.paint.kt > 0.0) || t.stops_at(&si.paint) {
             continue;
         }
         let task = tasks.task(i);

@@ -55,7 +55,7 @@ impl<'s> FastScene<'s> {
                 Geometry::Csg(root) => FlatCsg::new(root, |leaf| {
                     scene.leaves[leaf as usize].world_sphere().cloned()
                 }),
-                Geometry::Leaf(_) => None,
+                Geometry::Leaf(_) | Geometry::Group(_) => None,
             })
             .collect();
         let mut fast = FastScene {

@@ -1,9 +1,10 @@
-//! Finite cone with a base cap, given (as in seed 003) by its apex, the centre of its base and
-//! the base radius.
+//! Finite cone, given (as in seed 003) by its apex, the centre of its base and the base radius:
+//! with a base cap (a solid) or without it (`capped: false`, an open cone: a surface with no
+//! inside).
 
 use glam::DVec3;
 
-use super::cylinder::{cap_slab, quadratic, Interval, BASE_CAP, SIDE};
+use super::cylinder::{cap_slab, crossings, quadratic, Interval, BASE_CAP, SIDE};
 use super::{Ray, Span};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -115,6 +116,38 @@ impl Cone {
             }
         }
         result.map(Interval::span)
+    }
+
+    /// The open cone: where the ray crosses the side of the nappe between the apex and the base
+    /// rim, the roots of f(t) = ((x − apex)·a)² − cos²θ·|x − apex|² = 0 whose height along the
+    /// axis lies in [0, h): the apex belongs to the surface, the rim circle, an edge, does not
+    /// (as The Ray Tracer Challenge's open cones). No inside: the span's ends are the crossings.
+    pub fn open_span(&self, ray: &Ray) -> Option<Span> {
+        let axis = self.base - self.apex;
+        let h = axis.length();
+        let a = axis / h;
+        let k = self.cos2();
+        let w = ray.origin - self.apex;
+        let (wa, da) = (w.dot(a), ray.dir.dot(a));
+        let qa = da * da - k * ray.dir.length_squared();
+        let qb = da * wa - k * ray.dir.dot(w);
+        let qc = wa * wa - k * w.length_squared();
+        let (t0, t1) = if qa == 0.0 {
+            // Parallel to a generator: f is linear, 2·qb·t + qc = 0, one crossing (none when
+            // the ray runs along the surface itself, qb = 0).
+            if qb == 0.0 {
+                return None;
+            }
+            let t = -qc / (2.0 * qb);
+            (t, t)
+        } else {
+            quadratic(qa, qb, qc)?
+        };
+        let on_nappe = |t: f64| {
+            let height = wa + t * da;
+            (0.0..h).contains(&height)
+        };
+        crossings([t0, t1].map(|t| on_nappe(t).then_some(t)), SIDE)
     }
 
     /// Outward normal of the side: the gradient of cos²θ·|w|² − (w·a)², i.e. cos²θ·w − (w·a)·a

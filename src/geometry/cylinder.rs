@@ -1,4 +1,5 @@
-//! Finite cylinder with caps: radius r around the segment from `base` to `top`.
+//! Finite cylinder: radius r around the segment from `base` to `top`, with caps (a solid) or
+//! without them (`capped: false`, an open tube: a surface with no inside).
 
 use glam::DVec3;
 
@@ -86,6 +87,15 @@ pub(crate) fn cap_slab(
     })
 }
 
+/// The span of a surface without inside from its crossings (the nearer first), if any.
+pub(crate) fn crossings(ts: [Option<f64>; 2], face: u8) -> Option<Span> {
+    match ts {
+        [Some(t0), Some(t1)] => Some(Span::new(t0, face, t1, face)),
+        [Some(t), None] | [None, Some(t)] => Some(Span::new(t, face, t, face)),
+        [None, None] => None,
+    }
+}
+
 /// Roots of a·t² + 2b·t + c = 0 in increasing order, computed stably; None when complex.
 pub(crate) fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
     let disc = b * b - a * c;
@@ -132,6 +142,32 @@ impl Cylinder {
         };
         let caps = cap_slab(wa, da, h, BASE_CAP, TOP_CAP)?;
         side.overlap(caps).map(Interval::span)
+    }
+
+    /// The open tube: where the ray crosses the curved side between the two rims, the roots of
+    /// |w⊥|² = r² whose height along the axis lies strictly between 0 and h (a ray that only
+    /// touches a rim circle misses, as in The Ray Tracer Challenge). A tube has no inside, so
+    /// the span is not an interval inside it: its ends are the crossings, the nearer first (one
+    /// crossing twice if there is one).
+    pub fn open_span(&self, ray: &Ray) -> Option<Span> {
+        let axis = self.top - self.base;
+        let h = axis.length();
+        let a = axis / h;
+        let w = ray.origin - self.base;
+        let (wa, da) = (w.dot(a), ray.dir.dot(a));
+        let (w_perp, d_perp) = (w - wa * a, ray.dir - da * a);
+        let qa = d_perp.length_squared();
+        if qa == 0.0 {
+            // Along the axis the ray never crosses the side (at most it runs in it).
+            return None;
+        }
+        let qc = w_perp.length_squared() - self.radius * self.radius;
+        let (t0, t1) = quadratic(qa, d_perp.dot(w_perp), qc)?;
+        let between_rims = |t: f64| {
+            let height = wa + t * da;
+            height > 0.0 && height < h
+        };
+        crossings([t0, t1].map(|t| between_rims(t).then_some(t)), SIDE)
     }
 
     pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {

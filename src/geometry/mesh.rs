@@ -1,11 +1,12 @@
 //! Triangle meshes: many triangles as one object, with their own BVH (seed 002: "the cost comes
 //! from ray–triangle intersections, reduced by a BVH") and smooth shading by interpolating the
-//! vertex normals with the hit's barycentric coordinates.
+//! vertex normals with the hit's barycentric coordinates; texture coordinates (OBJ `vt`) are
+//! blended with the same weights.
 
 use std::fmt;
 use std::path::Path;
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::{Ray, Triangle};
 use crate::accel::bvh::Visits;
@@ -15,6 +16,8 @@ pub struct Mesh {
     pub positions: Vec<DVec3>,
     /// One per position, or empty for flat shading.
     pub normals: Vec<DVec3>,
+    /// Texture coordinates (u, v), one per position, or empty.
+    pub texcoords: Vec<DVec2>,
     pub triangles: Vec<[u32; 3]>,
     bvh: Bvh,
     bounds: Aabb,
@@ -72,12 +75,33 @@ impl Mesh {
             Mesh {
                 positions,
                 normals,
+                texcoords: vec![],
                 triangles,
                 bvh,
                 bounds,
             },
             dropped,
         )
+    }
+
+    /// The mesh with texture coordinates, one per position (others are ignored).
+    pub fn with_texcoords(mut self, texcoords: Vec<DVec2>) -> Mesh {
+        if texcoords.len() == self.positions.len() {
+            self.texcoords = texcoords;
+        }
+        self
+    }
+
+    /// The texture coordinates at p on triangle `face`: its vertices' blended by the
+    /// barycentric coordinates, uv = λ1·uv1 + λ2·uv2 + λ3·uv3; without them, the triangle's
+    /// own (λ2, λ3).
+    pub fn uv(&self, p: DVec3, face: u32) -> DVec2 {
+        let l = self.triangle(face).barycentric(p);
+        if self.texcoords.is_empty() {
+            return DVec2::new(l.y, l.z);
+        }
+        let [a, b, c] = self.triangles[face as usize].map(|v| self.texcoords[v as usize]);
+        l.x * a + l.y * b + l.z * c
     }
 
     pub fn triangle(&self, i: u32) -> Triangle {
@@ -228,32 +252,45 @@ impl Mesh {
     }
 
     /// Loads a Wavefront OBJ file (all its objects, triangulated); `smooth` keeps its vertex
-    /// normals.
-    pub fn load_obj(path: &Path, smooth: bool) -> Result<(Mesh, usize), String> {
-        // Only regular files of sane size: `/dev/zero` or a pipe must not eat memory or hang.
-        const MAX_BYTES: u64 = 512 << 20;
-        let meta =
-            std::fs::metadata(path).map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-        if meta.is_dir() {
+    /// normals. The file and its triangles are budgeted before they are read and built; the
+    /// second value is the number of degenerate (zero-area) triangles dropped.
+    pub fn load_obj(
+        path: &Path,
+        smooth: bool,
+        budget: &ObjBudget,
+    ) -> Result<(Mesh, usize), String> {
+        use crate::files::ReadError;
+        let shown = path.display();
+        let bytes = crate::files::read_bounded(path, budget.max_bytes).map_err(|e| match e {
+            ReadError::Directory => format!("{shown}: is a directory, not a mesh file"),
+            ReadError::TooLarge { budget: b } => format!(
+                "{shown}: larger than the budget of {} for mesh files ({})",
+                crate::files::bytes(b),
+                budget.raise
+            ),
+            e => format!("{shown}: {e}"),
+        })?;
+        // A UTF-8 byte-order mark (as some Windows editors write) is not part of the first line.
+        let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+        let triangles = face_triangles(text);
+        if triangles > budget.max_triangles {
             return Err(format!(
-                "{}: is a directory, not a mesh file",
-                path.display()
+                "{shown}: {triangles} triangles bring the scene over its budget of {} triangles ({})",
+                budget.total, budget.raise
             ));
-        }
-        if !meta.is_file() {
-            return Err(format!("{}: not a regular file", path.display()));
-        }
-        if meta.len() > MAX_BYTES {
-            return Err(format!("{}: larger than 512 MiB", path.display()));
         }
         let options = tobj::LoadOptions {
             triangulate: true,
             single_index: true,
             ..Default::default()
         };
-        let (models, _) =
-            tobj::load_obj(path, &options).map_err(|e| format!("{}: {e}", path.display()))?;
+        // Materials come from the scene file, not from the OBJ's `mtllib`.
+        let (models, _) = tobj::load_obj_buf(&mut &text[..], &options, |_| {
+            Ok((vec![], Default::default()))
+        })
+        .map_err(|e| format!("{shown}: {e}"))?;
         let (mut positions, mut normals, mut triangles) = (vec![], vec![], vec![]);
+        let mut texcoords = vec![];
         for m in models {
             let base = positions.len() as u32;
             let p = &m.mesh.positions;
@@ -269,6 +306,14 @@ impl Mesh {
                         .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)),
                 );
             }
+            if m.mesh.texcoords.len() / 2 == p.len() / 3 {
+                texcoords.extend(
+                    m.mesh
+                        .texcoords
+                        .chunks_exact(2)
+                        .map(|t| DVec2::new(t[0] as f64, t[1] as f64)),
+                );
+            }
             triangles.extend(
                 m.mesh
                     .indices
@@ -277,21 +322,92 @@ impl Mesh {
             );
         }
         if triangles.is_empty() {
-            return Err(format!("{}: the OBJ file has no triangles", path.display()));
+            return Err(format!("{shown}: the OBJ file has no triangles"));
         }
         if positions.iter().any(|p| !p.is_finite()) {
-            return Err(format!(
-                "{}: the OBJ file has a non-finite vertex",
-                path.display()
-            ));
+            return Err(format!("{shown}: the OBJ file has a non-finite vertex"));
         }
-        Ok(Mesh::new(positions, normals, triangles))
+        let (mesh, dropped) = Mesh::new(positions, normals, triangles);
+        Ok((mesh.with_texcoords(texcoords), dropped))
     }
+}
+
+/// What an OBJ file may hold: bytes, and triangles (what is left of the scene's budget).
+#[derive(Clone, Copy, Debug)]
+pub struct ObjBudget {
+    pub max_bytes: u64,
+    pub max_triangles: u64,
+    /// The scene's whole triangle budget (for the message).
+    pub total: u64,
+    /// How to raise the budgets (for the message).
+    pub raise: &'static str,
+}
+
+/// The triangles an OBJ file's faces make (a face of n vertices makes n − 2), counted from
+/// the text before it is parsed.
+fn face_triangles(text: &[u8]) -> u64 {
+    text.split(|&b| b == b'\n')
+        .filter_map(|line| {
+            line.strip_prefix(b"f")
+                .filter(|r| r.first().is_some_and(u8::is_ascii_whitespace))
+        })
+        .map(|rest| {
+            let vertices = rest
+                .split(u8::is_ascii_whitespace)
+                .filter(|w| !w.is_empty())
+                .count() as u64;
+            vertices.saturating_sub(2)
+        })
+        .sum()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    const BUDGET: ObjBudget = ObjBudget {
+        max_bytes: 1 << 20,
+        max_triangles: 1000,
+        total: 1000,
+        raise: "raise it",
+    };
+
+    fn obj(name: &str, text: &[u8]) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("raytree-mesh-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    }
+
+    /// A byte-order mark before the first vertex must not hide it: the triangle keeps its
+    /// three corners where the file puts them.
+    #[test]
+    fn a_byte_order_mark_does_not_lose_the_first_vertex() {
+        let text = b"v 5 0 0\nv 6 0 0\nv 5 1 0\nf 1 2 3\n";
+        let plain = obj("plain.obj", text);
+        let marked = obj("bom.obj", &[b"\xEF\xBB\xBF".as_slice(), text].concat());
+        let (a, _) = Mesh::load_obj(&plain, false, &BUDGET).unwrap();
+        let (b, _) = Mesh::load_obj(&marked, false, &BUDGET).unwrap();
+        assert_eq!(b.positions, a.positions);
+        assert_eq!(b.positions[0], DVec3::new(5.0, 0.0, 0.0));
+        assert_eq!(b.triangles, vec![[0, 1, 2]]);
+    }
+
+    #[test]
+    fn faces_are_counted_against_the_triangle_budget_before_parsing() {
+        assert_eq!(
+            face_triangles(b"f 1 2 3\nf 1 2 3 4\nfoo\n# f 1 2 3\nf\t1 2 3 4 5"),
+            6
+        );
+        let mut text = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+        text += &"f 1 2 3\n".repeat(1001);
+        let e = Mesh::load_obj(&obj("many.obj", text.as_bytes()), false, &BUDGET).unwrap_err();
+        assert!(
+            e.contains("1001 triangles") && e.contains("budget of 1000"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn icosphere_is_watertight_through_edges_and_vertices() {

@@ -13,11 +13,12 @@ mod shape;
 pub mod sphere;
 mod transform;
 mod triangle;
+pub mod uv;
 
 pub use aabox::Aabox;
 pub use cone::Cone;
 pub use cylinder::Cylinder;
-pub use mesh::Mesh;
+pub use mesh::{Mesh, ObjBudget};
 pub use plane::Plane;
 pub use ray::Ray;
 pub use segment::{first_crossing, Segment, SegmentList, Surface};

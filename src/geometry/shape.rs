@@ -35,12 +35,18 @@ pub enum Shape {
     Box(Aabox),
     Cylinder(Cylinder),
     Cone(Cone),
+    /// A cylinder without its caps (`capped: false`): a tube, a surface with no inside.
+    OpenCylinder(Cylinder),
+    /// A cone without its base (`capped: false`): a surface with no inside.
+    OpenCone(Cone),
     Triangle(Triangle),
     Mesh(Arc<Mesh>),
 }
 
 impl Shape {
-    /// The interval of the (object-space) ray inside the shape, over the whole line.
+    /// The interval of the (object-space) ray inside the shape, over the whole line. A surface
+    /// without inside (a triangle, an open cylinder or cone) gives its crossings instead: the
+    /// span runs from the first to the last.
     pub fn span(&self, ray: &Ray) -> Option<Span> {
         match self {
             Shape::Sphere(s) => s.span(ray),
@@ -48,6 +54,8 @@ impl Shape {
             Shape::Box(s) => s.span(ray),
             Shape::Cylinder(s) => s.span(ray),
             Shape::Cone(s) => s.span(ray),
+            Shape::OpenCylinder(s) => s.open_span(ray),
+            Shape::OpenCone(s) => s.open_span(ray),
             Shape::Triangle(s) => s.span(ray),
             // A mesh is not convex, so it has no single span: the scene asks it for its
             // nearest hit (`Mesh::hit`) or all its crossings (`Mesh::crossings`) instead.
@@ -62,8 +70,8 @@ impl Shape {
             Shape::Sphere(s) => s.normal(p),
             Shape::Plane(s) => s.normal,
             Shape::Box(s) => s.normal(face as u8),
-            Shape::Cylinder(s) => s.normal(p, face as u8),
-            Shape::Cone(s) => s.normal(p, face as u8),
+            Shape::Cylinder(s) | Shape::OpenCylinder(s) => s.normal(p, face as u8),
+            Shape::Cone(s) | Shape::OpenCone(s) => s.normal(p, face as u8),
             Shape::Triangle(s) => s.normal(),
             Shape::Mesh(m) => m.normal(p, face),
         }
@@ -89,7 +97,17 @@ impl Shape {
                 top: p(s.top),
                 radius: s.radius * scale?,
             }),
+            Shape::OpenCylinder(s) => Shape::OpenCylinder(Cylinder {
+                base: p(s.base),
+                top: p(s.top),
+                radius: s.radius * scale?,
+            }),
             Shape::Cone(s) => Shape::Cone(Cone {
+                apex: p(s.apex),
+                base: p(s.base),
+                radius: s.radius * scale?,
+            }),
+            Shape::OpenCone(s) => Shape::OpenCone(Cone {
                 apex: p(s.apex),
                 base: p(s.base),
                 radius: s.radius * scale?,
@@ -125,13 +143,13 @@ impl Shape {
         let b = moved.bounds();
         let sound = match &moved {
             Shape::Sphere(s) => s.radius.is_normal() && s.center.is_finite(),
-            Shape::Cylinder(s) => {
+            Shape::Cylinder(s) | Shape::OpenCylinder(s) => {
                 s.radius.is_normal()
                     && s.axis().is_finite()
                     && b.min.is_finite()
                     && b.max.is_finite()
             }
-            Shape::Cone(s) => {
+            Shape::Cone(s) | Shape::OpenCone(s) => {
                 s.radius.is_normal()
                     && s.axis().is_finite()
                     && b.min.is_finite()
@@ -153,23 +171,32 @@ impl Shape {
             Shape::Sphere(s) => Aabb::new(s.center - s.radius, s.center + s.radius),
             Shape::Plane(_) => Aabb::everything(),
             Shape::Box(s) => Aabb::new(s.min, s.max),
-            Shape::Cylinder(s) => Aabb::around_disc(s.base, s.axis(), s.radius)
-                .union(&Aabb::around_disc(s.top, s.axis(), s.radius)),
-            Shape::Cone(s) => Aabb::around_disc(s.base, s.axis(), s.radius).grow(s.apex),
+            Shape::Cylinder(s) | Shape::OpenCylinder(s) => Aabb::around_disc(
+                s.base,
+                s.axis(),
+                s.radius,
+            )
+            .union(&Aabb::around_disc(s.top, s.axis(), s.radius)),
+            Shape::Cone(s) | Shape::OpenCone(s) => {
+                Aabb::around_disc(s.base, s.axis(), s.radius).grow(s.apex)
+            }
             Shape::Triangle(s) => Aabb::point(s.a).grow(s.b).grow(s.c),
             Shape::Mesh(m) => m.bounds(),
         }
     }
 
     /// A solid has an inside: a ray can be in it, and it can carry a refractive medium.
-    /// (A closed mesh counts; a single triangle does not.)
+    /// (A closed mesh counts; a single triangle, an open tube or cone does not.)
     pub fn is_solid(&self) -> bool {
-        !matches!(self, Shape::Triangle(_))
+        !matches!(
+            self,
+            Shape::Triangle(_) | Shape::OpenCylinder(_) | Shape::OpenCone(_)
+        )
     }
 
     /// Shapes whose segment list along any ray is one interval can take part in CSG.
     pub fn is_convex_solid(&self) -> bool {
-        !matches!(self, Shape::Triangle(_) | Shape::Mesh(_))
+        self.is_solid() && !matches!(self, Shape::Mesh(_))
     }
 
     pub fn kind(&self) -> &'static str {
@@ -177,8 +204,8 @@ impl Shape {
             Shape::Sphere(_) => "sphere",
             Shape::Plane(_) => "plane",
             Shape::Box(_) => "box",
-            Shape::Cylinder(_) => "cylinder",
-            Shape::Cone(_) => "cone",
+            Shape::Cylinder(_) | Shape::OpenCylinder(_) => "cylinder",
+            Shape::Cone(_) | Shape::OpenCone(_) => "cone",
             Shape::Triangle(_) => "triangle",
             Shape::Mesh(_) => "mesh",
         }

@@ -100,46 +100,80 @@ impl Answer {
     }
 }
 
-/// A number as a student writes it: `0.25`, `-3`, `1/3`, `inf`.
-fn number(s: &str) -> Result<f64, String> {
+/// A number as a student writes it: `0.25`, `-3`, `1/3`; `inf` and `∞` where infinite values
+/// are answers (the open ends of segment lists). A number too large for a double (`1e999`, a
+/// page of digits) is refused, not read as ∞.
+fn number(s: &str, infinite_allowed: bool) -> Result<f64, String> {
     let s = s.trim();
+    let shown = || {
+        let short: String = s.chars().take(24).collect();
+        if short.len() < s.len() {
+            format!("{short}…")
+        } else {
+            short
+        }
+    };
     let value = match s.split_once('/') {
-        Some((a, b)) => number(a)? / number(b)?,
+        Some((a, b)) => number(a, false)? / number(b, false)?,
         None => match s {
-            "inf" | "∞" | "+inf" => f64::INFINITY,
-            "-inf" | "-∞" | "−∞" => f64::NEG_INFINITY,
+            "inf" | "∞" | "+inf" | "+∞" | "-inf" | "-∞" | "−∞" | "−inf" => {
+                if !infinite_allowed {
+                    return Err(format!(
+                        "`{s}`: this answer is a finite number (∞ only ends segments)"
+                    ));
+                }
+                if s.starts_with(['-', '−']) {
+                    f64::NEG_INFINITY
+                } else {
+                    f64::INFINITY
+                }
+            }
             _ => s
                 .replace('−', "-")
                 .parse::<f64>()
-                .map_err(|_| format!("`{s}` is not a number"))?,
+                .map_err(|_| format!("`{}` is not a number", shown()))?,
         },
     };
     if value.is_nan() {
-        return Err(format!("`{s}` is not a number"));
+        return Err(format!("`{}` is not a number", shown()));
+    }
+    if value.is_infinite() && !matches!(s.trim_start_matches(['+', '-', '−']), "inf" | "∞") {
+        return Err(format!("`{}` is too large to be an answer", shown()));
     }
     Ok(value)
 }
 
-/// Parses an answer: `tir`, `none`, a number, `x, y, z`, or a segment list `a, b; c, d`
-/// (brackets and parentheses are ignored).
+/// Parses an answer: `tir`, `none` (an empty segment list), a number, `x, y, z`, or a segment
+/// list `a, b; c, d` (brackets and parentheses are ignored). An answer without a number in it
+/// (empty, or punctuation alone) is refused: an empty segment list is written `none`.
 pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
     let t = s.trim().to_ascii_lowercase();
     if t == "tir" {
         return Ok(Answer::Tir);
     }
-    if segments && matches!(t.as_str(), "none" | "empty" | "[]" | "") {
+    if segments && matches!(t.as_str(), "none" | "empty") {
         return Ok(Answer::Segments(vec![]));
     }
     let cleaned: String = t
         .chars()
         .map(|c| if "()[]{}".contains(c) { ' ' } else { c })
         .collect();
+    let parts: Vec<f64> = cleaned
+        .split([',', ';', ' '])
+        .filter(|p| !p.trim().is_empty())
+        .map(|p| number(p, segments))
+        .collect::<Result<_, _>>()?;
+    if parts.is_empty() {
+        return Err(if segments {
+            format!("`{}` holds no numbers: give pairs t_in, t_out (e.g. `13, 16; 22, 23`), or `none` for an empty list", s.trim())
+        } else {
+            format!(
+                "`{}` holds no numbers: give a number, or three (x, y, z)",
+                s.trim()
+            )
+        });
+    }
     if segments {
-        let parts: Vec<f64> = cleaned
-            .split([',', ';', ' '])
-            .filter(|p| !p.trim().is_empty())
-            .map(number)
-            .collect::<Result<_, _>>()?;
         if !parts.len().is_multiple_of(2) {
             return Err("a segment list needs pairs t_in, t_out (e.g. `13, 16; 22, 23`)".into());
         }
@@ -147,11 +181,6 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
             parts.chunks(2).map(|p| (p[0], p[1])).collect(),
         ));
     }
-    let parts: Vec<f64> = cleaned
-        .split([',', ' ', ';'])
-        .filter(|p| !p.trim().is_empty())
-        .map(number)
-        .collect::<Result<_, _>>()?;
     match parts.as_slice() {
         [x] => Ok(Answer::Number(*x)),
         [x, y, z] => Ok(Answer::Vector(DVec3::new(*x, *y, *z))),
@@ -165,6 +194,20 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A colour is one number only when all three channels are equal; two equal channels
+    /// and a third different (either side) is a colour.
+    #[test]
+    fn a_colour_is_one_number_only_when_grey() {
+        assert_eq!(Answer::color(DVec3::splat(0.5)), Answer::Number(0.5));
+        for c in [
+            DVec3::new(0.5, 0.5, 0.3),
+            DVec3::new(0.3, 0.5, 0.5),
+            DVec3::new(0.5, 0.3, 0.5),
+        ] {
+            assert_eq!(Answer::color(c), Answer::Vector(c));
+        }
+    }
 
     #[test]
     fn parses_what_students_write() {
@@ -190,6 +233,65 @@ mod tests {
         assert!(parse_answer("abc", false).is_err());
         assert!(parse_answer("1, 2", false).is_err());
         assert!(parse_answer("13, 16, 22", true).is_err());
+        assert_eq!(
+            parse_answer("(-inf, 16); [22, ∞)", true).unwrap(),
+            Answer::Segments(vec![(f64::NEG_INFINITY, 16.0), (22.0, f64::INFINITY)])
+        );
+    }
+
+    /// Punctuation, emptiness and numbers too large for a double are not answers.
+    #[test]
+    fn refuses_what_is_not_an_answer() {
+        let digits = "9".repeat(10_000);
+        for segments in [false, true] {
+            for s in [
+                ",",
+                ";",
+                " ; ",
+                "",
+                "  ",
+                "[]",
+                "()",
+                "1e999",
+                "-1e999",
+                digits.as_str(),
+            ] {
+                let e = parse_answer(s, segments);
+                assert!(e.is_err(), "`{s}` (segments: {segments}) accepted as {e:?}");
+            }
+        }
+        for s in ["inf", "∞", "-inf", "1/0"] {
+            assert!(
+                parse_answer(s, false).is_err(),
+                "`{s}` accepted as a number"
+            );
+        }
+        let e = parse_answer(&digits, false).unwrap_err();
+        assert!(e.len() < 100 && e.contains("too large"), "{e}");
+    }
+
+    /// Each end of each segment is held to the tolerance around itself: half of it off is
+    /// accepted, twice off is refused, and so is a list with a segment missing or added.
+    #[test]
+    fn segment_lists_are_held_to_the_tolerance_end_by_end() {
+        let expected = Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY)]);
+        let tol = Tolerance::default();
+        for (end, scale) in [(0, 2.0), (1, 4.0), (2, 10.0)] {
+            let shifted = |by: f64| {
+                let mut ends = [2.0, 4.0, 10.0];
+                ends[end] += by * tol.around(scale);
+                Answer::Segments(vec![(ends[0], ends[1]), (ends[2], f64::INFINITY)])
+            };
+            assert!(shifted(0.5).matches(&expected, &tol), "end {end}");
+            assert!(shifted(-0.5).matches(&expected, &tol), "end {end}");
+            assert!(!shifted(2.0).matches(&expected, &tol), "end {end}");
+            assert!(!shifted(-2.0).matches(&expected, &tol), "end {end}");
+        }
+        assert!(!Answer::Segments(vec![(2.0, 4.0)]).matches(&expected, &tol));
+        let three = Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY), (20.0, 30.0)]);
+        assert!(!three.matches(&expected, &tol));
+        let finite = Answer::Segments(vec![(2.0, 4.0), (10.0, 1e300)]);
+        assert!(!finite.matches(&expected, &tol));
     }
 
     #[test]

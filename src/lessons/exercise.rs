@@ -41,6 +41,12 @@ pub enum Ask {
     /// The leaves of `object`'s CSG tree whose segment lists are computed along the ray, the
     /// others skipped by pruning or by bounding boxes.
     LeavesEvaluated,
+    /// The texture coordinate u of the hit (a texture's or a uv pattern's).
+    U,
+    /// The texture coordinate v of the hit.
+    V,
+    /// The surface's colour O at the hit: its pattern's or texture's value there.
+    SurfaceColor,
 }
 
 impl Ask {

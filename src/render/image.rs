@@ -1,7 +1,9 @@
 //! The rendered image: linear intensities, and writing it out (whole or not at all).
 
-use std::io::Write;
+use std::fs::File;
+use std::io::{self, BufWriter, Seek, Write};
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::DVec3;
 
@@ -49,35 +51,70 @@ impl Image {
             .collect()
     }
 
-    /// Writes PNG, PPM or EXR (by extension) to a temporary file beside `path` and renames it into
-    /// place, so a failed or interrupted write never leaves a truncated image.
+    /// Writes PNG, PPM or EXR (by extension), whole or not at all (see `write_atomically`).
     pub fn save(&self, path: &Path, encoding: Encoding) -> Result<(), String> {
+        self.save_unless(path, encoding, &AtomicBool::new(false))
+    }
+
+    /// `save`, given up (and nothing left behind) as soon as `cancel` is set: a signal arriving
+    /// while a large image is written.
+    pub fn save_unless(
+        &self,
+        path: &Path,
+        encoding: Encoding,
+        cancel: &AtomicBool,
+    ) -> Result<(), String> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
-        let bytes = match ext.as_deref() {
-            Some("png") => {
-                let mut out = Vec::new();
-                let encoder = image::codecs::png::PngEncoder::new(&mut out);
-                image::ImageEncoder::write_image(
-                    encoder,
-                    &self.to_rgb8(encoding),
-                    self.width,
-                    self.height,
-                    image::ExtendedColorType::Rgb8,
-                )
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-                out
+        let format = match ext.as_deref() {
+            Some("png") => Format::Png,
+            Some("ppm") => Format::Ppm,
+            Some("exr") => Format::Exr,
+            _ => {
+                return Err(format!(
+                    "{}: output must end in .png, .ppm or .exr",
+                    path.display()
+                ))
             }
-            Some("ppm") => {
-                let mut out = format!("P6\n{} {}\n255\n", self.width, self.height).into_bytes();
-                out.extend(self.to_rgb8(encoding));
-                out
+        };
+        write_atomically_with(path, cancel, |out| self.encode_to(format, encoding, out))
+    }
+
+    /// The image encoded into `out`, streamed (no second copy of a large image in memory).
+    fn encode_to(
+        &self,
+        format: Format,
+        encoding: Encoding,
+        out: &mut (impl Write + Seek),
+    ) -> io::Result<()> {
+        let encoder_error = |e: image::ImageError| match e {
+            image::ImageError::IoError(e) => e,
+            e => io::Error::other(e.to_string()),
+        };
+        match format {
+            Format::Png => image::ImageEncoder::write_image(
+                image::codecs::png::PngEncoder::new(out),
+                &self.to_rgb8(encoding),
+                self.width,
+                self.height,
+                image::ExtendedColorType::Rgb8,
+            )
+            .map_err(encoder_error),
+            Format::Ppm => {
+                write!(out, "P6\n{} {}\n255\n", self.width, self.height)?;
+                for row in self.pixels.chunks(self.width.max(1) as usize) {
+                    let bytes: Vec<u8> = row
+                        .iter()
+                        .flat_map(|p| p.to_array().map(|c| encode(c, encoding)))
+                        .collect();
+                    out.write_all(&bytes)?;
+                }
+                Ok(())
             }
-            Some("exr") => {
+            Format::Exr => {
                 // Linear radiance as computed, unclamped (for comparisons with references).
-                let mut out = std::io::Cursor::new(Vec::new());
                 // The encoder takes f32 samples as bytes in native order.
                 let data: Vec<u8> = self
                     .pixels
@@ -86,24 +123,23 @@ impl Image {
                     .flat_map(f32::to_ne_bytes)
                     .collect();
                 image::ImageEncoder::write_image(
-                    image::codecs::openexr::OpenExrEncoder::new(&mut out),
+                    image::codecs::openexr::OpenExrEncoder::new(out),
                     &data,
                     self.width,
                     self.height,
                     image::ExtendedColorType::Rgb32F,
                 )
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-                out.into_inner()
+                .map_err(encoder_error)
             }
-            _ => {
-                return Err(format!(
-                    "{}: output must end in .png, .ppm or .exr",
-                    path.display()
-                ))
-            }
-        };
-        write_atomically(path, &bytes)
+        }
     }
+}
+
+#[derive(Clone, Copy)]
+enum Format {
+    Png,
+    Ppm,
+    Exr,
 }
 
 /// One channel to 8 bits; NaN becomes 0. The sRGB curve is read from a table that gives
@@ -192,34 +228,204 @@ fn least_reaching(f: impl Fn(f64) -> u8, k: u8) -> f64 {
     f64::from_bits(reaching)
 }
 
+/// Writes `bytes` to `path` whole or not at all (see `write_atomically_with`).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let dir = path
+    write_atomically_with(path, &AtomicBool::new(false), |out| out.write_all(bytes))
+}
+
+/// Writes a file whole or not at all: into a temporary file beside it (a short name of its
+/// own, whatever the length of the output's), then renamed over it. A failed write, or one
+/// given up because `cancel` was set, removes the temporary file and leaves the old output as
+/// it was. An output that is a symbolic link is written through: the file it points to is
+/// replaced and the link stays. A read-only output, or one that is not a regular file (a
+/// device such as /dev/full), is refused rather than replaced.
+pub fn write_atomically_with(
+    path: &Path,
+    cancel: &AtomicBool,
+    write: impl FnOnce(&mut Cancellable<BufWriter<File>>) -> io::Result<()>,
+) -> Result<(), String> {
+    let shown = path.display();
+    let target = through_links(path).map_err(|e| format!("{shown}: {e}"))?;
+    let existing = std::fs::metadata(&target).ok();
+    if let Some(meta) = &existing {
+        if meta.is_dir() {
+            return Err(format!("{shown}: is a directory"));
+        }
+        if !meta.is_file() {
+            return Err(format!(
+                "{shown}: not a regular file (a device, a pipe or a socket): not replaced"
+            ));
+        }
+        if meta.permissions().readonly() {
+            return Err(format!("{shown}: is read-only: not replaced"));
+        }
+    }
+    let dir = target
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| format!("{}: not a file name", path.display()))?;
-    let tmp = dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    ));
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".raytree-").suffix(".tmp");
+    // A new file gets the permissions any new file would (0666 less the umask), not the
+    // temporary file's private 0600.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    let tmp = builder
+        .tempfile_in(dir)
+        .map_err(|e| format!("{shown}: cannot write: {e}"))?;
     let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
+        if let Some(meta) = &existing {
+            tmp.as_file().set_permissions(meta.permissions())?;
+        }
+        let mut out = Cancellable {
+            inner: BufWriter::with_capacity(1 << 20, tmp.reopen()?),
+            cancel,
+        };
+        write(&mut out)?;
+        let file = out.inner.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        if cancel.load(Ordering::Relaxed) {
+            return Err(given_up());
+        }
+        Ok(())
     })();
-    result.map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        format!("{}: cannot write: {e}", path.display())
-    })
+    // Dropping `tmp` on an error removes the temporary file.
+    result.map_err(|e| format!("{shown}: cannot write: {e}"))?;
+    tmp.persist(&target)
+        .map(|_| ())
+        .map_err(|e| format!("{shown}: cannot write: {}", e.error))
+}
+
+/// The file a path names, following symbolic links (also one that points to a file not yet
+/// there), so that an output link is written through rather than replaced.
+fn through_links(path: &Path) -> io::Result<std::path::PathBuf> {
+    let mut at = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&at) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let to = std::fs::read_link(&at)?;
+                at = match at.parent() {
+                    Some(parent) if to.is_relative() => parent.join(to),
+                    _ => to,
+                };
+            }
+            _ => return Ok(at),
+        }
+    }
+    Err(io::Error::other("too many levels of symbolic links"))
+}
+
+/// The error of a write given up. Not `ErrorKind::Interrupted`, which `write_all` retries.
+fn given_up() -> io::Error {
+    io::Error::other("interrupted")
+}
+
+/// A writer that fails as soon as `cancel` is set, so that a long write stops at once.
+pub struct Cancellable<'a, W> {
+    inner: W,
+    cancel: &'a AtomicBool,
+}
+
+impl<W: Write> Write for Cancellable<'_, W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        if self.cancel.load(Ordering::Relaxed) {
+            return Err(given_up());
+        }
+        self.inner.write(buf)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+impl<W: Seek> Seek for Cancellable<'_, W> {
+    fn seek(&mut self, pos: io::SeekFrom) -> io::Result<u64> {
+        self.inner.seek(pos)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A file in a folder of its own per test (tests run in parallel; each looks for
+    /// temporary files left in its folder).
+    fn scratch(test: &str, name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("raytree-image-{}-{test}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    fn leftovers(dir: &Path) -> Vec<String> {
+        std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".tmp"))
+            .collect()
+    }
+
+    #[test]
+    fn names_up_to_the_filesystem_limit_are_written() {
+        for len in [245, 251, 255] {
+            let name = format!("{}.ppm", "n".repeat(len - 4));
+            let path = scratch("names", &name);
+            Image::new(2, 1).save(&path, Encoding::Srgb).unwrap();
+            assert_eq!(std::fs::read(&path).unwrap().len(), 11 + 6, "{len} bytes");
+        }
+        assert!(leftovers(scratch("names", "").as_path()).is_empty());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symlinked_output_is_written_through_and_a_read_only_one_is_kept() {
+        use std::os::unix::fs::{symlink, FileTypeExt, PermissionsExt};
+        let target = scratch("links", "target.ppm");
+        let link = scratch("links", "link.ppm");
+        std::fs::write(&target, b"old").unwrap();
+        let _ = std::fs::remove_file(&link);
+        symlink("target.ppm", &link).unwrap();
+        Image::new(1, 1).save(&link, Encoding::Srgb).unwrap();
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert!(std::fs::read(&target).unwrap().starts_with(b"P6"));
+
+        let locked = scratch("links", "locked.ppm");
+        let _ = std::fs::remove_file(&locked);
+        std::fs::write(&locked, b"keep me").unwrap();
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let e = Image::new(1, 1).save(&locked, Encoding::Srgb).unwrap_err();
+        assert!(e.contains("read-only"), "{e}");
+        assert_eq!(std::fs::read(&locked).unwrap(), b"keep me");
+
+        // Renaming over a device would replace the device node by a file.
+        let device = scratch("links", "device.ppm");
+        let _ = std::fs::remove_file(&device);
+        symlink("/dev/null", &device).unwrap();
+        let e = Image::new(1, 1).save(&device, Encoding::Srgb).unwrap_err();
+        assert!(e.contains("not a regular file"), "{e}");
+        assert!(std::fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device());
+    }
+
+    #[test]
+    fn a_cancelled_write_leaves_the_old_file_and_no_temporary_one() {
+        let path = scratch("cancel", "cancelled.ppm");
+        std::fs::write(&path, b"previous").unwrap();
+        let e = Image::new(64, 64)
+            .save_unless(&path, Encoding::Srgb, &AtomicBool::new(true))
+            .unwrap_err();
+        assert!(e.contains("interrupted"), "{e}");
+        assert_eq!(std::fs::read(&path).unwrap(), b"previous");
+        assert!(leftovers(path.parent().unwrap()).is_empty());
+    }
 
     fn agrees(c: f64) {
         assert_eq!(

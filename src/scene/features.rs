@@ -5,7 +5,7 @@
 
 use glam::DVec3;
 
-use super::objects::Geometry;
+use super::objects::{Geometry, Object};
 use super::Scene;
 use crate::accel::Aabb;
 use crate::geometry::csg::{CsgNode, CsgOp};
@@ -55,10 +55,7 @@ impl Features {
         Features {
             reflective: used(Material::reflective),
             transparent: used(Material::transparent),
-            csg: scene
-                .objects
-                .iter()
-                .any(|o| matches!(o.geometry, Geometry::Csg(_))),
+            csg: scene.objects.iter().any(has_csg),
             sampled: used(Material::sampled),
             lights: scene.lights.len(),
             transparent_objects,
@@ -91,7 +88,17 @@ fn is_bounded_convex(scene: &Scene, object: u32) -> bool {
         && match &o.geometry {
             Geometry::Leaf(leaf) => scene.leaves[*leaf as usize].shape.is_convex_solid(),
             Geometry::Csg(root) => convex(scene, root),
+            Geometry::Group(_) => false,
         }
+}
+
+/// Whether the object is a CSG tree or a group holding one.
+fn has_csg(o: &Object) -> bool {
+    match &o.geometry {
+        Geometry::Csg(_) => true,
+        Geometry::Group(g) => g.members.iter().any(has_csg),
+        Geometry::Leaf(_) => false,
+    }
 }
 
 /// Whether light k lies wholly outside object o: a point light not in it, any directional

@@ -9,6 +9,7 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 use serde_saphyr::Spanned;
 
+use crate::shading::texture::Mapping;
 use crate::shading::{Fresnel, Highlight};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -197,8 +198,8 @@ impl<'de> Deserialize<'de> for Bias {
 pub struct SceneFile {
     /// `camera:` with nothing after it is `Some(None)`, so its position can be reported.
     pub camera: Option<Spanned<Option<CameraSpec>>>,
-    pub background: Option<Triple>,
-    pub ambient: Option<Triple>,
+    pub background: Option<Spanned<Triple>>,
+    pub ambient: Option<Spanned<Triple>>,
     pub max_depth: Option<Spanned<i64>>,
     pub adaptive_threshold: Option<Spanned<Num>>,
     pub shadow_bias: Option<Spanned<Bias>>,
@@ -270,14 +271,16 @@ pub struct RectSpec {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
-    pub color: Option<Triple>,
+    /// A colour, or a pattern or texture of colours.
+    pub color: Option<Spanned<Varying>>,
     pub ka: Option<Spanned<Num>>,
-    pub kd: Option<Spanned<Num>>,
-    pub ks: Option<Spanned<Num>>,
+    /// kd, ks, kr and kt: a number, or a pattern of numbers.
+    pub kd: Option<Spanned<Varying>>,
+    pub ks: Option<Spanned<Varying>>,
     pub shininess: Option<Spanned<Num>>,
     pub highlight: Option<Highlight>,
-    pub kr: Option<Spanned<Num>>,
-    pub kt: Option<Spanned<Num>>,
+    pub kr: Option<Spanned<Varying>>,
+    pub kt: Option<Spanned<Varying>>,
     pub ior: Option<Spanned<Num>>,
     pub fresnel: Option<Fresnel>,
     /// Hall's transmitted highlight H′ for lights behind a transparent surface (default false).
@@ -287,6 +290,81 @@ pub struct MaterialSpec {
     pub glossy: Option<Spanned<LobeSpec>>,
     /// Frosted refraction: the refraction ray becomes `samples` rays about Snell's direction.
     pub frosted: Option<Spanned<LobeSpec>>,
+}
+
+/// A value that may vary over a surface: a number or colour, or a mapping that describes a
+/// pattern (`{ pattern: checker, colors: [A, B], transform: [...] }`) or an image texture
+/// (`{ image: FILE, mapping: spherical, transform: [...] }`).
+#[derive(Clone, Debug)]
+pub enum Varying {
+    Value(Triple),
+    Pattern(Box<PatternSpec>),
+}
+
+impl<'de> Deserialize<'de> for Varying {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Varying, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = Varying;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str(
+                    "a number, a list [r, g, b], or a pattern { pattern: ..., colors: [A, B] } or texture { image: FILE }",
+                )
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Varying, E> {
+                Ok(Varying::Value(Triple(DVec3::splat(check(v)?))))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Varying, E> {
+                Ok(Varying::Value(Triple(DVec3::splat(v as f64))))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Varying, E> {
+                Ok(Varying::Value(Triple(DVec3::splat(v as f64))))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Varying, A::Error> {
+                Triple::deserialize(de::value::SeqAccessDeserializer::new(seq)).map(Varying::Value)
+            }
+            fn visit_map<A: de::MapAccess<'de>>(self, map: A) -> Result<Varying, A::Error> {
+                PatternSpec::deserialize(de::value::MapAccessDeserializer::new(map))
+                    .map(|p| Varying::Pattern(Box::new(p)))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// The kinds of pattern (see `crate::shading::pattern`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PatternName {
+    Stripes,
+    Gradient,
+    Rings,
+    Checker,
+    UvChecker,
+    Blend,
+}
+
+/// A pattern (`pattern:`) or an image texture (`image:`).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PatternSpec {
+    pub pattern: Option<Spanned<PatternName>>,
+    /// An image file (PNG, or EXR for linear values), relative to the scene file.
+    pub image: Option<Spanned<String>>,
+    /// The two values A and B (numbers, colours or patterns); `values` is the same key.
+    #[serde(alias = "values")]
+    pub colors: Option<Spanned<Vec<Spanned<Varying>>>>,
+    /// How an image or a uv checker finds (u, v): `uv` (the surface's own, default),
+    /// `spherical`, `planar`, `cylindrical` or `cube`.
+    pub mapping: Option<Spanned<Mapping>>,
+    /// A uv checker's squares across and up the unit square.
+    pub width: Option<Spanned<Num>>,
+    pub height: Option<Spanned<Num>>,
+    /// A blend's share of B: (1 − w)·A + w·B (default ½).
+    pub weight: Option<Spanned<Num>>,
+    /// Places the pattern, as object transforms place objects (in the order written).
+    #[serde(default)]
+    pub transform: Vec<Spanned<TransformStep>>,
 }
 
 /// A lobe: `spread` (degrees, the standard deviation of a normal distribution, as seed 000
@@ -326,6 +404,8 @@ pub struct CylinderSpec {
     pub base: Spanned<V3>,
     pub top: V3,
     pub radius: Spanned<Num>,
+    /// False for an open tube, a surface without caps or inside (default true).
+    pub capped: Option<bool>,
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -334,6 +414,8 @@ pub struct ConeSpec {
     pub apex: Spanned<V3>,
     pub base: V3,
     pub radius: Spanned<Num>,
+    /// False for an open cone, a surface without base or inside (default true).
+    pub capped: Option<bool>,
 }
 
 /// A triangle mesh from a Wavefront OBJ file (relative to the scene file).
@@ -364,8 +446,8 @@ pub enum TransformStep {
     Scale(Triple),
 }
 
-/// An object, or a CSG child (where `name` and `material` are optional). Exactly one shape
-/// key must be present; `compile` checks that.
+/// An object, a CSG child or a group member (where `name` and `material` are optional).
+/// Exactly one shape key must be present; `compile` checks that.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
@@ -388,4 +470,7 @@ pub struct ObjectSpec {
     pub intersection: Option<Vec<Spanned<ObjectSpec>>>,
     pub difference: Option<Vec<Spanned<ObjectSpec>>>,
     pub complement: Option<Box<Spanned<ObjectSpec>>>,
+    /// Objects moved together by the group's `transform`, those without a material taking
+    /// the group's; the search treats the group as one object with its own hierarchy.
+    pub group: Option<Vec<Spanned<ObjectSpec>>>,
 }

@@ -1,12 +1,14 @@
 //! A hit and what is built from it. The search finds the cheap record (t, object, surface);
-//! the shading record (point, normal, inside) is built only for the hit that is shaded. Every
+//! the shading record (point, normal, inside, and the material's colour and coefficients
+//! there) is built only for the hit that is shaded. Every
 //! secondary ray leaves a surface through `offset`, the one place its origin is moved off the
 //! surface so that it cannot hit that surface again (seed 004's "self-intersection").
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
-use super::Scene;
+use super::{Leaf, Scene};
 use crate::geometry::{Ray, Surface};
+use crate::shading::{Paint, PatternPoint};
 
 /// The cheap record of an intersection: enough to find everything else later.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -29,6 +31,8 @@ pub struct Interaction {
     pub face: u32,
     pub object: u32,
     pub material: u32,
+    /// O, kd, ks, kr and kt here: the material's own, or its patterns looked up at the point.
+    pub paint: Paint,
 }
 
 impl Scene {
@@ -49,6 +53,16 @@ impl Scene {
         } else {
             outward
         };
+        // The one place a surface's colour is looked up: a material without patterns (most)
+        // only copies its constants.
+        let m = &self.materials[leaf.material as usize];
+        let paint = match &m.patterns {
+            None => m.paint(),
+            Some(patterns) => {
+                let at = self.pattern_point(leaf, point, hit.surface.face, patterns.need_uv());
+                patterns.paint(&m.paint(), &at)
+            }
+        };
         Interaction {
             point,
             normal,
@@ -57,6 +71,25 @@ impl Scene {
             face: hit.surface.face,
             object: hit.object,
             material: leaf.material,
+            paint,
+        }
+    }
+
+    /// Where a leaf's patterns are looked up for a world point on its `face`: the point in the
+    /// object's own space (a patterned leaf keeps its shape there, with its transform), and,
+    /// when `uv`, the surface's own (u, v) at it.
+    pub fn pattern_point(&self, leaf: &Leaf, point: DVec3, face: u32, uv: bool) -> PatternPoint {
+        let own = leaf
+            .transform
+            .as_ref()
+            .map_or(point, |tf| tf.to_local.transform_point3(point));
+        PatternPoint {
+            point: own,
+            uv: if uv {
+                leaf.shape.uv(own, face)
+            } else {
+                DVec2::ZERO
+            },
         }
     }
 

@@ -8,18 +8,29 @@ use serde_saphyr::Spanned;
 
 use super::error::{self, SceneError};
 use super::{compile, format, split, Limits, Scene};
+use crate::files::ReadError;
 
-/// Parser limits against alias bombs and absurd nesting.
-fn parse_options() -> serde_saphyr::Options {
+/// Parser options: strict about what the scene format is not (tags, non-finite numbers),
+/// with budgets against alias bombs and absurd nesting.
+///
+/// The node and event budgets are sized from the whole file's length, and given alike to the
+/// file and to each of its pieces (see `split`): a piece holds fewer nodes than the file, so
+/// the pieces breach these budgets exactly when the file does (which needs more nodes than
+/// bytes, i.e. aliases, which the parallel loader never cuts). The file's own size is
+/// budgeted before it is read (`Limits::max_file_bytes`).
+fn parse_options(file_len: usize) -> serde_saphyr::Options {
     let mut options = serde_saphyr::Options::default();
     options.with_snippet = false;
     options.non_finite_float_policy = serde_saphyr::NonFiniteFloatPolicy::Reject;
-    // Scenes with 100 000 objects are legitimate (the BVH scaling sweep); the default budget
-    // stops at 250 000 YAML nodes. Alias bombs and nesting stay bounded by the other limits
-    // (50 000 aliases, depth 64, 256 MiB of input).
+    // `!sphere { … }` is not a shape: tags are refused rather than silently dropped.
+    options.reject_unsupported_tags = true;
+    options.reject_tagged_field_names = true;
+    // Scenes with 100 000 objects are legitimate (the BVH scaling sweep), beyond the parser's
+    // default of 250 000 nodes.
     let mut budget = serde_saphyr::Budget::default();
-    budget.max_nodes = 20_000_000;
-    budget.max_events = 50_000_000;
+    budget.max_nodes = (2 * file_len + 1024).max(20_000_000);
+    budget.max_events = (4 * file_len + 1024).max(50_000_000);
+    budget.max_total_scalar_bytes = budget.max_total_scalar_bytes.max(file_len + 1024);
     options.budget = Some(budget);
     options
 }
@@ -27,26 +38,25 @@ fn parse_options() -> serde_saphyr::Options {
 /// Reads and compiles a scene file.
 pub fn load(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
     let file = path.display().to_string();
-    let fail = |message: String| SceneError {
-        file: file.clone(),
-        line: 1,
-        column: 1,
-        message,
-    };
-    if path.is_dir() {
-        return Err(fail("is a directory, not a scene file".into()));
-    }
-    let bytes = std::fs::read(path).map_err(|e| fail(format!("cannot read: {e}")))?;
+    let fail = |message: String| SceneError::new(&file, error::Pos::default(), message);
+    let bytes = crate::files::read_bounded(path, limits.max_file_bytes).map_err(|e| {
+        fail(match e {
+            ReadError::Directory => "is a directory, not a scene file".into(),
+            ReadError::NotRegular => {
+                "not a regular file (a pipe, a socket or a device): give a scene file".into()
+            }
+            ReadError::TooLarge { budget } => format!(
+                "the file is larger than the budget of {} for scene files (use --allow-huge to load it)",
+                crate::files::bytes(budget)
+            ),
+            ReadError::Io(e) => format!("cannot read: {e}"),
+        })
+    })?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let before = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = before.iter().filter(|&&b| b == b'\n').count() as u64 + 1;
         let column = before.iter().rev().take_while(|&&b| b != b'\n').count() as u64 + 1;
-        SceneError {
-            file: file.clone(),
-            line,
-            column,
-            message: "not valid UTF-8 text".into(),
-        }
+        SceneError::new(&file, error::Pos { line, column }, "not valid UTF-8 text")
     })?;
     parse(&text, &file, Some(path), limits)
 }
@@ -59,28 +69,62 @@ pub fn parse(
     limits: &Limits,
 ) -> Result<Scene, SceneError> {
     if text.trim().is_empty() {
-        return Err(SceneError {
-            file: file.into(),
-            line: 1,
-            column: 1,
-            message: "empty scene file".into(),
-        });
+        return Err(SceneError::new(
+            file,
+            error::Pos::default(),
+            "empty scene file",
+        ));
     }
-    let parsed = parse_yaml(text, file)?;
+    let with_line = |e: SceneError| e.quoting(text);
+    if let Some(line) = second_document(text) {
+        return Err(with_line(SceneError::new(
+            file,
+            error::Pos { line, column: 1 },
+            MORE_THAN_ONE_DOCUMENT,
+        )));
+    }
+    let parsed = parse_yaml(text, file).map_err(with_line)?;
     compile::compile(parsed, path.map(Path::to_path_buf), limits)
         .map_err(|e| empty_camera(text, e))
-        .map_err(|e| SceneError {
-            file: file.into(),
-            line: e.pos.line,
-            column: e.pos.column,
-            message: e.message,
-        })
+        .map_err(|e| SceneError::new(file, e.pos, e.message))
+        .map_err(with_line)
+}
+
+const MORE_THAN_ONE_DOCUMENT: &str =
+    "more than one YAML document (a second `---` line): a scene file holds one";
+
+/// The line of a second document's `---`: a marker after another, or after content. (A `---`
+/// at the start of a line is always a document marker: YAML forbids it inside scalars.)
+fn second_document(text: &str) -> Option<u64> {
+    let mut started = false;
+    for (i, line) in text.lines().enumerate() {
+        let marker = line
+            .strip_prefix("---")
+            .is_some_and(|rest| rest.is_empty() || rest.starts_with([' ', '\t', '\r']));
+        if marker && started {
+            return Some(i as u64 + 1);
+        }
+        let content = !line.trim().is_empty() && !line.starts_with(['#', '%']);
+        started |= marker || content;
+    }
+    None
 }
 
 /// Parses the YAML of a scene file: large files on all threads (see `split`).
 fn parse_yaml(text: &str, file: &str) -> Result<format::SceneFile, SceneError> {
-    match split::split(text, rayon::current_num_threads()) {
-        Some(split) => parse_split(split, file),
+    parse_in_pieces(text, file, rayon::current_num_threads())
+}
+
+/// Parses a file cut into at most `pieces` pieces (one when it cannot or need not be cut).
+/// The answer is always the one-piece parse's: where a piece does not parse, the file is
+/// parsed again whole, so its error is the one a single thread reports.
+pub(super) fn parse_in_pieces(
+    text: &str,
+    file: &str,
+    pieces: usize,
+) -> Result<format::SceneFile, SceneError> {
+    match split::split(text, pieces) {
+        Some(split) => parse_split(split, text.len(), file).or_else(|_| from_yaml(text, file)),
         None => from_yaml(text, file),
     }
 }
@@ -88,25 +132,20 @@ fn parse_yaml(text: &str, file: &str) -> Result<format::SceneFile, SceneError> {
 /// Parses a file's pieces in parallel and joins their objects in order.
 pub(super) fn parse_split(
     split: split::Split,
+    file_len: usize,
     file: &str,
 ) -> Result<format::SceneFile, SceneError> {
     type Objects = Vec<Spanned<format::ObjectSpec>>;
     let (head, pieces): (_, Vec<_>) = rayon::join(
-        || from_yaml::<format::SceneFile>(&split.head, file),
+        || from_yaml_sized::<format::SceneFile>(&split.head, file_len, file),
         || {
             split
                 .pieces
                 .par_iter()
-                .map(|p| from_yaml::<Objects>(p, file))
+                .map(|p| from_yaml_sized::<Objects>(p, file_len, file))
                 .collect()
         },
     );
-    // Reading the file in one go would stop at its first error.
-    let errors = head.as_ref().err().into_iter();
-    let errors = errors.chain(pieces.iter().filter_map(|p| p.as_ref().err()));
-    if let Some(first) = errors.min_by_key(|e| (e.line, e.column)) {
-        return Err(first.clone());
-    }
     let mut scene = head?;
     for piece in pieces {
         scene.objects.extend(piece?);
@@ -119,17 +158,68 @@ pub(super) fn from_yaml<T: serde::de::DeserializeOwned>(
     text: &str,
     file: &str,
 ) -> Result<T, SceneError> {
-    serde_saphyr::from_str_with_options(text, parse_options()).map_err(|e| {
-        let (line, column) = e
-            .location()
-            .map_or((1, 1), |l| (l.line().max(1), l.column().max(1)));
-        SceneError {
-            file: file.into(),
-            line,
-            column,
-            message: parser_message(&e.to_string()),
+    from_yaml_sized(text, text.len(), file)
+}
+
+/// `from_yaml` for a piece of a file of `file_len` bytes.
+fn from_yaml_sized<T: serde::de::DeserializeOwned>(
+    text: &str,
+    file_len: usize,
+    file: &str,
+) -> Result<T, SceneError> {
+    serde_saphyr::from_str_with_options(text, parse_options(file_len)).map_err(|e| {
+        let mut pos = e.location().map_or(error::Pos::default(), |l| error::Pos::of(&l));
+        let mut message = parser_message(&e);
+        // The parser points at the node after a tag: point at the tag itself.
+        if let Some(tag) = tag_of(&e) {
+            if let Some(line) = text.lines().nth(pos.line.saturating_sub(1) as usize) {
+                let before: String = line.chars().take(pos.column as usize - 1).collect();
+                if let Some(at) = before.rfind(tag) {
+                    pos.column = before[..at].chars().count() as u64 + 1;
+                }
+            }
         }
+        // A collection left open is found by the parser only where the next line cannot
+        // belong to it: point at the bracket that was never closed.
+        if is_syntax_error(&e) {
+            if let Some(b) = super::flow::unclosed_before(text, pos.line) {
+                let (what, close) = match b.open {
+                    '[' => ("list", ']'),
+                    _ => ("mapping", '}'),
+                };
+                message = format!(
+                    "the {what} opened here (`{}`) is never closed with `{close}`: it runs into line {}",
+                    b.open, pos.line
+                );
+                pos = error::Pos {
+                    line: b.line,
+                    column: b.column,
+                };
+            }
+        }
+        SceneError::new(file, pos, message)
     })
+}
+
+/// The tag an error is about, if it is about one.
+fn tag_of(e: &serde_saphyr::Error) -> Option<&str> {
+    use serde_saphyr::Error as E;
+    match e {
+        E::WithSnippet { error, .. } | E::AliasError { error, .. } => tag_of(error),
+        E::UnsupportedTag { tag, .. } | E::TaggedStructFieldName { tag, .. } => Some(tag),
+        _ => None,
+    }
+}
+
+/// Whether the parser stopped at the text itself (not at a value that does not fit).
+fn is_syntax_error(e: &serde_saphyr::Error) -> bool {
+    use serde_saphyr::{Error as E, ExternalMessageSource};
+    match e {
+        E::WithSnippet { error, .. } | E::AliasError { error, .. } => is_syntax_error(error),
+        E::ExternalMessage { source, .. } => matches!(**source, ExternalMessageSource::Parser(_)),
+        E::Eof { .. } => true,
+        _ => false,
+    }
 }
 
 /// `camera:` with nothing after it parses as no camera at all; point at the empty key.
@@ -152,42 +242,46 @@ fn empty_camera(text: &str, e: error::Invalid) -> error::Invalid {
     e
 }
 
-/// The parser's message on one line, without the position it repeats.
-fn parser_message(raw: &str) -> String {
-    let first = raw.lines().next().unwrap_or(raw).trim();
-    let stripped = first.strip_prefix("error: ").unwrap_or(first);
-    // "line 3 column 7: unknown field" → "unknown field"
-    let stripped = match stripped.strip_prefix("line ") {
-        Some(rest) => rest.split_once(": ").map_or(stripped, |(_, msg)| msg),
-        None => stripped,
-    };
-    // A trailing "at line 2, column 1": the position is reported separately.
-    let stripped = match stripped.rfind(" at line ") {
-        Some(i) if stripped[i..].contains(", column ") && !stripped[i..].contains('(') => {
-            &stripped[..i]
+/// The parser's error said for a scene's author, on one line and without the position (the
+/// caller reports it), from the error's kind where the parser's own words are written for
+/// programmers using it.
+fn parser_message(e: &serde_saphyr::Error) -> String {
+    use serde_saphyr::budget::BudgetBreach;
+    use serde_saphyr::{Error as E, MessageFormatter};
+    const ALIAS_BOMB: &str = "YAML aliases expand too far (an alias bomb?): refused";
+    const MORE_THAN_ONE: &str = MORE_THAN_ONE_DOCUMENT;
+    match e {
+        E::WithSnippet { error, .. } | E::AliasError { error, .. } => parser_message(error),
+        E::DuplicateMappingKey { key: Some(key), .. } => {
+            format!("duplicate key `{key}`: each key may appear once in a mapping")
         }
-        _ => stripped,
-    };
-    // Messages written for programmers using the parser, said for the scene's author.
-    if let Some(key) = stripped.strip_prefix("duplicate mapping key: ") {
-        let key = key.split(',').next().unwrap_or(key).trim();
-        return format!("duplicate key `{key}`: each key may appear once in a mapping");
+        E::DuplicateMappingKey { key: None, .. } => {
+            "duplicate key: each key may appear once in a mapping".into()
+        }
+        E::MultipleDocuments { .. } => MORE_THAN_ONE.into(),
+        E::Budget { breach, .. } => match breach {
+            BudgetBreach::Depth { .. } => {
+                "nested more than 64 levels deep (CSG trees and lists must be shallower)".into()
+            }
+            BudgetBreach::Aliases { .. } | BudgetBreach::Anchors { .. } => ALIAS_BOMB.into(),
+            BudgetBreach::Documents { .. } => MORE_THAN_ONE.into(),
+            _ => "the file is too large for the parser's limits (nodes, events or bytes)".into(),
+        },
+        E::AliasReplayCounterOverflow { .. }
+        | E::AliasReplayLimitExceeded { .. }
+        | E::AliasExpansionLimitExceeded { .. }
+        | E::AliasReplayStackDepthExceeded { .. } => ALIAS_BOMB.into(),
+        E::UnsupportedTag { tag, .. } | E::TaggedStructFieldName { tag, .. } => format!(
+            "YAML tags such as `{tag}` are not part of the scene format: remove it (a shape is given by its key, e.g. `sphere: {{ … }}`)"
+        ),
+        E::Unexpected {
+            expected: "string scalar",
+            ..
+        } => "expected a single value here (a number or a name), not a list or a mapping".into(),
+        e => {
+            let text = serde_saphyr::DefaultMessageFormatter.format_message(e);
+            let first = text.lines().next().unwrap_or("").trim();
+            first.strip_prefix("error: ").unwrap_or(first).to_string()
+        }
     }
-    if stripped.starts_with("multiple YAML documents") {
-        return "multiple YAML documents (a `---` line): a scene file holds one".into();
-    }
-    if stripped.starts_with("budget breached") {
-        return if stripped.contains("Depth") {
-            "nested more than 64 levels deep (CSG trees and lists must be shallower)".into()
-        } else if stripped.contains("Anchor") || stripped.contains("Alias") {
-            "YAML aliases expand too far (an alias bomb?): refused".into()
-        } else {
-            "the file is too large for the parser's limits (nodes, events or bytes)".into()
-        };
-    }
-    if stripped == "expected string scalar" {
-        return "expected a single value here (a number or a name), not a list or a mapping".into();
-    }
-
-    stripped.to_string()
 }

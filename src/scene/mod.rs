@@ -10,6 +10,7 @@ mod camera;
 mod compile;
 mod error;
 mod features;
+mod flow;
 pub mod format;
 mod hit;
 mod load;
@@ -25,12 +26,12 @@ use glam::DVec3;
 
 pub use camera::{Camera, Projection};
 pub use compile::Limits;
-pub use error::SceneError;
+pub use error::{Pos, SceneError};
 pub use features::Features;
 pub use format::Integrator;
 pub use hit::{Hit, Interaction};
 pub use load::{load, parse};
-pub use objects::{Geometry, Leaf, Object};
+pub use objects::{Geometry, Group, Leaf, Object};
 pub use search::{Accel, Search, SearchIndex, Visited};
 pub use settings::{Antialias, Filter, StopRules, DEFAULT_THRESHOLD};
 
@@ -77,6 +78,10 @@ pub struct Scene {
     // Derived from all of the above.
     pub features: Features,
     pub index: SearchIndex,
+
+    /// What is legal but probably not meant (a mesh of degenerate triangles only), with where
+    /// in the file it is: the command line prints these, the scene loads anyway.
+    pub warnings: Vec<(error::Pos, String)>,
 }
 
 impl Scene {

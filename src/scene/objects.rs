@@ -1,10 +1,10 @@
 //! The scene's objects as the tracer sees them: every primitive (a plain object, or a leaf of
 //! a CSG tree) with its shape, transform, material and world-space bounds, and the objects that
-//! group them.
+//! hold them: a primitive, a CSG tree, or a group of objects with a hierarchy of its own.
 
 use glam::DVec3;
 
-use crate::accel::Aabb;
+use crate::accel::{Aabb, Bvh};
 use crate::geometry::csg::CsgNode;
 use crate::geometry::{Ray, Segment, SegmentList, Shape, Span, Sphere, Surface, Transform};
 
@@ -18,6 +18,9 @@ pub struct Leaf {
     /// The CSG operations from the object's root down to this leaf ("union/difference").
     pub path: Vec<String>,
     pub shape: Shape,
+    /// From the shape's own space to the world, when the shape is not stored in world space
+    /// (a transform that changes its kind, or a material with patterns, which are looked up
+    /// in the object's own space).
     pub transform: Option<Transform>,
     pub material: u32,
     /// World-space bounds.
@@ -43,6 +46,23 @@ impl Leaf {
     /// The leaf's segment list; its surfaces are named by `id`, its index in the scene.
     pub fn segments(&self, id: u32, ray: &Ray) -> SegmentList {
         let mut list = SegmentList::new();
+        if matches!(self.shape, Shape::OpenCylinder(_) | Shape::OpenCone(_)) {
+            // A surface without inside: each crossing a zero-length segment.
+            if let Some(s) = self.span(ray) {
+                for t in [s.t_in, s.t_out] {
+                    if list.last().is_none_or(|l: &Segment| l.t_in != t) {
+                        let surface = Surface::new(id, s.face_in as u32);
+                        list.push(Segment {
+                            t_in: t,
+                            t_out: t,
+                            enter: surface,
+                            exit: surface,
+                        });
+                    }
+                }
+            }
+            return list;
+        }
         if let Shape::Mesh(mesh) = &self.shape {
             // Every crossing of a mesh's surface, as a zero-length segment.
             let local = self
@@ -95,6 +115,44 @@ pub enum Geometry {
     /// A single primitive (index into `Scene::leaves`).
     Leaf(u32),
     Csg(CsgNode),
+    Group(Box<Group>),
+}
+
+/// Objects moved together and searched as one: the scene's hierarchy holds the group's box,
+/// and the group a hierarchy of its members' boxes, so a ray that misses the group's box skips
+/// all of them.
+#[derive(Clone, Debug)]
+pub struct Group {
+    pub members: Vec<Object>,
+    /// The hierarchy over the members with a box; its item i is member `bounded[i]`.
+    pub bvh: Bvh,
+    pub bounded: Vec<u32>,
+    /// The members without a box (planes), tested by every ray that reaches the group.
+    pub unbounded: Vec<u32>,
+}
+
+impl Group {
+    pub fn new(members: Vec<Object>) -> Group {
+        let (bounded, unbounded): (Vec<u32>, Vec<u32>) =
+            (0..members.len() as u32).partition(|&i| members[i as usize].bounds.is_finite());
+        let boxes: Vec<Aabb> = bounded
+            .iter()
+            .map(|&i| members[i as usize].bounds)
+            .collect();
+        Group {
+            bvh: Bvh::build(&boxes),
+            members,
+            bounded,
+            unbounded,
+        }
+    }
+
+    /// The box around all members (everything, if one has none).
+    pub fn bounds(&self) -> Aabb {
+        self.members
+            .iter()
+            .fold(Aabb::empty(), |b, m| b.union(&m.bounds))
+    }
 }
 
 #[derive(Clone, Debug)]

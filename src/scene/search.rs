@@ -8,7 +8,7 @@
 
 use glam::DVec3;
 
-use super::objects::Geometry;
+use super::objects::{Geometry, Group, Object};
 use super::{Hit, Scene};
 use crate::accel::{Aabb, Bvh};
 use crate::geometry::{first_crossing, Ray, Shape, Surface};
@@ -230,8 +230,25 @@ impl Scene {
         t_max: f64,
         stats: &mut Stats,
     ) -> Option<Hit> {
+        let geometry = &self.objects[o as usize].geometry;
+        self.geometry_crossing(o, geometry, ray, inv_dir, t_min, t_max, stats)
+    }
+
+    /// The nearest crossing of a geometry's surface with t_min < t < t_max, reported as a hit
+    /// on object o (a group's members report the group).
+    #[allow(clippy::too_many_arguments)]
+    fn geometry_crossing(
+        &self,
+        o: u32,
+        geometry: &Geometry,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
         stats.primitives_tested += 1;
-        let (t, surface) = match &self.objects[o as usize].geometry {
+        let (t, surface) = match geometry {
             Geometry::Leaf(leaf) => {
                 let l = &self.leaves[*leaf as usize];
                 if let Shape::Mesh(mesh) = &l.shape {
@@ -264,6 +281,9 @@ impl Scene {
                 let r = self.csg_ray(ray, inv_dir, t_min, t_max);
                 first_crossing(&self.csg_segments(root, &r, stats), t_min)?
             }
+            Geometry::Group(group) => {
+                return self.group_crossing(o, group, ray, inv_dir, t_min, t_max, stats)
+            }
         };
         (t > t_min && t < t_max && t.is_finite()).then_some(Hit {
             t,
@@ -272,16 +292,73 @@ impl Scene {
         })
     }
 
-    /// Whether object o is tested behind its bounding box. A plain sphere or plane is not: its
-    /// own test costs what a box's does. A CSG object is not when its boxes are switched off
-    /// (`--no-csg-pruning`).
-    pub fn tested_behind_box(&self, o: u32) -> bool {
-        match &self.objects[o as usize].geometry {
+    /// The nearest hit among a group's members: those without a box first, then the group's
+    /// own hierarchy, each member behind its box (as objects are in the scene's).
+    #[allow(clippy::too_many_arguments)]
+    fn group_crossing(
+        &self,
+        o: u32,
+        group: &Group,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
+        let (mut best, mut limit) = (None, t_max);
+        let member_hit = |m: u32, limit: f64, stats: &mut Stats| {
+            let member = &group.members[m as usize];
+            if self.member_behind_box(member)
+                && !member.bounds.hit(ray.origin, inv_dir, t_min, limit)
+            {
+                stats.bounds_skipped += 1;
+                return None;
+            }
+            self.geometry_crossing(o, &member.geometry, ray, inv_dir, t_min, limit, stats)
+        };
+        if self.index.accel == Accel::None {
+            // Brute force, as for the scene's objects: every member.
+            for m in 0..group.members.len() as u32 {
+                if let Some(h) = member_hit(m, limit, stats) {
+                    limit = h.t;
+                    best = Some(h);
+                }
+            }
+            return best;
+        }
+        for &m in &group.unbounded {
+            if let Some(h) = member_hit(m, limit, stats) {
+                limit = h.t;
+                best = Some(h);
+            }
+        }
+        let visits = group
+            .bvh
+            .closest(ray.origin, ray.dir, t_min, limit, |item, limit| {
+                let h = member_hit(group.bounded[item as usize], limit, stats)?;
+                best = Some(h);
+                Some(h.t)
+            });
+        stats.bvh_nodes_visited += visits.nodes;
+        best
+    }
+
+    /// Whether a group's member is tested behind its box: as objects are (`tested_behind_box`).
+    fn member_behind_box(&self, member: &Object) -> bool {
+        match &member.geometry {
             Geometry::Leaf(leaf) => {
                 let l = &self.leaves[*leaf as usize];
                 !(l.transform.is_none() && matches!(l.shape, Shape::Sphere(_) | Shape::Plane(_)))
             }
             Geometry::Csg(_) => self.csg_pruning,
+            Geometry::Group(_) => true,
         }
+    }
+
+    /// Whether object o is tested behind its bounding box. A plain sphere or plane is not: its
+    /// own test costs what a box's does. A CSG object is not when its boxes are switched off
+    /// (`--no-csg-pruning`).
+    pub fn tested_behind_box(&self, o: u32) -> bool {
+        self.member_behind_box(&self.objects[o as usize])
     }
 }

@@ -1,11 +1,11 @@
 //! Segment lists of whole objects: a plain shape's span, or a CSG tree's list combined from
 //! its leaves' (seed 000). The nearest-hit search reads its first crossing; `raytree csg` and
 //! the explorer show the list at every node; a point is inside an object when the list of a
-//! ray from it says so.
+//! ray from it says so. A group's list is its members' lists together, in order.
 
 use glam::DVec3;
 
-use super::objects::Geometry;
+use super::objects::{Geometry, Object};
 use super::Scene;
 use crate::geometry::csg::{CsgNode, CsgRay, CsgTrace, CsgWork, LeafSegments};
 use crate::geometry::{Ray, SegmentList, Shape};
@@ -22,14 +22,22 @@ impl LeafSegments for Scene {
 
 impl Scene {
     /// Is the probe ray's origin inside the object? (Inside a segment of its list; for a mesh,
-    /// an odd number of crossings ahead.)
+    /// an odd number of crossings ahead; for a group, inside one of its members.)
     pub fn contains(&self, object: u32, probe: &Ray, stats: &mut Stats) -> bool {
-        let list = self.object_segments(object, probe, f64::NEG_INFINITY, f64::INFINITY, stats);
-        match &self.objects[object as usize].geometry {
+        self.inside(&self.objects[object as usize], probe, stats)
+    }
+
+    fn inside(&self, object: &Object, probe: &Ray, stats: &mut Stats) -> bool {
+        match &object.geometry {
+            Geometry::Group(g) => g.members.iter().any(|m| self.inside(m, probe, stats)),
             Geometry::Leaf(l) if matches!(self.leaves[*l as usize].shape, Shape::Mesh(_)) => {
+                let list = self.leaves[*l as usize].segments(*l, probe);
                 list.iter().filter(|s| s.t_in > 0.0).count() % 2 == 1
             }
-            _ => list.iter().any(|s| s.t_in <= 0.0 && 0.0 <= s.t_out),
+            geometry => self
+                .geometry_segments(geometry, probe, f64::NEG_INFINITY, f64::INFINITY, stats)
+                .iter()
+                .any(|s| s.t_in <= 0.0 && 0.0 <= s.t_out),
         }
     }
 
@@ -42,12 +50,29 @@ impl Scene {
         t_max: f64,
         stats: &mut Stats,
     ) -> SegmentList {
-        match &self.objects[object as usize].geometry {
+        let geometry = &self.objects[object as usize].geometry;
+        self.geometry_segments(geometry, ray, t_min, t_max, stats)
+    }
+
+    fn geometry_segments(
+        &self,
+        geometry: &Geometry,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> SegmentList {
+        match geometry {
             Geometry::Leaf(leaf) => self.leaves[*leaf as usize].segments(*leaf, ray),
             Geometry::Csg(root) => {
                 let r = self.csg_ray(ray, ray.dir.recip(), t_min, t_max);
                 self.csg_segments(root, &r, stats)
             }
+            Geometry::Group(g) => merged(
+                g.members
+                    .iter()
+                    .map(|m| self.geometry_segments(&m.geometry, ray, t_min, t_max, stats)),
+            ),
         }
     }
 
@@ -80,7 +105,11 @@ impl Scene {
         ray: &Ray,
         use_bounds: bool,
     ) -> (SegmentList, CsgTrace) {
-        match &self.objects[object as usize].geometry {
+        self.trace(&self.objects[object as usize], ray, use_bounds)
+    }
+
+    fn trace(&self, object: &Object, ray: &Ray, use_bounds: bool) -> (SegmentList, CsgTrace) {
+        match &object.geometry {
             Geometry::Leaf(leaf) => {
                 let list = self.leaves[*leaf as usize].segments(*leaf, ray);
                 let trace = CsgTrace {
@@ -104,6 +133,25 @@ impl Scene {
                 };
                 root.trace(self, &r, &mut CsgWork::default())
             }
+            Geometry::Group(g) => {
+                // A group is no operation: its node (neither an operation nor a leaf) lists its
+                // members' segments together.
+                let (lists, children): (Vec<_>, Vec<_>) = g
+                    .members
+                    .iter()
+                    .map(|m| self.trace(m, ray, use_bounds))
+                    .unzip();
+                let list = merged(lists.into_iter());
+                let trace = CsgTrace {
+                    node: object.name.clone(),
+                    op: None,
+                    leaf: None,
+                    segments: list.clone(),
+                    pruned: None,
+                    children,
+                };
+                (list, trace)
+            }
         }
     }
 
@@ -121,4 +169,12 @@ impl Scene {
             })
             .collect()
     }
+}
+
+/// Segment lists put together in order of t_in (a group's members may overlap: this is a
+/// listing, not a union).
+fn merged(lists: impl Iterator<Item = SegmentList>) -> SegmentList {
+    let mut all: Vec<_> = lists.flat_map(|l| l.into_iter()).collect();
+    all.sort_by(|a, b| a.t_in.total_cmp(&b.t_in));
+    all.into_iter().collect()
 }

@@ -4,8 +4,10 @@
 //! in values and in errors are exactly those of parsing the file in one go.
 //!
 //! Only plain YAML is cut: without quotes, block scalars, anchors, aliases, tags or tabs, a
-//! line at the list's indentation that starts with `- ` outside any bracket begins the next
-//! item and nothing else can. Any other file parses in one piece.
+//! line at the list's indentation that starts with `- ` outside any flow collection (see
+//! `flow`) begins the next item and nothing else can. Any other file parses in one piece.
+//! Whatever the pieces say, the answer is the one-piece parse's: a file whose pieces do not
+//! all parse is parsed again in one piece, so its error is the one a single thread reports.
 
 /// Below this size a file parses in one piece: a thread would cost more than it saves.
 pub const MIN_SPLIT_BYTES: usize = 64 * 1024;
@@ -82,10 +84,17 @@ struct ObjectList {
 
 /// Finds the block list under a top-level `objects:` key, if the file is plain enough to cut.
 fn object_list(text: &str) -> Option<ObjectList> {
+    // Flow collections may span lines; a line inside one is neither the key nor an item.
+    let flow = super::flow::scan(text);
+    let open_at = |at: usize| {
+        flow.lines
+            .binary_search_by_key(&at, |&(start, _)| start)
+            .map_or(0, |i| flow.lines[i].1)
+    };
     let mut key_at = None;
     for (at, line) in lines(text) {
         let code = content(line);
-        if code.trim_end() == "objects:" {
+        if code.trim_end() == "objects:" && open_at(at) == 0 {
             if key_at.is_some() {
                 return None; // a duplicate key: let the parser report it
             }
@@ -98,7 +107,6 @@ fn object_list(text: &str) -> Option<ObjectList> {
 
     let mut items = Vec::new();
     let mut indent = None;
-    let mut depth = 0i64;
     let mut end = text.len();
     for (at, line) in lines(text).skip_while(|&(at, _)| at <= key_at) {
         let code = content(line);
@@ -114,6 +122,7 @@ fn object_list(text: &str) -> Option<ObjectList> {
             return None;
         }
         let list_indent = *indent.get_or_insert(this_indent);
+        let depth = open_at(at);
         if depth == 0 && starts_item(list_indent) {
             items.push(at);
         } else if depth == 0 && this_indent <= list_indent {
@@ -123,18 +132,10 @@ fn object_list(text: &str) -> Option<ObjectList> {
             end = at; // the next key, or a line the parser will reject in context
             break;
         }
-        for b in code.bytes() {
-            match b {
-                b'[' | b'{' => depth += 1,
-                b']' | b'}' => depth -= 1,
-                _ => {}
-            }
-            if depth < 0 {
-                return None;
-            }
-        }
     }
-    (depth == 0).then_some(ObjectList { items, end })
+    // A collection left open inside the list would swallow what follows it.
+    let open_inside = flow.unclosed.iter().any(|b| b.at > key_at && b.at < end);
+    (!open_inside).then_some(ObjectList { items, end })
 }
 
 /// The file's lines with the byte offset each starts at (line breaks kept).
@@ -160,14 +161,14 @@ fn content(line: &str) -> &str {
 mod tests {
     use super::*;
     use crate::scene::format::{ObjectSpec, SceneFile};
-    use crate::scene::load::{from_yaml, parse_split};
+    use crate::scene::load::{from_yaml, parse_in_pieces, parse_split};
     use proptest::prelude::*;
     use serde_saphyr::Spanned;
 
     /// One item of the object list at indentation `pad`, in one of the styles scene files use.
     fn item(style: u8, pad: &str, i: usize) -> String {
         let (x, y) = (i as f64 * 0.25, -(i as f64) / 7.0);
-        match style % 8 {
+        match style % 10 {
             0 => format!(
                 "{pad}- {{ sphere: {{ center: [{x}, {y}, 1], radius: 0.5 }}, material: m }}\n"
             ),
@@ -196,7 +197,12 @@ mod tests {
             6 => format!(
                 "{pad}- complement: {{ plane: {{ point: [0, {y}, 0], normal: [0, 1, 0] }} }}\n"
             ),
-            _ => format!("{pad}- {{ icosphere: {{ subdivisions: {i}, smooth: false }} }}\n"),
+            7 => format!("{pad}- {{ icosphere: {{ subdivisions: {i}, smooth: false }} }}\n"),
+            // Brackets inside plain scalars: names, not collections.
+            8 => format!(
+                "{pad}- name: x[{i}\n{pad}  sphere: {{ center: [0, {y}, 0], radius: 1 }}\n{pad}  material: m\n"
+            ),
+            _ => format!("{pad}- name: y]{i} {{ z\n{pad}  box: {{ min: [0, 0, 0], max: [1, 1, 1] }}\n"),
         }
     }
 
@@ -210,7 +216,7 @@ mod tests {
             text += &item(style, pad, i);
         }
         if after {
-            text += "lights:\n  - { point: [0, 5, 0], intensity: 1 }\nspp: 4\n";
+            text += "lights:\n  - { point: [0, 5, 0], intensity: 1 }\n  - name: y]\n    point: [0, 5, 0]\nspp: 4\n";
         }
         if crlf {
             text = text.replace('\n', "\r\n");
@@ -257,7 +263,7 @@ mod tests {
             assert!(piece[from..].starts_with("- "));
         }
         let whole = format!("{:?}", objects(&text));
-        let parsed = format!("{:?}", parse_split(split, "f").unwrap().objects);
+        let parsed = format!("{:?}", parse_split(split, text.len(), "f").unwrap().objects);
         assert_eq!(parsed, whole);
     }
 
@@ -288,6 +294,25 @@ mod tests {
         assert!(cut(&twice, 2).is_none(), "a duplicate key");
     }
 
+    /// An object named `x[` near the end of a large list and a light named `y]` after the
+    /// list: plain scalars, not a collection spanning the end of the list.
+    #[test]
+    fn brackets_in_names_do_not_move_the_end_of_the_list() {
+        let mut text = scene(&[0; 2000], "  ", false, false);
+        text += "  - { name: z, sphere: { center: [0, 0, 0], radius: 1 }, material: m }\n";
+        text += "  - name: x[\n    sphere: { center: [0, 0, 0], radius: 2 }\n    material: m\n";
+        text += "lights:\n  - name: y]\n    point: [0, 5, 0]\n";
+        assert!(text.len() > MIN_SPLIT_BYTES);
+        let whole = format!("{:?}", from_yaml::<SceneFile>(&text, "f").unwrap());
+        let split = cut(&text, 2).expect("plain enough to cut");
+        assert!(split.head.contains("lights:"), "the lights follow the list");
+        for pieces in 1..5 {
+            let parsed = parse_in_pieces(&text, "f", pieces).unwrap();
+            assert_eq!(parsed.lights.len(), 1);
+            assert_eq!(format!("{parsed:?}"), whole, "{pieces} pieces");
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(256))]
 
@@ -304,7 +329,7 @@ mod tests {
             let split = cut(&text, pieces).expect("plain enough to cut");
             prop_assert!(split.pieces.len() < pieces);
             let whole = format!("{:?}", from_yaml::<SceneFile>(&text, "f").unwrap());
-            prop_assert_eq!(format!("{:?}", parse_split(split, "f").unwrap()), whole);
+            prop_assert_eq!(format!("{:?}", parse_split(split, text.len(), "f").unwrap()), whole);
         }
 
         /// Mistakes anywhere: the first is reported, where reading the file in one go reports it.
@@ -320,10 +345,12 @@ mod tests {
                 text = spoil(&text, nth, how);
             }
             let whole = from_yaml::<SceneFile>(&text, "f").map(|s| format!("{s:?}"));
-            let cut = cut(&text, pieces).map(|split| parse_split(split, "f").map(|s| format!("{s:?}")));
-            if let Some(parsed) = cut {
-                prop_assert_eq!(parsed, whole);
-            }
+            // Below the size the loader cuts at, nothing would be cut: pad with a comment.
+            let padded = format!("{text}#{}\n", " ".repeat(MIN_SPLIT_BYTES));
+            let whole_padded = from_yaml::<SceneFile>(&padded, "f").map(|s| format!("{s:?}"));
+            prop_assert_eq!(&whole_padded, &whole);
+            let parsed = parse_in_pieces(&padded, "f", pieces).map(|s| format!("{s:?}"));
+            prop_assert_eq!(parsed, whole);
         }
     }
 }

@@ -72,7 +72,22 @@ pub struct LightSample {
     pub attenuation: f64,
 }
 
+impl LightSample {
+    /// A light exactly at the shaded point (d = 0), or so near it that c0 + c1·d + c2·d²
+    /// rounds to 0. There l = (light − p)/d is undefined and fatt = 1/(c1·d + c2·d²) infinite,
+    /// so the light's share is taken as its limit along a flat surface through the light,
+    /// where l lies in the surface and n·l = 0: the light adds nothing at that point (its
+    /// diffuse and specular terms are 0, and no shadow ray is cast, as for n·l ≤ 0).
+    pub const AT_THE_POINT: LightSample = LightSample {
+        l: DVec3::ZERO,
+        distance: 0.0,
+        attenuation: 0.0,
+    };
+}
+
 impl Light {
+    /// What the point p sees of the light: l, the distance d and fatt (see
+    /// `LightSample::AT_THE_POINT` for a light at p itself).
     #[inline]
     pub fn sample(&self, p: DVec3) -> LightSample {
         match &self.kind {
@@ -87,10 +102,14 @@ impl Light {
             } => {
                 let to_light = *position - p;
                 let d = to_light.length();
+                let attenuation = 1.0 / (c0 + c1 * d + c2 * d * d);
+                if d == 0.0 || !attenuation.is_finite() {
+                    return LightSample::AT_THE_POINT;
+                }
                 LightSample {
                     l: to_light / d,
                     distance: d,
-                    attenuation: 1.0 / (c0 + c1 * d + c2 * d * d),
+                    attenuation,
                 }
             }
             LightKind::Directional { direction } => LightSample {
@@ -101,6 +120,9 @@ impl Light {
             LightKind::Rect { corner, u, v, .. } => {
                 let to_light = *corner + 0.5 * (*u + *v) - p;
                 let d = to_light.length();
+                if d == 0.0 {
+                    return LightSample::AT_THE_POINT;
+                }
                 LightSample {
                     l: to_light / d,
                     distance: d,
@@ -238,10 +260,13 @@ impl Light {
             LightKind::Sphere { center, radius, .. } => {
                 let to = *center - p;
                 let d = to.length();
-                if d <= *radius {
+                let spread = one_minus_cos_max(*radius, d);
+                if d <= *radius || spread == 0.0 {
+                    // Inside the light, or the light so small from here that the cone it
+                    // subtends is below what f64 can hold (its density would be 1/0).
                     return None;
                 }
-                let cos_theta = 1.0 - u1 * one_minus_cos_max(*radius, d);
+                let cos_theta = 1.0 - u1 * spread;
                 let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
                 let phi = 2.0 * std::f64::consts::PI * u2;
                 let axis = to / d;
@@ -352,6 +377,34 @@ mod tests {
         assert!(chi2 < 172.0, "chi² = {chi2}");
     }
 
+    /// A point light on the surface with fatt = 1/d: the limit along the surface is 0 (n·l = 0
+    /// there), not ∞ · 0 = NaN.
+    #[test]
+    fn a_light_at_the_shaded_point_adds_nothing() {
+        let on = DVec3::new(1.0, 0.0, 2.0);
+        for attenuation in [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]] {
+            let light = Light {
+                name: "on".into(),
+                kind: LightKind::Point {
+                    position: on,
+                    attenuation,
+                },
+                intensity: DVec3::ONE,
+                surface: None,
+            };
+            let s = light.sample(on);
+            assert_eq!((s.l, s.attenuation, s.distance), (DVec3::ZERO, 0.0, 0.0));
+            // So near that c2·d² underflows: the same.
+            let s = light.sample(on + DVec3::new(1e-200, 0.0, 0.0));
+            assert!(s.l.is_finite() && s.attenuation.is_finite(), "{s:?}");
+            // Near but not at it: the ordinary formula.
+            let s = light.sample(on + DVec3::new(0.5, 0.0, 0.0));
+            let c = attenuation;
+            assert_eq!(s.attenuation, 1.0 / (c[0] + c[1] * 0.5 + c[2] * 0.25));
+            assert_eq!(s.l, DVec3::new(-1.0, 0.0, 0.0));
+        }
+    }
+
     #[test]
     fn a_ray_at_a_sphere_light_finds_it_with_the_sampling_density() {
         let light = ball();
@@ -365,6 +418,24 @@ mod tests {
             let hit = light.emitter_hit(&ray, f64::INFINITY).unwrap();
             assert!((hit.t - e.distance).abs() < 1e-9);
             assert!((hit.pdf - e.pdf).abs() < 1e-9 * e.pdf);
+        }
+    }
+
+    /// Fuzzing finding (a mutated Cornell box): a sphere light of radius 1e−308 subtends a cone
+    /// whose 1 − cos θmax underflows to 0, and its density 1/0 = ∞ made the path tracer's
+    /// weights ∞/∞ = NaN. Such a light cannot be sampled: no sample, never an infinite density.
+    #[test]
+    fn a_sphere_light_too_small_to_subtend_a_cone_gives_no_sample() {
+        let mut light = ball();
+        if let LightKind::Sphere { radius, .. } = &mut light.kind {
+            *radius = 1e-308;
+        }
+        let mut rng = Rng::for_pixel(0, 0, 0);
+        for _ in 0..100 {
+            let pdf = light
+                .sample_emitter(DVec3::ZERO, rng.uniform(), rng.uniform())
+                .map(|e| e.pdf);
+            assert!(pdf.is_none_or(f64::is_finite), "{pdf:?}");
         }
     }
 }

@@ -1,9 +1,12 @@
 //! The local illumination model of the lecture notes:
 //! I_local = ka·Ia·O + Σ_ℓ s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m).
+//!
+//! O, kd and ks are the surface's at the shaded point (`Paint`: a material's constants, or its
+//! patterns looked up there); ka, the exponent m and the kind of highlight are the material's.
 
 use glam::DVec3;
 
-use super::{Highlight, Material};
+use super::{Highlight, Material, Paint};
 
 /// The diffuse and specular terms of one light, before the shadow factor.
 #[derive(Clone, Copy, Debug)]
@@ -19,8 +22,8 @@ pub struct LightTerms {
 }
 
 /// Ambient term ka·Ia·O.
-pub fn ambient(m: &Material, ia: DVec3) -> DVec3 {
-    m.ka * ia * m.color
+pub fn ambient(m: &Material, at: &Paint, ia: DVec3) -> DVec3 {
+    m.ka * ia * at.color
 }
 
 /// Diffuse (Lambert) and specular terms for a light seen along l with strength fatt·Iℓ = `light`.
@@ -33,6 +36,7 @@ pub fn ambient(m: &Material, ia: DVec3) -> DVec3 {
 #[inline(always)]
 pub fn light_terms(
     m: &Material,
+    at: &Paint,
     n: DVec3,
     v: DVec3,
     l: DVec3,
@@ -40,15 +44,15 @@ pub fn light_terms(
     shows: bool,
 ) -> LightTerms {
     let n_dot_l = n.dot(l);
-    let lights_highlight = m.ks > 0.0 && n_dot_l > 0.0;
+    let lights_highlight = at.ks > 0.0 && n_dot_l > 0.0;
     let highlight_cos = if lights_highlight || shows {
         highlight_cos(m, n, v, l, n_dot_l)
     } else {
         0.0
     };
-    let diffuse = light * m.kd * m.color * n_dot_l.max(0.0);
+    let diffuse = light * at.kd * at.color * n_dot_l.max(0.0);
     let specular = if lights_highlight {
-        light * m.ks * highlight_power(highlight_cos, m.shininess)
+        light * at.ks * highlight_power(highlight_cos, m.shininess)
     } else {
         // No highlight from a light behind the surface: it does not light this side at all
         // (the tracer's shadow factor is 0 there anyway, so this only saves the power).
@@ -74,6 +78,7 @@ pub fn light_terms(
 /// nothing bends and there is no such facet: no highlight.
 pub fn transmitted_terms(
     m: &Material,
+    at: &Paint,
     n: DVec3,
     v: DVec3,
     l: DVec3,
@@ -83,8 +88,8 @@ pub fn transmitted_terms(
     let n_dot_l = n.dot(l);
     let h = (-(eta * l + v) / (eta - 1.0)).normalize_or_zero();
     let highlight_cos = h.dot(n).max(0.0);
-    let specular = if m.ks > 0.0 && highlight_cos > 0.0 {
-        light * m.ks * highlight_power(highlight_cos, m.shininess)
+    let specular = if at.ks > 0.0 && highlight_cos > 0.0 {
+        light * at.ks * highlight_power(highlight_cos, m.shininess)
     } else {
         DVec3::ZERO
     };
@@ -204,7 +209,8 @@ mod tests {
             let v = DVec3::new(tilt.sin(), tilt.cos(), 0.0);
             let refracted = refract(-v, n, n_view, n_light).expect("no total internal reflection");
             let eta = n_light / n_view;
-            let at = |l: DVec3| transmitted_terms(&m, n, v, l, eta, DVec3::ONE);
+            let paint = m.paint();
+            let at = |l: DVec3| transmitted_terms(&m, &paint, n, v, l, eta, DVec3::ONE);
             let peak = at(refracted);
             assert!(
                 (peak.highlight_cos - 1.0).abs() < 1e-12,
@@ -236,7 +242,7 @@ mod tests {
             // The light straight behind (the view ray unbent) is off the peak.
             assert!(at(-v).highlight_cos < 0.999);
         }
-        let flat = transmitted_terms(&m, n, DVec3::Y, -DVec3::Y, 1.0, DVec3::ONE);
+        let flat = transmitted_terms(&m, &m.paint(), n, DVec3::Y, -DVec3::Y, 1.0, DVec3::ONE);
         assert_eq!(flat.specular, DVec3::ZERO);
     }
 }

@@ -1,8 +1,11 @@
-//! Materials: the coefficients of the lecture's illumination model.
+//! Materials: the coefficients of the lecture's illumination model. The colour O and the
+//! coefficients kd, ks, kr, kt may vary over a surface (patterns, textures): what they are at
+//! one point is its `Paint`, looked up once per shaded hit (`Scene::interaction`).
 
 use glam::DVec3;
 use serde::Serialize;
 
+use super::pattern::{Pattern, PatternPoint};
 use super::Lobe;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
@@ -27,7 +30,8 @@ pub enum Fresnel {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     pub name: String,
-    /// O, the object's colour.
+    /// O, the object's colour. For this and the coefficients kd, ks, kr and kt: the value
+    /// everywhere, or, where a pattern varies it, the largest value the pattern takes.
     pub color: DVec3,
     pub ka: f64,
     pub kd: f64,
@@ -48,8 +52,64 @@ pub struct Material {
     pub glossy: Option<Lobe>,
     /// Frosted refraction: the refraction ray becomes n rays drawn from this lobe.
     pub frosted: Option<Lobe>,
+    /// The patterns that vary O, kd, ks, kr or kt over the surface; None (most materials) for
+    /// the same values everywhere.
+    pub patterns: Option<Box<Patterns>>,
 }
 
+/// What a pattern may vary, as it is at one point of a surface: the colour O and the
+/// coefficients kd, ks, kr, kt.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Paint {
+    pub color: DVec3,
+    pub kd: f64,
+    pub ks: f64,
+    pub kr: f64,
+    pub kt: f64,
+}
+
+/// A material's patterns, one for each value that varies. A coefficient's pattern has grey
+/// values: its first channel is the coefficient.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Patterns {
+    pub color: Option<Pattern>,
+    pub kd: Option<Pattern>,
+    pub ks: Option<Pattern>,
+    pub kr: Option<Pattern>,
+    pub kt: Option<Pattern>,
+}
+
+impl Patterns {
+    /// The values at a point: the patterns' where there is one, the constant's elsewhere.
+    pub fn paint(&self, constant: &Paint, at: &PatternPoint) -> Paint {
+        let k = |p: &Option<Pattern>, c: f64| p.as_ref().map_or(c, |p| p.value(at).x);
+        Paint {
+            color: self.color.as_ref().map_or(constant.color, |p| p.value(at)),
+            kd: k(&self.kd, constant.kd),
+            ks: k(&self.ks, constant.ks),
+            kr: k(&self.kr, constant.kr),
+            kt: k(&self.kt, constant.kt),
+        }
+    }
+
+    /// The patterns with the name of what each varies, O first.
+    pub fn named(&self) -> impl Iterator<Item = (&'static str, &Pattern)> {
+        [
+            ("O", &self.color),
+            ("kd", &self.kd),
+            ("ks", &self.ks),
+            ("kr", &self.kr),
+            ("kt", &self.kt),
+        ]
+        .into_iter()
+        .filter_map(|(name, p)| p.as_ref().map(|p| (name, p)))
+    }
+
+    /// Whether one of them reads the surface's own (u, v).
+    pub fn need_uv(&self) -> bool {
+        self.named().any(|(_, p)| p.needs_uv())
+    }
+}
 impl Material {
     pub fn matte(name: &str, color: DVec3) -> Material {
         Material {
@@ -68,6 +128,19 @@ impl Material {
             emission: DVec3::ZERO,
             glossy: None,
             frosted: None,
+            patterns: None,
+        }
+    }
+
+    /// The values of a material without patterns (the constants of one with them).
+    #[inline(always)]
+    pub fn paint(&self) -> Paint {
+        Paint {
+            color: self.color,
+            kd: self.kd,
+            ks: self.ks,
+            kr: self.kr,
+            kt: self.kt,
         }
     }
 

@@ -75,7 +75,7 @@ impl<R: Recorder> Tracer<'_, R> {
     /// transmits nothing and has no Fresnel term needs neither index.
     #[inline(always)]
     pub(crate) fn across(&mut self, task: &Task, si: &Interaction, m: &Material) -> Across {
-        let (near, beyond) = if m.kt == 0.0 && m.fresnel == Fresnel::None {
+        let (near, beyond) = if si.paint.kt == 0.0 && m.fresnel == Fresnel::None {
             (task.media, task.media)
         } else if self.scene.features.transparent_objects.len() <= 1 {
             if si.inside {

@@ -172,6 +172,7 @@ impl<'s> PathTracer<'s> {
                     face: 0,
                     object: 0,
                     material,
+                    paint: scene.material(material).paint(),
                 };
                 (si, lh.light.name.as_str())
             } else {
@@ -187,8 +188,9 @@ impl<'s> PathTracer<'s> {
             let m = scene.material(si.material);
 
             // Choose a lobe in proportion to its weight.
-            let diffuse = m.kd * m.color;
-            let weights = [diffuse.max_element(), m.kr, m.kt];
+            let at = si.paint;
+            let diffuse = at.kd * at.color;
+            let weights = [diffuse.max_element(), at.kr, at.kt];
             let total: f64 = weights.iter().sum();
             if total <= 0.0 || depth + 1 >= self.max_depth {
                 let why = if total <= 0.0 {
@@ -224,7 +226,7 @@ impl<'s> PathTracer<'s> {
                 };
                 stats.reflection_rays += 1;
             } else if pick < weights[0] + weights[1] {
-                throughput *= m.kr * (total / weights[1]);
+                throughput *= at.kr * (total / weights[1]);
                 bsdf_pdf = None;
                 let mirror = reflect(ray.dir, n);
                 let dir = match m.glossy {
@@ -243,7 +245,7 @@ impl<'s> PathTracer<'s> {
                 };
                 stats.reflection_rays += 1;
             } else {
-                throughput *= m.kt * (total / weights[2]);
+                throughput *= at.kt * (total / weights[2]);
                 bsdf_pdf = None;
                 let (n1, n2) = if si.inside {
                     (m.ior, 1.0)

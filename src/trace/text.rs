@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use super::tree::{LightTerm, RayKind, RayNode};
+use super::tree::{LightTerm, PatternLookup, RayKind, RayNode};
 use crate::geometry::csg::{CsgTrace, Pruned};
 use crate::geometry::Ray;
 use crate::scene::Scene;
@@ -128,7 +128,9 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
     }
     if let Some(h) = &n.hit {
         let mut leaf = String::new();
-        if h.leaf != h.object {
+        if h.leaf != h.object && h.csg_path.is_empty() {
+            leaf = format!(" (member {})", h.leaf);
+        } else if h.leaf != h.object {
             leaf = format!(" (leaf {} via {})", h.leaf, h.csg_path.join(" → "));
         }
         out.push(format!("hit {}{leaf}, material {}", h.object, h.material));
@@ -146,8 +148,12 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
         if let Some(b) = h.barycentric {
             out.push(format!("barycentric (λ1, λ2, λ3) = {}", vec3(b)));
         }
+        if let Some(uv) = h.uv {
+            out.push(format!("texture (u, v) = ({}, {})", num(uv.x), num(uv.y)));
+        }
     }
     if let Some(local) = &n.local {
+        out.extend(local.patterns.iter().map(pattern));
         out.push(format!("ambient  ka·Ia·O = {}", color(local.ambient)));
         for l in &local.lights {
             out.extend(light_lines(l));
@@ -393,7 +399,7 @@ fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out
     let kind = match (t.op, t.leaf) {
         (Some(op), _) => op.name().to_string(),
         (None, Some(leaf)) => scene.leaves[leaf as usize].shape.kind().to_string(),
-        _ => "?".into(),
+        (None, None) => "group".into(),
     };
     let label = if t.node == kind {
         kind.clone()
@@ -422,4 +428,13 @@ fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out
             out,
         );
     }
+}
+
+/// A pattern looked up at a hit: what it varies, its value, and where it was evaluated.
+pub fn pattern(p: &PatternLookup) -> String {
+    let at = match p.uv {
+        Some(uv) => format!("(u, v) = ({}, {})", num(uv.x), num(uv.y)),
+        None => format!("p = {}", vec3(p.point)),
+    };
+    format!("{} = {}  ({} at {at})", p.varies, color(p.value), p.pattern)
 }

@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::recorder::{NoRecorder, RayStart, Recorder, TreeRecorder};
 use super::task::Task;
-use super::tree::{HitInfo, Inspection, RayKind, RayNode};
+use super::tree::{Coefficients, HitInfo, Inspection, Local, PatternLookup, RayKind, RayNode};
 use super::whitted::shadow_reach;
 use crate::geometry::{Ray, Shape};
 use crate::sampling::Rng;
@@ -185,6 +185,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
             _ => None,
         };
         HitInfo {
+            uv: self.lookups(si).iter().find_map(|l| l.uv),
             object: scene.objects[si.object as usize].name.clone(),
             leaf: leaf.name.clone(),
             csg_path: leaf.path.clone(),
@@ -194,6 +195,55 @@ impl<'s, R: Recorder> Tracer<'s, R> {
             normal: si.normal,
             inside: si.inside,
             barycentric,
+        }
+    }
+
+    /// The patterns of the hit's material, each looked up at the hit: what the tree shows of
+    /// them.
+    pub(super) fn lookups(&self, si: &Interaction) -> Vec<PatternLookup> {
+        let scene = self.scene;
+        let Some(patterns) = &scene.material(si.material).patterns else {
+            return vec![];
+        };
+        let leaf = &scene.leaves[si.leaf as usize];
+        let at = scene.pattern_point(leaf, si.point, si.face, true);
+        patterns
+            .named()
+            .map(|(varies, p)| {
+                let (point, uv) = p.lookup(&at);
+                PatternLookup {
+                    varies: varies.into(),
+                    pattern: p.describe(),
+                    point,
+                    uv,
+                    value: p.value(&at),
+                }
+            })
+            .collect()
+    }
+
+    /// The surface's colour and coefficients at a hit, for its node's local terms, when its
+    /// material has patterns.
+    pub(super) fn surface(&self, si: &Interaction) -> Local {
+        let lookups = self.lookups(si);
+        if lookups.is_empty() {
+            return Local::default();
+        }
+        let p = si.paint;
+        let coefficients = lookups
+            .iter()
+            .any(|l| l.varies != "O")
+            .then_some(Coefficients {
+                kd: p.kd,
+                ks: p.ks,
+                kr: p.kr,
+                kt: p.kt,
+            });
+        Local {
+            color: Some(p.color),
+            coefficients,
+            patterns: lookups,
+            ..Local::default()
         }
     }
 }

@@ -1,7 +1,7 @@
 //! The ray tree: every ray traced for one pixel, with the numbers that coloured it.
 //! Serialised as the `inspect --format json` contract.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use serde::Serialize;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -75,6 +75,10 @@ pub struct HitInfo {
     /// (λ1, λ2, λ3) for a triangle.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub barycentric: Option<DVec3>,
+    /// The texture coordinates (u, v) an image texture or a uv checker was read at (the
+    /// colour's, if it has them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uv: Option<DVec2>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -98,11 +102,46 @@ pub struct LightTerm {
     pub skipped: Option<String>,
 }
 
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Local {
     /// ka·Ia·O
     pub ambient: DVec3,
     pub lights: Vec<LightTerm>,
+    /// O at the hit, when the material has patterns.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub color: Option<DVec3>,
+    /// kd, ks, kr and kt at the hit, when a pattern varies one of them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coefficients: Option<Coefficients>,
+    /// Each pattern looked up at the hit.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub patterns: Vec<PatternLookup>,
+}
+
+/// The coefficients a pattern may vary, as they are at one point.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Coefficients {
+    pub kd: f64,
+    pub ks: f64,
+    pub kr: f64,
+    pub kt: f64,
+}
+
+/// One pattern or texture, looked up at a hit.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PatternLookup {
+    /// What it varies: "O" (the colour), "kd", "ks", "kr" or "kt".
+    pub varies: String,
+    /// What it is: "checker", "image wood.png, spherical mapping", …
+    pub pattern: String,
+    /// Where its formula is evaluated: the hit point in the object's own space, through the
+    /// inverse of the pattern's transform.
+    pub point: DVec3,
+    /// The texture coordinates of an image or a uv checker.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub uv: Option<DVec2>,
+    /// Its value there (a coefficient's is grey).
+    pub value: DVec3,
 }
 
 impl Local {

@@ -26,7 +26,7 @@ use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
 use crate::shading::local::{ambient, light_terms, transmitted_terms, LightTerms};
 use crate::shading::optics::{reflect, refract, schlick};
-use crate::shading::{lobe, Fresnel, Light, LightSample, Lobe, Material};
+use crate::shading::{lobe, Fresnel, Light, LightSample, Lobe, Material, Paint};
 use crate::trace::recorder::Recorder;
 
 /// The rays a surface sends on, before the depth limit and the adaptive threshold have
@@ -91,11 +91,11 @@ impl<R: Recorder> Tracer<'_, R> {
         light.intensity
     }
 
-    /// Whether a surface of material m ends the path under seed 002's rule: a diffuse surface
-    /// (kd > 0) sends no reflection or refraction ray.
+    /// Whether a surface ends the path under seed 002's rule: a diffuse surface (kd > 0 where
+    /// the ray meets it) sends no reflection or refraction ray.
     #[inline(always)]
-    pub(crate) fn stops_at(&self, m: &Material) -> bool {
-        self.options.stop_at_diffuse && m.kd > 0.0
+    pub(crate) fn stops_at(&self, at: &Paint) -> bool {
+        self.options.stop_at_diffuse && at.kd > 0.0
     }
 
     /// The intensity of a ray from its nearest hit: I = I_local + kr·I_r + kt·I_t.
@@ -118,11 +118,9 @@ impl<R: Recorder> Tracer<'_, R> {
     /// The node's total from its local intensity: the secondary rays' kr·I_r + kt·I_t added.
     #[inline(always)]
     pub(crate) fn finish(&mut self, task: &Task, si: &Interaction, mut color: DVec3) -> DVec3 {
-        let scene = self.scene;
-        let m = scene.material(si.material);
         let mut stopped = None;
-        if m.kr > 0.0 || m.kt > 0.0 {
-            if self.stops_at(m) {
+        if si.paint.kr > 0.0 || si.paint.kt > 0.0 {
+            if self.stops_at(&si.paint) {
                 stopped = Some(Termination::Diffuse);
             } else {
                 color += self.secondary(task, si);
@@ -138,7 +136,7 @@ impl<R: Recorder> Tracer<'_, R> {
     fn local(&mut self, task: &Task, si: &Interaction) -> DVec3 {
         let scene = self.scene;
         let m = scene.material(si.material);
-        let mut color = ambient(m, scene.ambient);
+        let mut color = ambient(m, &si.paint, scene.ambient);
         let mut terms = Vec::new();
         for (k, light) in scene.lights.iter().enumerate() {
             let (sample, lit, skipped) = self.light_share(m, si, task, k, R::ACTIVE);
@@ -163,8 +161,9 @@ impl<R: Recorder> Tracer<'_, R> {
         }
         if R::ACTIVE {
             self.rec.local(Local {
-                ambient: ambient(m, scene.ambient),
+                ambient: ambient(m, &si.paint, scene.ambient),
                 lights: terms,
+                ..self.surface(si)
             });
         }
         color
@@ -191,12 +190,13 @@ impl<R: Recorder> Tracer<'_, R> {
         let sample = light.sample(si.point);
         let strength = sample.attenuation * light.intensity;
         let v = -task.ray.dir;
-        let through = m.transmitted_highlight && m.kt > 0.0 && si.normal.dot(sample.l) < 0.0;
+        let through = m.transmitted_highlight && si.paint.kt > 0.0 && si.normal.dot(sample.l) < 0.0;
         let lit = if through {
             let across = self.across(task, si, m);
-            transmitted_terms(m, si.normal, v, sample.l, across.n2 / across.n1, strength)
+            let eta = across.n2 / across.n1;
+            transmitted_terms(m, &si.paint, si.normal, v, sample.l, eta, strength)
         } else {
-            light_terms(m, si.normal, v, sample.l, strength, shows)
+            light_terms(m, &si.paint, si.normal, v, sample.l, strength, shows)
         };
         let skipped = if lit.n_dot_l <= 0.0 && !through {
             self.stats.shadow_skipped_backfacing += 1;
@@ -308,16 +308,17 @@ impl<R: Recorder> Tracer<'_, R> {
         let d = task.ray.dir;
         let across = self.across(task, si, m);
         let (n1, n2) = (across.n1, across.n2);
-        let transmitted = if m.kt > 0.0 {
+        let (kr, kt) = (si.paint.kr, si.paint.kt);
+        let transmitted = if kt > 0.0 {
             refract(d, si.normal, n1, n2)
         } else {
             None
         };
         let (kr, kt) = match m.fresnel {
-            Fresnel::None => (m.kr, m.kt),
+            Fresnel::None => (kr, kt),
             Fresnel::Schlick => {
                 let r = schlick(-d.dot(si.normal), n1, n2);
-                (m.kr * r, m.kt * (1.0 - r))
+                (kr * r, kt * (1.0 - r))
             }
         };
         let mirror = reflect(d, si.normal);

@@ -71,13 +71,27 @@ pub fn run(options: Options) -> Result<(), String> {
                 .into(),
         );
     }
+    // A reload waits only briefly: a large scene arrives on a later tick, the keys meanwhile.
+    app.file.reload_wait = RELOAD_WAIT;
+    // SIGTERM, SIGHUP and SIGINT end the explorer as `q` does, the terminal restored, and then
+    // the process as the signal asks.
+    let signals =
+        crate::signals::Signals::catch().map_err(|e| format!("cannot catch signals: {e}"))?;
     let mut guard = terminal::setup().map_err(|e| format!("cannot set up the terminal: {e}"))?;
-    let result = event_loop(&mut guard.term, &mut app);
+    let result = event_loop(&mut guard.term, &mut app, signals.stop());
     drop(guard);
+    signals.finish();
     result.map_err(|e| format!("terminal error: {e}"))
 }
 
-fn event_loop(term: &mut terminal::Term, app: &mut App) -> std::io::Result<()> {
+/// How long a tick waits for a scene being reloaded before drawing again.
+const RELOAD_WAIT: Duration = Duration::from_millis(15);
+
+fn event_loop(
+    term: &mut terminal::Term,
+    app: &mut App,
+    stop: &std::sync::atomic::AtomicBool,
+) -> std::io::Result<()> {
     use crossterm::event;
     let mut worker = worker::Worker::spawn();
     let size = term.size()?;
@@ -85,7 +99,7 @@ fn event_loop(term: &mut terminal::Term, app: &mut App) -> std::io::Result<()> {
     let mut last_tick = Instant::now();
     let mut last_progress = (0, 0, 0);
     let mut dirty = true;
-    while !app.quit {
+    while !app.quit && !stop.load(std::sync::atomic::Ordering::Relaxed) {
         if let Some(job) = app.take_job() {
             worker.submit(job);
         }

@@ -9,8 +9,8 @@ use glam::DVec3;
 use super::tree::{child_names, collect_lines, short};
 use super::Worked;
 use crate::lessons::Exercise;
-use crate::shading::{Highlight, Light, LightKind, Material};
-use crate::trace::tree::{HitInfo, LightTerm};
+use crate::shading::{Highlight, Light, LightKind, Material, Paint};
+use crate::trace::tree::{HitInfo, LightTerm, Local};
 use crate::trace::{text, RayKind, RayNode, Termination};
 
 /// The whole derivation of the intensity of node `n`, named `name`: every node below it,
@@ -120,17 +120,21 @@ fn node(w: &Worked, n: &RayNode, name: &str, out: &mut Vec<String>) {
     ) else {
         return;
     };
+    let at = paint_at(m, local);
+    for p in &local.patterns {
+        out.push(format!("  {}", text::pattern(p)));
+    }
     out.push(format!(
         "  ambient ka·Ia·O = {}·{}·{} = {}",
         text::num(m.ka),
         text::color(w.scene.ambient),
-        text::color(m.color),
+        text::color(at.color),
         text::color(local.ambient)
     ));
     for t in &local.lights {
         let light = w.scene.lights.iter().find(|l| l.name == t.light);
         if let Some(light) = light {
-            out.extend(light_lines(n, h, m, light, t, v));
+            out.extend(light_lines(n, h, (m, &at), light, t, v));
         }
     }
     let mut terms = vec![text::color(local.ambient)];
@@ -152,12 +156,24 @@ fn node(w: &Worked, n: &RayNode, name: &str, out: &mut Vec<String>) {
     }
 }
 
+/// The material's values at the hit: a pattern's where one varies them, else its constants.
+fn paint_at(m: &Material, local: &Local) -> Paint {
+    let mut at = m.paint();
+    if let Some(color) = local.color {
+        at.color = color;
+    }
+    if let Some(c) = local.coefficients {
+        (at.kd, at.ks, at.kr, at.kt) = (c.kd, c.ks, c.kr, c.kt);
+    }
+    at
+}
+
 /// One light's share at a hit: l and n·l, d and fatt, the shadow factor, the highlight's vector
 /// and power, then the diffuse and specular terms.
 fn light_lines(
     n: &RayNode,
     h: &HitInfo,
-    m: &Material,
+    (m, at): (&Material, &Paint),
     light: &Light,
     t: &LightTerm,
     v: DVec3,
@@ -182,7 +198,7 @@ fn light_lines(
     out.push(format!("    {}", shadow(n, light, t)));
     let m_exp = text::num(m.shininess);
     let power = t.highlight_cos.powf(m.shininess);
-    if m.ks > 0.0 {
+    if at.ks > 0.0 {
         out.push(match m.highlight {
             Highlight::Blinn => {
                 let hv = (t.l + v).normalize();
@@ -212,12 +228,12 @@ fn light_lines(
     );
     out.push(format!(
         "    diffuse s·fatt·Iℓ·kd·O·(n·l) = {factors}·{}·{}·{} = {}",
-        text::num(m.kd),
-        text::color(m.color),
+        text::num(at.kd),
+        text::color(at.color),
         text::num(t.n_dot_l),
         text::color(t.diffuse)
     ));
-    out.push(if m.ks > 0.0 {
+    out.push(if at.ks > 0.0 {
         let cos = if m.highlight == Highlight::Blinn {
             "(h·n)^m"
         } else {
@@ -225,7 +241,7 @@ fn light_lines(
         };
         format!(
             "    specular s·fatt·Iℓ·ks·{cos} = {factors}·{}·{} = {}",
-            text::num(m.ks),
+            text::num(at.ks),
             text::num(power),
             text::color(t.specular)
         )

@@ -13,7 +13,8 @@
 //! - `csg`: segment lists, and the leaves evaluated (pruning, bounding boxes);
 //! - `image`: rendered pixel values, primary rays, squares split by adaptive antialiasing
 //!   (whose steps `adaptive` explains);
-//! - `montecarlo`: the standard error of a sampled mean, for answers graded in standard errors.
+//! - `montecarlo`: the standard error of a sampled mean, for answers graded in standard errors;
+//! - `texture`: texture coordinates and the colour of a patterned surface.
 
 mod adaptive;
 mod camera;
@@ -25,6 +26,7 @@ mod lighting;
 mod mistakes;
 mod montecarlo;
 mod optics;
+mod texture;
 mod tree;
 
 use glam::DVec3;
@@ -146,6 +148,9 @@ fn question(ask: Ask) -> &'static dyn Question {
         Ask::PrimaryRays => &image::PrimaryRays,
         Ask::SquaresSplit => &image::SquaresSplit,
         Ask::LeavesEvaluated => &csg::LeavesEvaluated,
+        Ask::U => &texture::TextureCoordinate { v: false },
+        Ask::V => &texture::TextureCoordinate { v: true },
+        Ask::SurfaceColor => &texture::SurfaceColor,
     }
 }
 
@@ -354,6 +359,8 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
             "this intensity"
         }
         Ask::Segments => "a segment list",
+        Ask::U | Ask::V => "a texture coordinate",
+        Ask::SurfaceColor => "the surface colour",
     };
     Some(match (given, expected) {
         (Answer::Number(_), Answer::Vector(_)) if asks_colour(ask) => {
@@ -379,7 +386,12 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
 fn asks_colour(ask: Ask) -> bool {
     matches!(
         ask,
-        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue
+        Ask::Intensity
+            | Ask::Local
+            | Ask::Diffuse
+            | Ask::Specular
+            | Ask::PixelValue
+            | Ask::SurfaceColor
     )
 }
 

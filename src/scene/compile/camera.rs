@@ -77,6 +77,22 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
             let axis = axis.as_ref().expect("checked above");
             nonzero(axis.value.0, pos(axis), &format!("camera axis {k}"))?;
         }
+        // A pixel's ray is x·u + y·v + f·w: with f = 0 the window passes through the eye (the
+        // centre ray is the zero vector), and axes in one plane fold the image onto a line.
+        if f == 0.0 {
+            return invalid(
+                p,
+                "window camera: the focal distance f must not be 0 (the window would pass through the eye)",
+            );
+        }
+        let volume = u.dot(v.cross(w)).abs();
+        if volume <= 1e-9 * u.length() * v.length() * w.length() {
+            let at = c.v.as_ref().map_or(p, pos);
+            return invalid(
+                at,
+                "window camera: the axes u, v and w must not lie in one plane (are two of them parallel?)",
+            );
+        }
         let [wl, wr, wt, wb] = window.value.map(|n| n.0);
         if wl == wr || wt == wb {
             return invalid(

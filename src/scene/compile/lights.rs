@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, HashSet};
 use glam::DVec3;
 use serde_saphyr::Spanned;
 
-use super::{invalid, nonzero, pos, Invalid, Pos};
+use super::{invalid, nonzero, pos, printable_name, Invalid, Pos};
 use crate::scene::format::{LightSpec, Num, SceneFile};
 use crate::shading::{Light, LightKind};
 
@@ -16,6 +16,7 @@ pub fn of(file: &SceneFile, materials: &BTreeMap<String, u32>) -> Result<Vec<Lig
     let mut light_names = HashSet::new();
     for (i, l) in file.lights.iter().enumerate() {
         let light = light(&l.value, pos(l), i)?;
+        printable_name(&light.name, pos(l), "light")?;
         if !light_names.insert(light.name.clone()) {
             return invalid(pos(l), format!("duplicate light name `{}`", light.name));
         }

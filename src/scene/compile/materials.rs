@@ -1,27 +1,54 @@
 //! The materials: the coefficients of the local model, reflection and transmission, the index
-//! of refraction, glossy and frosted lobes, emission.
+//! of refraction, glossy and frosted lobes, emission; the colour and kd, ks, kr, kt may be
+//! patterns or textures (`patterns.rs`).
 
 use std::collections::BTreeMap;
+use std::path::Path;
 
 use glam::DVec3;
 use serde_saphyr::Spanned;
 
-use super::{invalid, pos, Invalid, Pos};
-use crate::scene::format::{LobeSpec, MaterialSpec, SceneFile};
-use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material};
+use super::patterns::{Of, Textures};
+use super::{invalid, pos, printable_name, Invalid};
+use crate::scene::format::{LobeSpec, MaterialSpec, SceneFile, Varying};
+use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material, Pattern, Patterns};
 
-/// The file's materials, and each one's index by name.
-pub fn of(file: &SceneFile) -> Result<(Vec<Material>, BTreeMap<String, u32>), Invalid> {
+/// The file's materials, and each one's index by name. Texture images are found relative to
+/// the folder of the scene file (`source`).
+pub fn of(
+    file: &SceneFile,
+    source: Option<&Path>,
+) -> Result<(Vec<Material>, BTreeMap<String, u32>), Invalid> {
+    let base = source.and_then(Path::parent).unwrap_or(Path::new(""));
+    let mut textures = Textures::new(base);
     let mut materials = Vec::new();
     let mut material_index = BTreeMap::new();
     for (name, m) in &file.materials {
+        printable_name(name, pos(m), "material")?;
         material_index.insert(name.clone(), materials.len() as u32);
-        materials.push(material(name, &m.value, pos(m))?);
+        materials.push(material(name, &m.value, &mut textures)?);
     }
     Ok((materials, material_index))
 }
 
-fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
+/// A value that may vary: its constant (for a pattern, the largest value it takes), and the
+/// pattern, if it is one.
+fn varying(
+    v: &Option<Spanned<Varying>>,
+    default: DVec3,
+    of: Of,
+    textures: &mut Textures,
+) -> Result<(DVec3, Option<Pattern>), Invalid> {
+    let Some(v) = v else {
+        return Ok((default, None));
+    };
+    Ok(match textures.varying(v, of)? {
+        Pattern::Constant(c) => (c, None),
+        pattern => (pattern.max(), Some(pattern)),
+    })
+}
+
+fn material(name: &str, m: &MaterialSpec, textures: &mut Textures) -> Result<Material, Invalid> {
     let coefficient =
         |c: &Option<Spanned<crate::scene::format::Num>>, k: &str| -> Result<f64, Invalid> {
             match c {
@@ -47,20 +74,34 @@ fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
         None => 1.0,
         Some(s) => coefficient(&Some(s.clone()), "shininess")?,
     };
-    let color = m.color.map_or(DVec3::ONE, |t| t.0);
-    if color.min_element() < 0.0 {
-        return invalid(p, format!("material `{name}`: color must be ≥ 0"));
-    }
+    let mut patterns = Patterns::default();
+    let mut vary =
+        |v: &Option<Spanned<Varying>>, key: &str, default: f64, slot: &mut Option<Pattern>| {
+            let scalar = key != "color";
+            let of = Of {
+                material: name,
+                key,
+                scalar,
+            };
+            let (value, pattern) = varying(v, DVec3::splat(default), of, textures)?;
+            *slot = pattern;
+            Ok::<DVec3, Invalid>(value)
+        };
+    let color = vary(&m.color, "color", 1.0, &mut patterns.color)?;
+    let kd = vary(&m.kd, "kd", 0.0, &mut patterns.kd)?.x;
+    let ks = vary(&m.ks, "ks", 0.0, &mut patterns.ks)?.x;
+    let kr = vary(&m.kr, "kr", 0.0, &mut patterns.kr)?.x;
+    let kt = vary(&m.kt, "kt", 0.0, &mut patterns.kt)?.x;
     Ok(Material {
         name: name.to_string(),
         color,
         ka: coefficient(&m.ka, "ka")?,
-        kd: coefficient(&m.kd, "kd")?,
-        ks: coefficient(&m.ks, "ks")?,
+        kd,
+        ks,
         shininess,
         highlight: m.highlight.unwrap_or(Highlight::Blinn),
-        kr: coefficient(&m.kr, "kr")?,
-        kt: coefficient(&m.kt, "kt")?,
+        kr,
+        kt,
         ior,
         fresnel: m.fresnel.unwrap_or(Fresnel::None),
         transmitted_highlight: m.transmitted_highlight.unwrap_or(false),
@@ -75,6 +116,7 @@ fn material(name: &str, m: &MaterialSpec, p: Pos) -> Result<Material, Invalid> {
             .as_ref()
             .map(|f| lobe(name, "frosted", f))
             .transpose()?,
+        patterns: (patterns != Patterns::default()).then(|| Box::new(patterns)),
     })
 }
 

@@ -7,6 +7,7 @@ mod camera;
 mod lights;
 mod materials;
 mod objects;
+mod patterns;
 mod settings;
 
 use std::path::PathBuf;
@@ -18,15 +19,25 @@ use super::error::{invalid, Invalid, Pos};
 use super::{Features, Scene, SearchIndex};
 use crate::scene::format::SceneFile;
 
-/// Limits that protect against absurd input.
+/// Limits that protect against absurd input: every allocation whose size a scene (or a flag)
+/// chooses is checked against one of these before it is made. `--allow-huge` raises the
+/// budgets of size (`Limits::huge`); the others are limits of the format.
 #[derive(Clone, Copy, Debug)]
 pub struct Limits {
-    /// Largest image (width × height) rendered without `--allow-huge`.
+    /// Largest image (width × height) rendered.
     pub max_pixels: u64,
     pub max_depth: u32,
     pub max_spp: u32,
     /// Deepest CSG nesting accepted.
     pub max_csg_depth: usize,
+    /// Largest scene file read, in bytes.
+    pub max_file_bytes: u64,
+    /// Largest mesh (OBJ) file read, in bytes.
+    pub max_mesh_bytes: u64,
+    /// Most objects in a scene.
+    pub max_objects: usize,
+    /// Most triangles in all of a scene's meshes and icospheres together.
+    pub max_triangles: u64,
 }
 
 impl Default for Limits {
@@ -36,8 +47,31 @@ impl Default for Limits {
             max_depth: 64,
             max_spp: 65_536,
             max_csg_depth: 200,
+            max_file_bytes: 16 << 20,
+            max_mesh_bytes: 256 << 20,
+            max_objects: 200_000,
+            max_triangles: 4_000_000,
         }
     }
+}
+
+impl Limits {
+    /// The budgets of size raised as far as the program itself can go (`--allow-huge`):
+    /// what is left to stop a scene is the memory of the machine, and the files read stay
+    /// bounded so that `/proc` files and the like still end.
+    pub fn huge() -> Limits {
+        Limits {
+            max_pixels: u64::MAX,
+            max_file_bytes: 1 << 30,
+            max_mesh_bytes: 4 << 30,
+            max_objects: u32::MAX as usize,
+            max_triangles: u32::MAX as u64,
+            ..Limits::default()
+        }
+    }
+
+    /// The phrase every budget error ends with.
+    pub const RAISE: &'static str = "use --allow-huge to go beyond it";
 }
 
 const TOP: Pos = Pos { line: 1, column: 1 };
@@ -54,14 +88,28 @@ pub fn compile(
 ) -> Result<Scene, Invalid> {
     let camera = camera::of(&file, limits)?;
     let settings = settings::Settings::of(&file, limits)?;
-    let (materials, by_name) = materials::of(&file)?;
+    let (materials, by_name) = materials::of(&file, source.as_deref())?;
     let lights = lights::of(&file, &by_name)?;
-    let (leaves, objects) = objects::of(&file, &by_name, source.as_deref(), limits)?;
+    let mut warnings = Vec::new();
+    let (leaves, objects) = objects::of(
+        &file,
+        &by_name,
+        &materials,
+        source.as_deref(),
+        limits,
+        &mut warnings,
+    )?;
+    let background = file.background.as_ref().map_or(Ok(DVec3::ZERO), |b| {
+        not_negative(b.value.0, pos(b), "background")
+    })?;
+    let ambient = file.ambient.as_ref().map_or(Ok(DVec3::ZERO), |a| {
+        not_negative(a.value.0, pos(a), "ambient")
+    })?;
     let scene = Scene {
         source,
         camera,
-        background: file.background.map_or(DVec3::ZERO, |t| t.0),
-        ambient: file.ambient.map_or(DVec3::ZERO, |t| t.0),
+        background,
+        ambient,
         lights,
         materials,
         leaves,
@@ -78,8 +126,45 @@ pub fn compile(
         filter: settings.filter,
         features: Features::default(),
         index: SearchIndex::default(),
+        warnings,
     };
     Ok(scene.prepared())
+}
+
+/// An intensity or colour: no component may be negative (light is not taken away).
+fn not_negative(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {
+    if v.min_element() < 0.0 {
+        return invalid(
+            p,
+            format!("{what} must be ≥ 0 in every component, got {}", vec3(v)),
+        );
+    }
+    Ok(v)
+}
+
+/// `[r, g, b]` as written (a grey one as one number).
+fn vec3(v: DVec3) -> String {
+    if v.x == v.y && v.y == v.z {
+        format!("{}", v.x)
+    } else {
+        format!("[{}, {}, {}]", v.x, v.y, v.z)
+    }
+}
+
+/// A name as given in the file: one line of printable text, so that it can be shown in a
+/// terminal as it is (no escape sequences, no line breaks faking output).
+fn printable_name(name: &str, p: Pos, what: &str) -> Result<(), Invalid> {
+    match name.chars().find(|c| c.is_control()) {
+        Some(c) => invalid(
+            p,
+            format!(
+                "{what} name `{}` holds the control character {:?}: names must be printable text",
+                name.escape_debug(),
+                c
+            ),
+        ),
+        None => Ok(()),
+    }
 }
 
 fn nonzero(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {

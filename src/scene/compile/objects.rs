@@ -1,6 +1,6 @@
-//! The objects: each one's shape (or CSG tree of shapes) with its transform and material,
-//! compiled into leaves (the primitives, in world space where a transform allows) and objects
-//! (their trees and bounds).
+//! The objects: each one's shape (or CSG tree of shapes, or group of objects) with its transform
+//! and material, compiled into leaves (the primitives, in world space where a transform allows
+//! and no pattern needs the object's own space) and objects (their trees, groups and bounds).
 
 use std::collections::{BTreeMap, HashSet};
 use std::path::Path;
@@ -8,29 +8,46 @@ use std::path::Path;
 use glam::{DAffine3, DVec3};
 use serde_saphyr::Spanned;
 
-use super::{invalid, nonzero, pos, Invalid, Limits, Pos};
+use super::{invalid, nonzero, pos, printable_name, Invalid, Limits, Pos};
 use crate::accel::{Aabb, Ball};
 use crate::geometry::csg::{CsgNode, CsgOp};
 use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
 use crate::scene::format::{ObjectSpec, SceneFile, TransformStep, Triple};
-use crate::scene::{Geometry, Leaf, Object};
+use crate::scene::{Geometry, Group, Leaf, Object};
+use crate::shading::Material;
 
 /// The file's objects and their leaves; names are unique, materials resolved.
 pub fn of(
     file: &SceneFile,
     material_index: &BTreeMap<String, u32>,
+    materials: &[Material],
     source: Option<&Path>,
     limits: &Limits,
+    warnings: &mut Vec<(Pos, String)>,
 ) -> Result<(Vec<Leaf>, Vec<Object>), Invalid> {
+    if file.objects.len() > limits.max_objects {
+        return invalid(
+            pos(&file.objects[limits.max_objects]),
+            format!(
+                "more than {} objects: over the budget of objects per scene ({})",
+                limits.max_objects,
+                Limits::RAISE
+            ),
+        );
+    }
+    icospheres_within_budget(file, limits)?;
     let base = source
         .and_then(|p| p.parent())
         .map(|p| p.to_path_buf())
         .unwrap_or_default();
     let mut builder = Builder {
         materials: material_index,
+        patterned: materials.iter().map(|m| m.patterns.is_some()).collect(),
         leaves: Vec::new(),
         limits,
         base: &base,
+        triangles: 0,
+        warnings,
     };
     let mut objects = Vec::new();
     let mut names = HashSet::new();
@@ -40,53 +57,71 @@ pub fn of(
             .name
             .clone()
             .unwrap_or_else(|| format!("object{}", i + 1));
+        printable_name(&name, pos(o), "object")?;
         if !names.insert(name.clone()) {
             return invalid(pos(o), format!("duplicate object name `{name}`"));
         }
-        let Some(m) = &o.value.material else {
-            return invalid(pos(o), format!("object `{name}` has no `material`"));
-        };
-        let material = builder.material(m)?;
         let object = objects.len() as u32;
-        let mut ctx = Ctx {
-            object,
-            object_name: &name,
-            path: vec![],
-            leaf_count: 0,
-            depth: 0,
-        };
-        let node = builder.node(
-            o,
-            material,
-            &Transform::new(DAffine3::IDENTITY),
-            &mut ctx,
-            true,
-        )?;
-        let (geometry, bounds) = match node {
-            CsgNode::Leaf { leaf, bounds } => {
-                builder.leaves[leaf as usize].name = name.clone();
-                (Geometry::Leaf(leaf), bounds)
-            }
-            node => {
-                let b = node.bounds();
-                (Geometry::Csg(node), b)
-            }
-        };
-        objects.push(Object {
-            name,
-            geometry,
-            bounds,
-        });
+        let identity = Transform::new(DAffine3::IDENTITY);
+        objects.push(builder.object(o, name, object, None, &identity, 0)?);
     }
     Ok((builder.leaves, objects))
 }
 
+/// The icospheres' triangles (20·4^k each) are known from the file: all of them are counted
+/// before any is built, and the first that brings the scene over its budget is named.
+fn icospheres_within_budget(file: &SceneFile, limits: &Limits) -> Result<(), Invalid> {
+    fn visit(o: &Spanned<ObjectSpec>, total: &mut u64, limits: &Limits) -> Result<(), Invalid> {
+        let spec = &o.value;
+        if let Some(i) = &spec.icosphere {
+            let k = i.subdivisions.value;
+            if (0..=8).contains(&k) {
+                let count = 20u64 << (2 * k);
+                *total += count;
+                if *total > limits.max_triangles {
+                    return invalid(
+                        pos(&i.subdivisions),
+                        format!(
+                            "this icosphere's {count} triangles bring the scene over its budget of {} triangles ({})",
+                            limits.max_triangles,
+                            Limits::RAISE
+                        ),
+                    );
+                }
+            }
+        }
+        let children = [
+            &spec.union,
+            &spec.intersection,
+            &spec.difference,
+            &spec.group,
+        ];
+        for child in children.into_iter().flatten().flatten() {
+            visit(child, total, limits)?;
+        }
+        if let Some(child) = &spec.complement {
+            visit(child, total, limits)?;
+        }
+        Ok(())
+    }
+    let mut total = 0;
+    for o in &file.objects {
+        visit(o, &mut total, limits)?;
+    }
+    Ok(())
+}
+
 struct Builder<'a> {
     materials: &'a BTreeMap<String, u32>,
+    /// Per material: whether it has patterns (its leaves then keep their own space).
+    patterned: Vec<bool>,
     leaves: Vec<Leaf>,
     limits: &'a Limits,
     /// Folder of the scene file: mesh files are found relative to it.
     base: &'a std::path::Path,
+    /// Triangles in the meshes built so far (budgeted by `Limits::max_triangles`).
+    triangles: u64,
+    warnings: &'a mut Vec<(Pos, String)>,
 }
 
 /// Where in an object's CSG tree the builder is.
@@ -116,6 +151,106 @@ impl Builder<'_> {
         )
     }
 
+    /// An object of the scene or a member of a group: `object` is the scene object it belongs
+    /// to, `inherited` the material of the group around it, `parent` the group's transform.
+    fn object(
+        &mut self,
+        o: &Spanned<ObjectSpec>,
+        name: String,
+        object: u32,
+        inherited: Option<u32>,
+        parent: &Transform,
+        depth: usize,
+    ) -> Result<Object, Invalid> {
+        let spec = &o.value;
+        let material = match &spec.material {
+            Some(m) => Some(self.material(m)?),
+            None => inherited,
+        };
+        if let Some(members) = &spec.group {
+            return self.group(o, members, name, object, material, parent, depth);
+        }
+        let Some(material) = material else {
+            let within = if inherited.is_none() && depth > 0 {
+                " (nor does its group)"
+            } else {
+                ""
+            };
+            return invalid(pos(o), format!("object `{name}` has no `material`{within}"));
+        };
+        let mut ctx = Ctx {
+            object,
+            object_name: &name,
+            path: vec![],
+            leaf_count: 0,
+            depth: 0,
+        };
+        let node = self.node(o, material, parent, &mut ctx, true)?;
+        let (geometry, bounds) = match node {
+            CsgNode::Leaf { leaf, bounds } => {
+                self.leaves[leaf as usize].name = name.clone();
+                (Geometry::Leaf(leaf), bounds)
+            }
+            node => {
+                let b = node.bounds();
+                (Geometry::Csg(node), b)
+            }
+        };
+        Ok(Object {
+            name,
+            geometry,
+            bounds,
+        })
+    }
+
+    /// A group: its members compiled with its transform after their own and its material for
+    /// those without one, and a hierarchy of their boxes.
+    #[allow(clippy::too_many_arguments)]
+    fn group(
+        &mut self,
+        o: &Spanned<ObjectSpec>,
+        members: &[Spanned<ObjectSpec>],
+        name: String,
+        object: u32,
+        material: Option<u32>,
+        parent: &Transform,
+        depth: usize,
+    ) -> Result<Object, Invalid> {
+        let p = pos(o);
+        if shape_keys(&o.value) > 1 {
+            return invalid(p, "a group is an object of its own: give its shapes as its members, not beside `group`");
+        }
+        if members.is_empty() {
+            return invalid(p, format!("group `{name}` has no members"));
+        }
+        if depth > self.limits.max_csg_depth {
+            return invalid(p, "groups nested too deeply");
+        }
+        let transform = parent.after(&transform(&o.value.transform)?);
+        let mut names = HashSet::new();
+        let mut objects = Vec::with_capacity(members.len());
+        for (i, m) in members.iter().enumerate() {
+            let member = m
+                .value
+                .name
+                .clone()
+                .unwrap_or_else(|| format!("{name}.{}{}", key_name(&m.value), i + 1));
+            if !names.insert(member.clone()) {
+                return invalid(
+                    pos(m),
+                    format!("duplicate name `{member}` in group `{name}`"),
+                );
+            }
+            objects.push(self.object(m, member, object, material, &transform, depth + 1)?);
+        }
+        let group = Group::new(objects);
+        Ok(Object {
+            name,
+            bounds: group.bounds(),
+            geometry: Geometry::Group(Box::new(group)),
+        })
+    }
+
     fn node(
         &mut self,
         o: &Spanned<ObjectSpec>,
@@ -126,6 +261,9 @@ impl Builder<'_> {
     ) -> Result<CsgNode, Invalid> {
         let spec = &o.value;
         let p = pos(o);
+        if let Some(name) = &spec.name {
+            printable_name(name, p, "object")?;
+        }
         if ctx.depth > self.limits.max_csg_depth {
             return invalid(
                 p,
@@ -140,24 +278,16 @@ impl Builder<'_> {
             _ => material,
         };
         let transform = parent.after(&transform(&spec.transform)?);
-        let shapes = [
-            spec.sphere.is_some(),
-            spec.plane.is_some(),
-            spec.aabox.is_some(),
-            spec.cylinder.is_some(),
-            spec.cone.is_some(),
-            spec.triangle.is_some(),
-            spec.mesh.is_some(),
-            spec.icosphere.is_some(),
-            spec.union.is_some(),
-            spec.intersection.is_some(),
-            spec.difference.is_some(),
-            spec.complement.is_some(),
-        ];
-        match shapes.iter().filter(|&&b| b).count() {
+        match shape_keys(spec) {
             1 => {}
-            0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, mesh, icosphere, union, intersection, difference, complement"),
-            _ => return invalid(p, "more than one shape key in one object: nest them in a union, or write two objects"),
+            0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, mesh, icosphere, union, intersection, difference, complement, group"),
+            _ => return invalid(p, "more than one shape key in one object: nest them in a union or a group, or write two objects"),
+        }
+        if spec.group.is_some() {
+            return invalid(
+                p,
+                "a group cannot take part in CSG: put the CSG object in the group instead",
+            );
         }
         let csg = [
             (CsgOp::Union, &spec.union),
@@ -189,7 +319,16 @@ impl Builder<'_> {
                 ctx,
             );
         }
-        let shape = shape(spec, p, self.base)?;
+        let shape = self.shape(spec, p, ctx.object_name)?;
+        if !top && matches!(shape, Shape::OpenCylinder(_) | Shape::OpenCone(_)) {
+            return invalid(
+                p,
+                format!(
+                    "an open {} (capped: false) has no inside: it cannot take part in CSG",
+                    shape.kind()
+                ),
+            );
+        }
         if !top && !shape.is_convex_solid() {
             return invalid(
                 p,
@@ -202,9 +341,12 @@ impl Builder<'_> {
             .clone()
             .unwrap_or_else(|| format!("{}.{}{}", ctx.object_name, shape.kind(), ctx.leaf_count));
         // A shape the transform keeps of its kind is stored in world space: no ray needs
-        // carrying to object space for it.
+        // carrying to object space for it. A patterned one stays in its own space, where its
+        // patterns are looked up.
         let (shape, transform) = if transform.to_world == DAffine3::IDENTITY {
             (shape, None)
+        } else if self.patterned[material as usize] {
+            (shape, Some(transform))
         } else {
             match shape.moved(&transform) {
                 Some(moved) => (moved, None),
@@ -290,8 +432,111 @@ impl Builder<'_> {
     }
 }
 
+impl Builder<'_> {
+    /// A leaf's shape; meshes and icospheres are counted against the triangle budget before
+    /// they are built.
+    fn shape(&mut self, spec: &ObjectSpec, p: Pos, object: &str) -> Result<Shape, Invalid> {
+        if let Some(m) = &spec.mesh {
+            let path = self.base.join(&m.file.value);
+            let left = self.limits.max_triangles.saturating_sub(self.triangles);
+            let budget = crate::geometry::ObjBudget {
+                max_bytes: self.limits.max_mesh_bytes,
+                max_triangles: left,
+                total: self.limits.max_triangles,
+                raise: Limits::RAISE,
+            };
+            let (mesh, dropped) =
+                crate::geometry::Mesh::load_obj(&path, m.smooth.unwrap_or(true), &budget)
+                    .or_else(|e| invalid(pos(&m.file), e))?;
+            if mesh.triangles.is_empty() {
+                self.warnings.push((
+                    pos(&m.file),
+                    format!(
+                        "object `{object}`: all {dropped} triangles of {} are degenerate (zero area): the mesh is invisible",
+                        path.display()
+                    ),
+                ));
+            }
+            self.triangles += mesh.triangles.len() as u64;
+            return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+        }
+        if let Some(i) = &spec.icosphere {
+            let k = i.subdivisions.value;
+            if !(0..=8).contains(&k) {
+                return invalid(
+                    pos(&i.subdivisions),
+                    format!("icosphere subdivisions must be between 0 and 8, got {k}"),
+                );
+            }
+            // 20·4^k triangles.
+            let count = 20u64 << (2 * k);
+            if self.triangles + count > self.limits.max_triangles {
+                return invalid(
+                    pos(&i.subdivisions),
+                    format!(
+                        "this icosphere's {count} triangles bring the scene over its budget of {} triangles ({})",
+                        self.limits.max_triangles,
+                        Limits::RAISE
+                    ),
+                );
+            }
+            self.triangles += count;
+            let mut mesh = crate::geometry::Mesh::icosphere(k as u32);
+            if i.smooth == Some(false) {
+                mesh = crate::geometry::Mesh::new(mesh.positions, vec![], mesh.triangles).0;
+            }
+            return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+        }
+        shape(spec, p)
+    }
+}
+
+/// How many shape keys (a CSG operation and `group` count as one) an object gives.
+fn shape_keys(spec: &ObjectSpec) -> usize {
+    [
+        spec.sphere.is_some(),
+        spec.plane.is_some(),
+        spec.aabox.is_some(),
+        spec.cylinder.is_some(),
+        spec.cone.is_some(),
+        spec.triangle.is_some(),
+        spec.mesh.is_some(),
+        spec.icosphere.is_some(),
+        spec.union.is_some(),
+        spec.intersection.is_some(),
+        spec.difference.is_some(),
+        spec.complement.is_some(),
+        spec.group.is_some(),
+    ]
+    .iter()
+    .filter(|&&b| b)
+    .count()
+}
+
+/// The shape key an object gives (for the names of unnamed group members).
+fn key_name(spec: &ObjectSpec) -> &'static str {
+    [
+        (spec.sphere.is_some(), "sphere"),
+        (spec.plane.is_some(), "plane"),
+        (spec.aabox.is_some(), "box"),
+        (spec.cylinder.is_some(), "cylinder"),
+        (spec.cone.is_some(), "cone"),
+        (spec.triangle.is_some(), "triangle"),
+        (spec.mesh.is_some(), "mesh"),
+        (spec.icosphere.is_some(), "icosphere"),
+        (spec.union.is_some(), "union"),
+        (spec.intersection.is_some(), "intersection"),
+        (spec.difference.is_some(), "difference"),
+        (spec.complement.is_some(), "complement"),
+        (spec.group.is_some(), "group"),
+    ]
+    .into_iter()
+    .find_map(|(given, key)| given.then_some(key))
+    .unwrap_or("object")
+}
+
 /// The steps compose in the order written: the first step is applied first.
-fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
+pub(super) fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
     let mut m = DAffine3::IDENTITY;
     for s in steps {
         let step = match &s.value {
@@ -311,7 +556,9 @@ fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
     Ok(Transform::new(m))
 }
 
-fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Invalid> {
+/// The shape of a leaf: its numbers checked (meshes are built by the builder, which budgets
+/// their triangles).
+fn shape(spec: &ObjectSpec, p: Pos) -> Result<Shape, Invalid> {
     let positive = |r: &Spanned<crate::scene::format::Num>, what: &str| -> Result<f64, Invalid> {
         if r.value.0 > 0.0 {
             Ok(r.value.0)
@@ -350,11 +597,16 @@ fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Inv
             pos(&s.base),
             "cylinder axis (top − base)",
         )?;
-        return Ok(Shape::Cylinder(Cylinder {
+        let cylinder = Cylinder {
             base: s.base.value.0,
             top: s.top.0,
             radius,
-        }));
+        };
+        return Ok(if s.capped == Some(false) {
+            Shape::OpenCylinder(cylinder)
+        } else {
+            Shape::Cylinder(cylinder)
+        });
     }
     if let Some(s) = &spec.cone {
         let radius = positive(&s.radius, "cone radius")?;
@@ -363,11 +615,16 @@ fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Inv
             pos(&s.apex),
             "cone axis (base − apex)",
         )?;
-        return Ok(Shape::Cone(Cone {
+        let cone = Cone {
             apex: s.apex.value.0,
             base: s.base.0,
             radius,
-        }));
+        };
+        return Ok(if s.capped == Some(false) {
+            Shape::OpenCone(cone)
+        } else {
+            Shape::Cone(cone)
+        });
     }
     if let Some(t) = &spec.triangle {
         let [a, b, c] = t.value.map(|v| v.0);
@@ -379,26 +636,6 @@ fn shape(spec: &ObjectSpec, p: Pos, base: &std::path::Path) -> Result<Shape, Inv
             );
         }
         return Ok(Shape::Triangle(tri));
-    }
-    if let Some(m) = &spec.mesh {
-        let path = base.join(&m.file.value);
-        let (mesh, _) = crate::geometry::Mesh::load_obj(&path, m.smooth.unwrap_or(true))
-            .or_else(|e| invalid(pos(&m.file), e))?;
-        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
-    }
-    if let Some(i) = &spec.icosphere {
-        let k = i.subdivisions.value;
-        if !(0..=8).contains(&k) {
-            return invalid(
-                pos(&i.subdivisions),
-                format!("icosphere subdivisions must be between 0 and 8, got {k}"),
-            );
-        }
-        let mut mesh = crate::geometry::Mesh::icosphere(k as u32);
-        if i.smooth == Some(false) {
-            mesh = crate::geometry::Mesh::new(mesh.positions, vec![], mesh.triangles).0;
-        }
-        return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
     }
     invalid(p, "no shape")
 }

@@ -38,7 +38,12 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
         if l.starts_with("ambient") {
             out.push(plain(FORMULA.to_string()));
         }
-        out.push(plain(l));
+        // The surface's colour at the hit, from its pattern or texture, with its swatch.
+        let swatch = l
+            .starts_with("O = ")
+            .then(|| n.local.as_ref().and_then(|local| local.color))
+            .flatten();
+        out.push((l, swatch));
     }
     match n.kind {
         RayKind::Shadow => {

@@ -184,10 +184,13 @@ fn snake_case(name: &str) -> String {
 pub fn answer_format(ask: Ask) -> &'static str {
     match ask {
         Ask::Segments => "t_in, t_out; t_in, t_out … (or none)",
-        Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue => {
-            "a number (or r, g, b for a colour)"
-        }
-        Ask::HitT | Ask::ShadowFactor => "a number",
+        Ask::Intensity
+        | Ask::Local
+        | Ask::Diffuse
+        | Ask::Specular
+        | Ask::PixelValue
+        | Ask::SurfaceColor => "a number (or r, g, b for a colour)",
+        Ask::HitT | Ask::ShadowFactor | Ask::U | Ask::V => "a number",
         Ask::PrimaryRays | Ask::SquaresSplit | Ask::LeavesEvaluated => "a whole number",
         Ask::RefractedDirection => "x, y, z (or tir for total internal reflection)",
         Ask::WindowPoint

@@ -1,9 +1,12 @@
 //! The scene file: where it is, the last scene that loaded from it, and why the file on disk
-//! does not load when it does not (the last good scene stays on screen meanwhile).
+//! does not load when it does not (the last good scene stays on screen meanwhile). A changed
+//! file is loaded again on a thread of its own, so a large scene (or a file that is not a file
+//! at all) never holds up the keys.
 
 use std::path::{Path, PathBuf};
+use std::sync::mpsc::{channel, Receiver, RecvTimeoutError};
 use std::sync::Arc;
-use std::time::SystemTime;
+use std::time::{Duration, SystemTime};
 
 use super::{Note, Tone};
 use crate::lessons::Lesson;
@@ -17,7 +20,6 @@ pub(crate) fn signature(path: &Path) -> Option<FileSig> {
     Some((m.modified().ok(), m.len()))
 }
 
-#[derive(Default)]
 pub struct SceneFile {
     pub path: Option<PathBuf>,
     /// The last scene that loaded.
@@ -25,6 +27,25 @@ pub struct SceneFile {
     /// Why the scene file on disk does not load.
     pub error: Option<String>,
     signature: Option<FileSig>,
+    /// A reload running on its own thread: where its scene (or error) arrives.
+    loading: Option<Receiver<Result<Scene, String>>>,
+    /// How long `poll` waits for a reload before leaving it to a later poll. The explorer's
+    /// event loop waits a few milliseconds (a small scene still appears at once); without a
+    /// loop (tests, scripts) a poll waits for the reload to finish.
+    pub reload_wait: Duration,
+}
+
+impl Default for SceneFile {
+    fn default() -> SceneFile {
+        SceneFile {
+            path: None,
+            scene: None,
+            error: None,
+            signature: None,
+            loading: None,
+            reload_wait: Duration::from_secs(60),
+        }
+    }
 }
 
 /// What `raytree explore TARGET` opens: a scene, and its lesson when TARGET is a lesson folder
@@ -77,15 +98,39 @@ impl SceneFile {
     }
 
     /// The scene file again if it changed on disk and loads; a file that does not load is kept
-    /// in `error` instead.
+    /// in `error` instead. The load runs on its own thread: a poll starts it, and this poll or
+    /// a later one takes its result.
     pub fn poll(&mut self) -> Option<(Scene, Note)> {
         let path = self.path.clone()?;
-        let sig = signature(&path);
-        if sig == self.signature {
-            return None;
+        if self.loading.is_none() {
+            let sig = signature(&path);
+            if sig == self.signature {
+                return None;
+            }
+            self.signature = sig;
+            let (tx, rx) = channel();
+            let file = path.clone();
+            let started = std::thread::Builder::new()
+                .name("reload".into())
+                .spawn(move || {
+                    let loaded = crate::scene::load(&file, &Limits::default());
+                    let _ = tx.send(loaded.map_err(|e| e.to_string()));
+                });
+            if let Err(e) = started {
+                self.error = Some(format!("{}: cannot reload: {e}", path.display()));
+                return None;
+            }
+            self.loading = Some(rx);
         }
-        self.signature = sig;
-        match crate::scene::load(&path, &Limits::default()) {
+        let result = match self.loading.as_ref()?.recv_timeout(self.reload_wait) {
+            Err(RecvTimeoutError::Timeout) => return None,
+            Ok(result) => result,
+            Err(RecvTimeoutError::Disconnected) => {
+                Err(format!("{}: the reload failed", path.display()))
+            }
+        };
+        self.loading = None;
+        match result {
             Ok(scene) => {
                 let had_error = self.error.take().is_some();
                 let note = format!(
@@ -96,10 +141,15 @@ impl SceneFile {
                 Some((scene, (note, Tone::Good)))
             }
             Err(e) => {
-                self.error = Some(e.to_string());
+                self.error = Some(e);
                 None
             }
         }
+    }
+
+    /// A reload is running.
+    pub fn loading(&self) -> bool {
+        self.loading.is_some()
     }
 
     /// The image size of the scene (0 × 0 without one).

@@ -1,0 +1,163 @@
+//! Reading the files a user names (scenes, meshes): regular files only, opened so that a FIFO
+//! or a device can neither block nor feed bytes forever, and never more than a budget of
+//! bytes, so a file that is too large is refused before its contents are held in memory.
+
+use std::fs::File;
+use std::io::Read;
+use std::path::Path;
+
+/// Why a file was not read.
+#[derive(Debug)]
+pub enum ReadError {
+    /// The path names a directory.
+    Directory,
+    /// A FIFO, a socket or a device: not something raytree reads.
+    NotRegular,
+    /// More bytes than the budget (files under /proc report a size of 0, so the size is
+    /// counted while reading, not only taken from the metadata).
+    TooLarge {
+        budget: u64,
+    },
+    Io(std::io::Error),
+}
+
+impl std::fmt::Display for ReadError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ReadError::Directory => write!(f, "is a directory, not a file"),
+            ReadError::NotRegular => {
+                write!(f, "not a regular file (a pipe, a socket or a device)")
+            }
+            ReadError::TooLarge { budget } => {
+                write!(f, "larger than the budget of {}", bytes(*budget))
+            }
+            ReadError::Io(e) => write!(f, "cannot read: {e}"),
+        }
+    }
+}
+
+/// A byte count as people read it: "16 MiB", "512 KiB", "300 bytes".
+pub fn bytes(n: u64) -> String {
+    match n {
+        n if n >= 1 << 30 && n % (1 << 30) == 0 => format!("{} GiB", n >> 30),
+        n if n >= 1 << 20 && n % (1 << 20) == 0 => format!("{} MiB", n >> 20),
+        n if n >= 1 << 10 && n % (1 << 10) == 0 => format!("{} KiB", n >> 10),
+        n => format!("{n} bytes"),
+    }
+}
+
+/// Opens `path` for reading without blocking: a FIFO opens at once (with no writer) instead
+/// of waiting for one, and is then refused by what the open file is.
+fn open(path: &Path) -> std::io::Result<File> {
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    options.open(path)
+}
+
+/// The whole of a regular file of at most `budget` bytes. The checks are made on the file
+/// opened, not on the path, so a file swapped for a FIFO in between is still refused.
+pub fn read_bounded(path: &Path, budget: u64) -> Result<Vec<u8>, ReadError> {
+    let file = open(path).map_err(|e| match e.raw_os_error() {
+        Some(libc::EISDIR) => ReadError::Directory,
+        _ => ReadError::Io(e),
+    })?;
+    let meta = file.metadata().map_err(ReadError::Io)?;
+    if meta.is_dir() {
+        return Err(ReadError::Directory);
+    }
+    if !meta.is_file() {
+        return Err(ReadError::NotRegular);
+    }
+    if meta.len() > budget {
+        return Err(ReadError::TooLarge { budget });
+    }
+    let mut out = Vec::new();
+    out.try_reserve_exact(meta.len() as usize)
+        .map_err(|_| ReadError::TooLarge { budget: meta.len() })?;
+    // Whole chunks (files under /proc may refuse reads of odd sizes), until the end or until
+    // more than the budget has come.
+    let mut chunk = vec![0u8; 1 << 16];
+    let mut file = file;
+    loop {
+        match file.read(&mut chunk) {
+            Ok(0) => return Ok(out),
+            Ok(n) => {
+                out.extend_from_slice(&chunk[..n]);
+                if out.len() as u64 > budget {
+                    return Err(ReadError::TooLarge { budget });
+                }
+            }
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(ReadError::Io(e)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scratch(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("raytree-files-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    #[test]
+    fn a_file_within_the_budget_is_read_whole() {
+        let path = scratch("ten.txt");
+        std::fs::write(&path, b"0123456789").unwrap();
+        assert_eq!(read_bounded(&path, 10).unwrap(), b"0123456789");
+        assert!(matches!(
+            read_bounded(&path, 9),
+            Err(ReadError::TooLarge { budget: 9 })
+        ));
+    }
+
+    #[test]
+    fn devices_directories_and_fifos_are_refused_at_once() {
+        assert!(matches!(
+            read_bounded(Path::new("/dev/zero"), 1 << 20),
+            Err(ReadError::NotRegular)
+        ));
+        assert!(matches!(
+            read_bounded(Path::new("/tmp"), 1 << 20),
+            Err(ReadError::Directory)
+        ));
+        let fifo = scratch("fifo");
+        let _ = std::fs::remove_file(&fifo);
+        let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+        // SAFETY: mkfifo reads a NUL-terminated path and touches no Rust memory.
+        assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || tx.send(read_bounded(&fifo, 1 << 20).map(|_| ())));
+        let result = rx
+            .recv_timeout(std::time::Duration::from_secs(5))
+            .expect("reading a FIFO must not block");
+        assert!(matches!(result, Err(ReadError::NotRegular)), "{result:?}");
+    }
+
+    /// /proc files report a size of 0 and then produce far more bytes than that.
+    #[test]
+    fn a_proc_file_is_cut_at_the_budget() {
+        let path = Path::new("/proc/self/pagemap");
+        if path.exists() {
+            assert!(matches!(
+                read_bounded(path, 4096),
+                Err(ReadError::TooLarge { budget: 4096 })
+            ));
+        }
+    }
+
+    #[test]
+    fn byte_counts_read_as_people_say_them() {
+        assert_eq!(bytes(16 << 20), "16 MiB");
+        assert_eq!(bytes(3 << 30), "3 GiB");
+        assert_eq!(bytes(1000), "1000 bytes");
+    }
+}

@@ -1,0 +1,359 @@
+//! Texture coordinates: where a point of a surface lands on a flat image, (u, v) in the unit
+//! square, u across and v up (v = 0 is the bottom row of an image).
+//!
+//! Four projections take a point p (in the space a texture is placed in) to (u, v), with the
+//! conventions of The Ray Tracer Challenge (chapter "Texture mapping"):
+//!
+//! - spherical: θ = atan2(x, z), φ = acos(y/|p|); u = 1 − (θ/2π + ½), v = 1 − φ/π. u runs once
+//!   round the y axis (the seam is where z < 0 and x = 0), v from the south pole (0) to the
+//!   north pole (1).
+//! - planar: u = x − ⌊x⌋, v = z − ⌊z⌋: unit tiles over the xz plane.
+//! - cylindrical: u as spherical, v = y − ⌊y⌋: one image per unit of height round the y axis.
+//! - cube: the face of the cube [−1, 1]³ that p's largest coordinate points to, (u, v) on that
+//!   face, and the six faces unfolded into a cross four faces wide and three high (below).
+//!
+//! A point on a seam (u = 1 after rounding, or −0 turning atan2 round) wraps to u = 0, so the
+//! same point always gets the same coordinates. Each shape also has its own (u, v): the
+//! projection that fits it, placed on it (`Shape::uv`).
+
+use glam::{DVec2, DVec3};
+use std::f64::consts::PI;
+
+use super::{cylinder, Shape};
+
+/// x − ⌊x⌋, in [0, 1) (a value that rounds to 1 wraps to 0).
+pub fn wrap(x: f64) -> f64 {
+    let f = x - x.floor();
+    if f >= 1.0 {
+        0.0
+    } else {
+        f
+    }
+}
+
+/// u of the angle round the y axis: 0 on the −z axis, ¼ on +x, ½ on +z, ¾ on −x.
+fn around_y(x: f64, z: f64) -> f64 {
+    let theta = x.atan2(z);
+    wrap(1.0 - (theta / (2.0 * PI) + 0.5))
+}
+
+/// Spherical projection about the origin (only the direction of p matters). At a pole
+/// (x = z = 0) u is ½.
+pub fn spherical(p: DVec3) -> DVec2 {
+    let r = p.length();
+    if r == 0.0 {
+        return DVec2::new(0.5, 0.5);
+    }
+    let phi = (p.y / r).clamp(-1.0, 1.0).acos();
+    DVec2::new(around_y(p.x, p.z), 1.0 - phi / PI)
+}
+
+/// Planar projection onto the xz plane, unit tiles.
+pub fn planar(p: DVec3) -> DVec2 {
+    DVec2::new(wrap(p.x), wrap(p.z))
+}
+
+/// Cylindrical projection round the y axis, one unit of height per image.
+pub fn cylindrical(p: DVec3) -> DVec2 {
+    DVec2::new(around_y(p.x, p.z), wrap(p.y))
+}
+
+/// The faces of the cube [−1, 1]³.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CubeFace {
+    Left,
+    Right,
+    Front,
+    Back,
+    Up,
+    Down,
+}
+
+impl CubeFace {
+    /// The face p's largest coordinate (in size) points to; a tie goes to x, then y.
+    pub fn of(p: DVec3) -> CubeFace {
+        let a = p.abs();
+        let largest = a.max_element();
+        if largest == a.x {
+            if p.x > 0.0 {
+                CubeFace::Right
+            } else {
+                CubeFace::Left
+            }
+        } else if largest == a.y {
+            if p.y > 0.0 {
+                CubeFace::Up
+            } else {
+                CubeFace::Down
+            }
+        } else if p.z > 0.0 {
+            CubeFace::Front
+        } else {
+            CubeFace::Back
+        }
+    }
+
+    /// (u, v) of p on this face, each in [0, 1): the face seen from outside, v up (for the
+    /// top and bottom faces, v towards −z and +z).
+    pub fn uv(self, p: DVec3) -> DVec2 {
+        let half = |x: f64| wrap((x + 1.0) / 2.0);
+        let (u, v) = match self {
+            CubeFace::Front => (half(p.x), half(p.y)),
+            CubeFace::Back => (half(-p.x), half(p.y)),
+            CubeFace::Left => (half(p.z), half(p.y)),
+            CubeFace::Right => (half(-p.z), half(p.y)),
+            CubeFace::Up => (half(p.x), half(-p.z)),
+            CubeFace::Down => (half(p.x), half(p.z)),
+        };
+        DVec2::new(u, v)
+    }
+
+    /// Where the face sits in the unfolded cross, in face widths from the image's bottom left:
+    ///
+    /// ```text
+    ///         up
+    ///  left  front  right  back
+    ///        down
+    /// ```
+    /// Neighbouring faces of the cross share their edge on the cube too.
+    fn cell(self) -> (f64, f64) {
+        match self {
+            CubeFace::Left => (0.0, 1.0),
+            CubeFace::Front => (1.0, 1.0),
+            CubeFace::Right => (2.0, 1.0),
+            CubeFace::Back => (3.0, 1.0),
+            CubeFace::Up => (1.0, 2.0),
+            CubeFace::Down => (1.0, 0.0),
+        }
+    }
+
+    /// (u, v) on the face placed in the unfolded cross.
+    pub fn unfolded(self, face_uv: DVec2) -> DVec2 {
+        let (col, row) = self.cell();
+        DVec2::new((col + face_uv.x) / 4.0, (row + face_uv.y) / 3.0)
+    }
+}
+
+/// Cube projection: the face p points to, unfolded into the cross.
+pub fn cube(p: DVec3) -> DVec2 {
+    let face = CubeFace::of(p);
+    face.unfolded(face.uv(p))
+}
+
+// --- Each shape's own (u, v) ---
+
+impl Shape {
+    /// The shape's own (u, v) at a point p of its surface (in the shape's space) on `face`:
+    ///
+    /// - sphere: the spherical projection about its centre;
+    /// - plane: the distances from its `point` along two axes, u along n × y (x for a floor), v
+    ///   along u × n (z for a floor, up for a wall); not wrapped into the unit square, so that a
+    ///   pattern's transform can set the size of its tiles (an image repeats every unit);
+    /// - box: the cube projection of the face hit, unfolded into the cross;
+    /// - cylinder and cone: u round the axis (as the cylindrical projection round an upright
+    ///   axis: 0 towards −z), v along it, 0 at the base and 1 at the top or apex; a cap's disc
+    ///   fills the unit square;
+    /// - triangle: (λ2, λ3), so a = (0, 0), b = (1, 0), c = (0, 1);
+    /// - mesh: its vertices' texture coordinates (OBJ `vt`) blended with the barycentric
+    ///   coordinates, or the triangle's own (λ2, λ3) without them.
+    pub fn uv(&self, p: DVec3, face: u32) -> DVec2 {
+        match self {
+            Shape::Sphere(s) => spherical(p - s.center),
+            Shape::Plane(s) => {
+                let (eu, ev) = plane_axes(s.normal);
+                let w = p - s.point;
+                DVec2::new(w.dot(eu), w.dot(ev))
+            }
+            Shape::Box(b) => {
+                let q = (p - 0.5 * (b.min + b.max)) / (0.5 * (b.max - b.min));
+                let face = match face {
+                    0 => CubeFace::Left,
+                    1 => CubeFace::Right,
+                    2 => CubeFace::Down,
+                    3 => CubeFace::Up,
+                    4 => CubeFace::Back,
+                    _ => CubeFace::Front,
+                };
+                face.unfolded(face.uv(q))
+            }
+            Shape::Cylinder(c) | Shape::OpenCylinder(c) => {
+                let a = c.axis();
+                let h = (c.top - c.base).length();
+                round_axis(p - c.base, a, c.radius, face as u8, |s| s / h)
+            }
+            Shape::Cone(c) | Shape::OpenCone(c) => {
+                // Measured from the base towards the apex.
+                let a = -c.axis();
+                let h = (c.base - c.apex).length();
+                round_axis(p - c.base, a, c.radius, face as u8, |s| s / h)
+            }
+            Shape::Triangle(t) => {
+                let l = t.barycentric(p);
+                DVec2::new(l.y, l.z)
+            }
+            Shape::Mesh(m) => m.uv(p, face),
+        }
+    }
+}
+
+/// u and v axes on a plane with unit normal n: u along n × y (x when n is vertical), v = u × n.
+fn plane_axes(n: DVec3) -> (DVec3, DVec3) {
+    let across = n.cross(DVec3::Y);
+    let eu = if across.length_squared() < 1e-18 {
+        DVec3::X
+    } else {
+        across.normalize()
+    };
+    (eu, eu.cross(n))
+}
+
+/// Two unit vectors (x, z) across the unit axis a, with (x, a, z) turning as (x, y, z) do: for
+/// an upright axis, the x and z axes themselves.
+fn across_axis(a: DVec3) -> (DVec3, DVec3) {
+    let helper = if a.x.abs() < 0.9 { DVec3::X } else { DVec3::Y };
+    let z = helper.cross(a).normalize();
+    (a.cross(z), z)
+}
+
+/// (u, v) on a surface round the axis a through the base: u the angle, v = `along`(height) on
+/// the side; on a cap (faces 1 and 2) the disc of radius r fills the unit square.
+fn round_axis(w: DVec3, a: DVec3, r: f64, face: u8, along: impl Fn(f64) -> f64) -> DVec2 {
+    let (x, z) = across_axis(a);
+    let (wx, wz) = (w.dot(x), w.dot(z));
+    if face == cylinder::SIDE {
+        DVec2::new(around_y(wx, wz), along(w.dot(a)).clamp(0.0, 1.0))
+    } else {
+        DVec2::new(
+            (0.5 + wx / (2.0 * r)).clamp(0.0, 1.0),
+            (0.5 + wz / (2.0 * r)).clamp(0.0, 1.0),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: DVec2, u: f64, v: f64) -> bool {
+        (a.x - u).abs() < 1e-5 && (a.y - v).abs() < 1e-5
+    }
+
+    /// The Ray Tracer Challenge, "Using a spherical mapping on a 3D point" (the poles and the
+    /// seam among them).
+    #[test]
+    fn spherical_mapping_of_the_book() {
+        let h = 2f64.sqrt() / 2.0;
+        for (p, u, v) in [
+            ((0.0, 0.0, -1.0), 0.0, 0.5),
+            ((1.0, 0.0, 0.0), 0.25, 0.5),
+            ((0.0, 0.0, 1.0), 0.5, 0.5),
+            ((-1.0, 0.0, 0.0), 0.75, 0.5),
+            ((0.0, 1.0, 0.0), 0.5, 1.0),
+            ((0.0, -1.0, 0.0), 0.5, 0.0),
+            ((h, h, 0.0), 0.25, 0.75),
+        ] {
+            let got = spherical(DVec3::from(p));
+            assert!(close(got, u, v), "{p:?}: {got}");
+        }
+    }
+
+    /// On the seam, −0 and +0 give the same u: atan2 says ±π, the wrap says 0 for both.
+    #[test]
+    fn the_seam_is_one_line() {
+        let a = spherical(DVec3::new(0.0, 0.3, -1.0));
+        let b = spherical(DVec3::new(-0.0, 0.3, -1.0));
+        assert_eq!((a.x, b.x), (0.0, 0.0));
+        assert_eq!(a, b);
+        // Just either side of it: u just above 0 and just below 1.
+        assert!(spherical(DVec3::new(1e-9, 0.0, -1.0)).x < 1e-9);
+        assert!(spherical(DVec3::new(-1e-9, 0.0, -1.0)).x > 1.0 - 1e-9);
+    }
+
+    /// "Using a planar mapping on a 3D point".
+    #[test]
+    fn planar_mapping_of_the_book() {
+        for (p, u, v) in [
+            ((0.25, 0.0, 0.5), 0.25, 0.5),
+            ((0.25, 0.0, -0.25), 0.25, 0.75),
+            ((0.25, 0.5, -0.25), 0.25, 0.75),
+            ((1.25, 0.0, 0.5), 0.25, 0.5),
+            ((0.25, 0.0, -1.75), 0.25, 0.25),
+            ((1.0, 0.0, -1.0), 0.0, 0.0),
+            ((0.0, 0.0, 0.0), 0.0, 0.0),
+        ] {
+            let got = planar(DVec3::from(p));
+            assert!(close(got, u, v), "{p:?}: {got}");
+        }
+    }
+
+    /// "Using a cylindrical mapping on a 3D point".
+    #[test]
+    fn cylindrical_mapping_of_the_book() {
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        for (p, u, v) in [
+            ((0.0, 0.0, -1.0), 0.0, 0.0),
+            ((0.0, 0.5, -1.0), 0.0, 0.5),
+            ((0.0, 1.0, -1.0), 0.0, 0.0),
+            ((h, 0.5, -h), 0.125, 0.5),
+            ((1.0, 0.5, 0.0), 0.25, 0.5),
+            ((h, 0.5, h), 0.375, 0.5),
+            ((0.0, -0.25, 1.0), 0.5, 0.75),
+            ((-h, 0.5, h), 0.625, 0.5),
+            ((-1.0, 1.25, 0.0), 0.75, 0.25),
+            ((-h, 0.5, -h), 0.875, 0.5),
+        ] {
+            let got = cylindrical(DVec3::from(p));
+            assert!(close(got, u, v), "{p:?}: {got}");
+        }
+    }
+
+    /// "Identifying the face of a cube from a point" and the uv of each face.
+    #[test]
+    fn cube_faces_of_the_book() {
+        for (p, face) in [
+            ((-1.0, 0.5, -0.25), CubeFace::Left),
+            ((1.1, -0.75, 0.8), CubeFace::Right),
+            ((0.1, 0.6, 0.9), CubeFace::Front),
+            ((-0.7, 0.0, -2.0), CubeFace::Back),
+            ((0.5, 1.0, 0.9), CubeFace::Up),
+            ((-0.2, -1.3, 1.1), CubeFace::Down),
+        ] {
+            assert_eq!(CubeFace::of(DVec3::from(p)), face, "{p:?}");
+        }
+        for (face, p, u, v) in [
+            (CubeFace::Front, (-0.5, 0.5, 1.0), 0.25, 0.75),
+            (CubeFace::Front, (0.5, -0.5, 1.0), 0.75, 0.25),
+            (CubeFace::Back, (0.5, 0.5, -1.0), 0.25, 0.75),
+            (CubeFace::Back, (-0.5, -0.5, -1.0), 0.75, 0.25),
+            (CubeFace::Left, (-1.0, 0.5, -0.5), 0.25, 0.75),
+            (CubeFace::Left, (-1.0, -0.5, 0.5), 0.75, 0.25),
+            (CubeFace::Right, (1.0, 0.5, 0.5), 0.25, 0.75),
+            (CubeFace::Right, (1.0, -0.5, -0.5), 0.75, 0.25),
+            (CubeFace::Up, (-0.5, 1.0, -0.5), 0.25, 0.75),
+            (CubeFace::Up, (0.5, 1.0, 0.5), 0.75, 0.25),
+            (CubeFace::Down, (-0.5, -1.0, 0.5), 0.25, 0.75),
+            (CubeFace::Down, (0.5, -1.0, -0.5), 0.75, 0.25),
+        ] {
+            let got = face.uv(DVec3::from(p));
+            assert!(close(got, u, v), "{face:?} {p:?}: {got}");
+        }
+    }
+
+    /// The cross: an edge shared on the cube is shared in the image. The front face's right
+    /// edge (x = 1) is the right face's left edge, its top edge (y = 1) the top face's bottom.
+    #[test]
+    fn the_unfolded_cross_keeps_neighbours_together() {
+        let p = DVec3::new(1.0, 0.2, 1.0);
+        let front = CubeFace::Front.unfolded(CubeFace::Front.uv(DVec3::new(1.0 - 1e-12, 0.2, 1.0)));
+        let right = CubeFace::Right.unfolded(CubeFace::Right.uv(p));
+        assert!((front - right).length() < 1e-9, "{front} {right}");
+        let top_edge = DVec3::new(0.3, 1.0, 1.0);
+        let front = CubeFace::Front.unfolded(CubeFace::Front.uv(top_edge - 1e-12 * DVec3::Y));
+        let up = CubeFace::Up.unfolded(CubeFace::Up.uv(top_edge - 1e-12 * DVec3::Z));
+        assert!((front - up).length() < 1e-9, "{front} {up}");
+        assert_eq!(
+            cube(DVec3::new(0.0, 0.0, 1.0)),
+            DVec2::new(1.5 / 4.0, 1.5 / 3.0)
+        );
+    }
+}

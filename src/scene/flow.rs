@@ -1,0 +1,204 @@
+//! Where YAML's flow collections (`[…]` and `{…}`) open and close, found by a scan of the text
+//! without parsing it. The parallel loader (`split`) cuts a file only where no collection is
+//! open, and a syntax error inside a collection that is never closed is reported at its
+//! opening bracket rather than on the line after it.
+//!
+//! A bracket opens a collection only where a YAML node can start: at the start of a line's
+//! content, after `- `, `? ` or `: `, after an anchor or a tag, and inside a collection after
+//! `[`, `{`, `,` or `:`. Elsewhere in block context a bracket is an ordinary character of a
+//! plain scalar (`name: x[` is the string "x["). Inside a collection every bracket counts
+//! (plain scalars there cannot hold one). Quoted scalars, comments and block scalars (`|`,
+//! `>`) are skipped.
+
+/// An opening bracket: where it is (byte offset, line and column from 1) and which it is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Bracket {
+    pub at: usize,
+    pub line: u64,
+    pub column: u64,
+    pub open: char,
+}
+
+/// What a scan found.
+#[derive(Debug, Default)]
+pub struct Scan {
+    /// For each line: the byte offset it starts at, and how many collections are open there.
+    pub lines: Vec<(usize, usize)>,
+    /// The collections still open at the end of the text, outermost first.
+    pub unclosed: Vec<Bracket>,
+}
+
+/// Scans `text` for its flow collections.
+pub fn scan(text: &str) -> Scan {
+    let mut scan = Scan::default();
+    let mut open: Vec<Bracket> = Vec::new();
+    let mut quote: Option<char> = None;
+    // The indentation of the line holding a block scalar's `|` or `>`: its content is every
+    // following line indented more (or blank).
+    let mut block_scalar: Option<usize> = None;
+    let mut at = 0usize;
+    for (index, line) in text.split_inclusive('\n').enumerate() {
+        let start = at;
+        at += line.len();
+        scan.lines.push((start, open.len()));
+        let body = line.trim_end_matches(['\n', '\r']);
+        let indent = body.len() - body.trim_start_matches(' ').len();
+        if let Some(parent) = block_scalar {
+            if body.trim().is_empty() || indent > parent {
+                continue;
+            }
+            block_scalar = None;
+        }
+        // A node can start at the start of a line in block context, and anywhere a
+        // collection's entry begins.
+        let mut node_start = quote.is_none();
+        let mut prev = ' ';
+        let mut chars = body.char_indices().peekable();
+        while let Some((i, c)) = chars.next() {
+            let next = chars.peek().map_or(' ', |&(_, n)| n);
+            if let Some(q) = quote {
+                match (q, c) {
+                    ('"', '\\') => {
+                        chars.next();
+                    }
+                    ('\'', '\'') if next == '\'' => {
+                        chars.next();
+                    }
+                    (q, c) if q == c => quote = None,
+                    _ => {}
+                }
+                prev = c;
+                continue;
+            }
+            if c == '#' && prev.is_whitespace() {
+                break; // a comment: the rest of the line
+            }
+            let in_flow = !open.is_empty();
+            let spaced = next.is_whitespace();
+            if c.is_whitespace() {
+                prev = c;
+                continue;
+            }
+            if node_start {
+                match c {
+                    '"' | '\'' => {
+                        quote = Some(c);
+                        node_start = false;
+                    }
+                    '[' | '{' => open.push(Bracket {
+                        at: start + i,
+                        line: index as u64 + 1,
+                        column: body[..i].chars().count() as u64 + 1,
+                        open: c,
+                    }),
+                    '|' | '>' if !in_flow => {
+                        block_scalar = Some(indent);
+                        break;
+                    }
+                    '-' if spaced && !in_flow => {}
+                    '?' if spaced => {}
+                    '&' | '!' => {
+                        // An anchor or a tag: the node itself follows it.
+                        while chars.peek().is_some_and(|&(_, n)| !n.is_whitespace()) {
+                            chars.next();
+                        }
+                    }
+                    ']' | '}' if in_flow => {
+                        open.pop();
+                        node_start = false;
+                    }
+                    ',' if in_flow => {}
+                    _ => node_start = false,
+                }
+            } else if in_flow {
+                match c {
+                    '[' | '{' => {
+                        open.push(Bracket {
+                            at: start + i,
+                            line: index as u64 + 1,
+                            column: body[..i].chars().count() as u64 + 1,
+                            open: c,
+                        });
+                        node_start = true;
+                    }
+                    ']' | '}' => {
+                        open.pop();
+                    }
+                    ',' => node_start = true,
+                    ':' if spaced
+                        || matches!(next, ',' | ']' | '}')
+                        || matches!(prev, '"' | '\'') =>
+                    {
+                        node_start = true
+                    }
+                    _ => {}
+                }
+            } else if c == ':' && spaced {
+                node_start = true;
+            }
+            prev = c;
+        }
+    }
+    scan.unclosed = open;
+    scan
+}
+
+/// The collection a syntax error on `line` most likely comes from: the last one opened on an
+/// earlier line that the text never closes.
+pub fn unclosed_before(text: &str, line: u64) -> Option<Bracket> {
+    scan(text)
+        .unclosed
+        .into_iter()
+        .rev()
+        .find(|b| b.line < line)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn depths(text: &str) -> Vec<usize> {
+        scan(text).lines.iter().map(|&(_, d)| d).collect()
+    }
+
+    #[test]
+    fn brackets_in_plain_scalars_open_nothing() {
+        let text = "objects:\n  - { name: a, sphere: [1, 2] }\n  - name: x[\n  - name: y]\n  - z\n";
+        assert_eq!(depths(text), [0, 0, 0, 0, 0]);
+        assert!(scan(text).unclosed.is_empty());
+    }
+
+    #[test]
+    fn collections_open_across_lines_are_counted() {
+        let text = "camera: { eye: [0, 0, -5],\n  look_at: [0, 0, 0] }\nlights: [\n  { point: [1, 2, 3] },\n]\nx: 1\n";
+        assert_eq!(depths(text), [0, 1, 0, 1, 1, 0]);
+        assert!(scan(text).unclosed.is_empty());
+    }
+
+    #[test]
+    fn quotes_comments_and_block_scalars_are_skipped() {
+        let text = "a: \"[ # not a comment\"\nb: '{ it''s }' # [ a comment\nc: |\n  [ text\n   { more\nd: [\n";
+        assert_eq!(depths(text), [0, 0, 0, 0, 0, 0]);
+        let unclosed = scan(text).unclosed;
+        assert_eq!(unclosed.len(), 1);
+        assert_eq!((unclosed[0].line, unclosed[0].column), (6, 4));
+    }
+
+    #[test]
+    fn an_unclosed_list_is_found_before_the_error_it_causes() {
+        let text =
+            "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nbackground: [0.4, 0.4\nspp: 4\n";
+        let b = unclosed_before(text, 3).unwrap();
+        assert_eq!((b.line, b.column, b.open), (2, 13, '['));
+        assert!(
+            unclosed_before(text, 2).is_none(),
+            "not on the error's own line"
+        );
+    }
+
+    #[test]
+    fn a_multi_line_flow_value_in_a_list_item_is_followed() {
+        let text = "- { cylinder: { base: [0, 0, 0], top: [0, 1, 0],\n radius: 0.25 }, material: m }\n- { a: [x, y] }\n";
+        assert_eq!(depths(text), [0, 2, 0]);
+    }
+}

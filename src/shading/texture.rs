@@ -1,0 +1,263 @@
+//! Image textures: a picture wrapped onto a surface. A mapping gives every point of the surface
+//! its (u, v) in the unit square (`crate::geometry::uv`); the image is read there with bilinear
+//! filtering, in linear intensities (an 8- or 16-bit image's sRGB values are decoded when it is
+//! loaded, so texture colours enter the lecture's formulas as any other colour does).
+
+use std::fmt;
+use std::path::Path;
+
+use glam::{DVec2, DVec3};
+use serde::Deserialize;
+
+use super::pattern::PatternPoint;
+use crate::geometry::uv::{cube, cylindrical, planar, spherical, wrap};
+
+/// How a point of a surface gets its (u, v).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Mapping {
+    /// Projected from the point in the pattern's space, round its origin.
+    Spherical,
+    /// Projected onto its xz plane, in unit tiles.
+    Planar,
+    /// Projected round its y axis, one unit of height per image.
+    Cylindrical,
+    /// Projected onto the cube [−1, 1]³, the faces unfolded into a cross.
+    Cube,
+    /// The surface's own (u, v) (`Shape::uv`: a mesh's `vt`), placed by the pattern's
+    /// transform.
+    #[default]
+    Uv,
+}
+
+impl Mapping {
+    /// (u, v) of a point already in the pattern's space.
+    pub fn uv(self, at: &PatternPoint) -> DVec2 {
+        match self {
+            Mapping::Spherical => spherical(at.point),
+            Mapping::Planar => planar(at.point),
+            Mapping::Cylindrical => cylindrical(at.point),
+            Mapping::Cube => cube(at.point),
+            Mapping::Uv => at.uv,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Mapping::Spherical => "spherical",
+            Mapping::Planar => "planar",
+            Mapping::Cylindrical => "cylindrical",
+            Mapping::Cube => "cube",
+            Mapping::Uv => "uv",
+        }
+    }
+}
+
+/// A picture in linear RGB, row 0 at the top.
+pub struct Image {
+    /// The file as the scene names it.
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    texels: Vec<[f32; 3]>,
+}
+
+impl fmt::Debug for Image {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "Image({}, {}×{})", self.name, self.width, self.height)
+    }
+}
+
+impl PartialEq for Image {
+    fn eq(&self, other: &Image) -> bool {
+        self.name == other.name && self.width == other.width && self.texels == other.texels
+    }
+}
+
+/// sRGB-encoded value in [0, 1] to linear intensity (the sRGB standard's curve).
+pub fn srgb_to_linear(c: f64) -> f64 {
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+impl Image {
+    /// An image from linear texels, row by row from the top.
+    pub fn new(name: &str, width: u32, height: u32, texels: Vec<[f32; 3]>) -> Image {
+        assert_eq!(texels.len(), width as usize * height as usize);
+        assert!(width > 0 && height > 0);
+        Image {
+            name: name.into(),
+            width,
+            height,
+            texels,
+        }
+    }
+
+    /// Reads a PNG (sRGB values, decoded to linear) or an EXR (linear already). `name` is the
+    /// file as the scene wrote it.
+    pub fn load(path: &Path, name: &str) -> Result<Image, String> {
+        let meta = std::fs::metadata(path).map_err(|e| format!("cannot read `{name}`: {e}"))?;
+        if !meta.is_file() {
+            return Err(format!("cannot read `{name}`: not a regular file"));
+        }
+        let decoded = image::ImageReader::open(path)
+            .and_then(|r| r.with_guessed_format())
+            .map_err(|e| format!("cannot read `{name}`: {e}"))?
+            .decode()
+            .map_err(|e| format!("cannot read `{name}`: {e}"))?;
+        let linear = matches!(
+            decoded,
+            image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
+        );
+        let (width, height) = (decoded.width(), decoded.height());
+        if width == 0 || height == 0 {
+            return Err(format!("cannot read `{name}`: the image is empty"));
+        }
+        let texels = if linear {
+            decoded
+                .to_rgb32f()
+                .pixels()
+                .map(|p| p.0.map(|c| c.max(0.0)))
+                .collect()
+        } else if let image::DynamicImage::ImageRgb8(_)
+        | image::DynamicImage::ImageRgba8(_)
+        | image::DynamicImage::ImageLuma8(_)
+        | image::DynamicImage::ImageLumaA8(_) = decoded
+        {
+            let table: Vec<f32> = (0..256)
+                .map(|i| srgb_to_linear(i as f64 / 255.0) as f32)
+                .collect();
+            decoded
+                .to_rgb8()
+                .pixels()
+                .map(|p| p.0.map(|c| table[c as usize]))
+                .collect()
+        } else {
+            decoded
+                .to_rgb16()
+                .pixels()
+                .map(|p| p.0.map(|c| srgb_to_linear(c as f64 / 65535.0) as f32))
+                .collect()
+        };
+        Ok(Image::new(name, width, height, texels))
+    }
+
+    /// The brightest value of each channel.
+    pub fn max(&self) -> DVec3 {
+        self.texels.iter().fold(DVec3::ZERO, |m, t| {
+            m.max(DVec3::new(t[0] as f64, t[1] as f64, t[2] as f64))
+        })
+    }
+
+    /// The texel in column i, row j (both wrapped round the image).
+    pub fn texel(&self, i: i64, j: i64) -> DVec3 {
+        let i = i.rem_euclid(self.width as i64) as usize;
+        let j = j.rem_euclid(self.height as i64) as usize;
+        let [r, g, b] = self.texels[j * self.width as usize + i];
+        DVec3::new(r as f64, g as f64, b as f64)
+    }
+
+    /// Where (u, v) falls among the texel centres: texel (i, j) is centred at
+    /// ((i + ½)/width, 1 − (j + ½)/height), so (u, v) lies at column x = u·width − ½ and row
+    /// y = (1 − v)·height − ½ of the grid of centres, between columns ⌊x⌋, ⌊x⌋ + 1 and rows ⌊y⌋,
+    /// ⌊y⌋ + 1. The image repeats beyond the unit square, in u and in v.
+    pub fn footprint(&self, uv: DVec2) -> Footprint {
+        let x = wrap(uv.x) * self.width as f64 - 0.5;
+        let y = (1.0 - wrap(uv.y)) * self.height as f64 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        Footprint {
+            x,
+            y,
+            i: x0 as i64,
+            j: y0 as i64,
+            fx: x - x0,
+            fy: y - y0,
+        }
+    }
+
+    /// The colour at (u, v), bilinearly filtered: the four texels around it blended by its
+    /// distances to their centres, first along the rows, then between them.
+    pub fn bilinear(&self, uv: DVec2) -> DVec3 {
+        let f = self.footprint(uv);
+        let top = self.texel(f.i, f.j).lerp(self.texel(f.i + 1, f.j), f.fx);
+        let bottom = self
+            .texel(f.i, f.j + 1)
+            .lerp(self.texel(f.i + 1, f.j + 1), f.fx);
+        top.lerp(bottom, f.fy)
+    }
+}
+
+/// Where a point falls among an image's texel centres (`Image::footprint`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Footprint {
+    /// Column and row in the grid of texel centres (0 at the first centre).
+    pub x: f64,
+    pub y: f64,
+    /// The texel at the top left of the four around it.
+    pub i: i64,
+    pub j: i64,
+    /// How far past that texel's centre, in texels.
+    pub fx: f64,
+    pub fy: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 2×2 image: red, green on top; blue, white below.
+    fn quad() -> Image {
+        Image::new(
+            "quad",
+            2,
+            2,
+            vec![
+                [1.0, 0.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 1.0, 1.0],
+            ],
+        )
+    }
+
+    /// At a texel's centre the filter gives that texel; halfway between two centres, their
+    /// mean.
+    #[test]
+    fn bilinear_filtering_hits_texel_centres_and_blends_between() {
+        let img = quad();
+        let at = |u, v| img.bilinear(DVec2::new(u, v));
+        assert_eq!(at(0.25, 0.75), DVec3::X);
+        assert_eq!(at(0.75, 0.75), DVec3::Y);
+        assert_eq!(at(0.25, 0.25), DVec3::Z);
+        assert_eq!(at(0.75, 0.25), DVec3::ONE);
+        assert_eq!(at(0.5, 0.75), DVec3::new(0.5, 0.5, 0.0));
+        assert_eq!(at(0.5, 0.5), DVec3::new(0.5, 0.5, 0.5));
+    }
+
+    /// At the seam u = 0 the left column meets the right one: the image wraps round.
+    #[test]
+    fn the_seam_blends_the_first_and_last_columns() {
+        let img = quad();
+        assert_eq!(
+            img.bilinear(DVec2::new(0.0, 0.75)),
+            DVec3::new(0.5, 0.5, 0.0)
+        );
+        assert_eq!(
+            img.bilinear(DVec2::new(1.0, 0.75)),
+            img.bilinear(DVec2::new(0.0, 0.75))
+        );
+    }
+
+    /// The sRGB curve: 0 and 1 stay, mid grey 0.5 (128/255 stored) is 0.2158 of full
+    /// intensity, and the linear toe below 0.04045 is c/12.92.
+    #[test]
+    fn srgb_values_are_decoded_to_linear() {
+        assert_eq!(srgb_to_linear(0.0), 0.0);
+        assert!((srgb_to_linear(1.0) - 1.0).abs() < 1e-15);
+        assert!((srgb_to_linear(128.0 / 255.0) - 0.215861).abs() < 1e-6);
+        assert!((srgb_to_linear(0.04) - 0.04 / 12.92).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,1110 @@
+//! raytree used as a hostile or careless user would: output to a closed pipe or a full device,
+//! signals in the middle of a write, files that are not files, budgets, control characters in
+//! names, answers that are not answers. Every case: a clear line on stderr and a meaningful exit
+//! status, never a panic, a hang, a temporary file left behind or a broken output.
+//!
+//! `RAYTREE_BIN=path` runs these checks against another build of raytree (how they were seen
+//! to fail before the fixes).
+
+use std::ffi::OsStr;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::time::{Duration, Instant};
+
+fn bin() -> PathBuf {
+    std::env::var_os("RAYTREE_BIN")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_raytree")))
+}
+
+fn command<S: AsRef<OsStr>>(args: &[S]) -> Command {
+    let mut c = Command::new(bin());
+    c.args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("NO_COLOR", "1")
+        .stdin(Stdio::null());
+    c
+}
+
+struct Run {
+    status: ExitStatus,
+    stdout: String,
+    stderr: String,
+    elapsed: Duration,
+}
+
+impl Run {
+    fn code(&self) -> Option<i32> {
+        self.status.code()
+    }
+
+    /// Problems every run must be free of.
+    fn sane(&self) -> Vec<String> {
+        let mut p = vec![];
+        for (name, text) in [("stdout", &self.stdout), ("stderr", &self.stderr)] {
+            if text.contains("panicked") || text.contains("RUST_BACKTRACE") {
+                p.push(format!("panic on {name}: {}", excerpt(text)));
+            }
+        }
+        if self.code() == Some(101) {
+            p.push("exit status 101 (a panic)".into());
+        }
+        if self.code().is_none() {
+            p.push(format!("killed: {:?}", self.status));
+        }
+        p
+    }
+}
+
+fn excerpt(s: &str) -> String {
+    s.chars()
+        .take(400)
+        .collect::<String>()
+        .trim_end()
+        .to_string()
+}
+
+/// Waits for a child, killing it after `limit`.
+fn finish(mut child: Child, limit: Duration) -> Run {
+    let start = Instant::now();
+    let drain = |pipe: Option<Box<dyn Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            if let Some(mut p) = pipe {
+                let _ = p.read_to_end(&mut bytes);
+            }
+            String::from_utf8_lossy(&bytes).into_owned()
+        })
+    };
+    let out = drain(
+        child
+            .stdout
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
+    let err = drain(
+        child
+            .stderr
+            .take()
+            .map(|p| Box::new(p) as Box<dyn Read + Send>),
+    );
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if start.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("hung: killed after {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    Run {
+        status,
+        stdout: out.join().unwrap(),
+        stderr: err.join().unwrap(),
+        elapsed: start.elapsed(),
+    }
+}
+
+fn run<S: AsRef<OsStr>>(args: &[S]) -> Run {
+    let child = command(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("raytree starts");
+    finish(child, Duration::from_secs(60))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("raytree-hardening-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn write(name: &str, text: &str) -> PathBuf {
+    let path = scratch(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+const L08: &str = "lessons/08-pixel-intensity/scene.yaml";
+const SMALL: &str = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 16, height: 12 }\n\
+                     ambient: 0.2\nlights: [ { point: [2, 3, -4] } ]\n\
+                     materials: { m: { color: [1, 0.5, 0.25], ka: 1, kd: 0.8, ks: 0.3 } }\n\
+                     objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1.5 }, material: m } ]\n";
+
+/// Every subcommand that writes to stdout, with the exit status it has when all goes well.
+fn printing_commands() -> Vec<(Vec<String>, i32)> {
+    let small = write("small.yaml", SMALL).to_string_lossy().into_owned();
+    let reference = scratch("reference.exr").to_string_lossy().into_owned();
+    let r = run(&["render", &small, "-o", &reference]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    vec![
+        (s(&["--help"]), 0),
+        (s(&["--version"]), 0),
+        (s(&["render", "--help"]), 0),
+        (s(&["lessons"]), 0),
+        (s(&["inspect", L08, "--pixel", "30,30"]), 0),
+        (
+            s(&["inspect", L08, "--pixel", "30,30", "--format", "json"]),
+            0,
+        ),
+        (
+            s(&[
+                "inspect",
+                "lessons/15-path-tracing/scene.yaml",
+                "--pixel",
+                "3,3",
+            ]),
+            0,
+        ),
+        (
+            s(&["csg", "lessons/10-csg/scene.yaml", "--ray", "0,0,-10:0,0,1"]),
+            0,
+        ),
+        (
+            s(&[
+                "csg",
+                "lessons/10-csg/scene.yaml",
+                "--ray",
+                "0,0,-10:0,0,1",
+                "--format",
+                "json",
+            ]),
+            0,
+        ),
+        (s(&["preview", L08, "--columns", "24"]), 0),
+        (
+            s(&[
+                "check",
+                "lessons/08-pixel-intensity",
+                "--exercise",
+                "pixel-p",
+                "--answer",
+                "0.870161",
+            ]),
+            0,
+        ),
+        (
+            s(&[
+                "check",
+                "lessons/08-pixel-intensity",
+                "--exercise",
+                "pixel-p",
+                "--explain",
+            ]),
+            0,
+        ),
+        (
+            s(&[
+                "bench",
+                "sweep",
+                &small,
+                "--knob",
+                "spp",
+                "--values",
+                "1,4",
+                "--reference",
+                &reference,
+            ]),
+            0,
+        ),
+        (
+            s(&[
+                "bench",
+                "scaling",
+                "--max-spheres",
+                "10",
+                "--max-brute",
+                "10",
+                "--max-subdivisions",
+                "3",
+            ]),
+            0,
+        ),
+    ]
+}
+
+/// `raytree … | head -c 1` in a shell, and the same with the reader gone before the first
+/// write (deterministic: every write then fails with EPIPE), and `raytree … > /dev/full`.
+#[test]
+fn a_closed_pipe_ends_quietly_and_a_full_device_is_one_line() {
+    let mut failures = vec![];
+    for (args, code) in printing_commands() {
+        let shown = args.join(" ");
+        // The shell's pipe into `head -c 1`, statuses of both sides.
+        let out = Command::new("bash")
+            .arg("-c")
+            .arg(r#"set -o pipefail; "$0" "$@" 2>"$ERR" | head -c 1 >/dev/null; echo $?"#)
+            .arg(bin())
+            .args(&args)
+            .env("ERR", scratch("pipe.err"))
+            .env("NO_COLOR", "1")
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        let status = String::from_utf8_lossy(&out.stdout).trim().to_string();
+        let err = std::fs::read_to_string(scratch("pipe.err")).unwrap_or_default();
+        if status != code.to_string() || err.contains("panicked") || !err.is_empty() {
+            failures.push(format!(
+                "{shown} | head -c 1: status {status}, stderr {:?}",
+                excerpt(&err)
+            ));
+        }
+
+        // The reader gone before anything is written.
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let child = command(&args)
+            .stdout(writer)
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let r = finish(child, Duration::from_secs(60));
+        let mut problems = r.sane();
+        if r.code() != Some(code) {
+            problems.push(format!("exit status {:?}, want {code}", r.code()));
+        }
+        if !r.stderr.is_empty() {
+            problems.push(format!("stderr not empty: {:?}", excerpt(&r.stderr)));
+        }
+        if !problems.is_empty() {
+            failures.push(format!("{shown} > closed pipe: {}", problems.join("; ")));
+        }
+
+        // A full device: one line, exit status 2.
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let child = command(&args)
+            .stdout(full)
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let r = finish(child, Duration::from_secs(60));
+        let mut problems = r.sane();
+        if r.code() != Some(2) {
+            problems.push(format!("exit status {:?}, want 2", r.code()));
+        }
+        let lines = r.stderr.lines().count();
+        if lines != 1 || !r.stderr.contains("No space left on device") {
+            problems.push(format!("stderr: {:?}", excerpt(&r.stderr)));
+        }
+        if !problems.is_empty() {
+            failures.push(format!("{shown} > /dev/full: {}", problems.join("; ")));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Errors go to stderr; a stderr that cannot be written to must not make raytree panic.
+#[test]
+fn a_full_stderr_is_no_panic() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let child = command(&["inspect", "no-such-scene.yaml", "--pixel", "0,0"])
+        .stdout(Stdio::piped())
+        .stderr(full)
+        .spawn()
+        .unwrap();
+    let r = finish(child, Duration::from_secs(30));
+    assert_eq!(r.code(), Some(2));
+}
+
+// ---------------------------------------------------------------------------------------
+// Files that are not files, and files too large
+
+#[cfg(unix)]
+fn fifo(name: &str) -> PathBuf {
+    let path = scratch(name);
+    let _ = std::fs::remove_file(&path);
+    let ok = Command::new("mkfifo")
+        .arg(&path)
+        .status()
+        .unwrap()
+        .success();
+    assert!(ok, "mkfifo");
+    path
+}
+
+#[cfg(unix)]
+#[test]
+fn devices_fifos_and_proc_files_are_refused_at_once() {
+    let pipe = fifo("scene-fifo.yaml");
+    let image = scratch("fifo.png");
+    let cases: Vec<(Vec<&OsStr>, &str)> = vec![
+        (
+            vec![
+                "inspect".as_ref(),
+                "/dev/zero".as_ref(),
+                "--pixel".as_ref(),
+                "0,0".as_ref(),
+            ],
+            "not a regular file",
+        ),
+        (
+            vec![
+                "inspect".as_ref(),
+                "/dev/urandom".as_ref(),
+                "--pixel".as_ref(),
+                "0,0".as_ref(),
+            ],
+            "not a regular file",
+        ),
+        (
+            vec![
+                "inspect".as_ref(),
+                "/proc/self/pagemap".as_ref(),
+                "--pixel".as_ref(),
+                "0,0".as_ref(),
+            ],
+            "budget",
+        ),
+        (
+            vec![
+                "render".as_ref(),
+                pipe.as_os_str(),
+                "-o".as_ref(),
+                image.as_os_str(),
+            ],
+            "not a regular file",
+        ),
+        (
+            vec!["explore".as_ref(), pipe.as_os_str()],
+            "not a regular file",
+        ),
+    ];
+    for (args, says) in cases {
+        let r = run(&args);
+        let shown = format!("{args:?}");
+        assert!(r.sane().is_empty(), "{shown}: {:?}", r.sane());
+        assert_eq!(r.code(), Some(2), "{shown}: {}", r.stderr);
+        assert_eq!(r.stderr.lines().count(), 1, "{shown}: {}", r.stderr);
+        assert!(r.stderr.contains(says), "{shown}: {}", r.stderr);
+        assert!(
+            r.elapsed < Duration::from_secs(10),
+            "{shown}: {:?}",
+            r.elapsed
+        );
+    }
+}
+
+#[test]
+fn a_scene_file_over_the_budget_is_refused_before_it_is_read() {
+    let big = scratch("big.yaml");
+    let mut text = String::from(SMALL);
+    text += &format!("# {}\n", "x".repeat(17 << 20));
+    std::fs::write(&big, text).unwrap();
+    let r = run(&[
+        OsStr::new("inspect"),
+        big.as_os_str(),
+        OsStr::new("--pixel"),
+        OsStr::new("0,0"),
+    ]);
+    assert_eq!(r.code(), Some(2), "{}", r.stderr);
+    assert!(
+        r.stderr.contains("budget of 16 MiB") && r.stderr.contains("--allow-huge"),
+        "{}",
+        r.stderr
+    );
+    let r = run(&[
+        OsStr::new("inspect"),
+        big.as_os_str(),
+        OsStr::new("--pixel"),
+        OsStr::new("0,0"),
+        OsStr::new("--allow-huge"),
+    ]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    std::fs::remove_file(&big).unwrap();
+}
+
+// ---------------------------------------------------------------------------------------
+// Budgets of images
+
+#[test]
+fn images_beyond_the_budget_or_memory_are_refused_at_once() {
+    let out = scratch("huge.png");
+    let out = out.to_str().unwrap();
+    for (args, says) in [
+        (
+            vec![
+                "render",
+                L08,
+                "-o",
+                out,
+                "--depth-strip",
+                "64",
+                "--width",
+                "2000",
+                "--height",
+                "2000",
+            ],
+            "budget",
+        ),
+        (
+            vec![
+                "render",
+                L08,
+                "-o",
+                out,
+                "--allow-huge",
+                "--width",
+                "1000000",
+                "--height",
+                "1000000",
+            ],
+            "memory",
+        ),
+    ] {
+        let r = run(&args);
+        assert!(r.sane().is_empty(), "{args:?}: {:?}", r.sane());
+        assert_eq!(r.code(), Some(2), "{args:?}: {}", r.stderr);
+        assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+        assert!(r.stderr.contains(says), "{args:?}: {}", r.stderr);
+        assert!(
+            r.elapsed < Duration::from_secs(10),
+            "{args:?} took {:?}",
+            r.elapsed
+        );
+    }
+    assert!(!Path::new(out).exists());
+}
+
+#[test]
+fn more_threads_than_can_be_started_is_a_clear_error_at_once() {
+    let out = scratch("threads.png");
+    for n in ["100000", "0"] {
+        let r = run(&["render", L08, "-o", out.to_str().unwrap(), "--threads", n]);
+        assert_eq!(r.code(), Some(2), "{n}: {}", r.stderr);
+        assert!(
+            r.stderr.contains("--threads must be between 1 and"),
+            "{}",
+            r.stderr
+        );
+        assert!(r.elapsed < Duration::from_secs(5));
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Signals
+
+/// The temporary file of an output being written, if any.
+fn temporaries(dir: &Path) -> Vec<PathBuf> {
+    std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "tmp"))
+        .collect()
+}
+
+/// SIGINT and SIGTERM while a large image is being written: the previous image stays as it
+/// was, no temporary file is left, and raytree dies of the signal.
+#[cfg(unix)]
+#[test]
+fn a_signal_during_the_write_leaves_the_old_image_and_no_temporary_file() {
+    let dir = scratch("signals");
+    std::fs::create_dir_all(&dir).unwrap();
+    // A scene that renders at once: writing the image is the long part.
+    let scene = write(
+        "signals/flat.yaml",
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 8 }\nbackground: [0.3, 0.6, 0.9]\n",
+    );
+    let out = dir.join("big.png");
+    for signal in ["INT", "TERM"] {
+        std::fs::write(&out, b"the previous image").unwrap();
+        let child = command(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+            OsStr::new("--width"),
+            OsStr::new("4000"),
+            OsStr::new("--height"),
+            OsStr::new("3000"),
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+        let pid = child.id().to_string();
+        // Wait for the temporary file to appear, then signal.
+        let start = Instant::now();
+        while temporaries(&dir).is_empty() && start.elapsed() < Duration::from_secs(60) {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        assert!(
+            !temporaries(&dir).is_empty(),
+            "SIG{signal}: no temporary file seen"
+        );
+        let killed = Command::new("kill")
+            .args([&format!("-{signal}"), &pid])
+            .status()
+            .unwrap();
+        assert!(killed.success());
+        let r = finish(child, Duration::from_secs(60));
+        use std::os::unix::process::ExitStatusExt;
+        let want = if signal == "INT" { 2 } else { 15 };
+        assert_eq!(
+            r.status.signal(),
+            Some(want),
+            "SIG{signal}: {:?} {}",
+            r.status,
+            r.stderr
+        );
+        assert!(!r.stderr.contains("panicked"), "{}", r.stderr);
+        assert_eq!(
+            std::fs::read(&out).unwrap(),
+            b"the previous image",
+            "SIG{signal}"
+        );
+        assert!(
+            temporaries(&dir).is_empty(),
+            "SIG{signal}: {:?}",
+            temporaries(&dir)
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Temporary files and awkward outputs
+
+#[test]
+fn long_output_names_symlinks_and_read_only_outputs() {
+    let dir = scratch("outputs");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = write("outputs/s.yaml", SMALL);
+    let render = |out: &Path| {
+        run(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+        ])
+    };
+    for len in [245, 250, 255] {
+        let out = dir.join(format!("{}.png", "a".repeat(len - 4)));
+        let r = render(&out);
+        assert_eq!(r.code(), Some(0), "{len}-byte name: {}", r.stderr);
+        assert!(out.exists());
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::{symlink, PermissionsExt};
+        let target = dir.join("real.png");
+        let link = dir.join("link.png");
+        std::fs::write(&target, b"old").unwrap();
+        let _ = std::fs::remove_file(&link);
+        symlink("real.png", &link).unwrap();
+        let r = render(&link);
+        assert_eq!(r.code(), Some(0), "{}", r.stderr);
+        assert!(std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert_eq!(&std::fs::read(&target).unwrap()[1..4], b"PNG");
+
+        let locked = dir.join("locked.png");
+        let _ = std::fs::remove_file(&locked);
+        std::fs::write(&locked, b"keep").unwrap();
+        std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o444)).unwrap();
+        let r = render(&locked);
+        assert_eq!(r.code(), Some(2), "{}", r.stderr);
+        assert!(r.stderr.contains("read-only"), "{}", r.stderr);
+        assert_eq!(std::fs::read(&locked).unwrap(), b"keep");
+    }
+    assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
+}
+
+// ---------------------------------------------------------------------------------------
+// Control characters
+
+/// No raw control character reaches the terminal, whatever a scene file or a path holds.
+#[test]
+fn control_characters_in_names_and_paths_are_never_printed_raw() {
+    let evil_name = write(
+        "evil-name.yaml",
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }\n\
+         materials: { m: { kd: 1 } }\n\
+         objects:\n  - { name: \"x\\e]0;pwned\\a\\e[2J\\nraytree: fake.yaml:1:1: all fine\", \
+         sphere: { center: [0, 0, 0], radius: 1 }, material: m }\n",
+    );
+    let evil_key = write("evil-key.yaml", &format!("{SMALL}\"\\e[2Jbad\\nkey\": 1\n"));
+    let evil_path = scratch("evil\u{1b}[2J\nraytree: fake.yaml:1:1: ok.yaml");
+    let cases: Vec<Vec<&OsStr>> = vec![
+        vec![
+            "inspect".as_ref(),
+            evil_name.as_os_str(),
+            "--pixel".as_ref(),
+            "8,6".as_ref(),
+        ],
+        vec![
+            "inspect".as_ref(),
+            evil_key.as_os_str(),
+            "--pixel".as_ref(),
+            "8,6".as_ref(),
+        ],
+        vec![
+            "inspect".as_ref(),
+            evil_path.as_os_str(),
+            "--pixel".as_ref(),
+            "8,6".as_ref(),
+        ],
+    ];
+    for args in cases {
+        let r = run(&args);
+        assert!(r.sane().is_empty(), "{:?}", r.sane());
+        for (name, text) in [("stdout", &r.stdout), ("stderr", &r.stderr)] {
+            let raw: Vec<char> = text
+                .chars()
+                .filter(|c| c.is_control() && *c != '\n')
+                .collect();
+            assert!(raw.is_empty(), "{args:?}: raw {raw:?} on {name}: {text:?}");
+        }
+        assert_eq!(r.code(), Some(2), "{args:?}: {}", r.stderr);
+        assert_eq!(r.stderr.lines().count(), 1, "{args:?}: {:?}", r.stderr);
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Rays, answers, inspect against render
+
+fn json(r: &Run) -> serde_json::Value {
+    serde_json::from_str(&r.stdout).unwrap_or_else(|e| panic!("{e}: {}", r.stdout))
+}
+
+fn direction(v: &serde_json::Value) -> [f64; 3] {
+    serde_json::from_value(v["tree"]["direction"].clone()).unwrap()
+}
+
+#[test]
+fn ray_directions_are_normalised_safely() {
+    let third = 1.0 / 3f64.sqrt();
+    for (ray, want) in [
+        ("0,0,-5:0,0,1e-320", [0.0, 0.0, 1.0]),
+        ("0,0,-5:1e308,1e308,1e308", [third, third, third]),
+        (
+            "0,0,-5:-1e308,0,1e308",
+            [-(0.5f64.sqrt()), 0.0, 0.5f64.sqrt()],
+        ),
+        ("0,0,-5:3e-310,4e-310,0", [0.6, 0.8, 0.0]),
+    ] {
+        let r = run(&["inspect", L08, "--ray", ray, "--format", "json"]);
+        assert_eq!(r.code(), Some(0), "{ray}: {}", r.stderr);
+        let d = direction(&json(&r));
+        for k in 0..3 {
+            assert!(
+                (d[k] - want[k]).abs() < 1e-12,
+                "{ray}: {d:?}, want {want:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn answers_that_are_not_answers_are_usage_errors() {
+    let digits = "9".repeat(10_000);
+    for (exercise, answer) in [
+        ("lessons/10-csg c-empty", ","),
+        ("lessons/10-csg c-empty", ";"),
+        ("lessons/10-csg c-empty", " ; "),
+        ("lessons/10-csg c-empty", ""),
+        ("lessons/08-pixel-intensity pixel-p", "1e999"),
+        ("lessons/08-pixel-intensity pixel-p", "inf"),
+        ("lessons/08-pixel-intensity pixel-p", digits.as_str()),
+        ("lessons/08-pixel-intensity pixel-p", ""),
+    ] {
+        let (lesson, id) = exercise.split_once(' ').unwrap();
+        let r = run(&["check", lesson, "--exercise", id, "--answer", answer]);
+        let shown: String = answer.chars().take(12).collect();
+        assert_eq!(
+            r.code(),
+            Some(2),
+            "`{shown}` for {id}: {} {}",
+            r.stdout,
+            r.stderr
+        );
+        assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+        assert!(
+            r.stderr.len() < 300,
+            "the answer is not echoed whole: {} bytes",
+            r.stderr.len()
+        );
+    }
+    let r = run(&[
+        "check",
+        "lessons/10-csg",
+        "--exercise",
+        "c-empty",
+        "--answer",
+        "none",
+    ]);
+    assert_eq!(r.code(), Some(0), "{}{}", r.stdout, r.stderr);
+}
+
+/// The value `inspect --pixel` reports is the pixel `render` writes: all its samples, through
+/// the scene's filter, with the same seed.
+#[test]
+fn inspect_reports_the_rendered_value() {
+    let gaussian = write(
+        "gaussian.yaml",
+        &SMALL.replace(
+            "width: 16, height: 12 }",
+            "width: 16, height: 12 }\nspp: 4\nantialias: jittered\nfilter: gaussian",
+        ),
+    );
+    let cases: Vec<(PathBuf, u64, Vec<[u32; 2]>)> = vec![
+        (
+            PathBuf::from("lessons/13-antialiasing/grid-4.yaml"),
+            0,
+            vec![[1, 0], [0, 0], [2, 1]],
+        ),
+        (gaussian.clone(), 0, vec![[8, 6], [6, 5], [10, 7], [0, 0]]),
+        (gaussian, 7, vec![[8, 6], [6, 5]]),
+        (PathBuf::from(L08), 0, vec![[30, 30]]),
+        (
+            PathBuf::from("lessons/13-antialiasing/scene.yaml"),
+            3,
+            vec![[1, 0], [2, 1]],
+        ),
+    ];
+    for (scene, seed, pixels) in cases {
+        let exr = scratch("rendered.exr");
+        let seed_arg = seed.to_string();
+        let r = run(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            exr.as_os_str(),
+            OsStr::new("--seed"),
+            OsStr::new(&seed_arg),
+        ]);
+        assert_eq!(r.code(), Some(0), "{}", r.stderr);
+        let image = image::open(&exr).unwrap().into_rgb32f();
+        for [x, y] in pixels {
+            let pixel = format!("{x},{y}");
+            let r = run(&[
+                OsStr::new("inspect"),
+                scene.as_os_str(),
+                OsStr::new("--pixel"),
+                OsStr::new(&pixel),
+                OsStr::new("--seed"),
+                OsStr::new(&seed_arg),
+                OsStr::new("--format"),
+                OsStr::new("json"),
+            ]);
+            assert_eq!(r.code(), Some(0), "{}", r.stderr);
+            let color: [f64; 3] = serde_json::from_value(json(&r)["color"].clone()).unwrap();
+            let rendered = image.get_pixel(x, y);
+            for c in 0..3 {
+                assert_eq!(
+                    color[c] as f32,
+                    rendered[c],
+                    "{} pixel {pixel} seed {seed}: inspect {color:?}, render {rendered:?}",
+                    scene.display()
+                );
+            }
+        }
+    }
+    // The text form says which ray the tree is, and `--sample K` follows that sample.
+    let r = run(&[
+        "inspect",
+        "lessons/13-antialiasing/grid-4.yaml",
+        "--pixel",
+        "1,0",
+    ]);
+    assert!(
+        r.stdout
+            .starts_with("pixel (1, 0) = 0.5  as rendered: 4 samples (grid)"),
+        "{}",
+        r.stdout
+    );
+    assert!(
+        r.stdout
+            .contains("the tree of the ray through the pixel's centre"),
+        "{}",
+        r.stdout
+    );
+    let r = run(&[
+        "inspect",
+        "lessons/13-antialiasing/grid-4.yaml",
+        "--pixel",
+        "1,0",
+        "--sample",
+        "1",
+    ]);
+    assert!(
+        r.stdout
+            .contains("the tree of sample 1 of 4, through (1.25, 0.25)"),
+        "{}",
+        r.stdout
+    );
+    let r = run(&[
+        "inspect",
+        "lessons/13-antialiasing/grid-4.yaml",
+        "--pixel",
+        "1,0",
+        "--sample",
+        "5",
+    ]);
+    assert_eq!(r.code(), Some(2), "{}", r.stderr);
+}
+
+// ---------------------------------------------------------------------------------------
+// NaN from a light on a surface
+
+/// A point light exactly on a wall with fatt = 1/d (the issue's case): the centre pixel's ray
+/// hits the wall exactly at the light (the window camera's numbers are exact). Through the
+/// Gaussian filter a NaN would spread to the pixel's neighbours.
+#[test]
+fn a_light_on_a_surface_gives_no_nan() {
+    let scene = write(
+        "light-on-surface.yaml",
+        "camera: { eye: [0, 0, -10], u: [1, 0, 0], v: [0, 1, 0], w: [0, 0, 1], f: 10,\n\
+         \x20         window: [-1, 1, 1, -1], width: 5, height: 5 }\n\
+         filter: gaussian\nambient: 0.1\n\
+         lights:\n  - { name: on-wall, point: [0, 0, 0], attenuation: [0, 1, 0] }\n\
+         materials: { m: { ka: 1, kd: 0.7, ks: 0.4, shininess: 20 } }\n\
+         objects:\n  - { name: wall, plane: { point: [0, 0, 0], normal: [0, 0, -1] }, material: m }\n",
+    );
+    let exr = scratch("light-on-surface.exr");
+    let r = run(&[
+        OsStr::new("render"),
+        scene.as_os_str(),
+        OsStr::new("-o"),
+        exr.as_os_str(),
+    ]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    assert!(!r.stderr.contains("not finite"), "{}", r.stderr);
+    let image = image::open(&exr).unwrap().into_rgb32f();
+    assert!(
+        image
+            .pixels()
+            .all(|p| p.0.iter().all(|c| c.is_finite() && *c >= 0.0)),
+        "{:?}",
+        image.pixels().map(|p| p.0[0]).collect::<Vec<_>>()
+    );
+    let r = run(&[
+        OsStr::new("inspect"),
+        scene.as_os_str(),
+        OsStr::new("--pixel"),
+        OsStr::new("2,2"),
+        OsStr::new("--format"),
+        OsStr::new("json"),
+    ]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let v = json(&r);
+    let hit: [f64; 3] = serde_json::from_value(v["tree"]["hit"]["point"].clone()).unwrap();
+    assert_eq!(hit, [0.0, 0.0, 0.0], "the ray meets the wall at the light");
+    let color: [f64; 3] = serde_json::from_value(v["tree"]["color"].clone()).unwrap();
+    assert_eq!(
+        color,
+        [0.1, 0.1, 0.1],
+        "only the ambient term: the light adds nothing there"
+    );
+}
+
+// ---------------------------------------------------------------------------------------
+// Warnings, bench
+
+#[test]
+fn a_mesh_of_degenerate_triangles_only_is_a_warning() {
+    let dir = scratch("flat-mesh");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("flat.obj"),
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 3 2 1\n",
+    )
+    .unwrap();
+    let scene = dir.join("s.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }\n\
+         materials: { m: { kd: 1 } }\n\
+         objects:\n  - { name: flat, mesh: { file: flat.obj }, material: m }\n",
+    )
+    .unwrap();
+    let r = run(&[
+        OsStr::new("inspect"),
+        scene.as_os_str(),
+        OsStr::new("--pixel"),
+        OsStr::new("4,3"),
+    ]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let shown = scene.display().to_string();
+    assert!(
+        r.stderr
+            .starts_with(&format!("raytree: {shown}:4:33: warning: "))
+            && r.stderr.contains("all 2 triangles"),
+        "{}",
+        r.stderr
+    );
+}
+
+#[test]
+fn bench_sweep_refuses_what_render_refuses() {
+    let small = write("sweep.yaml", SMALL);
+    let small = small.to_str().unwrap();
+    for (knob, values) in [
+        ("spp", "0"),
+        ("spp", "1.5"),
+        ("spp", "100000"),
+        ("depth", "65"),
+        ("depth", "0"),
+        ("adaptive", "1.5"),
+        ("aa-threshold", "-1"),
+        ("glossy", "2000"),
+        ("spp", "NaN"),
+    ] {
+        let r = run(&[
+            "bench",
+            "sweep",
+            small,
+            "--knob",
+            knob,
+            "--values",
+            &format!("1,{values}"),
+        ]);
+        assert_eq!(
+            r.code(),
+            Some(2),
+            "--knob {knob} --values {values}: {}",
+            r.stderr
+        );
+        assert!(r.stderr.contains(&format!("--knob {knob}")), "{}", r.stderr);
+        assert!(r.elapsed < Duration::from_secs(10));
+    }
+}
+
+/// On a terminal both streams show: each row of the scaling table must be printed once.
+#[test]
+fn bench_scaling_prints_each_row_once() {
+    let r = run(&[
+        "bench",
+        "scaling",
+        "--max-spheres",
+        "100",
+        "--max-brute",
+        "100",
+        "--max-subdivisions",
+        "3",
+    ]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let both = format!("{}{}", r.stdout, r.stderr);
+    let rows = |kind: &str, n: &str| {
+        both.lines()
+            .filter(|l| {
+                let mut w = l.split_whitespace();
+                w.next() == Some(kind) && w.next() == Some(n)
+            })
+            .count()
+    };
+    for (kind, n) in [("spheres", "10"), ("spheres", "100"), ("mesh", "1280")] {
+        assert_eq!(rows(kind, n), 1, "{kind} {n}:\n{both}");
+    }
+    assert_eq!(both.matches("BVH ns/ray").count(), 1, "{both}");
+}
+
+// ---------------------------------------------------------------------------------------
+// The parallel loader
+
+/// An object named `x[` at the end of a list over 64 KiB and a light named `y]` after it:
+/// brackets in plain scalars, not a collection. Every thread count loads the same scene.
+#[test]
+fn a_scene_loads_the_same_for_every_thread_count() {
+    let mut text = String::from(
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 16, height: 12 }\n\
+         ambient: 0.2\nmaterials: { m: { color: [1, 0.5, 0.25], ka: 1, kd: 0.8 } }\nobjects:\n",
+    );
+    for i in 0..1500 {
+        text += &format!(
+            "  - {{ sphere: {{ center: [{}, {}, 30], radius: 0.05 }}, material: m }}\n",
+            i % 40,
+            i / 40
+        );
+    }
+    text += "  - name: x[\n    sphere: { center: [0, 0, 0], radius: 1.5 }\n    material: m\n";
+    text += "lights:\n  - name: y]\n    point: [-2, 3, -4]\n";
+    assert!(text.len() > 64 * 1024);
+    let scene = write("brackets.yaml", &text);
+    let mut images = vec![];
+    for threads in ["1", "2", "3"] {
+        let out = scratch(&format!("brackets-{threads}.png"));
+        let r = run(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+            OsStr::new("--threads"),
+            OsStr::new(threads),
+        ]);
+        assert_eq!(r.code(), Some(0), "--threads {threads}: {}", r.stderr);
+        images.push(std::fs::read(&out).unwrap());
+    }
+    assert!(images.iter().all(|i| *i == images[0]));
+}
+
+/// The budget of objects is checked before the objects are compiled, with where and how to
+/// raise it.
+#[test]
+fn the_objects_budget_names_the_first_object_over_it() {
+    use raytree::scene::{parse, Limits};
+    let mut text = String::from(
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects:\n",
+    );
+    for i in 0..12 {
+        text += &format!("  - {{ sphere: {{ center: [{i}, 0, 0], radius: 0.5 }}, material: m }}\n");
+    }
+    let limits = Limits {
+        max_objects: 10,
+        ..Limits::default()
+    };
+    let e = parse(&text, "many.yaml", None, &limits).unwrap_err();
+    assert_eq!((e.line, e.column), (14, 5), "{e}");
+    assert!(
+        e.message.contains("more than 10 objects") && e.message.contains("--allow-huge"),
+        "{e}"
+    );
+    assert!(parse(&text, "many.yaml", None, &Limits::default()).is_ok());
+}
+
+/// On a terminal a scene error also shows the line it points at, with a caret under the
+/// column; piped, it stays one line (scripts and the tests above read that line).
+#[cfg(unix)]
+#[test]
+fn on_a_terminal_a_scene_error_shows_its_line_and_a_caret() {
+    if Command::new("script").arg("--version").output().is_err() {
+        println!("skipping: `script` is not on PATH");
+        return;
+    }
+    let scene = write(
+        "caret.yaml",
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nbackground: [0.4, 0.4\nspp: 4\n",
+    );
+    let inner = format!(
+        "'{}' inspect '{}' --pixel 0,0",
+        bin().display(),
+        scene.display()
+    );
+    let out = Command::new("script")
+        .args(["-qec", &inner, "/dev/null"])
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap();
+    let shown = String::from_utf8_lossy(&out.stdout).replace('\r', "");
+    let lines: Vec<&str> = shown.lines().collect();
+    assert!(lines.len() >= 3, "{shown}");
+    assert!(
+        lines[0].ends_with(
+            ":2:13: the list opened here (`[`) is never closed with `]`: it runs into line 3"
+        ),
+        "{shown}"
+    );
+    assert_eq!(lines[1], "  2 | background: [0.4, 0.4");
+    assert_eq!(lines[2], "    |             ^");
+}
