@@ -15,15 +15,22 @@
 //! 8. `render`: images from many rays, in parallel;
 //! 9. `diagram`: a pixel's rays drawn in the scene (beside `fast` and `render`, above `trace`);
 //! 10. `lessons`, `bench`, `tui`, `cli`: what users run.
+//!
+//! `bench`, `tui` and `cli` are cargo features of the same names (on by default); without
+//! them (`--no-default-features`) the library builds without clap, ratatui, crossterm and
+//! indicatif.
 
 pub mod accel;
+#[cfg(feature = "bench")]
 pub mod bench;
+#[cfg(feature = "cli")]
 pub mod cli;
 pub mod diagram;
 pub mod fast;
 pub mod files;
 pub mod geometry;
 pub mod lessons;
+#[cfg(feature = "bench")]
 mod plot_font;
 pub mod render;
 pub mod sampling;
@@ -32,4 +39,5 @@ pub mod shading;
 pub mod signals;
 pub mod stats;
 pub mod trace;
+#[cfg(feature = "tui")]
 pub mod tui;

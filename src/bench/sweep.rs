@@ -7,7 +7,8 @@ use crate::scene::Antialias;
 use crate::scene::Scene;
 
 /// The knob a run-time-against-error sweep turns.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Knob {
     /// Samples per pixel.
     Spp,
@@ -57,9 +58,14 @@ impl Knob {
 
     /// The name used on the command line and in table headers.
     pub fn name(self) -> String {
-        use clap::ValueEnum;
-        self.to_possible_value()
-            .map_or_else(String::new, |v| v.get_name().to_string())
+        match self {
+            Knob::Spp => "spp",
+            Knob::Depth => "depth",
+            Knob::Adaptive => "adaptive",
+            Knob::Glossy => "glossy",
+            Knob::AaThreshold => "aa-threshold",
+        }
+        .to_string()
     }
 }
 

@@ -23,7 +23,7 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     crate::tui::run(crate::tui::Options {
-        target: a.target,
+        target: a.target.as_deref().map(crate::lessons::find_lesson),
         ascii: a.ascii,
         pixel: a.pixel,
         depth: a.depth,

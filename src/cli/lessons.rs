@@ -31,13 +31,27 @@ enum Action {
         /// A lesson folder, or a folder of lessons.
         dir: PathBuf,
     },
+    /// Writes raytree's built-in lessons to DIR (new or empty), to read or to change.
+    Export {
+        /// The folder to write them to.
+        dir: PathBuf,
+    },
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    if let Some(Action::Validate { dir }) = a.action {
-        return run_validate(&dir);
+    match a.action {
+        Some(Action::Validate { dir }) => return run_validate(&dir),
+        Some(Action::Export { dir }) => {
+            crate::lessons::builtin::export(&dir)?;
+            super::output::println(&format!("wrote the lessons to {}", dir.display()))?;
+            return Ok(ExitCode::SUCCESS);
+        }
+        None => {}
     }
-    let root = a.dir.unwrap_or_else(lessons_root);
+    let root = match a.dir {
+        Some(dir) => dir,
+        None => lessons_root()?,
+    };
     let lessons = load_all(&root)?;
     let progress = Progress::load();
     match a.format {
@@ -77,7 +91,10 @@ type Loaded = (PathBuf, Result<Lesson, String>);
 /// Every lesson folder under `root` in name order, loaded or with why it does not load.
 fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
     if root.join("exercises.yaml").is_file() {
-        return Ok(vec![(root.to_path_buf(), Lesson::load(root))]);
+        return Ok(vec![(
+            root.to_path_buf(),
+            Lesson::load(root).map_err(String::from),
+        )]);
     }
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
         .map_err(|e| Failure(format!("{}: cannot list lessons: {e}", root.display())))?
@@ -94,7 +111,7 @@ fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
     Ok(dirs
         .into_iter()
         .map(|d| {
-            let l = Lesson::load(&d);
+            let l = Lesson::load(&d).map_err(String::from);
             (d, l)
         })
         .collect())

@@ -26,6 +26,9 @@ use clap::{Parser, Subcommand};
 #[derive(Parser, Debug)]
 #[command(name = "raytree", version, about, long_about = None, arg_required_else_help = true)]
 pub struct Cli {
+    /// A folder of lessons to use instead of the built-in ones (also RAYTREE_LESSONS).
+    #[arg(long, global = true, value_name = "DIR")]
+    lessons: Option<std::path::PathBuf>,
     #[command(subcommand)]
     command: Command,
 }
@@ -97,6 +100,9 @@ pub fn run() -> ExitCode {
         }
         Err(e) => e.exit(),
     };
+    if let Some(dir) = cli.lessons {
+        crate::lessons::use_lessons_root(dir);
+    }
     let result = match cli.command {
         Command::Render(a) => render::run(a),
         Command::Inspect(a) => inspect::run(a),

@@ -102,7 +102,7 @@ impl FastScene<'_> {
         blocked
     }
 
-    /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < t_max[i]:
+    /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < `t_max[i]`:
     /// bit i of the answer is set when ray i is blocked, and the stats are those of asking
     /// `occluded` ray by ray. Without a BVH the rays go four at a time (`occluded_in_lanes`).
     /// Otherwise rays that get past the objects outside the BVH search it as a packet (any

@@ -270,6 +270,39 @@ mod tests {
         assert!(e.len() < 100 && e.contains("too large"), "{e}");
     }
 
+    /// The JSON forms `check --format json` prints: a number, [x, y, z], a list of [t_in, t_out]
+    /// with an open end written "∞", and "tir".
+    #[test]
+    fn answers_as_json() {
+        use serde_json::json;
+        assert_eq!(Answer::Number(0.25).to_json(), json!(0.25));
+        assert_eq!(
+            Answer::Vector(DVec3::new(0.6, -0.8, 0.0)).to_json(),
+            json!([0.6, -0.8, 0.0])
+        );
+        assert_eq!(
+            Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY)]).to_json(),
+            json!([[2.0, 4.0], [10.0, "∞"]])
+        );
+        assert_eq!(Answer::Segments(vec![]).to_json(), json!([]));
+        assert_eq!(Answer::Tir.to_json(), json!("tir"));
+    }
+
+    /// The room printed beside an answer (`check --format json`'s `tolerance`): ±0.1 % of the
+    /// largest finite number, at least 1e-6.
+    #[test]
+    fn the_allowance_is_taken_on_the_largest_finite_number() {
+        let tol = Tolerance::default();
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-15;
+        assert!(close(Answer::Number(-0.5).allowance(&tol), 0.5e-3));
+        assert!(close(Answer::Number(1e-4).allowance(&tol), 1e-6));
+        let v = Answer::Vector(DVec3::new(1.0, -3.0, 2.0));
+        assert!(close(v.allowance(&tol), 3e-3));
+        let s = Answer::Segments(vec![(2.0, 4.0), (10.0, f64::INFINITY)]);
+        assert!(close(s.allowance(&tol), 10e-3));
+        assert!(close(Answer::Tir.allowance(&tol), 1e-6));
+    }
+
     /// Each end of each segment is held to the tolerance around itself: half of it off is
     /// accepted, twice off is refused, and so is a list with a segment missing or added.
     #[test]

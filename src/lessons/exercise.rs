@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use super::error::LessonError;
 use super::tolerance::Tolerance;
 use super::vary::{self, Range};
 use crate::shading::Highlight;
@@ -147,36 +148,38 @@ pub struct Lesson {
 }
 
 impl Lesson {
-    pub fn load(dir: &Path) -> Result<Lesson, String> {
+    /// Loads the lesson of a folder: its exercises.yaml and README.md.
+    pub fn load(dir: &Path) -> Result<Lesson, LessonError> {
         let id = dir
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         let path = dir.join("exercises.yaml");
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| LessonError::io(&path, "read", e))?;
         let file: ExerciseFile = serde_saphyr::from_str(&text).map_err(|e| {
-            let (line, col) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
+            let (line, column) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
             let msg = e.to_string();
-            let first = msg.lines().next().unwrap_or("").to_string();
-            format!("{}:{line}:{col}: {first}", path.display())
+            LessonError::Format {
+                file: path.clone(),
+                line,
+                column,
+                message: msg.lines().next().unwrap_or("").to_string(),
+            }
         })?;
         let readme = std::fs::read_to_string(dir.join("README.md")).unwrap_or_default();
         let mut seen = std::collections::HashSet::new();
         for ex in &file.exercises {
             if !seen.insert(&ex.id) {
-                return Err(format!(
-                    "{}: duplicate exercise id `{}`",
-                    path.display(),
-                    ex.id
-                ));
+                return Err(LessonError::Invalid {
+                    file: path,
+                    message: format!("duplicate exercise id `{}`", ex.id),
+                });
             }
             if ex.pixel.is_none() && ex.ray.is_none() && !ex.ask.about_image() {
-                return Err(format!(
-                    "{}: exercise `{}` needs `pixel` or `ray`",
-                    path.display(),
-                    ex.id
-                ));
+                return Err(LessonError::Invalid {
+                    file: path,
+                    message: format!("exercise `{}` needs `pixel` or `ray`", ex.id),
+                });
             }
         }
         let templates = file.exercises.iter().map(|e| e.question.clone()).collect();
@@ -195,17 +198,20 @@ impl Lesson {
         };
         if !lesson.vary.is_empty() {
             for (p, range) in &lesson.vary {
-                range
-                    .check()
-                    .map_err(|e| format!("{}: vary `{p}`: {e}", path.display()))?;
+                range.check().map_err(|e| LessonError::Invalid {
+                    file: path.clone(),
+                    message: format!("vary `{p}`: {e}"),
+                })?;
             }
-            let files = lesson.scene_files()?;
+            let files = lesson.scene_files().map_err(LessonError::Scenes)?;
             let base = vary::written(&files, lesson.vary.keys().cloned());
             if let Some(p) = lesson.vary.keys().find(|p| !base.contains_key(*p)) {
-                return Err(format!(
-                    "{}: vary `{p}`: no scene of the lesson writes that value (write it out to vary it)",
-                    path.display()
-                ));
+                return Err(LessonError::Invalid {
+                    file: path,
+                    message: format!(
+                        "vary `{p}`: no scene of the lesson writes that value (write it out to vary it)"
+                    ),
+                });
             }
             lesson.fill_questions(&base);
         }
@@ -293,22 +299,48 @@ impl Lesson {
     }
 }
 
-/// The lessons folder: `RAYTREE_LESSONS`, else `./lessons`, else the one beside the sources.
-pub fn lessons_root() -> PathBuf {
+/// The lessons folder chosen on the command line (`--lessons DIR`), before any other.
+static CHOSEN_ROOT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+
+/// Makes `dir` the lessons folder of this run, as `--lessons DIR` does (the first call wins).
+pub fn use_lessons_root(dir: PathBuf) {
+    let _ = CHOSEN_ROOT.set(dir);
+}
+
+/// The lessons folder: `--lessons DIR`, else `RAYTREE_LESSONS`, else `./lessons`, else the
+/// built-in lessons (written to the user's cache folder on first use).
+pub fn lessons_root() -> Result<PathBuf, LessonError> {
+    if let Some(p) = CHOSEN_ROOT.get() {
+        return Ok(p.clone());
+    }
     if let Some(p) = std::env::var_os("RAYTREE_LESSONS") {
-        return PathBuf::from(p);
+        return Ok(PathBuf::from(p));
     }
     let local = PathBuf::from("lessons");
     if local.is_dir() {
-        return local;
+        return Ok(local);
     }
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("lessons")
+    super::builtin::cached()
+}
+
+/// The lesson folder a user names: the path itself when it exists, else the lesson of that
+/// name in the lessons folder, so `08-pixel-intensity` and `lessons/08-pixel-intensity` work
+/// from any folder.
+pub fn find_lesson(path: &Path) -> PathBuf {
+    if path.exists() {
+        return path.to_path_buf();
+    }
+    let name = path.strip_prefix("lessons").unwrap_or(path);
+    match lessons_root() {
+        Ok(root) if !name.as_os_str().is_empty() && root.join(name).exists() => root.join(name),
+        _ => path.to_path_buf(),
+    }
 }
 
 /// All lessons, in folder order.
-pub fn all_lessons(root: &Path) -> Result<Vec<Lesson>, String> {
+pub fn all_lessons(root: &Path) -> Result<Vec<Lesson>, LessonError> {
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
-        .map_err(|e| format!("{}: cannot list lessons: {e}", root.display()))?
+        .map_err(|e| LessonError::io(root, "list lessons", e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.join("exercises.yaml").is_file())
         .collect();

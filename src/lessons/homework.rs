@@ -42,7 +42,7 @@ pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, Strin
         let _ = std::fs::remove_dir_all(&tmp);
         return Err(e);
     }
-    Lesson::load(out)
+    Ok(Lesson::load(out)?)
 }
 
 /// Everything of the homework folder, written into `dir`.

@@ -1,7 +1,9 @@
 //! Lessons: loading them, and checking students' answers against raytree's own computation.
 
 mod answer;
+pub mod builtin;
 mod check;
+mod error;
 mod exercise;
 pub mod grade;
 pub mod homework;
@@ -14,6 +16,10 @@ mod yaml_spans;
 
 pub use answer::{parse_answer, Answer};
 pub use check::{check, explain, work, Verdict, Worked};
-pub use exercise::{all_lessons, lessons_root, Ask, Exercise, Lesson, Solutions, VariantOf};
+pub use error::LessonError;
+pub use exercise::{
+    all_lessons, find_lesson, lessons_root, use_lessons_root, Ask, Exercise, Lesson, Solutions,
+    VariantOf,
+};
 pub use tolerance::Tolerance;
 pub use vary::Range;

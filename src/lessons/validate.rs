@@ -21,7 +21,7 @@ pub struct Validation {
 /// Validates a lesson folder, or every lesson folder in a folder.
 pub fn validate(dir: &Path) -> Result<Validation, String> {
     let lessons: Vec<Result<Lesson, String>> = if dir.join("exercises.yaml").is_file() {
-        vec![Lesson::load(dir)]
+        vec![Lesson::load(dir).map_err(String::from)]
     } else {
         let found = all_lessons_or_errors(dir)?;
         if found.is_empty() {
@@ -52,7 +52,10 @@ fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, Str
         .filter(|p| p.join("exercises.yaml").is_file())
         .collect();
     dirs.sort();
-    Ok(dirs.iter().map(|d| Lesson::load(d)).collect())
+    Ok(dirs
+        .iter()
+        .map(|d| Lesson::load(d).map_err(String::from))
+        .collect())
 }
 
 fn validate_lesson(l: &Lesson, v: &mut Validation) {

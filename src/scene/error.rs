@@ -24,6 +24,17 @@ impl SceneError {
         }
     }
 
+    /// An error of a scene built in code (`SceneBuilder`), which has no file or position.
+    pub fn built(message: impl Into<String>) -> SceneError {
+        SceneError {
+            file: super::builder::BUILDER.into(),
+            line: 0,
+            column: 0,
+            message: message.into(),
+            source_line: None,
+        }
+    }
+
     /// The error with the line it points at, taken from the scene's text.
     pub fn quoting(mut self, text: &str) -> SceneError {
         self.source_line = text
@@ -61,6 +72,9 @@ impl SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.line == 0 {
+            return write!(f, "{}: {}", self.file, self.message);
+        }
         write!(
             f,
             "{}:{}:{}: {}",

@@ -6,6 +6,7 @@
 //! two things derived from it: the `Features` it uses and the `SearchIndex` its rays are
 //! searched through.
 
+mod builder;
 mod camera;
 mod compile;
 mod error;
@@ -24,6 +25,7 @@ use std::path::PathBuf;
 
 use glam::DVec3;
 
+pub use builder::{MaterialDesc, SceneBuilder};
 pub use camera::{Camera, Projection};
 pub use compile::Limits;
 pub use error::{Pos, SceneError};

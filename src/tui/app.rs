@@ -33,7 +33,6 @@ use super::state::ray_tree::RayTree;
 use super::state::scene::{Opened, SceneFile};
 use super::state::{Note, Tone};
 use super::worker::{self, Job, Pass};
-use crate::lessons;
 use crate::render::preview::ColorMode;
 use crate::scene::Scene;
 
@@ -162,7 +161,7 @@ impl App {
         match target {
             None => {
                 app.screen = Screen::Lessons;
-                app.list = Some(LessonList::load(&lessons::lessons_root()));
+                app.list = Some(LessonList::load_default());
             }
             Some(t) => app.open_target(t)?,
         }

@@ -3,7 +3,6 @@
 //! opening a lesson from the list.
 
 use super::{App, Focus, Screen};
-use crate::lessons;
 use crate::scene::Limits;
 use crate::tui::layout;
 use crate::tui::msg::Msg;
@@ -159,7 +158,7 @@ impl App {
     }
 
     pub(super) fn open_list(&mut self) {
-        let mut list = LessonList::load(&lessons::lessons_root());
+        let mut list = LessonList::load_default();
         if let Some(l) = &self.lesson {
             if let Some(i) = list.entries.iter().position(|e| e.dir == l.lesson.dir) {
                 list.selected = i;

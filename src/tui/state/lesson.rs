@@ -291,7 +291,7 @@ impl LessonPanel {
                 self.lesson = lesson;
                 None
             }
-            Err(e) => Some((e, Tone::Bad)),
+            Err(e) => Some((e.to_string(), Tone::Bad)),
         }
     }
 

@@ -30,6 +30,20 @@ pub struct LessonList {
 }
 
 impl LessonList {
+    /// The lessons of `lessons::lessons_root()`, or the list saying why there are none.
+    pub fn load_default() -> LessonList {
+        match crate::lessons::lessons_root() {
+            Ok(root) => LessonList::load(&root),
+            Err(e) => LessonList {
+                root: PathBuf::new(),
+                entries: vec![],
+                selected: 0,
+                error: Some(e.to_string()),
+                from_scene: false,
+            },
+        }
+    }
+
     /// Every folder under `root` with an exercises.yaml, in name order.
     pub fn load(root: &Path) -> LessonList {
         let mut list = LessonList {
@@ -54,7 +68,7 @@ impl LessonList {
         list.entries = dirs
             .into_iter()
             .map(|dir| {
-                let lesson = Lesson::load(&dir);
+                let lesson = Lesson::load(&dir).map_err(String::from);
                 LessonEntry {
                     solved: lesson
                         .as_ref()

@@ -1,0 +1,165 @@
+//! The lessons compiled into the binary: a `raytree` run from a folder without `lessons/` (as an
+//! installed one is) lists, checks and exports them; `--lessons DIR` and `RAYTREE_LESSONS` put a
+//! teacher's own folder in their place. (`.ci/run` repeats the first with `cargo install`.)
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// `raytree ARGS` in `dir`, with the cache and data folders inside `dir` and no lessons set.
+fn raytree_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(args)
+        .current_dir(dir)
+        .env_remove("RAYTREE_LESSONS")
+        .env("RAYTREE_CACHE", dir.join("cache"))
+        .env("RAYTREE_DATA", dir.join("data"))
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Every file under `dir`, by its path relative to `dir`, with its bytes.
+fn tree(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+    fn walk(root: &Path, dir: &Path, out: &mut Vec<(PathBuf, Vec<u8>)>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(root, &p, out);
+            } else {
+                let bytes = std::fs::read(&p).unwrap();
+                out.push((p.strip_prefix(root).unwrap().to_path_buf(), bytes));
+            }
+        }
+    }
+    let mut out = vec![];
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+fn source_lessons() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons")
+}
+
+#[test]
+fn away_from_the_sources_the_built_in_lessons_are_listed_and_checked() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = raytree_in(tmp.path(), &["lessons", "--format", "json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let ids: Vec<&str> = doc["lessons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["id"].as_str().expect("every lesson loads"))
+        .collect();
+    let expected: Vec<String> = {
+        let mut v: Vec<String> = std::fs::read_dir(source_lessons())
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.join("exercises.yaml").is_file())
+            .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    assert_eq!(ids, expected);
+    // The copy they are read from is the user's cache, not the sources.
+    let root = PathBuf::from(doc["root"].as_str().unwrap());
+    assert!(root.starts_with(tmp.path().join("cache")), "{root:?}");
+
+    // Lesson 01's README works out the top-left window point as (−2, 1, 0): by the lesson's
+    // name, or by its path in the sources.
+    for lesson in ["01-camera", "lessons/01-camera"] {
+        let o = raytree_in(
+            tmp.path(),
+            &[
+                "check",
+                lesson,
+                "--exercise",
+                "window-point-00",
+                "--answer",
+                "-2, 1, 0",
+            ],
+        );
+        assert!(
+            o.status.success(),
+            "{lesson}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    let wrong = raytree_in(
+        tmp.path(),
+        &[
+            "check",
+            "01-camera",
+            "--exercise",
+            "window-point-00",
+            "--answer",
+            "2, 1, 0",
+        ],
+    );
+    assert_eq!(wrong.status.code(), Some(1));
+}
+
+#[test]
+fn lessons_export_writes_the_built_in_lessons_as_they_are_in_the_sources() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = raytree_in(tmp.path(), &["lessons", "export", "course"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(tree(&tmp.path().join("course")) == tree(&source_lessons()));
+    // A second export would overwrite them: refused, one line, exit 2, nothing changed.
+    std::fs::write(tmp.path().join("course/01-camera/README.md"), "mine").unwrap();
+    let again = raytree_in(tmp.path(), &["lessons", "export", "course"]);
+    assert_eq!(again.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&again.stderr);
+    assert!(
+        err.contains("not empty") && err.lines().count() == 1,
+        "{err}"
+    );
+    let readme = std::fs::read_to_string(tmp.path().join("course/01-camera/README.md"));
+    assert_eq!(readme.unwrap(), "mine");
+}
+
+#[test]
+fn a_teachers_folder_replaces_the_built_in_lessons() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mine = tmp.path().join("mine");
+    let o = raytree_in(tmp.path(), &["lessons", "export", "all"]);
+    assert!(o.status.success());
+    std::fs::create_dir(&mine).unwrap();
+    std::fs::rename(
+        tmp.path().join("all/03-local-illumination"),
+        mine.join("3-light"),
+    )
+    .unwrap();
+    let ids = |o: &Output| -> Vec<String> {
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let doc: serde_json::Value = serde_json::from_str(&stdout(o)).unwrap();
+        let lessons = doc["lessons"].as_array().unwrap();
+        lessons
+            .iter()
+            .map(|l| l["dir"].as_str().unwrap().to_string())
+            .collect()
+    };
+    let by_flag = raytree_in(
+        tmp.path(),
+        &["--lessons", "mine", "lessons", "--format", "json"],
+    );
+    assert_eq!(
+        ids(&by_flag),
+        vec![Path::new("mine/3-light").display().to_string()]
+    );
+    let by_env = Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(["lessons", "--format", "json"])
+        .current_dir(tmp.path())
+        .env("RAYTREE_LESSONS", "mine")
+        .env("RAYTREE_DATA", tmp.path().join("data"))
+        .output()
+        .unwrap();
+    assert_eq!(ids(&by_env), ids(&by_flag));
+}
