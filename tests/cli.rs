@@ -230,6 +230,7 @@ fn check_hints_at_the_forgotten_shadow_term() {
     let options = raytree::trace::TraceOptions {
         max_depth: w.depth,
         shadows: false,
+        ..raytree::trace::TraceOptions::of(&w.scene)
     };
     let unshadowed = raytree::trace::Tracer::new(&w.scene)
         .with_options(options)

@@ -1432,7 +1432,7 @@ fn the_tree_says_how_much_of_a_soft_shadow_is_blocked() {
 /// A copy of lesson 05 (a mirror, a ball) in a scratch folder, with `solutions: hidden`.
 fn hidden_lesson(name: &str) -> PathBuf {
     let dir = scratch(name);
-    for f in ["scene.yaml", "README.md"] {
+    for f in ["scene.yaml", "weights.yaml", "README.md"] {
         std::fs::copy(Path::new("lessons/05-reflection").join(f), dir.join(f)).unwrap();
     }
     let exercises = std::fs::read_to_string("lessons/05-reflection/exercises.yaml").unwrap();
@@ -1534,6 +1534,6 @@ fn right_answers_are_marked_and_kept_between_sessions() {
         update(&mut list, Msg::Down);
     }
     let text = screen(&list);
-    assert!(text.contains(" 1/9"), "{text}");
+    assert!(text.contains(" 1/11"), "{text}");
     assert!(text.contains("✓ mirror-local"), "{text}");
 }

@@ -83,7 +83,7 @@ fn a_class_of_30_is_graded_as_seeded() {
     let dir = scratch("class");
     std::fs::create_dir_all(&dir).unwrap();
     let answers = readme_answers("05-reflection");
-    assert_eq!(answers.len(), 9);
+    assert_eq!(answers.len(), 11);
     let mut csv = String::from("student,exercise,answer\n");
     let mut line = 1;
     let mut expected_scores = vec![];
@@ -157,7 +157,7 @@ fn a_class_of_30_is_graded_as_seeded() {
     for (s, (name, score)) in students.iter().zip(&expected_scores) {
         assert_eq!(s["student"], name.as_str());
         assert_eq!(s["score"], *score as u64, "{name}");
-        assert_eq!(s["total"], 9);
+        assert_eq!(s["total"], 11);
         for e in s["exercises"].as_array().unwrap() {
             let wrong = expected_wrong
                 .iter()
@@ -196,7 +196,7 @@ fn a_class_of_30_is_graded_as_seeded() {
         file.to_str().unwrap(),
     ]));
     let (name, score) = &expected_scores[7];
-    assert!(text.contains(&format!("{name}  {score}/9")), "{text}");
+    assert!(text.contains(&format!("{name}  {score}/11")), "{text}");
     assert!(text.contains("rows not graded:"));
     let csv_out = out(&raytree(&[
         "grade",
@@ -207,7 +207,7 @@ fn a_class_of_30_is_graded_as_seeded() {
         "csv",
     ]));
     assert!(csv_out.starts_with("student,exercise,answer,correct,expected,hint\n"));
-    assert_eq!(csv_out.lines().count(), 1 + 30 * 9);
+    assert_eq!(csv_out.lines().count(), 1 + 30 * 11);
 }
 
 /// A copy of lesson 03 whose README states one answer wrong (0.093 for the Blinn specular term,
@@ -486,7 +486,7 @@ fn check_json_and_progress() {
     assert_eq!(solved(&data), vec!["mirror-local".to_string()]);
     let text = out(&raytree_in(&data, &["lessons"]));
     assert!(text.contains("✓ mirror-local"), "{text}");
-    assert!(text.contains("(1/9 done)"), "{text}");
+    assert!(text.contains("(1/11 done)"), "{text}");
 }
 
 /// A lesson with `solutions: hidden` refuses --explain (a usage error) but checks answers.

@@ -39,6 +39,9 @@ pub enum Ask {
     PrimaryRays,
     /// Squares split by adaptive antialiasing: in `pixel`, or in the whole image.
     SquaresSplit,
+    /// The leaves of `object`'s CSG tree whose segment lists are computed along the ray, the
+    /// others skipped by pruning or by bounding boxes.
+    LeavesEvaluated,
     /// The texture coordinate u of the hit (a texture's or a uv pattern's).
     U,
     /// The texture coordinate v of the hit.

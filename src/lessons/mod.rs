@@ -8,6 +8,7 @@ mod exercise;
 pub mod grade;
 pub mod homework;
 pub mod progress;
+pub mod raster;
 mod tolerance;
 pub mod validate;
 mod vary;

@@ -6,7 +6,12 @@
 //! ```yaml
 //! tolerance: { relative: 1e-3, absolute: 1e-6 }   # the default
 //! tolerance: 0.018                                 # a plain number: absolute only
+//! tolerance: { standard_errors: 4 }                # a Monte Carlo mean: 4 of its standard errors
 //! ```
+//!
+//! The last form is for a node that is the mean of n sampled rays (a glossy or frosted cone):
+//! raytree's estimate is itself noisy, so the answer (the value the estimate converges to) is
+//! right within k standard errors s/√n of raytree's mean, s the spread of the n rays' values.
 //!
 //! A vector (a direction, a point, a colour) is measured on the scale of its largest
 //! component, so a component that happens to be near zero is not held to a tighter standard
@@ -20,6 +25,14 @@ use crate::trace::text::num;
 pub struct Tolerance {
     pub relative: f64,
     pub absolute: f64,
+    /// k for a Monte Carlo mean: the allowance is at least k standard errors of the mean
+    /// (`with_standard_error` fills it into `absolute`); 0 otherwise.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub standard_errors: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl Default for Tolerance {
@@ -27,6 +40,7 @@ impl Default for Tolerance {
         Tolerance {
             relative: 1e-3,
             absolute: 1e-6,
+            standard_errors: 0.0,
         }
     }
 }
@@ -36,6 +50,15 @@ impl Tolerance {
         Tolerance {
             relative: 0.0,
             absolute,
+            standard_errors: 0.0,
+        }
+    }
+
+    /// The rule for a mean whose standard error is `se`: at least k·se.
+    pub fn with_standard_error(self, se: f64) -> Tolerance {
+        Tolerance {
+            absolute: self.absolute.max(self.standard_errors * se),
+            ..self
         }
     }
 
@@ -51,6 +74,19 @@ impl Tolerance {
 
     /// The rule in words, as `check` prints it: "±0.1% (at least 0.000001)" or "±0.018".
     pub fn describe(&self) -> String {
+        if self.standard_errors > 0.0 {
+            return match self.absolute > 0.0 {
+                true => format!(
+                    "±{} ({} standard errors of raytree's mean)",
+                    sci(self.absolute),
+                    num(self.standard_errors)
+                ),
+                false => format!(
+                    "±{} standard errors of raytree's mean",
+                    num(self.standard_errors)
+                ),
+            };
+        }
         match (self.relative > 0.0, self.absolute > 0.0) {
             (true, true) => format!(
                 "±{}% (at least {})",
@@ -80,6 +116,7 @@ enum Form {
     Rule {
         relative: Option<f64>,
         absolute: Option<f64>,
+        standard_errors: Option<f64>,
     },
 }
 
@@ -88,7 +125,11 @@ impl<'de> Deserialize<'de> for Tolerance {
         use serde::de::Error;
         let t = match Form::deserialize(d)? {
             Form::Absolute(a) => Tolerance::absolute(a),
-            Form::Rule { relative, absolute } => {
+            Form::Rule {
+                relative,
+                absolute,
+                standard_errors,
+            } => {
                 let default = Tolerance::default();
                 Tolerance {
                     relative: relative.unwrap_or(0.0),
@@ -97,13 +138,18 @@ impl<'de> Deserialize<'de> for Tolerance {
                     } else {
                         0.0
                     }),
+                    standard_errors: standard_errors.unwrap_or(0.0),
                 }
             }
         };
         let ok = |x: f64| x.is_finite() && x >= 0.0;
-        if !ok(t.relative) || !ok(t.absolute) || (t.relative == 0.0 && t.absolute == 0.0) {
+        if !ok(t.relative)
+            || !ok(t.absolute)
+            || !ok(t.standard_errors)
+            || (t.relative == 0.0 && t.absolute == 0.0 && t.standard_errors == 0.0)
+        {
             return Err(D::Error::custom(
-                "a tolerance is a positive number, or { relative: r, absolute: a } with r, a ≥ 0 and not both 0",
+                "a tolerance is a positive number, or { relative: r, absolute: a, standard_errors: k } with r, a, k ≥ 0 and not all 0",
             ));
         }
         Ok(t)
@@ -131,16 +177,25 @@ mod tests {
             read("{ relative: 0.01 }").unwrap(),
             Tolerance {
                 relative: 0.01,
-                absolute: 1e-6
+                absolute: 1e-6,
+                standard_errors: 0.0
             }
         );
         assert_eq!(
             read("{ relative: 0.01, absolute: 0.5 }").unwrap(),
             Tolerance {
                 relative: 0.01,
-                absolute: 0.5
+                absolute: 0.5,
+                standard_errors: 0.0
             }
         );
+        let mc = read("{ standard_errors: 4 }").unwrap();
+        assert_eq!(
+            (mc.relative, mc.absolute, mc.standard_errors),
+            (0.0, 0.0, 4.0)
+        );
+        assert_eq!(mc.with_standard_error(0.05).around(0.3), 0.2);
+        assert_eq!(mc.describe(), "±4 standard errors of raytree's mean");
         assert!(read("-1").is_err());
         assert!(read("{ relative: 0, absolute: 0 }").is_err());
     }

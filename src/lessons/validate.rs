@@ -87,7 +87,7 @@ fn validate_lesson(l: &Lesson, v: &mut Validation) {
                 "{name}/{}: the README says {value}, raytree computes {} (tolerance {})",
                 ex.id,
                 verdict.expected.show(),
-                ex.tolerance.describe()
+                verdict.tolerance.describe()
             )),
             Err(e) => v.problems.push(format!(
                 "{name}/{}: the README's answer `{value}` does not read: {e}",

@@ -133,6 +133,7 @@ impl SceneBuilder {
                 aa_threshold: None,
                 filter: None,
                 secondary_attenuation: None,
+                stop_rules: vec![],
                 lights: vec![],
                 materials: Default::default(),
                 objects: vec![],
@@ -281,6 +282,7 @@ impl SceneBuilder {
             emission: m.emission.map(|e| self.triple(e, "emission")),
             highlight: None,
             fresnel: None,
+            transmitted_highlight: None,
             glossy: None,
             frosted: None,
         };

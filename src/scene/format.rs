@@ -29,6 +29,16 @@ pub enum Integrator {
     Path,
 }
 
+/// A rule that ends a ray's recursion besides the background and the maximum depth (see
+/// `StopRules`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopRule {
+    Light,
+    Diffuse,
+    LocalAtMaxDepth,
+}
+
 /// Where a pixel's primary rays go (see `render::antialias`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -202,6 +212,9 @@ pub struct SceneFile {
     /// `box` (default) or `gaussian` (Mitsuba's): how jittered samples are spread.
     pub filter: Option<FilterKind>,
     pub secondary_attenuation: Option<Spanned<[Num; 3]>>,
+    /// `[light, diffuse, local_at_max_depth]`: the notes' other stop rules (default none).
+    #[serde(default)]
+    pub stop_rules: Vec<StopRule>,
     #[serde(default)]
     pub lights: Vec<Spanned<LightSpec>>,
     #[serde(default)]
@@ -270,6 +283,8 @@ pub struct MaterialSpec {
     pub kt: Option<Spanned<Varying>>,
     pub ior: Option<Spanned<Num>>,
     pub fresnel: Option<Fresnel>,
+    /// Hall's transmitted highlight H′ for lights behind a transparent surface (default false).
+    pub transmitted_highlight: Option<bool>,
     pub emission: Option<Triple>,
     /// Glossy reflection: the reflection ray becomes `samples` rays about the mirror direction.
     pub glossy: Option<Spanned<LobeSpec>>,

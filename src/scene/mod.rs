@@ -35,7 +35,7 @@ pub use hit::{Hit, Interaction};
 pub use load::{load, parse};
 pub use objects::{Geometry, Group, Leaf, Object};
 pub use search::{Accel, Search, SearchIndex, Visited};
-pub use settings::{Antialias, Filter, DEFAULT_THRESHOLD};
+pub use settings::{Antialias, Filter, StopRules, DEFAULT_THRESHOLD};
 
 use crate::shading::{Light, Material};
 
@@ -64,6 +64,8 @@ pub struct Scene {
     pub shadow_bias: Option<f64>,
     /// I_r and I_t divided by c0 + c1·d + c2·d² (d = length of the child ray), when set.
     pub secondary_attenuation: Option<[f64; 3]>,
+    /// The notes' other stop rules (a light hit, a diffuse surface), when the scene names them.
+    pub stop_rules: StopRules,
     /// CSG bounding boxes and pruning (on; off only to measure what they save).
     pub csg_pruning: bool,
 

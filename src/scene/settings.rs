@@ -28,6 +28,21 @@ impl Antialias {
     }
 }
 
+/// The stop rules of the notes beyond the background and the maximum depth, each off unless
+/// the scene names it in `stop_rules`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct StopRules {
+    /// Seed 000: a ray that hits a light source stops there and brings back its intensity
+    /// (area and sphere lights, which a ray can hit, are then seen).
+    pub light: bool,
+    /// Seed 002: a ray that hits a diffuse surface (kd > 0) sends no reflection or refraction
+    /// ray, so a path holds at most one diffuse surface, the last.
+    pub diffuse: bool,
+    /// Seed 002, path tracing: a path that reaches the maximum depth still adds the direct
+    /// light at its last surface ("contributes just its local illumination").
+    pub local_at_max_depth: bool,
+}
+
 /// The pixel reconstruction filter of supersampling.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Filter {

@@ -66,6 +66,41 @@ pub fn light_terms(
     }
 }
 
+/// The terms of a light *behind* a transparent surface (n·l < 0), with Hall's transmitted
+/// highlight (seed 004, "direct specular transmission"): no diffuse term, and the specular
+/// term ks·(h′·n)^m with H′ in place of H.
+///
+/// H′ is the normal a facet would need to refract the light arriving from l into v. Snell's law
+/// keeps the tangential part of η·direction across a surface, so η_l·(−l) and η_v·v differ by
+/// a multiple of that normal: H′ ∝ −(η·l + v), η = η_l/η_v the index on the light's side over
+/// the index on the viewer's. Divided by η − 1 it points to the viewer's side for both η > 1
+/// and η < 1; h′·n = 1 exactly where the view ray, refracted, points at the light. With η = 1
+/// nothing bends and there is no such facet: no highlight.
+pub fn transmitted_terms(
+    m: &Material,
+    at: &Paint,
+    n: DVec3,
+    v: DVec3,
+    l: DVec3,
+    eta: f64,
+    light: DVec3,
+) -> LightTerms {
+    let n_dot_l = n.dot(l);
+    let h = (-(eta * l + v) / (eta - 1.0)).normalize_or_zero();
+    let highlight_cos = h.dot(n).max(0.0);
+    let specular = if at.ks > 0.0 && highlight_cos > 0.0 {
+        light * at.ks * highlight_power(highlight_cos, m.shininess)
+    } else {
+        DVec3::ZERO
+    };
+    LightTerms {
+        n_dot_l,
+        highlight_cos,
+        diffuse: DVec3::ZERO,
+        specular,
+    }
+}
+
 /// h·n (Blinn) or r·v (Phong), clamped at 0.
 #[inline(always)]
 fn highlight_cos(m: &Material, n: DVec3, v: DVec3, l: DVec3, n_dot_l: f64) -> f64 {
@@ -155,5 +190,59 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Hall's transmitted highlight peaks (h′·n = 1) exactly where the refracted view ray
+    /// points at the light, from air into glass (η = 1.5) and from glass into air (η = 1/1.5);
+    /// with η = 1 nothing bends and there is no highlight.
+    #[test]
+    fn transmitted_highlight_peaks_along_the_refracted_view_ray() {
+        use crate::shading::optics::refract;
+        let m = Material {
+            ks: 0.5,
+            kt: 0.9,
+            shininess: 50.0,
+            ..Material::matte("glass", DVec3::ONE)
+        };
+        let n = DVec3::Y;
+        for (n_view, n_light, tilt) in [(1.0, 1.5, 0.6f64), (1.5, 1.0, 0.3), (1.0, 1.33, 1.2)] {
+            let v = DVec3::new(tilt.sin(), tilt.cos(), 0.0);
+            let refracted = refract(-v, n, n_view, n_light).expect("no total internal reflection");
+            let eta = n_light / n_view;
+            let paint = m.paint();
+            let at = |l: DVec3| transmitted_terms(&m, &paint, n, v, l, eta, DVec3::ONE);
+            let peak = at(refracted);
+            assert!(
+                (peak.highlight_cos - 1.0).abs() < 1e-12,
+                "{}",
+                peak.highlight_cos
+            );
+            assert!((peak.specular.x - m.ks).abs() < 1e-9);
+            assert_eq!(peak.diffuse, DVec3::ZERO);
+            // Sweep lights behind the surface, in the plane of incidence and out of it: none
+            // gives more, and the best of the sweep sits next to the refracted ray.
+            let mut best = (f64::NEG_INFINITY, DVec3::ZERO);
+            for i in 1..720 {
+                for j in -20..=20 {
+                    let a = std::f64::consts::PI * i as f64 / 720.0;
+                    let b = 0.05 * j as f64;
+                    let l = DVec3::new(a.cos() * b.cos(), -a.sin() * b.cos(), b.sin());
+                    let s = at(l).specular.x;
+                    assert!(s <= peak.specular.x + 1e-12);
+                    if s > best.0 {
+                        best = (s, l);
+                    }
+                }
+            }
+            assert!(
+                best.1.angle_between(refracted) < 0.01,
+                "peak at {:?}, refracted {refracted:?}",
+                best.1
+            );
+            // The light straight behind (the view ray unbent) is off the peak.
+            assert!(at(-v).highlight_cos < 0.999);
+        }
+        let flat = transmitted_terms(&m, &m.paint(), n, DVec3::Y, -DVec3::Y, 1.0, DVec3::ONE);
+        assert_eq!(flat.specular, DVec3::ZERO);
     }
 }

@@ -43,6 +43,9 @@ pub struct Material {
     pub kt: f64,
     pub ior: f64,
     pub fresnel: Fresnel,
+    /// Hall's transmitted highlight: a light behind the (transparent) surface makes a
+    /// highlight with H′ in place of H (seed 004, "direct specular transmission").
+    pub transmitted_highlight: bool,
     /// Light emitted by the surface (used by the path tracer).
     pub emission: DVec3,
     /// Glossy reflection: the reflection ray becomes n rays drawn from this lobe.
@@ -121,6 +124,7 @@ impl Material {
             kt: 0.0,
             ior: 1.0,
             fresnel: Fresnel::None,
+            transmitted_highlight: false,
             emission: DVec3::ZERO,
             glossy: None,
             frosted: None,

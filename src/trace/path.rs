@@ -29,6 +29,10 @@ pub struct PathTracer<'s> {
     pub next_event: bool,
     /// Stop paths at random, unbiasedly, from the fourth bounce on (off only for tests).
     pub roulette: bool,
+    /// Seed 002's rule for a path at the maximum depth: it "contributes just its local
+    /// illumination", the direct light at its last surface. Off (the scene's `stop_rules`
+    /// names `local_at_max_depth` to turn it on), the last surface adds only its emission.
+    pub local_at_max_depth: bool,
 }
 
 /// One vertex of a recorded path, for `inspect` on a path-traced pixel.
@@ -75,6 +79,7 @@ impl<'s> PathTracer<'s> {
             max_depth,
             next_event: true,
             roulette: true,
+            local_at_max_depth: scene.stop_rules.local_at_max_depth,
         }
     }
 
@@ -193,6 +198,11 @@ impl<'s> PathTracer<'s> {
                 } else {
                     "max_depth"
                 };
+                if why == "max_depth" && self.local_at_max_depth {
+                    // Seed 002: the path "contributes just its local illumination".
+                    let p = si.point + scene.bias(ray.origin, si.point) * si.normal;
+                    sum += throughput * diffuse * self.local(p, si.normal, rng, stats);
+                }
                 note(why, Some(object), si.point, throughput, sum - before);
                 break;
             }
@@ -286,6 +296,19 @@ impl<'s> PathTracer<'s> {
     /// Light arriving directly from the area lights at p, per unit albedo (i.e. the integral of
     /// Le·cos/π), one sample per light, weighted against BSDF sampling.
     fn direct(&self, p: DVec3, n: DVec3, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
+        self.lights_at(p, n, rng, stats, true)
+    }
+
+    /// The direct light at the last surface of a path cut by the maximum depth, per unit
+    /// albedo: one light sample per light, unweighted, since no bounce follows to find the
+    /// lights the other way.
+    fn local(&self, p: DVec3, n: DVec3, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
+        self.lights_at(p, n, rng, stats, false)
+    }
+
+    /// One sample of the light arriving from each area light at p, per unit albedo; with
+    /// `mis`, weighted against the BSDF sample that follows (power heuristic).
+    fn lights_at(&self, p: DVec3, n: DVec3, rng: &mut Rng, stats: &mut Stats, mis: bool) -> DVec3 {
         let mut sum = DVec3::ZERO;
         for light in &self.scene.lights {
             let Some(e) = light.sample_emitter(p, rng.uniform(), rng.uniform()) else {
@@ -307,7 +330,11 @@ impl<'s> PathTracer<'s> {
             {
                 continue;
             }
-            let weight = power_heuristic(e.pdf, cosine_pdf(n, e.wi));
+            let weight = if mis {
+                power_heuristic(e.pdf, cosine_pdf(n, e.wi))
+            } else {
+                1.0
+            };
             sum += light.intensity * (cos_s / PI) / e.pdf * weight;
         }
         sum

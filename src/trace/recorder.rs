@@ -27,6 +27,11 @@ pub trait Recorder {
     fn shadow(&mut self, light: &str, t_max: f64, s: f64, rays: u32);
     /// The open node is a cone of n sampled rays (glossy or frosted), not a ray.
     fn samples(&mut self, n: u32);
+    /// The open node's ray reached the light `light` (the stop rule at lights).
+    fn lamp(&mut self, light: &str);
+    /// The node closed last was divided by `divisor` before its parent weighted it (the
+    /// attenuation of secondary rays by distance).
+    fn attenuated(&mut self, divisor: f64);
     fn end(&mut self, color: DVec3, terminated: Option<Termination>);
 }
 
@@ -40,6 +45,8 @@ impl Recorder for NoRecorder {
     fn indices(&mut self, _: Indices) {}
     fn shadow(&mut self, _: &str, _: f64, _: f64, _: u32) {}
     fn samples(&mut self, _: u32) {}
+    fn lamp(&mut self, _: &str) {}
+    fn attenuated(&mut self, _: f64) {}
     fn end(&mut self, _: DVec3, _: Option<Termination>) {}
 }
 
@@ -81,6 +88,7 @@ impl Recorder for TreeRecorder {
             shadow: None,
             shadow_rays: None,
             samples: None,
+            attenuation: None,
             hit: None,
             local: None,
             color: DVec3::ZERO,
@@ -111,6 +119,16 @@ impl Recorder for TreeRecorder {
 
     fn samples(&mut self, n: u32) {
         self.current().samples = Some(n);
+    }
+
+    fn lamp(&mut self, light: &str) {
+        self.current().light = Some(light.to_string());
+    }
+
+    fn attenuated(&mut self, divisor: f64) {
+        if let Some(child) = self.current().children.last_mut() {
+            child.attenuation = Some(divisor);
+        }
     }
 
     fn end(&mut self, color: DVec3, terminated: Option<Termination>) {

@@ -49,6 +49,14 @@ pub fn node_title(n: &RayNode) -> String {
             super::Termination::MaxDepth => "not traced: max depth".to_string(),
             super::Termination::Adaptive => "not traced: adaptive cut-off".to_string(),
             super::Termination::TotalInternalReflection => "total internal reflection".to_string(),
+            super::Termination::Light => format!(
+                "reaches light {} (stop rule)",
+                n.light.as_deref().unwrap_or("?")
+            ),
+            super::Termination::Diffuse => match &n.hit {
+                Some(h) => format!("hit {}, diffuse: the path stops (stop rule)", h.object),
+                None => "diffuse: the path stops".to_string(),
+            },
         },
         (_, _) if n.kind == RayKind::Shadow => shadow_outcome(n),
         (Some(h), _) => format!("hit {}", h.object),
@@ -151,17 +159,7 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
             out.extend(light_lines(l));
         }
         for c in n.secondary() {
-            let k = if c.kind == RayKind::Reflection {
-                "kr·I_r"
-            } else {
-                "kt·I_t"
-            };
-            out.push(format!(
-                "{k} = {} × {} = {}",
-                num(c.coefficient),
-                color(c.color),
-                color(c.coefficient * c.color)
-            ));
+            out.push(secondary_term(c));
         }
         out.push(format!(
             "I = local {} + secondary = {}",
@@ -172,7 +170,60 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
     out
 }
 
+/// A secondary ray's intensity as its parent receives it: divided by c0 + c1·d + c2·d² when
+/// the scene attenuates secondary rays by distance.
+pub fn received(c: &RayNode) -> DVec3 {
+    match c.attenuation {
+        Some(a) => c.color / a,
+        None => c.color,
+    }
+}
+
+/// "kr·I_r = 0.7 × 0.773234 = 0.541264", with the distance attenuation written out where
+/// there is one, so that the terms add up to the node's intensity.
+pub fn secondary_term(c: &RayNode) -> String {
+    let k = if c.kind == RayKind::Reflection {
+        "kr·I_r"
+    } else {
+        "kt·I_t"
+    };
+    match c.attenuation {
+        None => format!(
+            "{k} = {} × {} = {}",
+            num(c.coefficient),
+            color(c.color),
+            color(c.coefficient * c.color)
+        ),
+        Some(a) => format!(
+            "{k}/(c0 + c1·d + c2·d²) = {} × {} / {} = {}  (attenuated over d = {})",
+            num(c.coefficient),
+            color(c.color),
+            num(a),
+            color(c.coefficient * received(c)),
+            c.hit.as_ref().map_or("?".into(), |h| num(h.t))
+        ),
+    }
+}
+
 fn light_lines(l: &LightTerm) -> Vec<String> {
+    if l.n_dot_l < 0.0 && l.skipped.is_none() {
+        // A light behind a transparent surface, lit through it: Hall's transmitted highlight.
+        return vec![
+            format!(
+                "light {}: n·l = {}, behind the surface, seen through it: s = {}, fatt = {}",
+                l.light,
+                num(l.n_dot_l),
+                num(l.shadow),
+                num(l.attenuation)
+            ),
+            "  diffuse  none (the light is behind the surface)".into(),
+            format!(
+                "  transmitted highlight s·fatt·Iℓ·ks·(h′·n)^m = {}  (h′·n = {})",
+                color(l.specular),
+                num(l.highlight_cos)
+            ),
+        ];
+    }
     let mut out = vec![format!(
         "light {}: n·l = {}, s = {}, fatt = {}{}",
         l.light,

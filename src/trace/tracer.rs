@@ -15,13 +15,32 @@ use crate::scene::{Hit, Interaction, Scene, Search};
 use crate::shading::{Light, LightSample};
 use crate::stats::Stats;
 
-/// Options that change how one trace runs, beyond the scene's own settings.
+/// Options that change how one trace runs: where the recursion stops, and whether shadow rays
+/// are cast. A tracer starts with the scene's own (`TraceOptions::of`).
 #[derive(Clone, Copy, Debug)]
 pub struct TraceOptions {
     /// Rays per path, primary included: 1 traces primary rays only.
     pub max_depth: u32,
     /// Cast shadow rays (off only to show what the shadow term changes).
     pub shadows: bool,
+    /// Seed 000's stop rule: a ray that hits a light source stops there and brings back the
+    /// light's intensity. Area and sphere lights are then seen; off, rays pass through them.
+    pub stop_at_lights: bool,
+    /// Seed 002's stop rule: a ray that hits a diffuse surface (kd > 0) sends no reflection
+    /// or refraction ray: it contributes its local illumination only.
+    pub stop_at_diffuse: bool,
+}
+
+impl TraceOptions {
+    /// The scene's own: its maximum depth and the stop rules it names, shadows cast.
+    pub fn of(scene: &Scene) -> TraceOptions {
+        TraceOptions {
+            max_depth: scene.max_depth,
+            shadows: true,
+            stop_at_lights: scene.stop_rules.light,
+            stop_at_diffuse: scene.stop_rules.diffuse,
+        }
+    }
 }
 
 /// The tracer of one scene, with the context its rays share: the recorder that watches them,
@@ -42,10 +61,7 @@ impl<'s> Tracer<'s> {
         Tracer {
             scene,
             search: scene,
-            options: TraceOptions {
-                max_depth: scene.max_depth,
-                shadows: true,
-            },
+            options: TraceOptions::of(scene),
             rec: NoRecorder,
             rng: Rng::for_pixel(0, 0, 0),
             stats: Stats::default(),

@@ -36,6 +36,11 @@ pub enum Termination {
     Adaptive,
     /// Refraction was impossible: the energy went into a mirror ray instead.
     TotalInternalReflection,
+    /// It hit a light source (seed 000's stop rule): it brings back the light's intensity.
+    Light,
+    /// It hit a diffuse surface (seed 002's stop rule): local illumination only, no
+    /// reflection or refraction ray.
+    Diffuse,
 }
 
 impl Termination {
@@ -45,6 +50,8 @@ impl Termination {
             Termination::MaxDepth => "max_depth",
             Termination::Adaptive => "adaptive",
             Termination::TotalInternalReflection => "total_internal_reflection",
+            Termination::Light => "light",
+            Termination::Diffuse => "diffuse",
         }
     }
 }
@@ -170,7 +177,8 @@ pub struct RayNode {
     /// n1 → n2 for a refraction ray.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub indices: Option<Indices>,
-    /// The shadow ray's light, and how far it looked (the distance to the light).
+    /// The shadow ray's light, and how far it looked (the distance to the light); for a ray
+    /// stopped at a light source, that light.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub light: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -187,6 +195,10 @@ pub struct RayNode {
     /// each with coefficient 1/n).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub samples: Option<u32>,
+    /// With `secondary_attenuation`: the c0 + c1·d + c2·d² (d the distance to this ray's hit)
+    /// its intensity was divided by before its parent weighted it (seeds 000, 004).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub attenuation: Option<f64>,
     pub hit: Option<HitInfo>,
     pub local: Option<Local>,
     /// This node's intensity: local + coefficient-weighted children (linear).

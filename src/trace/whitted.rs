@@ -24,9 +24,9 @@ use super::tree::{Indices, LightTerm, Local, RayKind, Termination};
 use super::Tracer;
 use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
-use crate::shading::local::{ambient, light_terms, LightTerms};
+use crate::shading::local::{ambient, light_terms, transmitted_terms, LightTerms};
 use crate::shading::optics::{reflect, refract, schlick};
-use crate::shading::{lobe, Fresnel, Light, LightSample, Lobe, Material};
+use crate::shading::{lobe, Fresnel, Light, LightSample, Lobe, Material, Paint};
 use crate::trace::recorder::Recorder;
 
 /// The rays a surface sends on, before the depth limit and the adaptive threshold have
@@ -57,7 +57,45 @@ impl<R: Recorder> Tracer<'_, R> {
         let hit = self
             .search
             .nearest(&task.ray, 0.0, f64::INFINITY, &mut self.stats);
-        (self.shade(task, hit), hit.map_or(f64::INFINITY, |h| h.t))
+        let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
+        if self.options.stop_at_lights {
+            if let Some((k, t)) = self.light_ahead(&task.ray, t_hit) {
+                return (self.lamp(task, k), t);
+            }
+        }
+        (self.shade(task, hit), t_hit)
+    }
+
+    // --- The stop rules of seeds 000 and 002 ---
+
+    /// The nearest light source the ray reaches before `t_max` (an area or sphere light: a
+    /// point or directional light has no surface to hit).
+    fn light_ahead(&self, ray: &Ray, t_max: f64) -> Option<(usize, f64)> {
+        let mut nearest = None;
+        for (k, light) in self.scene.lights.iter().enumerate() {
+            let limit = nearest.map_or(t_max, |(_, t)| t);
+            if let Some(h) = light.emitter_hit(ray, limit) {
+                nearest = Some((k, h.t));
+            }
+        }
+        nearest
+    }
+
+    /// A ray that hits light k stops there: it brings back the light's intensity.
+    fn lamp(&mut self, task: &Task, k: usize) -> DVec3 {
+        self.count(task.kind);
+        task.begin(&mut self.rec);
+        let light = &self.scene.lights[k];
+        self.rec.lamp(&light.name);
+        self.rec.end(light.intensity, Some(Termination::Light));
+        light.intensity
+    }
+
+    /// Whether a surface ends the path under seed 002's rule: a diffuse surface (kd > 0 where
+    /// the ray meets it) sends no reflection or refraction ray.
+    #[inline(always)]
+    pub(crate) fn stops_at(&self, at: &Paint) -> bool {
+        self.options.stop_at_diffuse && at.kd > 0.0
     }
 
     /// The intensity of a ray from its nearest hit: I = I_local + kr·I_r + kt·I_t.
@@ -80,10 +118,15 @@ impl<R: Recorder> Tracer<'_, R> {
     /// The node's total from its local intensity: the secondary rays' kr·I_r + kt·I_t added.
     #[inline(always)]
     pub(crate) fn finish(&mut self, task: &Task, si: &Interaction, mut color: DVec3) -> DVec3 {
+        let mut stopped = None;
         if si.paint.kr > 0.0 || si.paint.kt > 0.0 {
-            color += self.secondary(task, si);
+            if self.stops_at(&si.paint) {
+                stopped = Some(Termination::Diffuse);
+            } else {
+                color += self.secondary(task, si);
+            }
         }
-        self.rec.end(color, None);
+        self.rec.end(color, stopped);
         color
     }
 
@@ -93,11 +136,10 @@ impl<R: Recorder> Tracer<'_, R> {
     fn local(&mut self, task: &Task, si: &Interaction) -> DVec3 {
         let scene = self.scene;
         let m = scene.material(si.material);
-        let v = -task.ray.dir;
         let mut color = ambient(m, &si.paint, scene.ambient);
         let mut terms = Vec::new();
         for (k, light) in scene.lights.iter().enumerate() {
-            let (sample, lit, skipped) = self.light_share(m, si, v, k, R::ACTIVE);
+            let (sample, lit, skipped) = self.light_share(m, si, task, k, R::ACTIVE);
             let s = match skipped {
                 Some(_) => 0.0,
                 None => self.shadow_factor(si, task.depth, &sample, light),
@@ -129,12 +171,17 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// Light k's diffuse and specular terms at a point, before the shadow factor, and why no
     /// shadow ray is needed, if none is (then s = 0). `shows`: the terms go into a tree.
+    ///
+    /// A light behind the surface gives nothing, unless the material takes Hall's transmitted
+    /// highlight: then a transparent surface is lit through itself, its highlight made with H′
+    /// (`transmitted_terms`, η from the media on both sides), and the shadow ray goes through
+    /// the surface toward the light.
     #[inline(always)]
     pub(crate) fn light_share(
         &mut self,
         m: &Material,
         si: &Interaction,
-        v: DVec3,
+        task: &Task,
         k: usize,
         shows: bool,
     ) -> (LightSample, LightTerms, Option<&'static str>) {
@@ -142,19 +189,28 @@ impl<R: Recorder> Tracer<'_, R> {
         let light = &scene.lights[k];
         let sample = light.sample(si.point);
         let strength = sample.attenuation * light.intensity;
-        let lit = light_terms(m, &si.paint, si.normal, v, sample.l, strength, shows);
-        let skipped = if lit.n_dot_l <= 0.0 {
+        let v = -task.ray.dir;
+        let through = m.transmitted_highlight && si.paint.kt > 0.0 && si.normal.dot(sample.l) < 0.0;
+        let lit = if through {
+            let across = self.across(task, si, m);
+            let eta = across.n2 / across.n1;
+            transmitted_terms(m, &si.paint, si.normal, v, sample.l, eta, strength)
+        } else {
+            light_terms(m, &si.paint, si.normal, v, sample.l, strength, shows)
+        };
+        let skipped = if lit.n_dot_l <= 0.0 && !through {
             self.stats.shadow_skipped_backfacing += 1;
             Some("light behind the surface (n·l ≤ 0)")
         } else if light.is_dark() {
             self.stats.shadow_skipped_dark += 1;
             Some("light has zero intensity")
         } else if si.inside
+            && !through
             && self.options.shadows
             && self.scene.features.hides_light_inside(si.object, k)
         {
             // The way to a light outside a convex solid leaves the solid, whose surface is in
-            // the way.
+            // the way (unless it leaves through the very surface it starts on).
             self.stats.shadow_skipped_inside += 1;
             Some("inside a convex solid the light is outside of: the solid blocks it")
         } else {
@@ -373,6 +429,11 @@ impl<R: Recorder> Tracer<'_, R> {
             return DVec3::ZERO;
         }
         let (color, distance) = self.trace(task);
+        if R::ACTIVE {
+            if let Some(divisor) = self.attenuation_at(distance) {
+                self.rec.attenuated(divisor);
+            }
+        }
         self.attenuated(color, distance)
     }
 
@@ -405,11 +466,20 @@ impl<R: Recorder> Tracer<'_, R> {
     /// divided by c0 + c1·d + c2·d² for the distance d it travelled (seed 004).
     #[inline(always)]
     pub(crate) fn attenuated(&self, color: DVec3, distance: f64) -> DVec3 {
+        match self.attenuation_at(distance) {
+            Some(divisor) => color / divisor,
+            None => color,
+        }
+    }
+
+    /// c0 + c1·d + c2·d² for a secondary ray that travelled d, with `secondary_attenuation`.
+    #[inline(always)]
+    fn attenuation_at(&self, distance: f64) -> Option<f64> {
         match self.scene.secondary_attenuation {
             Some([c0, c1, c2]) if distance.is_finite() => {
-                color / (c0 + c1 * distance + c2 * distance * distance)
+                Some(c0 + c1 * distance + c2 * distance * distance)
             }
-            _ => color,
+            _ => None,
         }
     }
 

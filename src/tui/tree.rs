@@ -197,6 +197,9 @@ pub fn outcome(n: &RayNode) -> String {
         (Some(T::MaxDepth), _) => "not traced: max depth".into(),
         (Some(T::Adaptive), _) => "not traced: adaptive cut-off".into(),
         (Some(T::TotalInternalReflection), _) => "total internal reflection".into(),
+        (Some(T::Light), _) => format!("light {}", n.light.as_deref().unwrap_or("?")),
+        (Some(T::Diffuse), Some(h)) => format!("hit {} (diffuse: stops)", h.object),
+        (Some(T::Diffuse), None) => "diffuse: stops".into(),
         (None, Some(h)) => format!("hit {}", h.object),
         (None, None) => "no hit".into(),
     }

@@ -46,7 +46,21 @@ fn node(w: &Worked, n: &RayNode, name: &str, out: &mut Vec<String>) {
         ),
     };
     if let Some((lobe, k)) = n.cone() {
-        let values: Vec<String> = n.secondary().map(|c| text::color(c.color)).collect();
+        let mut values: Vec<String> = n.secondary().map(|c| text::color(c.color)).collect();
+        if values.len() > 16 {
+            // Too many to list: each value once, with how many rays brought it.
+            let mut counts: Vec<(String, usize)> = Vec::new();
+            for v in values {
+                match counts.iter_mut().find(|(x, _)| *x == v) {
+                    Some((_, c)) => *c += 1,
+                    None => counts.push((v, 1)),
+                }
+            }
+            values = counts
+                .into_iter()
+                .map(|(v, c)| format!("{c} × {v}"))
+                .collect();
+        }
         out.push(format!(
             "I({name}): {lobe} about {}: {k} rays sampled about it bring {}; their mean = {}",
             text::vec3(n.direction),
@@ -67,6 +81,13 @@ fn node(w: &Worked, n: &RayNode, name: &str, out: &mut Vec<String>) {
             ),
             Some(Termination::TotalInternalReflection) => format!(
                 "I({name}): total internal reflection: no refracted ray; its share goes into a mirror ray inside = {}",
+                text::color(n.color)
+            ),
+            Some(Termination::Light) => format!(
+                "I({name}): {ray} from {} along {} reaches light {} and stops there (stop rule): its intensity, {}",
+                text::vec3(n.origin),
+                text::vec3(n.direction),
+                n.light.as_deref().unwrap_or("?"),
                 text::color(n.color)
             ),
             _ => format!(
@@ -126,6 +147,13 @@ fn node(w: &Worked, n: &RayNode, name: &str, out: &mut Vec<String>) {
         terms.join(" + "),
         text::color(local.total())
     ));
+    if n.terminated == Some(Termination::Diffuse) {
+        out.push(format!(
+            "  {} is diffuse (kd = {}): by the stop rule the path ends here, no reflection or refraction ray",
+            h.object,
+            text::num(m.kd)
+        ));
+    }
 }
 
 /// The material's values at the hit: a pattern's where one varies them, else its constants.
@@ -156,6 +184,10 @@ fn light_lines(
         text::vec3(t.l),
         text::num(t.n_dot_l)
     )];
+    if t.n_dot_l < 0.0 && t.skipped.is_none() {
+        out.extend(transmitted_lines(n, h, m, light, t, v));
+        return out;
+    }
     if t.n_dot_l <= 0.0 {
         out.push(format!(
             "    n·l ≤ 0: {name} is behind the surface: no shadow ray, no diffuse, no specular"
@@ -216,6 +248,53 @@ fn light_lines(
     } else {
         "    specular: ks = 0, none".into()
     });
+    out
+}
+
+/// A light behind a transparent surface seen through it (Hall's transmitted highlight): the
+/// shadow ray through the surface, H′ from η, and the specular term with h′·n.
+fn transmitted_lines(
+    n: &RayNode,
+    h: &HitInfo,
+    m: &Material,
+    light: &Light,
+    t: &LightTerm,
+    v: DVec3,
+) -> Vec<String> {
+    let mut out = vec![format!(
+        "    n·l < 0: {} is behind the surface; the surface is transparent (kt = {}) and takes the transmitted highlight, so the light is seen through it",
+        light.name,
+        text::num(m.kt)
+    )];
+    out.push(format!("    {}", distance(light, h, t)));
+    out.push(format!("    {}", shadow(n, light, t)));
+    // η as the tracer found it: the indices n1 → n2 recorded on the surface's refraction ray
+    // (a transparent surface always records one, traced or cut off).
+    let eta = n
+        .children
+        .iter()
+        .find_map(|c| c.indices)
+        .map_or(if h.inside { 1.0 / m.ior } else { m.ior }, |i| i.n2 / i.n1);
+    let hv = (-(eta * t.l + v) / (eta - 1.0)).normalize_or_zero();
+    let power = t.highlight_cos.powf(m.shininess);
+    out.push(format!(
+        "    η = n(light's side)/n(viewer's side) = {}, h′ = −(η·l + v)/(η − 1), normalised = {}, h′·n = {}, (h′·n)^{} = {}",
+        text::num(eta),
+        text::vec3(hv),
+        text::num(t.highlight_cos),
+        text::num(m.shininess),
+        text::num(power)
+    ));
+    out.push("    diffuse: none (n·l < 0)".into());
+    out.push(format!(
+        "    transmitted highlight s·fatt·Iℓ·ks·(h′·n)^m = {}·{}·{}·{}·{} = {}",
+        text::num(t.shadow),
+        text::num(t.attenuation),
+        text::color(light.intensity),
+        text::num(m.ks),
+        text::num(power),
+        text::color(t.specular)
+    ));
     out
 }
 

@@ -194,6 +194,12 @@ fn explain_render(w: &Worked, ex: &Exercise) -> Result<Vec<String>, String> {
             "integrator: path, max_depth {}: each primary ray carries one random path (seed {})",
             r.options.max_depth, r.options.seed
         ));
+        if w.scene.stop_rules.local_at_max_depth {
+            out.push(
+                "stop rule local_at_max_depth (seed 002): a path cut by the maximum depth adds one sample of the direct light at its last surface"
+                    .into(),
+            );
+        }
     }
     match ex.pixel {
         None => out.extend(whole_image(&r, &w.scene, ex)?),

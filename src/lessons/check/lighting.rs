@@ -236,7 +236,10 @@ fn diffuse_line(light: &Light, m: &Material, t: &LightTerm) -> String {
 }
 
 fn specular_line(light: &Light, m: &Material, t: &LightTerm) -> String {
-    let model = if m.highlight == Highlight::Blinn {
+    let model = if t.n_dot_l < 0.0 && t.skipped.is_none() {
+        // A light behind a transparent surface, seen through it (Hall's transmitted highlight).
+        "h′·n, h′ = −(η·l + v)/(η − 1) normalised, η = n(light's side)/n(viewer's side)"
+    } else if m.highlight == Highlight::Blinn {
         "h·n, h = (l + v)/|l + v|"
     } else {
         "r·v, r = 2(n·l)n − l"

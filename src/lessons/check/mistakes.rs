@@ -21,7 +21,7 @@ use crate::trace::{RayKind, RayNode, TraceOptions};
 pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
     let full = TraceOptions {
         max_depth: w.depth,
-        shadows: true,
+        ..TraceOptions::of(&w.scene)
     };
     let no_shadows = TraceOptions {
         shadows: false,
@@ -214,6 +214,7 @@ fn glass_lets_light_through(w: &Worked, ex: &Exercise) -> Option<Answer> {
         TraceOptions {
             max_depth: w.depth,
             shadows: false,
+            ..TraceOptions::of(&w.scene)
         },
     );
     let mistaken = recollect(&unblock_glass(&w.scene, &w.tree, &open)?, &|_, c| {

@@ -10,9 +10,10 @@
 //! - `intersection`: hit t, hit point, normal, barycentric coordinates;
 //! - `lighting`: intensity, local term, diffuse, specular, shadow factor;
 //! - `optics`: reflected and refracted directions;
-//! - `csg`: segment lists;
+//! - `csg`: segment lists, and the leaves evaluated (pruning, bounding boxes);
 //! - `image`: rendered pixel values, primary rays, squares split by adaptive antialiasing
 //!   (whose steps `adaptive` explains);
+//! - `montecarlo`: the standard error of a sampled mean, for answers graded in standard errors;
 //! - `texture`: texture coordinates and the colour of a patterned surface.
 
 mod adaptive;
@@ -23,6 +24,7 @@ mod image;
 mod intersection;
 mod lighting;
 mod mistakes;
+mod montecarlo;
 mod optics;
 mod texture;
 mod tree;
@@ -45,6 +47,9 @@ pub struct Worked {
     pub depth: u32,
     pub tree: RayNode,
     pub expected: Answer,
+    /// The rule an answer is held to: the exercise's, with a Monte Carlo mean's standard
+    /// error filled in.
+    pub tolerance: Tolerance,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -142,6 +147,7 @@ fn question(ask: Ask) -> &'static dyn Question {
         Ask::PixelValue => &image::PixelValue,
         Ask::PrimaryRays => &image::PrimaryRays,
         Ask::SquaresSplit => &image::SquaresSplit,
+        Ask::LeavesEvaluated => &csg::LeavesEvaluated,
         Ask::U => &texture::TextureCoordinate { v: false },
         Ask::V => &texture::TextureCoordinate { v: true },
         Ask::SurfaceColor => &texture::SurfaceColor,
@@ -246,23 +252,25 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
         &ray,
         TraceOptions {
             max_depth: depth,
-            shadows: true,
+            ..TraceOptions::of(&scene)
         },
     );
     let expected = answer(&scene, &ray, &tree, ex)?;
+    let tolerance = montecarlo::tolerance(ex, node(&tree, ex)?)?;
     Ok(Worked {
         scene,
         ray,
         depth,
         tree,
         expected,
+        tolerance,
     })
 }
 
 pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, String> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
-    let correct = given.matches(&w.expected, &ex.tolerance);
+    let correct = given.matches(&w.expected, &w.tolerance);
     let hint = if correct {
         None
     } else {
@@ -273,7 +281,7 @@ pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, Str
         correct,
         given,
         expected: w.expected,
-        tolerance: ex.tolerance,
+        tolerance: w.tolerance,
         hint,
         model,
     })
@@ -346,7 +354,7 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
         Ask::Barycentric => "the barycentric coordinates (λ1, λ2, λ3)",
         Ask::HitT => "t",
         Ask::ShadowFactor => "the shadow factor s",
-        Ask::PrimaryRays | Ask::SquaresSplit => "a count",
+        Ask::PrimaryRays | Ask::SquaresSplit | Ask::LeavesEvaluated => "a count",
         Ask::Intensity | Ask::Local | Ask::Diffuse | Ask::Specular | Ask::PixelValue => {
             "this intensity"
         }
@@ -390,7 +398,7 @@ fn asks_colour(ask: Ask) -> bool {
 /// The first common mistake that gives the student's answer. A mistake that happens to give
 /// the right answer here explains nothing, so it is passed over.
 fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
-    let tol = &ex.tolerance;
+    let tol = &w.tolerance;
     question(ex.ask)
         .mistakes(w, ex)
         .into_iter()
@@ -411,6 +419,7 @@ pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
     let n = node(&w.tree, ex)?;
     let mut out = vec![format!("{}: {}", ex.id, ex.question.trim())];
     out.extend(question(ex.ask).explain(&w, ex, n)?);
+    out.extend(montecarlo::explain(&w, n));
     out.push(format!("answer: {}", w.expected.show()));
     Ok(out)
 }

@@ -27,6 +27,7 @@ fn step_name(n: &RayNode) -> String {
         (Some(h), _) => h.object.clone(),
         (None, Some(Termination::MaxDepth | Termination::Adaptive)) => "not traced".into(),
         (None, Some(Termination::TotalInternalReflection)) => "total internal reflection".into(),
+        (None, Some(Termination::Light)) => format!("light {}", n.light.as_deref().unwrap_or("?")),
         (None, _) => "background".into(),
     }
 }
@@ -94,12 +95,26 @@ pub(super) fn collect_lines(n: &RayNode, name: &str, out: &mut Vec<String>) {
                 } else {
                     "kt"
                 };
-                symbols.push(format!("{k}·I({})", short(child)));
-                terms.push(format!(
-                    "{}·{}",
-                    text::num(c.coefficient),
-                    text::color(c.color)
-                ));
+                match c.attenuation {
+                    None => {
+                        symbols.push(format!("{k}·I({})", short(child)));
+                        terms.push(format!(
+                            "{}·{}",
+                            text::num(c.coefficient),
+                            text::color(c.color)
+                        ));
+                    }
+                    Some(a) => {
+                        let d = c.hit.as_ref().map_or(f64::NAN, |h| h.t);
+                        symbols.push(format!("{k}·I({})/a(d = {})", short(child), text::num(d)));
+                        terms.push(format!(
+                            "{}·{}/{}",
+                            text::num(c.coefficient),
+                            text::color(c.color),
+                            text::num(a)
+                        ));
+                    }
+                }
             }
             if symbols.len() == 1 {
                 out.push(format!("{label} = I_local = {}", text::color(n.color)));

@@ -104,6 +104,7 @@ fn material(name: &str, m: &MaterialSpec, textures: &mut Textures) -> Result<Mat
         kt,
         ior,
         fresnel: m.fresnel.unwrap_or(Fresnel::None),
+        transmitted_highlight: m.transmitted_highlight.unwrap_or(false),
         emission: m.emission.map_or(DVec3::ZERO, |t| t.0),
         glossy: m
             .glossy

@@ -118,6 +118,7 @@ pub fn compile(
         adaptive_threshold: settings.adaptive_threshold,
         shadow_bias: settings.shadow_bias,
         secondary_attenuation: settings.secondary_attenuation,
+        stop_rules: settings.stop_rules,
         csg_pruning: true,
         spp: settings.spp,
         integrator: settings.integrator,

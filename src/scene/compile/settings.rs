@@ -6,8 +6,8 @@ use serde_saphyr::Spanned;
 
 use super::lights::attenuation;
 use super::{invalid, pos, Invalid, Limits};
-use crate::scene::format::{AntialiasMode, Bias, FilterKind, SceneFile};
-use crate::scene::{Antialias, Filter, Integrator, DEFAULT_THRESHOLD};
+use crate::scene::format::{AntialiasMode, Bias, FilterKind, SceneFile, StopRule};
+use crate::scene::{Antialias, Filter, Integrator, StopRules, DEFAULT_THRESHOLD};
 
 pub struct Settings {
     pub max_depth: u32,
@@ -15,6 +15,7 @@ pub struct Settings {
     pub adaptive_threshold: f64,
     pub shadow_bias: Option<f64>,
     pub secondary_attenuation: Option<[f64; 3]>,
+    pub stop_rules: StopRules,
     pub integrator: Integrator,
     pub antialias: Antialias,
     pub filter: Filter,
@@ -87,6 +88,11 @@ impl Settings {
             Some(a) => Some(attenuation(a)?),
         };
 
+        let stop_rules = StopRules {
+            light: file.stop_rules.contains(&StopRule::Light),
+            diffuse: file.stop_rules.contains(&StopRule::Diffuse),
+            local_at_max_depth: file.stop_rules.contains(&StopRule::LocalAtMaxDepth),
+        };
         let integrator = file.integrator.unwrap_or_default();
         let threshold = match &file.aa_threshold {
             None => DEFAULT_THRESHOLD,
@@ -113,6 +119,7 @@ impl Settings {
             adaptive_threshold,
             shadow_bias,
             secondary_attenuation,
+            stop_rules,
             integrator,
             antialias,
             filter,

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::trace::text::{color, node_details, num, vec3};
+use crate::trace::text::{color, node_details, num, received, vec3};
 use crate::trace::{RayKind, RayNode, Termination};
 use crate::tui::wrap::wrap;
 
@@ -92,6 +92,18 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
                 "total internal reflection: no light is transmitted; the energy follows the mirror ray"
                     .into(),
             )),
+            Some(Termination::Light) => out.push((
+                format!(
+                    "reached light {}: the ray stops there (stop rule) and brings back its intensity {}",
+                    n.light.as_deref().unwrap_or("?"),
+                    color(n.color)
+                ),
+                Some(n.color),
+            )),
+            Some(Termination::Diffuse) => out.push(plain(
+                "a diffuse surface: no reflection or refraction ray (stop rule), local illumination only"
+                    .into(),
+            )),
             None => {}
         },
     }
@@ -102,7 +114,7 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
             terms.push(l.specular);
         }
         for c in n.secondary() {
-            terms.push(c.coefficient * c.color);
+            terms.push(c.coefficient * received(c));
         }
         let sum = terms
             .iter()

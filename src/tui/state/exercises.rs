@@ -191,7 +191,7 @@ pub fn answer_format(ask: Ask) -> &'static str {
         | Ask::PixelValue
         | Ask::SurfaceColor => "a number (or r, g, b for a colour)",
         Ask::HitT | Ask::ShadowFactor | Ask::U | Ask::V => "a number",
-        Ask::PrimaryRays | Ask::SquaresSplit => "a whole number",
+        Ask::PrimaryRays | Ask::SquaresSplit | Ask::LeavesEvaluated => "a whole number",
         Ask::RefractedDirection => "x, y, z (or tir for total internal reflection)",
         Ask::WindowPoint
         | Ask::RayDirection
