@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::cylinder::{cap_slab, crossings, quadratic, Interval, BASE_CAP, SIDE};
+use super::cylinder::{cap_slab, crossings, quadratic, AxialQuadratic, Interval, BASE_CAP, SIDE};
 use super::{Ray, Span};
 
 #[derive(Clone, Debug, PartialEq)]
@@ -28,19 +28,38 @@ impl Cone {
         h2 / (h2 + self.radius * self.radius)
     }
 
-    /// A point x is inside the double cone when ((x − apex)·a)² ≥ cos²θ·|x − apex|²; substituting
-    /// the ray gives a quadratic f(t) ≥ 0. The slab 0 ≤ (x − apex)·a ≤ h keeps the one nappe
-    /// between apex and base.
-    pub fn span(&self, ray: &Ray) -> Option<Span> {
+    /// The double cone's f(t) = ((x − apex)·a)² − cos²θ·|x − apex|² along the ray, with
+    /// w = o − apex: qa = (d·a)² − cos²θ·|d|², qb = (d·a)(w·a) − cos²θ·(d·w), qc = (w·a)² −
+    /// cos²θ·|w|².
+    fn quadratic(&self, ray: &Ray) -> AxialQuadratic {
         let axis = self.base - self.apex;
         let h = axis.length();
         let a = axis / h;
         let k = self.cos2();
         let w = ray.origin - self.apex;
         let (wa, da) = (w.dot(a), ray.dir.dot(a));
-        let qa = da * da - k * ray.dir.length_squared();
-        let qb = da * wa - k * ray.dir.dot(w);
-        let qc = wa * wa - k * w.length_squared();
+        AxialQuadratic {
+            h,
+            wa,
+            da,
+            qa: da * da - k * ray.dir.length_squared(),
+            qb: da * wa - k * ray.dir.dot(w),
+            qc: wa * wa - k * w.length_squared(),
+        }
+    }
+
+    /// A point x is inside the double cone when ((x − apex)·a)² ≥ cos²θ·|x − apex|²; substituting
+    /// the ray gives a quadratic f(t) ≥ 0. The slab 0 ≤ (x − apex)·a ≤ h keeps the one nappe
+    /// between apex and base.
+    pub fn span(&self, ray: &Ray) -> Option<Span> {
+        let AxialQuadratic {
+            h,
+            wa,
+            da,
+            qa,
+            qb,
+            qc,
+        } = self.quadratic(ray);
         let slab = cap_slab(wa, da, h, APEX, BASE_CAP)?;
 
         // The set {t : f(t) ≥ 0} is one interval or two half-lines, depending on the sign of the
@@ -123,15 +142,14 @@ impl Cone {
     /// axis lies in [0, h): the apex belongs to the surface, the rim circle, an edge, does not
     /// (as The Ray Tracer Challenge's open cones). No inside: the span's ends are the crossings.
     pub fn open_span(&self, ray: &Ray) -> Option<Span> {
-        let axis = self.base - self.apex;
-        let h = axis.length();
-        let a = axis / h;
-        let k = self.cos2();
-        let w = ray.origin - self.apex;
-        let (wa, da) = (w.dot(a), ray.dir.dot(a));
-        let qa = da * da - k * ray.dir.length_squared();
-        let qb = da * wa - k * ray.dir.dot(w);
-        let qc = wa * wa - k * w.length_squared();
+        let AxialQuadratic {
+            h,
+            wa,
+            da,
+            qa,
+            qb,
+            qc,
+        } = self.quadratic(ray);
         let (t0, t1) = if qa == 0.0 {
             // Parallel to a generator: f is linear, 2·qb·t + qc = 0, one crossing (none when
             // the ray runs along the surface itself, qb = 0).

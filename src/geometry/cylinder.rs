@@ -97,6 +97,17 @@ pub(crate) fn crossings(ts: [Option<f64>; 2], face: u8) -> Option<Span> {
 }
 
 /// Roots of a·t² + 2b·t + c = 0 in increasing order, computed stably; None when complex.
+/// A surface of revolution along a ray, as a quadratic in t: qa·t² + 2·qb·t + qc, with the
+/// ray's height wa + t·da along the unit axis, and the shape's height h along it.
+pub(crate) struct AxialQuadratic {
+    pub h: f64,
+    pub wa: f64,
+    pub da: f64,
+    pub qa: f64,
+    pub qb: f64,
+    pub qc: f64,
+}
+
 pub(crate) fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
     let disc = b * b - a * c;
     if disc < 0.0 {
@@ -115,24 +126,43 @@ impl Cylinder {
         (self.top - self.base).normalize()
     }
 
-    /// Infinite cylinder |w⊥|² = r² (w⊥ = the part of o + t·d − base across the axis),
-    /// clipped by the slab between the caps.
-    pub fn span(&self, ray: &Ray) -> Option<Span> {
+    /// The side |w⊥|² = r² along the ray: w⊥ = w − (w·a)a with w = o + t·d − base, so
+    /// qa·t² + 2·qb·t + qc = 0 with qa = |d⊥|², qb = d⊥·w⊥, qc = |w⊥|² − r².
+    fn quadratic(&self, ray: &Ray) -> AxialQuadratic {
         let axis = self.top - self.base;
         let h = axis.length();
         let a = axis / h;
         let w = ray.origin - self.base;
         let (wa, da) = (w.dot(a), ray.dir.dot(a));
         let (w_perp, d_perp) = (w - wa * a, ray.dir - da * a);
-        let qa = d_perp.length_squared();
-        let qc = w_perp.length_squared() - self.radius * self.radius;
+        AxialQuadratic {
+            h,
+            wa,
+            da,
+            qa: d_perp.length_squared(),
+            qb: d_perp.dot(w_perp),
+            qc: w_perp.length_squared() - self.radius * self.radius,
+        }
+    }
+
+    /// Infinite cylinder |w⊥|² = r² (w⊥ = the part of o + t·d − base across the axis),
+    /// clipped by the slab between the caps.
+    pub fn span(&self, ray: &Ray) -> Option<Span> {
+        let AxialQuadratic {
+            h,
+            wa,
+            da,
+            qa,
+            qb,
+            qc,
+        } = self.quadratic(ray);
         let side = if qa == 0.0 {
             if qc > 0.0 {
                 return None;
             }
             Interval::everything(SIDE)
         } else {
-            let (t0, t1) = quadratic(qa, d_perp.dot(w_perp), qc)?;
+            let (t0, t1) = quadratic(qa, qb, qc)?;
             Interval {
                 t0,
                 f0: SIDE,
@@ -150,19 +180,19 @@ impl Cylinder {
     /// the span is not an interval inside it: its ends are the crossings, the nearer first (one
     /// crossing twice if there is one).
     pub fn open_span(&self, ray: &Ray) -> Option<Span> {
-        let axis = self.top - self.base;
-        let h = axis.length();
-        let a = axis / h;
-        let w = ray.origin - self.base;
-        let (wa, da) = (w.dot(a), ray.dir.dot(a));
-        let (w_perp, d_perp) = (w - wa * a, ray.dir - da * a);
-        let qa = d_perp.length_squared();
+        let AxialQuadratic {
+            h,
+            wa,
+            da,
+            qa,
+            qb,
+            qc,
+        } = self.quadratic(ray);
         if qa == 0.0 {
             // Along the axis the ray never crosses the side (at most it runs in it).
             return None;
         }
-        let qc = w_perp.length_squared() - self.radius * self.radius;
-        let (t0, t1) = quadratic(qa, d_perp.dot(w_perp), qc)?;
+        let (t0, t1) = quadratic(qa, qb, qc)?;
         let between_rims = |t: f64| {
             let height = wa + t * da;
             height > 0.0 && height < h
