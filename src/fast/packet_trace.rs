@@ -1,6 +1,6 @@
 //! The Whitted recursion for a packet of rays: a pixel's grid samples, then the secondary rays
 //! of their surfaces, wave after wave. The core's steps (`Tracer::light_share`,
-//! `shadow_factor`, `children`, `finish`, …) in another order: every ray's local terms of a
+//! `shadow_factor`, `finish`, …, and `outgoing` for `secondary`) in another order: every ray's local terms of a
 //! light first, then all their shadow rays toward it together, then the secondary rays as
 //! packets of their own. Each ray's intensity, the counters and the random numbers drawn are
 //! those of tracing the rays one after another with `Tracer::radiance`. The tracer must find
@@ -13,11 +13,12 @@ use glam::DVec3;
 
 use super::bvh_packet::PACKET;
 use super::lanes::UNUSED;
+use super::outgoing::{outgoing, Transmission};
 use super::search::FastScene;
 use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
 use crate::shading::local::ambient;
-use crate::trace::{RayKind, Task, Tracer, Transmission};
+use crate::trace::{RayKind, Task, Tracer};
 
 /// The rays of a packet, each with its place in the tree: a pixel's primary rays, or the tasks
 /// of a packet of secondary rays.
@@ -208,28 +209,26 @@ fn secondary_packet<L: Lanes + ?Sized>(
         if !(si.paint.kr > 0.0 || si.paint.kt > 0.0) || t.stops_at(&si.paint) {
             continue;
         }
-        let task = tasks.task(i);
-        let c = t.children(&task, si);
+        let c = outgoing(t, &tasks.task(i), si);
         splits[i] = Some((c.kr, c.kt));
         if let Some(child) = &c.reflection {
             let traced = t.stopped(child).is_none();
             reflected.add(i, child, traced);
         }
-        match &c.refraction {
-            Transmission::None => {}
-            Transmission::Ray(child) => {
+        match &c.transmission {
+            None => {}
+            Some(Transmission::Refracted(child)) => {
                 let traced = t.stopped(child).is_none();
                 transmitted.add(i, child, traced)
             }
             // The mirror ray joins the refraction rays' packet (rays bouncing inside a glass
             // are many).
-            Transmission::TotalInternalReflection { mirror, .. } => {
-                let child = t.mirror_inside(&task, si, *mirror, c.kt);
-                let traced = t.stopped(&child).is_none();
+            Some(Transmission::TotalInternalReflection(child)) => {
+                let traced = t.stopped(child).is_none();
                 if traced {
                     t.stats.total_internal_reflections += 1;
                 }
-                transmitted.add(i, &child, traced);
+                transmitted.add(i, child, traced);
             }
         }
     }

@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use super::Fresnel;
+
 /// Mirror direction (seed 000): v' = v − 2(v·n)n.
 pub fn reflect(v: DVec3, n: DVec3) -> DVec3 {
     v - 2.0 * v.dot(n) * n
@@ -35,6 +37,24 @@ pub fn schlick(cos_incident: f64, n1: f64, n2: f64) -> f64 {
         (1.0 - sin2_t).sqrt()
     };
     r0 + (1.0 - r0) * (1.0 - cos).powi(5)
+}
+
+/// kr and kt after the Fresnel term: with Schlick's R, kr·R and kt·(1 − R); without one, as
+/// the material gives them.
+#[inline(always)]
+pub fn fresnel_weights(
+    fresnel: Fresnel,
+    cos_incident: f64,
+    (n1, n2): (f64, f64),
+    (kr, kt): (f64, f64),
+) -> (f64, f64) {
+    match fresnel {
+        Fresnel::None => (kr, kt),
+        Fresnel::Schlick => {
+            let r = schlick(cos_incident, n1, n2);
+            (kr * r, kt * (1.0 - r))
+        }
+    }
 }
 
 #[cfg(test)]

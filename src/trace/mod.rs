@@ -15,4 +15,3 @@ pub use task::Task;
 pub use tracer::{TraceOptions, Tracer};
 pub use tree::{Inspection, RayKind, RayNode, Termination};
 pub use whitted::shadow_reach;
-pub(crate) use whitted::Transmission;

@@ -41,6 +41,44 @@ impl Task {
         }
     }
 
+    /// The mirror ray of the surface this ray hit: one level deeper, weighted by kr.
+    pub fn reflection(&self, ray: Ray, kr: f64) -> Task {
+        Task {
+            ray,
+            kind: RayKind::Reflection,
+            depth: self.depth + 1,
+            weight: self.weight * kr,
+            coefficient: kr,
+            media: self.media,
+            indices: None,
+            split: self.split,
+        }
+    }
+
+    /// The refracted ray of the surface this ray hit, from medium n1 into n2 (`media`: the
+    /// solids it travels inside from there): one level deeper, weighted by kt.
+    pub fn refraction(&self, ray: Ray, kt: f64, media: Media, indices: Indices) -> Task {
+        Task {
+            ray,
+            kind: RayKind::Refraction,
+            depth: self.depth + 1,
+            weight: self.weight * kt,
+            coefficient: kt,
+            media,
+            indices: Some(indices),
+            split: self.split,
+        }
+    }
+
+    /// Past the limiting angle, the mirror ray that stays inside: it carries the transmitted
+    /// share kt in its weight, and its intensity goes to the (cut-off) refraction ray whole.
+    pub fn mirror_inside(&self, ray: Ray, kt: f64) -> Task {
+        Task {
+            coefficient: 1.0,
+            ..self.reflection(ray, kt)
+        }
+    }
+
     /// Announces this ray to the recorder.
     pub fn begin<R: Recorder>(&self, rec: &mut R) {
         rec.begin(RayStart {

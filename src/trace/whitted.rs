@@ -20,35 +20,14 @@
 use glam::DVec3;
 
 use super::task::Task;
-use super::tree::{Indices, LightTerm, Local, RayKind, Termination};
+use super::tree::{Indices, LightTerm, Local, Termination};
 use super::Tracer;
 use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
 use crate::shading::local::{ambient, light_terms, transmitted_terms, LightTerms};
-use crate::shading::optics::{reflect, refract, schlick};
-use crate::shading::{lobe, Fresnel, Light, LightSample, Lobe, Material, Paint};
+use crate::shading::optics::{fresnel_weights, reflect, refract};
+use crate::shading::{lobe, Light, LightSample, Lobe, Material, Paint};
 use crate::trace::recorder::Recorder;
-
-/// The rays a surface sends on, before the depth limit and the adaptive threshold have
-/// their say.
-pub(crate) struct Children {
-    /// kr and kt after the Fresnel term.
-    pub kr: f64,
-    pub kt: f64,
-    /// The mirror ray, when kr > 0.
-    pub reflection: Option<Task>,
-    pub refraction: Transmission,
-}
-
-/// Where a surface's transmitted light comes from.
-pub(crate) enum Transmission {
-    /// kt = 0: nothing.
-    None,
-    /// The refracted ray (Snell's law).
-    Ray(Task),
-    /// Beyond the limiting angle: the mirror ray, staying inside, between media n1 → n2.
-    TotalInternalReflection { mirror: DVec3, indices: Indices },
-}
 
 impl<R: Recorder> Tracer<'_, R> {
     /// Traces one ray: its intensity, and how far away it comes from (∞ for the background).
@@ -270,91 +249,48 @@ impl<R: Recorder> Tracer<'_, R> {
 
     // --- Reflection and refraction ---
 
-    /// kr·I_r + kt·I_t at a surface.
+    /// kr·I_r + kt·I_t at a surface: the mirror ray r = d − 2(d·n)n, and the transmitted ray
+    /// by Snell's law, or past the limiting angle, total internal reflection. kr and kt are
+    /// the material's, after the Fresnel term.
     pub(crate) fn secondary(&mut self, task: &Task, si: &Interaction) -> DVec3 {
-        let scene = self.scene;
-        let m = scene.material(si.material);
-        let c = self.children(task, si);
-        let mut sum = DVec3::ZERO;
-        if let Some(child) = &c.reflection {
-            sum += c.kr
-                * match m.glossy {
-                    None => self.child(child),
-                    Some(lobe) => self.cone(child, task, si, lobe),
-                };
-        }
-        match &c.refraction {
-            Transmission::None => {}
-            Transmission::Ray(child) => {
-                sum += c.kt
-                    * match m.frosted {
-                        None => self.child(child),
-                        Some(lobe) => self.cone(child, task, si, lobe),
-                    };
-            }
-            Transmission::TotalInternalReflection { mirror, indices } => {
-                sum += c.kt * self.total_internal_reflection(task, si, *mirror, c.kt, *indices)
-            }
-        }
-        sum
-    }
-
-    /// The rays a surface sends on: the mirror direction r = d − 2(d·n)n, and Snell's law for
-    /// the transmitted one, with kr and kt after the Fresnel term.
-    #[inline(always)]
-    pub(crate) fn children(&mut self, task: &Task, si: &Interaction) -> Children {
-        let scene = self.scene;
-        let m = scene.material(si.material);
+        let m = self.scene.material(si.material);
         let d = task.ray.dir;
         let across = self.across(task, si, m);
-        let (n1, n2) = (across.n1, across.n2);
-        let (kr, kt) = (si.paint.kr, si.paint.kt);
-        let transmitted = if kt > 0.0 {
-            refract(d, si.normal, n1, n2)
-        } else {
-            None
+        let indices = Indices {
+            n1: across.n1,
+            n2: across.n2,
         };
-        let (kr, kt) = match m.fresnel {
-            Fresnel::None => (kr, kt),
-            Fresnel::Schlick => {
-                let r = schlick(-d.dot(si.normal), n1, n2);
-                (kr * r, kt * (1.0 - r))
-            }
-        };
+        let (kr, kt) = fresnel_weights(
+            m.fresnel,
+            -d.dot(si.normal),
+            (indices.n1, indices.n2),
+            (si.paint.kr, si.paint.kt),
+        );
         let mirror = reflect(d, si.normal);
-        let reflection = (kr > 0.0).then(|| Task {
-            ray: self.spawn(si, mirror, task),
-            kind: RayKind::Reflection,
-            depth: task.depth + 1,
-            weight: task.weight * kr,
-            coefficient: kr,
-            media: task.media,
-            indices: None,
-            split: task.split,
-        });
-        let refraction = match (kt > 0.0, transmitted) {
-            (false, _) => Transmission::None,
-            (true, Some(dir)) => Transmission::Ray(Task {
-                ray: self.spawn(si, dir, task),
-                kind: RayKind::Refraction,
-                depth: task.depth + 1,
-                weight: task.weight * kt,
-                coefficient: kt,
-                media: across.beyond,
-                indices: Some(Indices { n1, n2 }),
-                split: task.split,
-            }),
-            (true, None) => Transmission::TotalInternalReflection {
-                mirror,
-                indices: Indices { n1, n2 },
-            },
-        };
-        Children {
-            kr,
-            kt,
-            reflection,
-            refraction,
+        let mut sum = DVec3::ZERO;
+        if kr > 0.0 {
+            let reflection = task.reflection(self.spawn(si, mirror, task), kr);
+            sum += kr
+                * match m.glossy {
+                    None => self.child(&reflection),
+                    Some(lobe) => self.cone(&reflection, task, si, lobe),
+                };
         }
+        if kt > 0.0 {
+            sum += kt
+                * match refract(d, si.normal, indices.n1, indices.n2) {
+                    Some(dir) => {
+                        let ray = self.spawn(si, dir, task);
+                        let refraction = task.refraction(ray, kt, across.beyond, indices);
+                        match m.frosted {
+                            None => self.child(&refraction),
+                            Some(lobe) => self.cone(&refraction, task, si, lobe),
+                        }
+                    }
+                    None => self.total_internal_reflection(task, si, mirror, kt, indices),
+                };
+        }
+        sum
     }
 
     /// Beyond the limiting angle no light is transmitted: the refraction ray becomes a
@@ -368,52 +304,22 @@ impl<R: Recorder> Tracer<'_, R> {
         kt: f64,
         indices: Indices,
     ) -> DVec3 {
-        let refraction = Task {
-            ray: Ray {
-                origin: si.point,
-                dir: task.ray.dir,
-            },
-            kind: RayKind::Refraction,
-            depth: task.depth + 1,
-            weight: task.weight * kt,
-            coefficient: kt,
-            media: task.media,
-            indices: Some(indices),
-            split: task.split,
+        let straight_on = Ray {
+            origin: si.point,
+            dir: task.ray.dir,
         };
+        let refraction = task.refraction(straight_on, kt, task.media, indices);
         if self.limit(&refraction).is_some() {
             // The refraction ray would not be traced anyway: record it as cut off.
             return self.child(&refraction);
         }
         self.stats.total_internal_reflections += 1;
         refraction.begin(&mut self.rec);
-        let color = self.child(&self.mirror_inside(task, si, mirror, kt));
+        let inside = task.mirror_inside(self.spawn(si, mirror, task), kt);
+        let color = self.child(&inside);
         self.rec
             .end(color, Some(Termination::TotalInternalReflection));
         color
-    }
-
-    /// The mirror ray of a total internal reflection, which carries the transmitted share kt
-    /// and stays inside (the cut-off refraction ray has its depth and weight: the depth limit
-    /// and the adaptive threshold stop both alike).
-    #[inline(always)]
-    pub(crate) fn mirror_inside(
-        &self,
-        task: &Task,
-        si: &Interaction,
-        mirror: DVec3,
-        kt: f64,
-    ) -> Task {
-        Task {
-            ray: self.spawn(si, mirror, task),
-            kind: RayKind::Reflection,
-            depth: task.depth + 1,
-            weight: task.weight * kt,
-            coefficient: 1.0,
-            media: task.media,
-            indices: None,
-            split: task.split,
-        }
     }
 
     // --- Depth control: the maximum depth and the adaptive threshold ---
@@ -516,7 +422,7 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// The one place secondary rays leave a surface: the origin moves off the surface, along
     /// the normal, to the side the new ray travels into, so it cannot hit its own surface.
-    fn spawn(&self, si: &Interaction, dir: DVec3, parent: &Task) -> Ray {
+    pub(crate) fn spawn(&self, si: &Interaction, dir: DVec3, parent: &Task) -> Ray {
         Ray {
             origin: self.scene.offset(si, dir, parent.ray.origin).0,
             dir,

@@ -1,0 +1,72 @@
+//! The rays a surface sends on, as tasks to trace later: the core's `Tracer::secondary` traces
+//! its reflection and refraction rays at once, one surface after another; a packet of surfaces
+//! first gathers all their rays (`packet_trace::secondary_packet`) and traces them as packets
+//! of their own. Built from the core's own pieces (`fresnel_weights`, `reflect`, `refract`,
+//! `Tracer::spawn`, the `Task` constructors), so the rays are the core's to the bit.
+
+use crate::scene::Interaction;
+use crate::shading::optics::{fresnel_weights, reflect, refract};
+use crate::trace::tree::Indices;
+use crate::trace::{Task, Tracer};
+
+/// A surface's secondary rays, before the depth limit and the adaptive threshold have their
+/// say.
+pub(super) struct Outgoing {
+    /// kr and kt after the Fresnel term.
+    pub kr: f64,
+    pub kt: f64,
+    /// The mirror ray, when kr > 0.
+    pub reflection: Option<Task>,
+    /// The refracted ray when kt > 0; past the limiting angle, the mirror ray that stays
+    /// inside and carries kt.
+    pub transmission: Option<Transmission>,
+}
+
+pub(super) enum Transmission {
+    Refracted(Task),
+    TotalInternalReflection(Task),
+}
+
+/// The rays the surface `si` sends on, for a ray `task` that hit it: as in `Tracer::secondary`.
+#[inline(always)]
+pub(super) fn outgoing(t: &mut Tracer, task: &Task, si: &Interaction) -> Outgoing {
+    let m = t.scene.material(si.material);
+    let d = task.ray.dir;
+    let across = t.across(task, si, m);
+    let indices = Indices {
+        n1: across.n1,
+        n2: across.n2,
+    };
+    let (kr, kt) = fresnel_weights(
+        m.fresnel,
+        -d.dot(si.normal),
+        (indices.n1, indices.n2),
+        (si.paint.kr, si.paint.kt),
+    );
+    let mirror = reflect(d, si.normal);
+    // Plain branches, not closures: the compiler inlines them into the packet loop.
+    let reflection = if kr > 0.0 {
+        Some(task.reflection(t.spawn(si, mirror, task), kr))
+    } else {
+        None
+    };
+    let transmission = if kt > 0.0 {
+        Some(match refract(d, si.normal, indices.n1, indices.n2) {
+            Some(dir) => {
+                let ray = t.spawn(si, dir, task);
+                Transmission::Refracted(task.refraction(ray, kt, across.beyond, indices))
+            }
+            None => Transmission::TotalInternalReflection(
+                task.mirror_inside(t.spawn(si, mirror, task), kt),
+            ),
+        })
+    } else {
+        None
+    };
+    Outgoing {
+        kr,
+        kt,
+        reflection,
+        transmission,
+    }
+}
