@@ -200,7 +200,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             format,
         } => {
             for &v in &values {
-                knob.check(v).map_err(Failure)?;
+                knob.check(v)?;
             }
             let plot_kind = plot.as_deref().map(PlotKind::of).transpose()?;
             let pool = super::args::thread_pool(threads)?;
@@ -258,7 +258,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 )?;
             }
             if let (Some(path), Some(kind)) = (plot, plot_kind) {
-                let svg = crate::bench::sweep_plot_svg(knob, &rows).map_err(Failure)?;
+                let svg = crate::bench::sweep_plot_svg(knob, &rows)?;
                 let bytes = match kind {
                     PlotKind::Svg => svg.into_bytes(),
                     PlotKind::Png => {
