@@ -1,10 +1,20 @@
 //! Reading the files a user names (scenes, meshes): regular files only, opened so that a FIFO
 //! or a device can neither block nor feed bytes forever, and never more than a budget of
-//! bytes, so a file that is too large is refused before its contents are held in memory.
+//! bytes, so a file that is too large is refused before its contents are held in memory. And
+//! where raytree keeps what it can make again (the user's cache folder).
 
 use std::fs::File;
 use std::io::Read;
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// The user's cache folder for raytree: `RAYTREE_CACHE`, else the platform's
+/// (`~/.cache/raytree` on Linux). None when the platform has none (no home folder).
+pub fn cache_dir() -> Option<PathBuf> {
+    if let Some(p) = std::env::var_os("RAYTREE_CACHE") {
+        return Some(PathBuf::from(p));
+    }
+    directories::ProjectDirs::from("", "", "raytree").map(|d| d.cache_dir().to_path_buf())
+}
 
 /// Why a file was not read.
 #[derive(Debug)]

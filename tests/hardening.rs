@@ -946,6 +946,70 @@ fn a_mesh_of_degenerate_triangles_only_is_a_warning() {
     );
 }
 
+/// A sweep without `--reference` keeps the reference it renders in the user's cache folder
+/// (`RAYTREE_CACHE`), in a `references/` folder only the user can enter, not under a guessable
+/// name in the shared temporary folder; the next sweep of the same scene reads it back.
+#[test]
+fn bench_sweep_caches_its_reference_in_the_users_cache_folder() {
+    let small = write("cached-sweep.yaml", SMALL);
+    let cache = scratch("cache");
+    let _ = std::fs::remove_dir_all(&cache);
+    let sweep = || {
+        let child = command(&[
+            OsStr::new("bench"),
+            OsStr::new("sweep"),
+            small.as_os_str(),
+            OsStr::new("--knob"),
+            OsStr::new("spp"),
+            OsStr::new("--values"),
+            OsStr::new("1,4"),
+        ])
+        .env("RAYTREE_CACHE", &cache)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("raytree starts");
+        let r = finish(child, Duration::from_secs(60));
+        assert_eq!(r.code(), Some(0), "{}", r.stderr);
+        r
+    };
+    let first = sweep();
+    assert!(
+        first.stderr.contains("reference: rendered, cached in"),
+        "{}",
+        first.stderr
+    );
+    let references = cache.join("references");
+    let kept: Vec<PathBuf> = std::fs::read_dir(&references)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(kept.len(), 1, "{kept:?}");
+    assert_eq!(kept[0].extension().unwrap(), "exr");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        let mode = std::fs::metadata(&references).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o700, "{mode:o}");
+    }
+    let written = std::fs::metadata(&kept[0]).unwrap().modified().unwrap();
+
+    let second = sweep();
+    assert!(
+        second
+            .stderr
+            .contains(&format!("reference: {} (cached)", kept[0].display())),
+        "{}",
+        second.stderr
+    );
+    assert_eq!(
+        std::fs::metadata(&kept[0]).unwrap().modified().unwrap(),
+        written,
+        "the cached reference was written again"
+    );
+    assert_eq!(first.stdout.lines().count(), second.stdout.lines().count());
+}
+
 #[test]
 fn bench_sweep_refuses_what_render_refuses() {
     let small = write("sweep.yaml", SMALL);

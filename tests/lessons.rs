@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use raytree::lessons::{
-    all_lessons, check, explain, parse_answer, work, Answer, Ask, Lesson, Tolerance,
+    all_lessons, check, explain, parse_answer, work, Answer, AnswerError, Ask, CheckError, Lesson,
+    LessonError, Tolerance,
 };
 
 fn lessons() -> Vec<Lesson> {
@@ -278,6 +279,48 @@ fn a_small_answer_off_by_a_fifth_is_wrong() {
     assert!(check(&l, ex, "0.003839").unwrap().correct);
     let v = check(&l, ex, "0.003").unwrap();
     assert!(!v.correct, "{}", v.message());
+}
+
+/// The errors say which of the things that can go wrong went wrong, with what it concerns: a
+/// program using the library matches on them rather than on their text.
+#[test]
+fn errors_are_told_apart_by_their_variants() {
+    let l = lesson("03-local-illumination");
+    match l.exercise("no-such-exercise") {
+        Err(LessonError::UnknownExercise {
+            lesson,
+            id,
+            exercises,
+        }) => {
+            assert_eq!(lesson, l.id);
+            assert_eq!(id, "no-such-exercise");
+            assert!(
+                exercises.iter().any(|e| e == "specular-phong"),
+                "{exercises:?}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(matches!(l.variant("  "), Err(LessonError::EmptyStudent)));
+
+    let ex = l.exercise("specular-phong").unwrap();
+    assert_eq!(
+        check(&l, ex, "0.o1").unwrap_err(),
+        CheckError::Answer(AnswerError::NotANumber("0.o1".into()))
+    );
+    assert_eq!(
+        check(&l, ex, "1, 2").unwrap_err(),
+        CheckError::Answer(AnswerError::Count(2))
+    );
+
+    let mut hidden = l.clone();
+    hidden.solutions = raytree::lessons::Solutions::Hidden;
+    assert_eq!(
+        explain(&hidden, ex).unwrap_err(),
+        CheckError::Hidden {
+            lesson: l.id.clone()
+        }
+    );
 }
 
 /// A lesson written by the test into a scratch folder.

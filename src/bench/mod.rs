@@ -1,10 +1,12 @@
 //! `raytree bench`: measured sweeps, one module each.
 
+mod error;
 mod plot;
 mod scaling;
 mod sweep;
 mod threads;
 
+pub use error::BenchError;
 pub use plot::{log_ticks, sweep_plot_svg, tick_label};
 pub use scaling::{measure, mesh, spheres, table, table_header, table_row, Row};
 pub use sweep::{errors, reference_for, sweep, sweep_csv, sweep_table, Knob, SweepRow};

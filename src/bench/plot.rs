@@ -4,6 +4,7 @@
 use plotters::coord::combinators::BindKeyPoints;
 use plotters::prelude::*;
 
+use super::error::BenchError;
 use super::sweep::{Knob, SweepRow};
 
 /// The plot's size in pixels.
@@ -105,9 +106,9 @@ fn padded(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
 /// of slope −½ (error ∝ 1/√time, Monte Carlo's rate) through the first point, axis titles and
 /// a legend. Rows without a positive time and error cannot sit on log axes and are left out;
 /// if none is left the plot says so.
-pub fn sweep_plot_svg(knob: Knob, rows: &[SweepRow]) -> Result<String, String> {
+pub fn sweep_plot_svg(knob: Knob, rows: &[SweepRow]) -> Result<String, BenchError> {
     let mut svg = String::new();
-    draw(knob, rows, &mut svg).map_err(|e| format!("cannot draw the plot: {e}"))?;
+    draw(knob, rows, &mut svg).map_err(|e| BenchError::Plot(e.to_string()))?;
     Ok(svg)
 }
 

@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use super::error::BenchError;
 use crate::render::{render_simple, RenderOptions};
 use crate::scene::{parse, Accel, Limits, Scene};
 
@@ -76,9 +77,9 @@ fn time_per_ray(scene: &Scene) -> (f64, crate::stats::Stats) {
 }
 
 /// Measures one scene with the BVH and (when `brute` is true) without.
-pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<Row, String> {
+pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<Row, BenchError> {
     let start = Instant::now();
-    let mut scene = parse(yaml, kind, None, &Limits::default()).map_err(|e| e.to_string())?;
+    let mut scene = parse(yaml, kind, None, &Limits::default())?;
     let build = start.elapsed().as_secs_f64();
     let (bvh_ns, stats) = time_per_ray(&scene);
     let rays = stats.rays() as f64;

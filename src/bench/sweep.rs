@@ -2,6 +2,7 @@
 
 use std::time::Instant;
 
+use super::error::BenchError;
 use crate::render::{render_simple, RenderOptions};
 use crate::scene::Antialias;
 use crate::scene::Scene;
@@ -25,26 +26,32 @@ pub enum Knob {
 impl Knob {
     /// Whether the knob can take `value`: the bounds `render` and the scene format put on the
     /// setting it turns, so a sweep renders nothing `render` would refuse.
-    pub fn check(self, value: f64) -> Result<(), String> {
+    pub fn check(self, value: f64) -> Result<(), BenchError> {
         let limits = crate::scene::Limits::default();
-        let whole = |lo: u32, hi: u32, what: &str| {
+        let whole = |lo: u32, hi: u32, what: &'static str| {
             if value.fract() == 0.0 && value >= lo as f64 && value <= hi as f64 {
                 Ok(())
             } else {
-                Err(format!(
-                    "--knob {}: {value} is not a whole number between {lo} and {hi} ({what})",
-                    self.name()
-                ))
+                Err(BenchError::NotWhole {
+                    knob: self,
+                    value,
+                    lo,
+                    hi,
+                    what,
+                })
             }
         };
-        let within = |lo: f64, hi: f64, what: &str| {
+        let within = |lo: f64, hi: f64, what: &'static str| {
             if (lo..=hi).contains(&value) {
                 Ok(())
             } else {
-                Err(format!(
-                    "--knob {}: {value} is not between {lo} and {hi} ({what})",
-                    self.name()
-                ))
+                Err(BenchError::OutOfRange {
+                    knob: self,
+                    value,
+                    lo,
+                    hi,
+                    what,
+                })
             }
         };
         match self {

@@ -40,7 +40,8 @@ enum Measure {
         #[arg(long, value_delimiter = ',', required = true)]
         values: Vec<f64>,
         /// Reference image: a linear EXR, or a PNG decoded from sRGB (default: the scene
-        /// rendered at a much higher setting, cached).
+        /// rendered at a much higher setting, cached in the user's cache folder or
+        /// RAYTREE_CACHE).
         #[arg(long, value_name = "FILE")]
         reference: Option<std::path::PathBuf>,
         /// Seed of the random numbers, as for `render`.
@@ -166,14 +167,16 @@ fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<crate::rende
     })
 }
 
-/// Where the reference of a sweep is cached: a name hashed from the scene file's bytes, the
-/// knob, its values, the seed and this build's version.
+/// Where the reference of a sweep is cached: `references/` in the user's cache folder, a name
+/// hashed from the scene file's bytes, the knob, its values, the seed and this build's version.
+/// None when there is no cache folder, or it cannot be made (the reference is then rendered
+/// every time).
 fn reference_cache(
     scene: &std::path::Path,
     knob: crate::bench::Knob,
     values: &[f64],
     seed: u64,
-) -> Result<std::path::PathBuf, Failure> {
+) -> Result<Option<std::path::PathBuf>, Failure> {
     use std::hash::{Hash, Hasher};
     let bytes = std::fs::read(scene).map_err(|e| Failure(format!("{}: {e}", scene.display())))?;
     let mut h = std::collections::hash_map::DefaultHasher::new();
@@ -182,7 +185,27 @@ fn reference_cache(
     values.iter().for_each(|v| v.to_bits().hash(&mut h));
     seed.hash(&mut h);
     env!("CARGO_PKG_VERSION").hash(&mut h);
-    Ok(std::env::temp_dir().join(format!("raytree-reference-{:016x}.exr", h.finish())))
+    let Some(dir) = crate::files::cache_dir().map(|d| d.join("references")) else {
+        eprintln("warning: no cache folder (set RAYTREE_CACHE): the reference is not kept");
+        return Ok(None);
+    };
+    let mut builder = std::fs::DirBuilder::new();
+    builder.recursive(true);
+    // Private to the user: a reference read back from a folder others can write to could be
+    // swapped for another image.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::DirBuilderExt;
+        builder.mode(0o700);
+    }
+    if let Err(e) = builder.create(&dir) {
+        eprintln(&format!(
+            "warning: {}: cannot create the folder: {e}: the reference is not kept",
+            dir.display()
+        ));
+        return Ok(None);
+    }
+    Ok(Some(dir.join(format!("{:016x}.exr", h.finish()))))
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
@@ -200,7 +223,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             format,
         } => {
             for &v in &values {
-                knob.check(v).map_err(Failure)?;
+                knob.check(v)?;
             }
             let plot_kind = plot.as_deref().map(PlotKind::of).transpose()?;
             let pool = super::args::thread_pool(threads)?;
@@ -210,22 +233,30 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 Some(path) => load_reference(&path, w, h)?,
                 None => {
                     // Rendered once at a much higher setting, then kept as a linear EXR in the
-                    // temporary folder, named by everything it depends on.
+                    // user's cache folder, named by everything it depends on.
                     let cache = reference_cache(&scene_path, knob, &values, seed)?;
-                    match load_reference(&cache, w, h) {
-                        Ok(image) => {
+                    match cache.as_ref().map(|c| (c, load_reference(c, w, h))) {
+                        Some((cache, Ok(image))) => {
                             eprintln(&format!("reference: {} (cached)", cache.display()));
                             image
                         }
-                        Err(_) => {
+                        _ => {
                             let image = pool.install(|| {
                                 crate::bench::reference_for(&scene, knob, &values, seed)
                             });
-                            image.save(&cache, crate::render::Encoding::Linear)?;
-                            eprintln(&format!(
-                                "reference: rendered, cached in {}",
-                                cache.display()
-                            ));
+                            if let Some(cache) = &cache {
+                                // Written whole or not at all, so a sweep stopped meanwhile
+                                // leaves no half reference for the next to read.
+                                match image.save(cache, crate::render::Encoding::Linear) {
+                                    Ok(()) => eprintln(&format!(
+                                        "reference: rendered, cached in {}",
+                                        cache.display()
+                                    )),
+                                    Err(e) => eprintln(&format!(
+                                        "warning: the reference is not kept: {e}"
+                                    )),
+                                }
+                            }
                             image
                         }
                     }
@@ -258,7 +289,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 )?;
             }
             if let (Some(path), Some(kind)) = (plot, plot_kind) {
-                let svg = crate::bench::sweep_plot_svg(knob, &rows).map_err(Failure)?;
+                let svg = crate::bench::sweep_plot_svg(knob, &rows)?;
                 let bytes = match kind {
                     PlotKind::Svg => svg.into_bytes(),
                     PlotKind::Png => {

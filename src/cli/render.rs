@@ -143,7 +143,7 @@ fn strip(frames: &[crate::render::Image]) -> Result<crate::render::Image, Failur
     if !crate::diagram::raster::have_fonts() {
         eprintln("warning: no fonts found on this system: the strip has no labels");
     }
-    let (bw, _, rgba) = crate::diagram::raster::rasterize(&svg).map_err(Failure)?;
+    let (bw, _, rgba) = crate::diagram::raster::rasterize(&svg)?;
     // The band's pixels are sRGB; the image holds linear intensities, encoded when saved.
     let linear = |c: u8| {
         let c = c as f64 / 255.0;

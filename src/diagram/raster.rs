@@ -41,15 +41,37 @@ pub fn have_fonts() -> bool {
     !fonts().is_empty()
 }
 
-fn pixmap(svg: &str) -> Result<resvg::tiny_skia::Pixmap, String> {
+/// A figure not drawn as pixels.
+#[derive(Debug, thiserror::Error)]
+pub enum RasterError {
+    /// The SVG document does not parse.
+    #[error("bad SVG: {0}")]
+    Svg(#[source] usvg::Error),
+    /// The document's size gives no image to draw into (zero, or too large).
+    #[error("cannot draw a {width} × {height} image")]
+    Size {
+        /// The width in pixels.
+        width: u32,
+        /// The height in pixels.
+        height: u32,
+    },
+    /// The pixels cannot be encoded as PNG.
+    #[error("cannot encode the PNG: {0}")]
+    Encode(#[source] Box<dyn std::error::Error + Send + Sync>),
+}
+
+fn pixmap(svg: &str) -> Result<resvg::tiny_skia::Pixmap, RasterError> {
     let options = usvg::Options {
         fontdb: fonts(),
         ..Default::default()
     };
-    let tree = usvg::Tree::from_str(svg, &options).map_err(|e| format!("bad SVG: {e}"))?;
+    let tree = usvg::Tree::from_str(svg, &options).map_err(RasterError::Svg)?;
     let size = tree.size().to_int_size();
-    let mut pixmap = resvg::tiny_skia::Pixmap::new(size.width(), size.height())
-        .ok_or_else(|| format!("cannot draw a {} × {} image", size.width(), size.height()))?;
+    let mut pixmap =
+        resvg::tiny_skia::Pixmap::new(size.width(), size.height()).ok_or(RasterError::Size {
+            width: size.width(),
+            height: size.height(),
+        })?;
     resvg::render(
         &tree,
         resvg::tiny_skia::Transform::default(),
@@ -60,14 +82,14 @@ fn pixmap(svg: &str) -> Result<resvg::tiny_skia::Pixmap, String> {
 
 /// The RGBA pixels of an SVG document at its own size: (width, height, pixels row by row).
 /// The figures are opaque (a white background), so premultiplied alpha changes nothing.
-pub fn rasterize(svg: &str) -> Result<(u32, u32, Vec<u8>), String> {
+pub fn rasterize(svg: &str) -> Result<(u32, u32, Vec<u8>), RasterError> {
     let p = pixmap(svg)?;
     Ok((p.width(), p.height(), p.take()))
 }
 
 /// The SVG document as PNG bytes.
-pub fn png(svg: &str) -> Result<Vec<u8>, String> {
+pub fn png(svg: &str) -> Result<Vec<u8>, RasterError> {
     pixmap(svg)?
         .encode_png()
-        .map_err(|e| format!("cannot encode the PNG: {e}"))
+        .map_err(|e| RasterError::Encode(e.into()))
 }

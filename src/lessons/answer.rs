@@ -2,6 +2,7 @@
 
 use glam::DVec3;
 
+use super::error::AnswerError;
 use super::tolerance::Tolerance;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -103,7 +104,7 @@ impl Answer {
 /// A number as a student writes it: `0.25`, `-3`, `1/3`; `inf` and `∞` where infinite values
 /// are answers (the open ends of segment lists). A number too large for a double (`1e999`, a
 /// page of digits) is refused, not read as ∞.
-fn number(s: &str, infinite_allowed: bool) -> Result<f64, String> {
+fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
     let s = s.trim();
     let shown = || {
         let short: String = s.chars().take(24).collect();
@@ -118,9 +119,7 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, String> {
         None => match s {
             "inf" | "∞" | "+inf" | "+∞" | "-inf" | "-∞" | "−∞" | "−inf" => {
                 if !infinite_allowed {
-                    return Err(format!(
-                        "`{s}`: this answer is a finite number (∞ only ends segments)"
-                    ));
+                    return Err(AnswerError::Infinite(s.into()));
                 }
                 if s.starts_with(['-', '−']) {
                     f64::NEG_INFINITY
@@ -131,14 +130,14 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, String> {
             _ => s
                 .replace('−', "-")
                 .parse::<f64>()
-                .map_err(|_| format!("`{}` is not a number", shown()))?,
+                .map_err(|_| AnswerError::NotANumber(shown()))?,
         },
     };
     if value.is_nan() {
-        return Err(format!("`{}` is not a number", shown()));
+        return Err(AnswerError::NotANumber(shown()));
     }
     if value.is_infinite() && !matches!(s.trim_start_matches(['+', '-', '−']), "inf" | "∞") {
-        return Err(format!("`{}` is too large to be an answer", shown()));
+        return Err(AnswerError::TooLarge(shown()));
     }
     Ok(value)
 }
@@ -146,7 +145,7 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, String> {
 /// Parses an answer: `tir`, `none` (an empty segment list), a number, `x, y, z`, or a segment
 /// list `a, b; c, d` (brackets and parentheses are ignored). An answer without a number in it
 /// (empty, or punctuation alone) is refused: an empty segment list is written `none`.
-pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
+pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
     let t = s.trim().to_ascii_lowercase();
     if t == "tir" {
         return Ok(Answer::Tir);
@@ -165,17 +164,14 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
         .collect::<Result<_, _>>()?;
     if parts.is_empty() {
         return Err(if segments {
-            format!("`{}` holds no numbers: give pairs t_in, t_out (e.g. `13, 16; 22, 23`), or `none` for an empty list", s.trim())
+            AnswerError::NoSegments(s.trim().into())
         } else {
-            format!(
-                "`{}` holds no numbers: give a number, or three (x, y, z)",
-                s.trim()
-            )
+            AnswerError::NoNumbers(s.trim().into())
         });
     }
     if segments {
         if !parts.len().is_multiple_of(2) {
-            return Err("a segment list needs pairs t_in, t_out (e.g. `13, 16; 22, 23`)".into());
+            return Err(AnswerError::UnpairedSegments);
         }
         return Ok(Answer::Segments(
             parts.chunks(2).map(|p| (p[0], p[1])).collect(),
@@ -184,10 +180,7 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, String> {
     match parts.as_slice() {
         [x] => Ok(Answer::Number(*x)),
         [x, y, z] => Ok(Answer::Vector(DVec3::new(*x, *y, *z))),
-        _ => Err(format!(
-            "expected one number or three (x, y, z), got {} numbers",
-            parts.len()
-        )),
+        _ => Err(AnswerError::Count(parts.len())),
     }
 }
 
@@ -267,7 +260,20 @@ mod tests {
             );
         }
         let e = parse_answer(&digits, false).unwrap_err();
-        assert!(e.len() < 100 && e.contains("too large"), "{e}");
+        assert!(
+            matches!(&e, AnswerError::TooLarge(shown) if shown.ends_with('…')),
+            "{e:?}"
+        );
+        assert!(e.to_string().len() < 100, "{e}");
+        assert_eq!(
+            parse_answer("1, 2", false),
+            Err(AnswerError::Count(2)),
+            "two numbers are neither a number nor a vector"
+        );
+        assert_eq!(
+            parse_answer("1, 2, 3", true),
+            Err(AnswerError::UnpairedSegments)
+        );
     }
 
     /// The JSON forms `check --format json` prints: a number, [x, y, z], a list of [t_in, t_out]

@@ -92,12 +92,7 @@ fn write_staging(parent: &Path) -> Result<tempfile::TempDir, LessonError> {
 /// The built-in lessons as a folder: the copy in the user's cache folder (`RAYTREE_CACHE`, else
 /// the platform's), written on first use.
 pub fn cached() -> Result<PathBuf, LessonError> {
-    let cache = match std::env::var_os("RAYTREE_CACHE") {
-        Some(p) => PathBuf::from(p),
-        None => directories::ProjectDirs::from("", "", "raytree")
-            .map(|d| d.cache_dir().to_path_buf())
-            .ok_or(LessonError::NoCacheDir)?,
-    };
+    let cache = crate::files::cache_dir().ok_or(LessonError::NoCacheDir)?;
     let dir = cache.join(format!(
         "lessons-{}-{:016x}",
         env!("CARGO_PKG_VERSION"),

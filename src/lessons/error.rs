@@ -1,6 +1,9 @@
-//! Why lessons cannot be found or written out.
+//! Why lessons cannot be found or written out, why an answer does not read, and why an
+//! exercise cannot be checked.
 
 use std::path::PathBuf;
+
+use crate::scene::SceneError;
 
 /// An error of the lessons' files, naming the path and what was being done to it.
 #[derive(Debug, thiserror::Error)]
@@ -36,7 +39,8 @@ pub enum LessonError {
         /// What is wrong in it.
         message: String,
     },
-    /// A lesson's scene files cannot be read as its variations need them.
+    /// A lesson's scene files cannot be read as its variations need them: a scene that is not
+    /// YAML, a varied value that is not a number, a variation no scene writes.
     #[error("{0}")]
     Scenes(String),
     /// The platform gives no cache folder to write the built-in lessons to.
@@ -45,6 +49,31 @@ pub enum LessonError {
     /// An export would overwrite a folder that already has files in it.
     #[error("{}: the folder is not empty; export the lessons to a new or empty folder", .0.display())]
     NotEmpty(PathBuf),
+    /// A lesson has no exercise of that id.
+    #[error("lesson {lesson} has no exercise `{id}` (exercises: {})", exercises.join(", "))]
+    UnknownExercise {
+        /// The lesson's id.
+        lesson: String,
+        /// The id asked for.
+        id: String,
+        /// The ids the lesson has, in its order.
+        exercises: Vec<String>,
+    },
+    /// A variant asked for a student whose ID is empty (or blank).
+    #[error("a student ID must not be empty")]
+    EmptyStudent,
+    /// A homework folder would be written over a folder that has files in it.
+    #[error("{}: already exists (remove it, or choose another folder)", .0.display())]
+    Exists(PathBuf),
+    /// A homework folder given as a path that names no folder (`..`, `/`).
+    #[error("{}: not a folder name", .0.display())]
+    NotAFolderName(PathBuf),
+    /// A folder validated holds no lesson, and is not one.
+    #[error("{}: no lessons (folders with an exercises.yaml)", .0.display())]
+    NoLessons(PathBuf),
+    /// The platform gives no data folder to keep a student's progress in.
+    #[error("no data folder (set RAYTREE_DATA)")]
+    NoDataDir,
 }
 
 impl LessonError {
@@ -64,3 +93,55 @@ impl From<LessonError> for String {
         e.to_string()
     }
 }
+
+/// An answer as a student typed it that does not read as one.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum AnswerError {
+    /// A part that is not a number (shown cut short when long).
+    #[error("`{0}` is not a number")]
+    NotANumber(String),
+    /// A number too large for a double (`1e999`), which is not read as ∞.
+    #[error("`{0}` is too large to be an answer")]
+    TooLarge(String),
+    /// ∞ where the answer is a finite number (∞ only ends segments).
+    #[error("`{0}`: this answer is a finite number (∞ only ends segments)")]
+    Infinite(String),
+    /// An answer without a number in it, where a number or a vector is asked.
+    #[error("`{0}` holds no numbers: give a number, or three (x, y, z)")]
+    NoNumbers(String),
+    /// An answer without a number in it, where a segment list is asked.
+    #[error("`{0}` holds no numbers: give pairs t_in, t_out (e.g. `13, 16; 22, 23`), or `none` for an empty list")]
+    NoSegments(String),
+    /// A segment list with an odd count of numbers.
+    #[error("a segment list needs pairs t_in, t_out (e.g. `13, 16; 22, 23`)")]
+    UnpairedSegments,
+    /// Neither one number nor three.
+    #[error("expected one number or three (x, y, z), got {0} numbers")]
+    Count(usize),
+}
+
+/// An exercise that cannot be checked or worked out.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CheckError {
+    /// The student's answer does not read.
+    #[error(transparent)]
+    Answer(#[from] AnswerError),
+    /// The exercise's scene does not load.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The exercise asks what its scene cannot answer: its ray hits nothing, its pixel is
+    /// outside the image, its tree has no node it names. The message names the exercise.
+    #[error("{0}")]
+    Unworkable(String),
+    /// The worked solution was asked of a lesson whose solutions are hidden.
+    #[error("lesson {lesson}: the worked solutions are hidden (solutions: hidden)")]
+    Hidden {
+        /// The lesson's id.
+        lesson: String,
+    },
+}
+
+/// A `vary:` range that cannot be drawn from (empty, reversed, not finite, a step ≤ 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("a range is [lo, hi] with lo ≤ hi, [[x, y, z], [x, y, z]], {{ between: [lo, hi], step: s > 0 }} or {{ one_of: [...] }} (not empty)")]
+pub struct RangeError;

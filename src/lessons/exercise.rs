@@ -203,7 +203,7 @@ impl Lesson {
                     message: format!("vary `{p}`: {e}"),
                 })?;
             }
-            let files = lesson.scene_files().map_err(LessonError::Scenes)?;
+            let files = lesson.scene_files()?;
             let base = vary::written(&files, lesson.vary.keys().cloned());
             if let Some(p) = lesson.vary.keys().find(|p| !base.contains_key(*p)) {
                 return Err(LessonError::Invalid {
@@ -220,7 +220,7 @@ impl Lesson {
 
     /// The texts of the lesson's scene files (scene.yaml and every scene an exercise names),
     /// as a student's variant has them.
-    pub fn scene_files(&self) -> Result<BTreeMap<String, String>, String> {
+    pub fn scene_files(&self) -> Result<BTreeMap<String, String>, LessonError> {
         let mut files = vary::scene_files(
             &self.dir,
             self.exercises.iter().filter_map(|e| e.scene.clone()),
@@ -240,17 +240,17 @@ impl Lesson {
     /// The lesson as a student gets it: the varied values drawn for that student written into
     /// its scenes (in memory) and its questions. A lesson that varies nothing is the same for
     /// everyone.
-    pub fn variant(&self, student: &str) -> Result<Lesson, String> {
+    pub fn variant(&self, student: &str) -> Result<Lesson, LessonError> {
         let student = student.trim();
         if student.is_empty() {
-            return Err("a student ID must not be empty".into());
+            return Err(LessonError::EmptyStudent);
         }
         let mut out = self.clone();
         if self.vary.is_empty() {
             return Ok(out);
         }
         let drawn = vary::draw(&self.id, student, &self.vary);
-        out.sources = vary::rewrite(&self.scene_files()?, &drawn)?;
+        out.sources = vary::rewrite(&self.scene_files()?, &drawn).map_err(LessonError::Scenes)?;
         let shown: BTreeMap<String, String> = drawn
             .iter()
             .map(|(p, v)| (p.clone(), vary::show(v)))
@@ -271,15 +271,15 @@ impl Lesson {
             .map(String::as_str)
     }
 
-    pub fn exercise(&self, id: &str) -> Result<&Exercise, String> {
-        self.exercises.iter().find(|e| e.id == id).ok_or_else(|| {
-            let ids: Vec<&str> = self.exercises.iter().map(|e| e.id.as_str()).collect();
-            format!(
-                "lesson {} has no exercise `{id}` (exercises: {})",
-                self.id,
-                ids.join(", ")
-            )
-        })
+    pub fn exercise(&self, id: &str) -> Result<&Exercise, LessonError> {
+        self.exercises
+            .iter()
+            .find(|e| e.id == id)
+            .ok_or_else(|| LessonError::UnknownExercise {
+                lesson: self.id.clone(),
+                id: id.into(),
+                exercises: self.exercises.iter().map(|e| e.id.clone()).collect(),
+            })
     }
 
     pub fn scene_path(&self, ex: &Exercise) -> PathBuf {

@@ -9,6 +9,7 @@ use serde::Serialize;
 
 use super::answer::{parse_answer, Answer};
 use super::check::check;
+use super::error::LessonError;
 use super::exercise::Lesson;
 
 /// One row of the answers file.
@@ -118,7 +119,11 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
 /// Grades every student's rows: students in the order they first appear, every exercise of
 /// the lesson in the lesson's order (unanswered ones count as wrong). A row for an exercise the
 /// lesson does not have is a problem; of two rows for the same exercise, the later counts.
-pub fn grade(lesson: &Lesson, rows: &[Row], mut problems: Vec<Problem>) -> Result<Report, String> {
+pub fn grade(
+    lesson: &Lesson,
+    rows: &[Row],
+    mut problems: Vec<Problem>,
+) -> Result<Report, LessonError> {
     let mut order: Vec<String> = Vec::new();
     let mut answers: BTreeMap<(String, String), &Row> = BTreeMap::new();
     for row in rows {

@@ -6,27 +6,25 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
+use super::error::LessonError;
 use super::exercise::Lesson;
 use super::exercise::Solutions;
 
 /// Writes the homework of `student` for `lesson` into `out`, a folder that must not exist yet
 /// (or be empty). The folder is written whole, under a temporary name renamed at the end.
-pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, String> {
+pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, LessonError> {
     let hw = lesson.variant(student)?;
     if out.exists() && std::fs::read_dir(out).map_or(true, |mut d| d.next().is_some()) {
-        return Err(format!(
-            "{}: already exists (remove it, or choose another folder)",
-            out.display()
-        ));
+        return Err(LessonError::Exists(out.to_path_buf()));
     }
     let name = out
         .file_name()
-        .ok_or_else(|| format!("{}: not a folder name", out.display()))?;
+        .ok_or_else(|| LessonError::NotAFolderName(out.to_path_buf()))?;
     let parent = out
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+    std::fs::create_dir_all(parent).map_err(|e| LessonError::io(parent, "create the folder", e))?;
     let tmp = parent.join(format!(
         ".{}.{}.tmp",
         name.to_string_lossy(),
@@ -34,39 +32,42 @@ pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, Strin
     ));
     let written = fill(lesson, &hw, &tmp).and_then(|()| {
         if out.exists() {
-            std::fs::remove_dir(out).map_err(|e| format!("{}: {e}", out.display()))?;
+            std::fs::remove_dir(out).map_err(|e| LessonError::io(out, "replace the folder", e))?;
         }
-        std::fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))
+        std::fs::rename(&tmp, out)
+            .map_err(|e| LessonError::io(out, "move the homework into place", e))
     });
     if let Err(e) = written {
         let _ = std::fs::remove_dir_all(&tmp);
         return Err(e);
     }
-    Ok(Lesson::load(out)?)
+    Lesson::load(out)
 }
 
 /// Everything of the homework folder, written into `dir`.
-fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), String> {
-    let fail = |p: &Path, e: std::io::Error| format!("{}: {e}", p.display());
-    std::fs::create_dir_all(dir).map_err(|e| fail(dir, e))?;
+fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), LessonError> {
+    std::fs::create_dir_all(dir).map_err(|e| LessonError::io(dir, "create the folder", e))?;
     // The lesson's other files (meshes, textures, extra scenes) as they are.
-    let entries = std::fs::read_dir(&lesson.dir).map_err(|e| fail(&lesson.dir, e))?;
+    let entries = std::fs::read_dir(&lesson.dir)
+        .map_err(|e| LessonError::io(&lesson.dir, "list the lesson's files", e))?;
     for entry in entries.flatten() {
         let from: PathBuf = entry.path();
         let file = entry.file_name();
         let skip = file == "README.md" || file == "exercises.yaml" || !from.is_file();
         if !skip {
-            std::fs::copy(&from, dir.join(&file)).map_err(|e| fail(&from, e))?;
+            std::fs::copy(&from, dir.join(&file)).map_err(|e| LessonError::io(&from, "copy", e))?;
         }
     }
     for (name, text) in &hw.sources {
         let to = dir.join(name);
-        std::fs::write(&to, text).map_err(|e| fail(&to, e))?;
+        std::fs::write(&to, text).map_err(|e| LessonError::io(&to, "write", e))?;
     }
     let exercises = dir.join("exercises.yaml");
-    std::fs::write(&exercises, exercises_yaml(hw)?).map_err(|e| fail(&exercises, e))?;
+    let write_exercises = |e: std::io::Error| LessonError::io(&exercises, "write", e);
+    let text = exercises_yaml(hw).map_err(|e| write_exercises(e.into()))?;
+    std::fs::write(&exercises, text).map_err(write_exercises)?;
     let readme = dir.join("README.md");
-    std::fs::write(&readme, readme_md(hw)).map_err(|e| fail(&readme, e))?;
+    std::fs::write(&readme, readme_md(hw)).map_err(|e| LessonError::io(&readme, "write", e))?;
     Ok(())
 }
 
@@ -77,7 +78,7 @@ fn yaml(v: &Value) -> String {
 
 /// The homework's exercises.yaml: the lesson's, with the student's questions and the record of
 /// whose variant it is.
-fn exercises_yaml(hw: &Lesson) -> Result<String, String> {
+fn exercises_yaml(hw: &Lesson) -> Result<String, serde_json::Error> {
     let mut out =
         String::from("# Written by `raytree homework`: one student's variant of a lesson.\n");
     out.push_str(&format!("title: {}\n", yaml(&hw.title.clone().into())));
@@ -86,14 +87,14 @@ fn exercises_yaml(hw: &Lesson) -> Result<String, String> {
         out.push_str("solutions: hidden\n");
     }
     if let Some(v) = &hw.variant {
-        let record = serde_json::to_value(v).map_err(|e| e.to_string())?;
+        let record = serde_json::to_value(v)?;
         out.push_str(&format!("variant: {}\n", yaml(&record)));
     }
     out.push_str("exercises:\n");
     for ex in &hw.exercises {
         let mut ex = ex.clone();
         ex.question = ex.question.trim().to_string();
-        let Value::Object(fields) = serde_json::to_value(&ex).map_err(|e| e.to_string())? else {
+        let Value::Object(fields) = serde_json::to_value(&ex)? else {
             continue;
         };
         out.push_str(&format!("  - id: {}\n", yaml(&fields["id"])));

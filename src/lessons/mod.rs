@@ -16,7 +16,7 @@ mod yaml_spans;
 
 pub use answer::{parse_answer, Answer};
 pub use check::{check, explain, work, Verdict, Worked};
-pub use error::LessonError;
+pub use error::{AnswerError, CheckError, LessonError, RangeError};
 pub use exercise::{
     all_lessons, find_lesson, lessons_root, use_lessons_root, Ask, Exercise, Lesson, Solutions,
     VariantOf,

@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use super::error::LessonError;
 use super::exercise::Lesson;
 
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
@@ -56,7 +57,7 @@ impl Progress {
     }
 
     /// Records a right answer and saves; the error says why it could not be saved.
-    pub fn record(lesson: &Lesson, exercise: &str) -> Result<(), String> {
+    pub fn record(lesson: &Lesson, exercise: &str) -> Result<(), LessonError> {
         let mut p = Progress::load();
         let new = p
             .lessons
@@ -70,18 +71,19 @@ impl Progress {
     }
 
     /// Writes the file whole (a temporary file renamed over it).
-    fn save(&self) -> Result<(), String> {
-        let path = file().ok_or("no data folder (set RAYTREE_DATA)")?;
+    fn save(&self) -> Result<(), LessonError> {
+        let path = file().ok_or(LessonError::NoDataDir)?;
         let dir = path.parent().unwrap_or(Path::new("."));
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        let mut doc = serde_json::to_value(self).map_err(|e| e.to_string())?;
+        std::fs::create_dir_all(dir).map_err(|e| LessonError::io(dir, "create the folder", e))?;
+        let unwritable = |e: serde_json::Error| LessonError::io(&path, "write", e.into());
+        let mut doc = serde_json::to_value(self).map_err(unwritable)?;
         doc["raytree_version"] = env!("CARGO_PKG_VERSION").into();
-        let text = serde_json::to_string_pretty(&doc).map_err(|e| e.to_string())?;
+        let text = serde_json::to_string_pretty(&doc).map_err(unwritable)?;
         let tmp = dir.join(format!(".progress.json.{}", std::process::id()));
-        std::fs::write(&tmp, text).map_err(|e| format!("{}: {e}", tmp.display()))?;
+        std::fs::write(&tmp, text).map_err(|e| LessonError::io(&tmp, "write", e))?;
         std::fs::rename(&tmp, &path).map_err(|e| {
             let _ = std::fs::remove_file(&tmp);
-            format!("{}: {e}", path.display())
+            LessonError::io(&path, "write", e)
         })
     }
 }

@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use super::check::{check, work};
+use super::error::LessonError;
 use super::exercise::Lesson;
 
 /// What a validation found.
@@ -19,16 +20,13 @@ pub struct Validation {
 }
 
 /// Validates a lesson folder, or every lesson folder in a folder.
-pub fn validate(dir: &Path) -> Result<Validation, String> {
+pub fn validate(dir: &Path) -> Result<Validation, LessonError> {
     let lessons: Vec<Result<Lesson, String>> = if dir.join("exercises.yaml").is_file() {
         vec![Lesson::load(dir).map_err(String::from)]
     } else {
         let found = all_lessons_or_errors(dir)?;
         if found.is_empty() {
-            return Err(format!(
-                "{}: no lessons (folders with an exercises.yaml)",
-                dir.display()
-            ));
+            return Err(LessonError::NoLessons(dir.to_path_buf()));
         }
         found
     };
@@ -43,11 +41,11 @@ pub fn validate(dir: &Path) -> Result<Validation, String> {
 }
 
 /// Every lesson folder of `root`, each loaded or with the reason it does not load.
-fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, String> {
+fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, LessonError> {
     // Unlike `all_lessons`, which stops at the first lesson that does not load, a validation
     // reports them all.
     let mut dirs: Vec<_> = std::fs::read_dir(root)
-        .map_err(|e| format!("{}: cannot list lessons: {e}", root.display()))?
+        .map_err(|e| LessonError::io(root, "list lessons", e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.join("exercises.yaml").is_file())
         .collect();

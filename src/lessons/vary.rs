@@ -19,6 +19,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 
+use super::error::{LessonError, RangeError};
 use super::yaml_spans::{self, Edit};
 use crate::sampling::Rng;
 use crate::trace::text::num;
@@ -49,7 +50,7 @@ const STEP: f64 = 0.01;
 
 impl Range {
     /// Checks the range can be drawn from.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), RangeError> {
         let ok = |lo: f64, hi: f64, step: f64| {
             lo.is_finite() && hi.is_finite() && lo <= hi && step > 0.0 && step.is_finite()
         };
@@ -62,7 +63,7 @@ impl Range {
         if fine {
             Ok(())
         } else {
-            Err("a range is [lo, hi] with lo ≤ hi, [[x, y, z], [x, y, z]], { between: [lo, hi], step: s > 0 } or { one_of: [...] } (not empty)".into())
+            Err(RangeError)
         }
     }
 
@@ -188,15 +189,14 @@ pub fn fill(question: &str, values: &BTreeMap<String, String>) -> String {
 pub fn scene_files(
     dir: &Path,
     names: impl Iterator<Item = String>,
-) -> Result<BTreeMap<String, String>, String> {
+) -> Result<BTreeMap<String, String>, LessonError> {
     let mut out = BTreeMap::new();
     for name in std::iter::once("scene.yaml".to_string()).chain(names) {
         if out.contains_key(&name) {
             continue;
         }
         let path = dir.join(&name);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| LessonError::io(&path, "read", e))?;
         out.insert(name, text);
     }
     Ok(out)

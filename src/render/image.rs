@@ -7,6 +7,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::DVec3;
 
+use super::error::{ImageError, WriteError};
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
     pub width: u32,
@@ -52,7 +54,7 @@ impl Image {
     }
 
     /// Writes PNG, PPM or EXR (by extension), whole or not at all (see `write_atomically`).
-    pub fn save(&self, path: &Path, encoding: Encoding) -> Result<(), String> {
+    pub fn save(&self, path: &Path, encoding: Encoding) -> Result<(), ImageError> {
         self.save_unless(path, encoding, &AtomicBool::new(false))
     }
 
@@ -63,7 +65,7 @@ impl Image {
         path: &Path,
         encoding: Encoding,
         cancel: &AtomicBool,
-    ) -> Result<(), String> {
+    ) -> Result<(), ImageError> {
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -73,20 +75,21 @@ impl Image {
             Some("ppm") => Format::Ppm,
             Some("exr") => Format::Exr,
             _ => {
-                return Err(format!(
-                    "{}: output must end in .png, .ppm or .exr",
-                    path.display()
-                ))
+                return Err(ImageError::UnknownFormat {
+                    path: path.to_path_buf(),
+                })
             }
         };
-        write_atomically_with(path, cancel, |out| self.encode_to(format, encoding, out))
+        Ok(write_atomically_with(path, cancel, |out| {
+            self.encode_to(format, encoding, out)
+        })?)
     }
 
     /// The whole file in memory: for a stream that cannot seek, as standard output.
-    pub fn encoded(&self, format: Format, encoding: Encoding) -> Result<Vec<u8>, String> {
+    pub fn encoded(&self, format: Format, encoding: Encoding) -> Result<Vec<u8>, ImageError> {
         let mut out = io::Cursor::new(Vec::new());
         self.encode_to(format, encoding, &mut out)
-            .map_err(|e| format!("cannot encode the image: {e}"))?;
+            .map_err(ImageError::Encode)?;
         Ok(out.into_inner())
     }
 
@@ -238,7 +241,7 @@ fn least_reaching(f: impl Fn(f64) -> u8, k: u8) -> f64 {
 }
 
 /// Writes `bytes` to `path` whole or not at all (see `write_atomically_with`).
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
     write_atomically_with(path, &AtomicBool::new(false), |out| out.write_all(bytes))
 }
 
@@ -252,23 +255,28 @@ pub fn write_atomically_with(
     path: &Path,
     cancel: &AtomicBool,
     write: impl FnOnce(&mut Cancellable<BufWriter<File>>) -> io::Result<()>,
-) -> Result<(), String> {
-    let shown = path.display();
-    let target = through_links(path).map_err(|e| format!("{shown}: {e}"))?;
+) -> Result<(), WriteError> {
+    let path_buf = || path.to_path_buf();
+    let target = through_links(path).map_err(|source| WriteError::Links {
+        path: path_buf(),
+        source,
+    })?;
     let existing = std::fs::metadata(&target).ok();
     if let Some(meta) = &existing {
         if meta.is_dir() {
-            return Err(format!("{shown}: is a directory"));
+            return Err(WriteError::Directory { path: path_buf() });
         }
         if !meta.is_file() {
-            return Err(format!(
-                "{shown}: not a regular file (a device, a pipe or a socket): not replaced"
-            ));
+            return Err(WriteError::NotRegular { path: path_buf() });
         }
         if meta.permissions().readonly() {
-            return Err(format!("{shown}: is read-only: not replaced"));
+            return Err(WriteError::ReadOnly { path: path_buf() });
         }
     }
+    let failed = |source| WriteError::Io {
+        path: path_buf(),
+        source,
+    };
     let dir = target
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -282,9 +290,7 @@ pub fn write_atomically_with(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let tmp = builder
-        .tempfile_in(dir)
-        .map_err(|e| format!("{shown}: cannot write: {e}"))?;
+    let tmp = builder.tempfile_in(dir).map_err(failed)?;
     let result = (|| {
         if let Some(meta) = &existing {
             tmp.as_file().set_permissions(meta.permissions())?;
@@ -301,11 +307,18 @@ pub fn write_atomically_with(
         }
         Ok(())
     })();
-    // Dropping `tmp` on an error removes the temporary file.
-    result.map_err(|e| format!("{shown}: cannot write: {e}"))?;
+    // Dropping `tmp` on an error removes the temporary file. Once `cancel` is set, whatever
+    // failed failed because of it.
+    result.map_err(|e| {
+        if cancel.load(Ordering::Relaxed) {
+            WriteError::Cancelled { path: path_buf() }
+        } else {
+            failed(e)
+        }
+    })?;
     tmp.persist(&target)
         .map(|_| ())
-        .map_err(|e| format!("{shown}: cannot write: {}", e.error))
+        .map_err(|e| failed(e.error))
 }
 
 /// The file a path names, following symbolic links (also one that points to a file not yet
@@ -409,7 +422,11 @@ mod tests {
         std::fs::write(&locked, b"keep me").unwrap();
         std::fs::set_permissions(&locked, std::fs::Permissions::from_mode(0o444)).unwrap();
         let e = Image::new(1, 1).save(&locked, Encoding::Srgb).unwrap_err();
-        assert!(e.contains("read-only"), "{e}");
+        assert!(
+            matches!(&e, ImageError::Write(WriteError::ReadOnly { path }) if *path == locked),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("read-only"), "{e}");
         assert_eq!(std::fs::read(&locked).unwrap(), b"keep me");
 
         // Renaming over a device would replace the device node by a file.
@@ -417,11 +434,40 @@ mod tests {
         let _ = std::fs::remove_file(&device);
         symlink("/dev/null", &device).unwrap();
         let e = Image::new(1, 1).save(&device, Encoding::Srgb).unwrap_err();
-        assert!(e.contains("not a regular file"), "{e}");
+        assert!(
+            matches!(&e, ImageError::Write(WriteError::NotRegular { .. })),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("not a regular file"), "{e}");
         assert!(std::fs::metadata("/dev/null")
             .unwrap()
             .file_type()
             .is_char_device());
+    }
+
+    /// A program using the library learns which output failed and why, not only a message.
+    #[test]
+    fn a_failed_save_names_the_output_and_its_cause() {
+        let missing = scratch("missing", "")
+            .join("no-such-folder")
+            .join("out.png");
+        match Image::new(1, 1).save(&missing, Encoding::Srgb) {
+            Err(ImageError::Write(WriteError::Io { path, source })) => {
+                assert_eq!(path, missing);
+                assert_eq!(source.kind(), io::ErrorKind::NotFound);
+            }
+            other => panic!("{other:?}"),
+        }
+        let odd = scratch("missing", "out.jpg");
+        match Image::new(1, 1).save(&odd, Encoding::Srgb) {
+            Err(e @ ImageError::UnknownFormat { .. }) => {
+                assert_eq!(
+                    e.to_string(),
+                    format!("{}: output must end in .png, .ppm or .exr", odd.display())
+                );
+            }
+            other => panic!("{other:?}"),
+        }
     }
 
     #[test]
@@ -431,7 +477,11 @@ mod tests {
         let e = Image::new(64, 64)
             .save_unless(&path, Encoding::Srgb, &AtomicBool::new(true))
             .unwrap_err();
-        assert!(e.contains("interrupted"), "{e}");
+        assert!(
+            matches!(&e, ImageError::Write(WriteError::Cancelled { path: p }) if *p == path),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("interrupted"), "{e}");
         assert_eq!(std::fs::read(&path).unwrap(), b"previous");
         assert!(leftovers(path.parent().unwrap()).is_empty());
     }

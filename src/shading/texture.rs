@@ -4,7 +4,7 @@
 //! loaded, so texture colours enter the lecture's formulas as any other colour does).
 
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::{DVec2, DVec3};
 use serde::Deserialize;
@@ -83,6 +83,47 @@ pub fn srgb_to_linear(c: f64) -> f64 {
     }
 }
 
+/// An image texture not loaded. The message names the file as the scene wrote it.
+#[derive(Debug, thiserror::Error)]
+pub enum TextureError {
+    /// The file cannot be opened or read.
+    #[error("cannot read `{name}`: {source}")]
+    Read {
+        /// The file as the scene wrote it.
+        name: String,
+        /// The file's path.
+        path: PathBuf,
+        /// The system's reason.
+        source: std::io::Error,
+    },
+    /// The path names a folder, a device, a pipe or a socket.
+    #[error("cannot read `{name}`: not a regular file")]
+    NotRegular {
+        /// The file as the scene wrote it.
+        name: String,
+        /// The file's path.
+        path: PathBuf,
+    },
+    /// The file is not a PNG or EXR image that decodes.
+    #[error("cannot read `{name}`: {source}")]
+    Decode {
+        /// The file as the scene wrote it.
+        name: String,
+        /// The file's path.
+        path: PathBuf,
+        /// The decoder's reason.
+        source: image::ImageError,
+    },
+    /// The image has no pixels.
+    #[error("cannot read `{name}`: the image is empty")]
+    Empty {
+        /// The file as the scene wrote it.
+        name: String,
+        /// The file's path.
+        path: PathBuf,
+    },
+}
+
 impl Image {
     /// An image from linear texels, row by row from the top.
     pub fn new(name: &str, width: u32, height: u32, texels: Vec<[f32; 3]>) -> Image {
@@ -98,23 +139,38 @@ impl Image {
 
     /// Reads a PNG (sRGB values, decoded to linear) or an EXR (linear already). `name` is the
     /// file as the scene wrote it.
-    pub fn load(path: &Path, name: &str) -> Result<Image, String> {
-        let meta = std::fs::metadata(path).map_err(|e| format!("cannot read `{name}`: {e}"))?;
+    pub fn load(path: &Path, name: &str) -> Result<Image, TextureError> {
+        let read = |source| TextureError::Read {
+            name: name.into(),
+            path: path.to_path_buf(),
+            source,
+        };
+        let meta = std::fs::metadata(path).map_err(read)?;
         if !meta.is_file() {
-            return Err(format!("cannot read `{name}`: not a regular file"));
+            return Err(TextureError::NotRegular {
+                name: name.into(),
+                path: path.to_path_buf(),
+            });
         }
         let decoded = image::ImageReader::open(path)
             .and_then(|r| r.with_guessed_format())
-            .map_err(|e| format!("cannot read `{name}`: {e}"))?
+            .map_err(read)?
             .decode()
-            .map_err(|e| format!("cannot read `{name}`: {e}"))?;
+            .map_err(|source| TextureError::Decode {
+                name: name.into(),
+                path: path.to_path_buf(),
+                source,
+            })?;
         let linear = matches!(
             decoded,
             image::DynamicImage::ImageRgb32F(_) | image::DynamicImage::ImageRgba32F(_)
         );
         let (width, height) = (decoded.width(), decoded.height());
         if width == 0 || height == 0 {
-            return Err(format!("cannot read `{name}`: the image is empty"));
+            return Err(TextureError::Empty {
+                name: name.into(),
+                path: path.to_path_buf(),
+            });
         }
         let texels = if linear {
             decoded

@@ -32,10 +32,11 @@ mod tree;
 use glam::DVec3;
 
 use super::answer::{parse_answer, Answer};
+use super::error::CheckError;
 use super::exercise::{Ask, Exercise, Lesson};
 use super::tolerance::Tolerance;
 use crate::geometry::Ray;
-use crate::scene::{Limits, Scene};
+use crate::scene::{Limits, Scene, SceneError};
 use crate::trace::tree::HitInfo;
 use crate::trace::TraceOptions;
 use crate::trace::{text, RayNode, Tracer};
@@ -176,7 +177,7 @@ impl<'a> Traced<'a> {
 // --- Working an exercise out ---
 
 /// The exercise's scene, in the highlight model the exercise states.
-fn load(lesson: &Lesson, ex: &Exercise) -> Result<Scene, String> {
+fn load(lesson: &Lesson, ex: &Exercise) -> Result<Scene, SceneError> {
     let path = lesson.scene_path(ex);
     let mut scene = match lesson.scene_source(ex) {
         Some(text) => crate::scene::parse(
@@ -186,8 +187,7 @@ fn load(lesson: &Lesson, ex: &Exercise) -> Result<Scene, String> {
             &Limits::default(),
         ),
         None => crate::scene::load(&path, &Limits::default()),
-    }
-    .map_err(|e| e.to_string())?;
+    }?;
     if let Some(model) = ex.model {
         for m in &mut scene.materials {
             m.highlight = model;
@@ -243,9 +243,9 @@ fn answer(scene: &Scene, ray: &Ray, tree: &RayNode, ex: &Exercise) -> Result<Ans
 }
 
 /// Traces the exercise and computes its expected answer.
-pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
+pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, CheckError> {
     let scene = load(lesson, ex)?;
-    let ray = exercise_ray(&scene, ex)?;
+    let ray = exercise_ray(&scene, ex).map_err(CheckError::Unworkable)?;
     let depth = ex.depth.unwrap_or(scene.max_depth).clamp(1, 64);
     let tree = trace(
         &scene,
@@ -255,8 +255,10 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
             ..TraceOptions::of(&scene)
         },
     );
-    let expected = answer(&scene, &ray, &tree, ex)?;
-    let tolerance = montecarlo::tolerance(ex, node(&tree, ex)?)?;
+    let expected = answer(&scene, &ray, &tree, ex).map_err(CheckError::Unworkable)?;
+    let tolerance = node(&tree, ex)
+        .and_then(|n| montecarlo::tolerance(ex, n))
+        .map_err(CheckError::Unworkable)?;
     Ok(Worked {
         scene,
         ray,
@@ -267,7 +269,7 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, String> {
     })
 }
 
-pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, String> {
+pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, CheckError> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
     let correct = given.matches(&w.expected, &w.tolerance);
@@ -408,17 +410,20 @@ fn hint(w: &Worked, ex: &Exercise, given: &Answer) -> Option<String> {
 
 /// The worked derivation, step by step, with the numbers filled in (refused for a lesson whose
 /// solutions are hidden).
-pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, String> {
+pub fn explain(lesson: &Lesson, ex: &Exercise) -> Result<Vec<String>, CheckError> {
     if lesson.solutions == super::exercise::Solutions::Hidden {
-        return Err(format!(
-            "lesson {}: the worked solutions are hidden (solutions: hidden)",
-            lesson.id
-        ));
+        return Err(CheckError::Hidden {
+            lesson: lesson.id.clone(),
+        });
     }
     let w = work(lesson, ex)?;
-    let n = node(&w.tree, ex)?;
+    let n = node(&w.tree, ex).map_err(CheckError::Unworkable)?;
     let mut out = vec![format!("{}: {}", ex.id, ex.question.trim())];
-    out.extend(question(ex.ask).explain(&w, ex, n)?);
+    out.extend(
+        question(ex.ask)
+            .explain(&w, ex, n)
+            .map_err(CheckError::Unworkable)?,
+    );
     out.extend(montecarlo::explain(&w, n));
     out.push(format!("answer: {}", w.expected.show()));
     Ok(out)

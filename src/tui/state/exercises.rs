@@ -114,7 +114,7 @@ pub fn rows(l: &LessonPanel, body: Rect) -> (Vec<ExRow>, Vec<ExRow>) {
                     v.message(),
                     if v.correct { ExKind::Good } else { ExKind::Bad },
                 ),
-                Err(e) => (e.clone(), ExKind::Bad),
+                Err(e) => (e.to_string(), ExKind::Bad),
             };
             for t in text.lines() {
                 for part in wrap(t, width) {
@@ -139,7 +139,7 @@ pub fn rows(l: &LessonPanel, body: Rect) -> (Vec<ExRow>, Vec<ExRow>) {
             }
         }
         Some(Err(e)) => {
-            for part in wrap(e, width) {
+            for part in wrap(&e.to_string(), width) {
                 rows.push(row(part, ExKind::Bad));
             }
         }

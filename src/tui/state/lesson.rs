@@ -12,7 +12,7 @@ use crate::geometry::Ray;
 use std::collections::BTreeSet;
 
 use crate::lessons::progress::Progress;
-use crate::lessons::{self, Ask, Lesson, Solutions, Verdict};
+use crate::lessons::{self, Ask, CheckError, Lesson, Solutions, Verdict};
 use crate::scene::Scene;
 use crate::trace::text;
 use crate::tui::layout::inner;
@@ -28,7 +28,7 @@ pub enum LessonView {
 #[derive(Clone, Debug)]
 pub struct Answered {
     pub given: String,
-    pub result: Result<Verdict, String>,
+    pub result: Result<Verdict, CheckError>,
 }
 
 pub struct LessonPanel {
@@ -42,7 +42,7 @@ pub struct LessonPanel {
     /// The last answer to each exercise.
     pub answers: Vec<Option<Answered>>,
     /// The worked solution of the selected exercise, when asked for (`w`).
-    pub work: Option<Result<Vec<String>, String>>,
+    pub work: Option<Result<Vec<String>, CheckError>>,
     /// Scroll of the selected exercise's text in the exercises view.
     pub exercise_scroll: u16,
     /// The exercises answered right, now or in an earlier session (the user's progress).
