@@ -8,6 +8,7 @@ mod args;
 mod bench;
 mod check;
 mod completions;
+mod cpu;
 pub mod csg;
 mod diagram;
 mod explore;
@@ -91,6 +92,10 @@ impl<E: std::fmt::Display> From<E> for Failure {
 }
 
 pub fn run() -> ExitCode {
+    if let Err(msg) = cpu::check() {
+        output::eprintln(&format!("raytree: {msg}"));
+        return ExitCode::from(2);
+    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         // Help and version go to stdout like any output (a closed pipe or a full device is
