@@ -90,6 +90,8 @@ impl<E: std::fmt::Display> From<E> for Failure {
     }
 }
 
+/// Runs the `raytree` command line on the process's arguments; the exit code reports success,
+/// failure or a usage error.
 pub fn run() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
