@@ -26,8 +26,10 @@ pub enum ReadError {
     /// More bytes than the budget (files under /proc report a size of 0, so the size is
     /// counted while reading, not only taken from the metadata).
     TooLarge {
+        /// The most bytes that may be read.
         budget: u64,
     },
+    /// Opening, inspecting or reading the file failed.
     Io(std::io::Error),
 }
 

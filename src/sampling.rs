@@ -7,6 +7,8 @@ use glam::DVec3;
 use rand::{Rng as _, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+/// The random number generator of a pixel's samples: PCG-64, seeded per pixel so that images do not
+/// depend on thread scheduling.
 #[derive(Clone, Debug)]
 pub struct Rng(Pcg64Mcg);
 

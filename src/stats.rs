@@ -2,11 +2,16 @@
 
 use serde::Serialize;
 
+/// Counters of the work a trace or render did and skipped, summed over threads.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Stats {
+    /// Rays from the eye through the pixels.
     pub primary_rays: u64,
+    /// Shadow rays cast towards lights.
     pub shadow_rays: u64,
+    /// Reflection rays traced.
     pub reflection_rays: u64,
+    /// Refraction rays traced.
     pub refraction_rays: u64,
     /// Shadow rays not cast because the light is behind the surface (n·l ≤ 0).
     pub shadow_skipped_backfacing: u64,
@@ -19,6 +24,7 @@ pub struct Stats {
     pub max_depth_cutoffs: u64,
     /// Secondary rays not cast because their weight fell below the adaptive threshold.
     pub adaptive_cutoffs: u64,
+    /// Refraction rays replaced by a mirror ray past the critical angle.
     pub total_internal_reflections: u64,
     /// CSG subtrees skipped (bounding box missed, or empty operand of ∩ / −).
     pub csg_pruned: u64,
@@ -36,10 +42,12 @@ pub struct Stats {
 }
 
 impl Stats {
+    /// All rays traced: primary, shadow, reflection and refraction.
     pub fn rays(&self) -> u64 {
         self.primary_rays + self.shadow_rays + self.reflection_rays + self.refraction_rays
     }
 
+    /// Adds another run's counters to these.
     pub fn add(&mut self, o: &Stats) {
         self.primary_rays += o.primary_rays;
         self.shadow_rays += o.shadow_rays;

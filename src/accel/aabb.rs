@@ -2,15 +2,20 @@
 
 use glam::{DAffine3, DVec3};
 
+/// An axis-aligned bounding box in world space: the points with `min ≤ p ≤ max` per axis; empty
+/// when some `min` exceeds its `max`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// Corner with the smallest x, y and z.
     pub min: DVec3,
+    /// Corner with the largest x, y and z.
     pub max: DVec3,
 }
 
 /// A ray prepared for slab tests against many boxes.
 #[derive(Clone, Copy, Debug)]
 pub struct SlabRay {
+    /// Where the ray starts (world space).
     pub origin: DVec3,
     /// 1/d per component (±∞ for zero components).
     pub inv_dir: DVec3,
@@ -19,6 +24,8 @@ pub struct SlabRay {
 }
 
 impl SlabRay {
+    /// Prepares a ray from its origin and the per-component reciprocal of its direction; the sign
+    /// flags are read off `inv_dir`.
     pub fn new(origin: DVec3, inv_dir: DVec3) -> SlabRay {
         SlabRay {
             origin,
@@ -33,6 +40,8 @@ impl SlabRay {
 }
 
 impl Aabb {
+    /// The box with corners `min` and `max` (not checked: `min > max` on some axis gives an empty
+    /// box).
     pub fn new(min: DVec3, max: DVec3) -> Aabb {
         Aabb { min, max }
     }
@@ -47,6 +56,7 @@ impl Aabb {
         Aabb::new(DVec3::NEG_INFINITY, DVec3::INFINITY)
     }
 
+    /// The degenerate box holding the single point `p`.
     pub fn point(p: DVec3) -> Aabb {
         Aabb::new(p, p)
     }
@@ -63,30 +73,39 @@ impl Aabb {
         Aabb::new(center - e, center + e)
     }
 
+    /// Whether both corners are finite (false for `everything` and `empty`, and for unbounded
+    /// shapes such as planes).
     pub fn is_finite(&self) -> bool {
         self.min.is_finite() && self.max.is_finite()
     }
 
+    /// Whether the box holds no point: some axis has `min > max`.
     pub fn is_empty(&self) -> bool {
         self.min.x > self.max.x || self.min.y > self.max.y || self.min.z > self.max.z
     }
 
+    /// The smallest box holding both boxes.
     pub fn union(&self, o: &Aabb) -> Aabb {
         Aabb::new(self.min.min(o.min), self.max.max(o.max))
     }
 
+    /// The common part of both boxes; empty when they do not overlap.
     pub fn intersection(&self, o: &Aabb) -> Aabb {
         Aabb::new(self.min.max(o.min), self.max.min(o.max))
     }
 
+    /// The smallest box holding this box and the point `p`.
     pub fn grow(&self, p: DVec3) -> Aabb {
         Aabb::new(self.min.min(p), self.max.max(p))
     }
 
+    /// The midpoint of the box, the point the BVH sorts boxes by.
     pub fn center(&self) -> DVec3 {
         0.5 * (self.min + self.max)
     }
 
+    /// The box's surface area (0 for an empty box): the SAH's measure of how likely a ray is to hit
+    /// it.
     pub fn surface_area(&self) -> f64 {
         let e = (self.max - self.min).max(DVec3::ZERO);
         2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)

@@ -7,9 +7,12 @@ use glam::DVec3;
 
 use super::Aabb;
 
+/// A bounding ball (sphere) in world space: the points within `radius` of `center`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ball {
+    /// Centre of the ball, world space.
     pub center: DVec3,
+    /// Radius of the ball, in scene units.
     pub radius: f64,
 }
 
@@ -17,10 +20,12 @@ pub struct Ball {
 const PAD: f64 = 1e-9;
 
 impl Ball {
+    /// The ball of the given centre and radius.
     pub fn new(center: DVec3, radius: f64) -> Ball {
         Ball { center, radius }
     }
 
+    /// The axis-aligned box around the ball.
     pub fn bounds(&self) -> Aabb {
         Aabb::new(self.center - self.radius, self.center + self.radius)
     }

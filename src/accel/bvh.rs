@@ -14,6 +14,7 @@ use super::Aabb;
 #[derive(Clone, Copy, Debug)]
 #[repr(align(64))]
 pub struct Node {
+    /// The box around everything below this node.
     pub bounds: Aabb,
     /// Leaf: first index into `items`. Interior: index of the right child.
     pub offset: u32,
@@ -23,6 +24,8 @@ pub struct Node {
     pub axis: u8,
 }
 
+/// A bounding volume hierarchy over a list of boxes, built by the surface area heuristic (SAH) and
+/// flattened into an array; the items are indices into the boxes it was built from.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
@@ -32,7 +35,9 @@ pub struct Bvh {
 /// Work done by one traversal.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Visits {
+    /// Nodes whose box the ray was tested against.
     pub nodes: u64,
+    /// Items (primitives) of the leaves reached, each one intersection test.
     pub items: u64,
 }
 
@@ -55,6 +60,7 @@ impl Bvh {
         bvh
     }
 
+    /// How many nodes, leaves and interior, the flattened tree has (0 when built from no boxes).
     pub fn node_count(&self) -> usize {
         self.nodes.len()
     }
@@ -69,6 +75,7 @@ impl Bvh {
         &self.items
     }
 
+    /// The root's box, around every item; empty when there are none.
     pub fn bounds(&self) -> Aabb {
         self.nodes.first().map_or(Aabb::empty(), |n| n.bounds)
     }

@@ -15,9 +15,13 @@ use crate::scene::Scene;
 /// One alternating round: the scene and the control, each on one thread and on N.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ThreadRun {
+    /// Seconds to render the scene on one thread.
     pub render_one: f64,
+    /// Seconds to render the scene on N threads.
     pub render_many: f64,
+    /// Seconds for the control job on one thread.
     pub control_one: f64,
+    /// Seconds for the control job on N threads.
     pub control_many: f64,
 }
 

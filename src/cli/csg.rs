@@ -16,7 +16,8 @@ use crate::trace::text;
   raytree csg lessons/10-csg/scene.yaml --ray 0,0,-10:0,0,1
   raytree csg lessons/examples/csg.yaml --pixel 160,120 --all
   raytree csg lessons/10-csg/scene.yaml --ray 0,0,-10:0,0,1 --format json")]
-pub struct Args {
+/// The arguments of `raytree csg`.
+pub(crate) struct Args {
     #[command(flatten)]
     scene: SceneArgs,
     #[command(flatten)]
@@ -30,6 +31,8 @@ pub struct Args {
     format: Format,
 }
 
+/// The JSON form of a CSG trace (`raytree csg --format json`): each node's name, operation or
+/// shape, segment list (t values and points along `ray`) and why it was pruned, with its children.
 pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
     let op = match (t.op, t.leaf) {
         (Some(op), _) => op.name(),
@@ -61,7 +64,8 @@ pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
     node
 }
 
-pub fn run(a: Args) -> Result<ExitCode, Failure> {
+/// Runs `raytree csg`: the CSG segment lists a ray meets, as a tree of text or as JSON.
+pub(crate) fn run(a: Args) -> Result<ExitCode, Failure> {
     let scene = a.scene.load()?;
     let ray = a.target.ray(&scene)?;
     let survey = text::csg_survey(&scene, &ray, a.all);

@@ -91,6 +91,8 @@ impl<E: std::fmt::Display> From<E> for Failure {
     }
 }
 
+/// Runs the `raytree` command line on the process's arguments; the exit code reports success,
+/// failure or a usage error.
 pub fn run() -> ExitCode {
     if let Err(msg) = cpu::check() {
         output::eprintln(&format!("raytree: {msg}"));

@@ -17,22 +17,30 @@ use crate::trace::RayNode;
 /// direction its light travels along, from far away.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightMark {
+    /// The light's name in the scene.
     pub name: String,
+    /// Where it is drawn (world space): the position or centre; None for a directional light.
     pub at: Option<DVec3>,
+    /// The unit direction its light travels, for a directional light; None otherwise.
     pub direction: Option<DVec3>,
 }
 
 /// The eye of a pixel's primary ray, the image plane and the pixel's point on it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Eye {
+    /// The eye point, world space.
     pub at: DVec3,
     /// The image plane's corners, in order round it.
     pub image_plane: [DVec3; 4],
+    /// Where the pixel's primary ray crosses the image plane, world space.
     pub pixel: DVec3,
 }
 
+/// A ray tree laid out in one orthographic view: its rays, the primitives' outlines, the lights and
+/// the eye, in the view's plane.
 #[derive(Clone, Debug)]
 pub struct Drawing {
+    /// Which world axes the drawing keeps.
     pub view: View,
     /// Around the rays of the whole tree (and the eye), before it is fitted to a pane.
     pub frame: Frame,
@@ -40,7 +48,9 @@ pub struct Drawing {
     pub section: f64,
     /// The rays of the tree shown, parents before children.
     pub segments: Vec<Segment>,
+    /// The outlines of the scene's primitives cut by or projected onto the view's plane.
     pub outlines: Vec<LeafOutline>,
+    /// The scene's lights.
     pub lights: Vec<LightMark>,
     /// For a pixel's tree (not for a ray given by hand).
     pub eye: Option<Eye>,

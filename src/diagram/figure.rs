@@ -20,13 +20,17 @@ use crate::trace::{RayKind, RayNode};
 
 /// What the figure shows, besides the drawing itself.
 pub struct Figure<'a> {
+    /// The scene the tree was traced in.
     pub scene: &'a Scene,
+    /// The ray tree drawn.
     pub tree: &'a RayNode,
+    /// The tree laid out in its view.
     pub drawing: &'a Drawing,
     /// The title line: scene, pixel or ray, view.
     pub title: String,
     /// The figure's size in pixels.
     pub width: u32,
+    /// The figure's height in pixels.
     pub height: u32,
 }
 

@@ -7,7 +7,9 @@ use glam::DVec2;
 /// A rectangle of the view's plane, in world units.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
+    /// Lower-left corner (smallest coordinates).
     pub min: DVec2,
+    /// Upper-right corner (largest coordinates).
     pub max: DVec2,
 }
 
@@ -36,14 +38,17 @@ impl Frame {
         }
     }
 
+    /// Width and height, in world units.
     pub fn size(&self) -> DVec2 {
         self.max - self.min
     }
 
+    /// The rectangle's midpoint.
     pub fn center(&self) -> DVec2 {
         0.5 * (self.min + self.max)
     }
 
+    /// Whether `p` lies in the rectangle (edges included).
     pub fn contains(&self, p: DVec2) -> bool {
         p.cmpge(self.min).all() && p.cmple(self.max).all()
     }

@@ -14,7 +14,9 @@ use crate::trace::{RayKind, RayNode, Termination};
 /// A node of the graph, placed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GraphNode {
+    /// The node's place in the tree: child indices from the root.
     pub path: Vec<usize>,
+    /// Primary, shadow, reflection or refraction.
     pub kind: RayKind,
     /// Its column (leaves are 0, 1, 2, … from the left; a parent sits over its children) and
     /// row (the level of recursion of its parent's children: depth, shadow rays one below

@@ -12,6 +12,7 @@ use crate::trace::RayNode;
 pub struct HitMark {
     /// The node whose ray hit it.
     pub path: Vec<usize>,
+    /// What ended there, which sets the mark's colour.
     pub kind: SegKind,
     /// Continuous image coordinates: (0, 0) is the top-left corner of the image, pixel (x, y)
     /// covers [x, x + 1) × [y, y + 1).

@@ -17,7 +17,12 @@ pub enum Outline {
     /// A closed polygon: a silhouette.
     Polygon(Vec<DVec2>),
     /// A line without end through `point` along `dir`: a plane cut by the drawing's plane.
-    Line { point: DVec2, dir: DVec2 },
+    Line {
+        /// A point of the line, in the view's plane.
+        point: DVec2,
+        /// The line's direction, in the view's plane.
+        dir: DVec2,
+    },
 }
 
 /// One primitive's outline.
@@ -27,6 +32,7 @@ pub struct LeafOutline {
     pub object: String,
     /// The leaf's name (the object's own for a plain object).
     pub leaf: String,
+    /// The shape drawn.
     pub outline: Outline,
 }
 

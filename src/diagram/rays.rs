@@ -10,8 +10,11 @@ use crate::trace::{RayKind, RayNode, Termination};
 /// What a segment stands for, which sets its colour.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SegKind {
+    /// A primary ray from the eye.
     Primary,
+    /// A reflection ray.
     Reflection,
+    /// A refraction ray.
     Refraction,
     /// A shadow ray that reached its light (s > 0).
     ShadowClear,
@@ -22,6 +25,7 @@ pub enum SegKind {
 }
 
 impl SegKind {
+    /// Every kind, in the order of the legend.
     pub const ALL: [SegKind; 6] = [
         SegKind::Primary,
         SegKind::Reflection,
@@ -86,10 +90,13 @@ impl SegKind {
 pub struct Segment {
     /// The node's place in the tree (child indices from the root).
     pub path: Vec<usize>,
+    /// What the segment stands for (its colour).
     pub kind: SegKind,
     /// The ray's own kind (a missed ray is still a reflection or a refraction).
     pub ray: RayKind,
+    /// Depth of the ray in the tree (0 for the primary ray).
     pub depth: u32,
+    /// Where the ray starts, world space.
     pub from: DVec3,
     /// Unit direction.
     pub dir: DVec3,

@@ -23,9 +23,13 @@ pub enum View {
 /// The view asked for: one of the three, or the one that best holds the rays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum ViewChoice {
+    /// From above.
     Top,
+    /// From the side.
     Side,
+    /// From the front.
     Front,
+    /// Whichever view drops the axis along which the rays spread least.
     #[default]
     Auto,
 }
@@ -58,6 +62,7 @@ impl View {
         }
     }
 
+    /// The view's name (`top`, `side`, `front`).
     pub fn name(self) -> &'static str {
         match self {
             View::Top => "top",
@@ -119,6 +124,7 @@ impl ViewChoice {
         }
     }
 
+    /// The choice's name (`top`, `side`, `front`, `auto`).
     pub fn name(self) -> &'static str {
         match self {
             ViewChoice::Top => "top",

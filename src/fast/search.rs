@@ -18,6 +18,7 @@ use crate::stats::Stats;
 
 /// A compiled scene with what the fast search needs beside it.
 pub struct FastScene<'s> {
+    /// The compiled scene searched.
     pub scene: &'s Scene,
     /// The bounded objects' probes, by BVH item number.
     pub(super) bounded: Vec<Probe>,
@@ -46,6 +47,8 @@ impl LeafSpans for Scene {
 }
 
 impl<'s> FastScene<'s> {
+    /// The fast search of `scene`: its objects' probes gathered (runs of spheres grouped into SIMD
+    /// lanes, CSG trees flattened).
     pub fn new(scene: &'s Scene) -> FastScene<'s> {
         let index = &scene.index;
         let flat_csg: Vec<Option<FlatCsg>> = scene

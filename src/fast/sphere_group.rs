@@ -47,10 +47,12 @@ impl SphereGroup {
         }
     }
 
+    /// How many spheres the group holds.
     pub fn len(&self) -> usize {
         self.len
     }
 
+    /// Whether the group holds no sphere.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }

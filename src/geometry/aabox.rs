@@ -4,9 +4,13 @@ use glam::DVec3;
 
 use super::{Ray, Span};
 
+/// An axis-aligned box primitive (scene `box`), in object space: a solid bounded by six faces,
+/// numbered −x, +x, −y, +y, −z, +z.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Aabox {
+    /// Corner with the smallest coordinates.
     pub min: DVec3,
+    /// Corner with the largest coordinates.
     pub max: DVec3,
 }
 
@@ -21,6 +25,8 @@ const NORMALS: [DVec3; 6] = [
 ];
 
 impl Aabox {
+    /// The interval of t (over the whole line) inside the box, by the slab method, with the faces
+    /// the ray enters and leaves through; None when the ray misses it.
     pub fn span(&self, ray: &Ray) -> Option<Span> {
         let (mut t_in, mut t_out) = (f64::NEG_INFINITY, f64::INFINITY);
         let (mut face_in, mut face_out) = (0u8, 0u8);
@@ -52,6 +58,7 @@ impl Aabox {
         (t_in <= t_out).then(|| Span::new(t_in, face_in, t_out, face_out))
     }
 
+    /// The outward unit normal of face `face` (0–5: −x, +x, −y, +y, −z, +z).
     pub fn normal(&self, face: u8) -> DVec3 {
         NORMALS[face as usize]
     }

@@ -7,10 +7,15 @@ use glam::DVec3;
 use super::cylinder::{cap_slab, crossings, quadratic, AxialQuadratic, Interval, BASE_CAP, SIDE};
 use super::{Ray, Span};
 
+/// A finite cone primitive, in object space: the apex, a circular base disc of `radius` around
+/// `base`, and the side between them.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cone {
+    /// The tip of the cone, where its radius is 0.
     pub apex: DVec3,
+    /// Centre of the base disc; the axis runs from `apex` to here.
     pub base: DVec3,
+    /// Radius of the base disc.
     pub radius: f64,
 }
 

@@ -12,16 +12,22 @@ use serde::Serialize;
 use super::{Ray, Segment, SegmentList, Surface};
 use crate::accel::Aabb;
 
+/// A CSG operation on the inside of solids, acting pointwise on the segment lists along a ray.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum CsgOp {
+    /// A ∪ B: inside either operand.
     Union,
+    /// A ∩ B: inside both operands.
     Intersection,
+    /// A − B: inside A but not B.
     Difference,
+    /// Not A: the outside of a single operand (its segments inverted).
     Complement,
 }
 
 impl CsgOp {
+    /// The operation's name as written in scene files (`union`, `intersection`, …).
     pub fn name(self) -> &'static str {
         match self {
             CsgOp::Union => "union",
@@ -46,14 +52,22 @@ impl CsgOp {
 /// left: `difference: [A, B, C]` is (A − B) − C).
 #[derive(Clone, Debug)]
 pub enum CsgNode {
+    /// A primitive operand: its segment list comes straight from the shape.
     Leaf {
+        /// Index of the primitive among the scene's CSG leaves.
         leaf: u32,
+        /// World-space box around the primitive, to skip it when the ray misses.
         bounds: Aabb,
     },
+    /// An operation over two or more children (one for `complement`).
     Op {
+        /// Which operation combines the children's segment lists.
         op: CsgOp,
+        /// The node's name in the scene file, or the operation's name when it has none.
         name: String,
+        /// The operands, folded left to right.
         children: Vec<CsgNode>,
+        /// World-space box around the node's result, tightened by bounding balls where possible.
         bounds: Aabb,
     },
 }
@@ -75,24 +89,34 @@ pub enum Pruned {
 /// What a CSG evaluation did at each node, for `raytree csg` and the inspector.
 #[derive(Clone, Debug)]
 pub struct CsgTrace {
+    /// Name of the node (its name in the scene file, or its operation's or shape's).
     pub node: String,
+    /// The operation, for an operation node; None for a leaf.
     pub op: Option<CsgOp>,
+    /// The leaf index, for a primitive; None for an operation.
     pub leaf: Option<u32>,
+    /// The node's segment list along the ray (empty when pruned).
     pub segments: SegmentList,
+    /// Why the node was skipped, or None when it was evaluated.
     pub pruned: Option<Pruned>,
+    /// The traces of the node's children, in order.
     pub children: Vec<CsgTrace>,
 }
 
 /// Counters of the work CSG did and skipped.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CsgWork {
+    /// Primitive segment lists computed (ray–leaf intersections).
     pub leaves_tested: u64,
+    /// Nodes skipped, by their bounds or by the pruning rules.
     pub pruned: u64,
 }
 
 /// The environment a CSG evaluation needs: the leaf segment lists.
 pub trait LeafSegments {
+    /// The segment list of leaf `leaf` along `ray` (world space): where the ray is inside it.
     fn leaf_segments(&self, leaf: u32, ray: &Ray) -> SegmentList;
+    /// A name for leaf `leaf`, for traces.
     fn leaf_name(&self, leaf: u32) -> String;
 }
 
@@ -100,9 +124,13 @@ pub trait LeafSegments {
 /// the ray misses within the window contributes nothing there (the operations act pointwise
 /// on t, so restricting every input to the window restricts the result to it).
 pub struct CsgRay<'a> {
+    /// The ray, in world space.
     pub ray: &'a Ray,
+    /// 1/d per component, for the slab tests of the nodes' boxes.
     pub inv_dir: DVec3,
+    /// Start of the window of t that matters.
     pub t_min: f64,
+    /// End of the window of t that matters.
     pub t_max: f64,
     /// Skip subtrees whose bounding box the ray misses (off to show the notes' own pruning).
     pub use_bounds: bool,
@@ -111,6 +139,7 @@ pub struct CsgRay<'a> {
 }
 
 impl CsgNode {
+    /// The world-space box around everything the node can contain.
     pub fn bounds(&self) -> Aabb {
         match self {
             CsgNode::Leaf { bounds, .. } | CsgNode::Op { bounds, .. } => *bounds,

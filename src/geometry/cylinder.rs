@@ -5,16 +5,23 @@ use glam::DVec3;
 
 use super::{Ray, Span};
 
+/// A finite cylinder primitive, in object space: radius `radius` around the axis from `base` to
+/// `top`, closed by two caps.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Cylinder {
+    /// Centre of the base cap.
     pub base: DVec3,
+    /// Centre of the top cap.
     pub top: DVec3,
+    /// Radius of the side and the caps.
     pub radius: f64,
 }
 
 /// Faces: the curved side, the base cap, the top cap.
 pub const SIDE: u8 = 0;
+/// Face number of the cap at `base`.
 pub const BASE_CAP: u8 = 1;
+/// Face number of the cap at `top`.
 pub const TOP_CAP: u8 = 2;
 
 /// An interval of t with the face at each end.
@@ -122,6 +129,7 @@ pub(crate) fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
 }
 
 impl Cylinder {
+    /// Unit vector along the axis, from `base` towards `top`.
     pub fn axis(&self) -> DVec3 {
         (self.top - self.base).normalize()
     }
@@ -200,6 +208,7 @@ impl Cylinder {
         crossings([t0, t1].map(|t| between_rims(t).then_some(t)), SIDE)
     }
 
+    /// Outward unit normal at point `p` on face `face` (`SIDE`, `BASE_CAP` or `TOP_CAP`).
     pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {
         let a = self.axis();
         match face {

@@ -12,12 +12,17 @@ use super::{Ray, Triangle};
 use crate::accel::bvh::Visits;
 use crate::accel::{Aabb, Bvh};
 
+/// A triangle mesh (from an OBJ file) with its own BVH over the triangles; the shape of scene
+/// `mesh` objects.
 pub struct Mesh {
+    /// Vertex positions, object space.
     pub positions: Vec<DVec3>,
     /// One per position, or empty for flat shading.
     pub normals: Vec<DVec3>,
     /// Texture coordinates (u, v), one per position, or empty.
     pub texcoords: Vec<DVec2>,
+    /// Triangles as three indices into `positions` (and into `normals` and `texcoords` when
+    /// present).
     pub triangles: Vec<[u32; 3]>,
     bvh: Bvh,
     bounds: Aabb,
@@ -104,11 +109,13 @@ impl Mesh {
         l.x * a + l.y * b + l.z * c
     }
 
+    /// Triangle number `i`, with its vertex positions (panics when `i` is out of range).
     pub fn triangle(&self, i: u32) -> Triangle {
         let [a, b, c] = self.triangles[i as usize].map(|v| self.positions[v as usize]);
         Triangle { a, b, c }
     }
 
+    /// The object-space box around all triangles.
     pub fn bounds(&self) -> Aabb {
         self.bounds
     }
@@ -335,7 +342,9 @@ impl Mesh {
 /// What an OBJ file may hold: bytes, and triangles (what is left of the scene's budget).
 #[derive(Clone, Copy, Debug)]
 pub struct ObjBudget {
+    /// Largest OBJ file to read, in bytes.
     pub max_bytes: u64,
+    /// Most triangles the file may make (what is left of the scene's budget).
     pub max_triangles: u64,
     /// The scene's whole triangle budget (for the message).
     pub total: u64,

@@ -4,8 +4,11 @@
 use super::{Ray, Span};
 use glam::DVec3;
 
+/// An infinite plane primitive, a half-space solid: the inside is the side the normal points away
+/// from.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plane {
+    /// Any point on the plane.
     pub point: DVec3,
     /// Unit outward normal.
     pub normal: DVec3,

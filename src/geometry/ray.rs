@@ -6,9 +6,12 @@
 
 use glam::DVec3;
 
+/// A ray p(t) = origin + t·dir; `t` is a distance when `dir` is a unit vector (world rays).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ray {
+    /// Where the ray starts (the eye, or a hit point).
     pub origin: DVec3,
+    /// The direction; unit length for world rays made by `Ray::new`.
     pub dir: DVec3,
 }
 
@@ -26,6 +29,7 @@ impl Ray {
         Ray { origin, dir }
     }
 
+    /// The point origin + t·dir at parameter `t` along the ray.
     pub fn at(&self, t: f64) -> DVec3 {
         self.origin + t * self.dir
     }

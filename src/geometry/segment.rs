@@ -19,6 +19,7 @@ pub struct Surface {
 }
 
 impl Surface {
+    /// The surface of face `face` of leaf `leaf`, normal as the primitive has it.
     pub fn new(leaf: u32, face: u32) -> Surface {
         Surface {
             leaf,
@@ -26,6 +27,8 @@ impl Surface {
             flip: false,
         }
     }
+    /// The same surface with its normal reversed (what a difference or complement does to B's
+    /// boundary).
     pub fn flipped(self) -> Surface {
         Surface {
             flip: !self.flip,
@@ -37,9 +40,13 @@ impl Surface {
 /// One inside interval `[t_in, t_out]` of a ray. Ends may be infinite (half-spaces).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment {
+    /// Where the ray enters the solid (may be −∞).
     pub t_in: f64,
+    /// Where the ray leaves the solid (may be +∞).
     pub t_out: f64,
+    /// The surface crossed at `t_in`.
     pub enter: Surface,
+    /// The surface crossed at `t_out`.
     pub exit: Surface,
 }
 

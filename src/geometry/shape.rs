@@ -11,13 +11,19 @@ use crate::accel::Aabb;
 /// through. A triangle, which has no inside, gives the degenerate interval `[t, t]`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Span {
+    /// Where the ray enters the primitive.
     pub t_in: f64,
+    /// Where the ray leaves the primitive (≥ `t_in`).
     pub t_out: f64,
+    /// The face crossed at `t_in` (numbering per shape).
     pub face_in: u8,
+    /// The face crossed at `t_out`.
     pub face_out: u8,
 }
 
 impl Span {
+    /// The interval `[t_in, t_out]` with its entry and exit faces (argument order: t, face, t,
+    /// face).
     pub fn new(t_in: f64, face_in: u8, t_out: f64, face_out: u8) -> Span {
         Span {
             t_in,
@@ -28,18 +34,26 @@ impl Span {
     }
 }
 
+/// A primitive shape in its object space, as the scene file names it.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
+    /// A sphere (solid).
     Sphere(Sphere),
+    /// An infinite plane (a half-space solid).
     Plane(Plane),
+    /// An axis-aligned box (solid).
     Box(Aabox),
+    /// A capped cylinder (solid).
     Cylinder(Cylinder),
+    /// A cone with its base cap (solid).
     Cone(Cone),
     /// A cylinder without its caps (`capped: false`): a tube, a surface with no inside.
     OpenCylinder(Cylinder),
     /// A cone without its base (`capped: false`): a surface with no inside.
     OpenCone(Cone),
+    /// A single triangle: a surface with no inside.
     Triangle(Triangle),
+    /// A triangle mesh, shared between objects that load the same file.
     Mesh(Arc<Mesh>),
 }
 
@@ -199,6 +213,7 @@ impl Shape {
         self.is_solid() && !matches!(self, Shape::Mesh(_))
     }
 
+    /// The shape's name as written in scene files (`sphere`, `plane`, `box`, …).
     pub fn kind(&self) -> &'static str {
         match self {
             Shape::Sphere(_) => "sphere",

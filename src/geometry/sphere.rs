@@ -4,9 +4,12 @@ use glam::DVec3;
 
 use super::{Ray, Span};
 
+/// A sphere primitive, in object space: the points within `radius` of `center`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sphere {
+    /// Centre of the sphere.
     pub center: DVec3,
+    /// Radius of the sphere, > 0.
     pub radius: f64,
 }
 
@@ -29,6 +32,7 @@ impl Sphere {
         Some(Span::new(t0, 0, t1, 0))
     }
 
+    /// Outward unit normal at a point `p` on the sphere: (p − c)/r.
     pub fn normal(&self, p: DVec3) -> DVec3 {
         (p - self.center) / self.radius
     }

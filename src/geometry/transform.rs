@@ -5,15 +5,20 @@ use glam::{DAffine3, DMat3, DVec3};
 
 use super::Ray;
 
+/// An object's placement: the affine map from object space to world space, with its inverse and the
+/// normal matrix precomputed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Transform {
+    /// Object space → world space.
     pub to_world: DAffine3,
+    /// World space → object space (the inverse of `to_world`), for rays.
     pub to_local: DAffine3,
     /// (M⁻¹)ᵀ of the linear part: keeps normals perpendicular under non-uniform scaling.
     pub normal_to_world: DMat3,
 }
 
 impl Transform {
+    /// The transform of `to_world` (invertible), with its inverse and normal matrix.
     pub fn new(to_world: DAffine3) -> Transform {
         let to_local = to_world.inverse();
         Transform {
@@ -31,10 +36,12 @@ impl Transform {
         )
     }
 
+    /// An object-space normal in world space: (M⁻¹)ᵀ·n, normalised.
     pub fn normal_to_world(&self, n: DVec3) -> DVec3 {
         (self.normal_to_world * n).normalize()
     }
 
+    /// An object-space point in world space.
     pub fn point_to_world(&self, p: DVec3) -> DVec3 {
         self.to_world.transform_point3(p)
     }

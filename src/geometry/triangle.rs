@@ -6,21 +6,29 @@ use glam::DVec3;
 
 use super::{Ray, Span};
 
+/// A triangle with vertices a, b, c, counter-clockwise seen from the side its normal faces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Triangle {
+    /// First vertex.
     pub a: DVec3,
+    /// Second vertex.
     pub b: DVec3,
+    /// Third vertex.
     pub c: DVec3,
 }
 
 /// A hit: the distance and the barycentric coordinates (λ1, λ2, λ3) of a, b, c.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TriangleHit {
+    /// Distance along the ray (any sign: the whole line is tested).
     pub t: f64,
+    /// Barycentric coordinates (λ1, λ2, λ3) of a, b, c; they sum to 1.
     pub bary: DVec3,
 }
 
 impl Triangle {
+    /// Where the line of the ray crosses the triangle (watertight test: edges shared by two
+    /// triangles are never missed); None when it misses or the triangle is seen edge-on.
     pub fn intersect(&self, ray: &Ray) -> Option<TriangleHit> {
         // Shear and permute so the ray runs along +z from the origin; the test becomes 2-D.
         let d = ray.dir;
@@ -57,6 +65,7 @@ impl Triangle {
         })
     }
 
+    /// The degenerate span `[t, t]` where the line of the ray crosses the triangle, or None.
     pub fn span(&self, ray: &Ray) -> Option<Span> {
         self.intersect(ray).map(|h| Span::new(h.t, 0, h.t, 0))
     }

@@ -61,11 +61,17 @@ pub fn cylindrical(p: DVec3) -> DVec2 {
 /// The faces of the cube [−1, 1]³.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CubeFace {
+    /// The face at x = −1.
     Left,
+    /// The face at x = +1.
     Right,
+    /// The face at z = +1.
     Front,
+    /// The face at z = −1.
     Back,
+    /// The face at y = +1.
     Up,
+    /// The face at y = −1.
     Down,
 }
 

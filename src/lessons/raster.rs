@@ -21,6 +21,7 @@ use crate::scene::{Camera, Scene};
 /// What scan conversion of a scene's triangles costs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RasterWork {
+    /// Triangles in the scene (meshes' included).
     pub triangles: u64,
     /// Facing away from the eye: dropped by back-face culling.
     pub back_facing: u64,

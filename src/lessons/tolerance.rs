@@ -21,9 +21,13 @@ use serde::{Deserialize, Serialize};
 
 use crate::trace::text::num;
 
+/// How close an answer must be to the expected value: right when |a − e| ≤ max(relative·|e|,
+/// absolute).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Tolerance {
+    /// Allowance as a fraction of the expected value's size.
     pub relative: f64,
+    /// The smallest allowance, for values near zero.
     pub absolute: f64,
     /// k for a Monte Carlo mean: the allowance is at least k standard errors of the mean
     /// (`with_standard_error` fills it into `absolute`); 0 otherwise.
@@ -46,6 +50,7 @@ impl Default for Tolerance {
 }
 
 impl Tolerance {
+    /// Only an absolute allowance: |a − e| ≤ `absolute`.
     pub fn absolute(absolute: f64) -> Tolerance {
         Tolerance {
             relative: 0.0,

@@ -76,9 +76,13 @@ pub fn difference(a: DVec3, b: DVec3) -> f64 {
 /// `side` its size, `level` how many times its pixel was halved to reach it.
 #[derive(Clone, Copy, Debug)]
 pub struct Square {
+    /// Left edge of the square, as a fraction of the pixel's width.
     pub u0: f64,
+    /// Top edge of the square, as a fraction of the pixel's height.
     pub v0: f64,
+    /// Side of the square, as a fraction of the pixel's side (1 for the whole pixel).
     pub side: f64,
+    /// How many times the pixel was halved to reach it (0 for the pixel).
     pub level: u32,
     /// Top-left, top-right, bottom-left, bottom-right.
     pub corners: [DVec3; 4],
@@ -92,16 +96,28 @@ pub struct Square {
 pub enum Step {
     /// Its corners agree (or it is as small as allowed): its value is their mean.
     Kept {
+        /// The square kept.
         square: Square,
+        /// True when it was kept only because it reached the smallest size, its corners still
+        /// differing.
         smallest: bool,
+        /// The mean of its corners.
         value: DVec3,
     },
     /// Its corners differ: five new rays (top, left, centre, right and bottom midpoints).
-    Split { square: Square, new: [DVec3; 5] },
+    Split {
+        /// The square split.
+        square: Square,
+        /// The values of the five new rays, in the order above.
+        new: [DVec3; 5],
+    },
     /// A split square's value: the mean of its quarters.
     Merged {
+        /// The square merged.
         square: Square,
+        /// The values of its four quarters (top-left, top-right, bottom-left, bottom-right).
         quarters: [DVec3; 4],
+        /// The mean of the quarters.
         value: DVec3,
     },
 }

@@ -21,13 +21,18 @@ use crate::stats::Stats;
 use crate::trace::path::PathTracer;
 use crate::trace::Tracer;
 
+/// How an image is rendered: depth, samples per pixel, seed, antialiasing and engine.
 #[derive(Clone, Copy, Debug)]
 pub struct RenderOptions {
+    /// Rays per path, primary included (1: primary rays only).
     pub max_depth: u32,
+    /// Samples (primary rays) per pixel.
     pub spp: u32,
     /// Seed of the random numbers (jittered samples, glossy rays, paths).
     pub seed: u64,
+    /// Where a pixel's primary rays go.
     pub antialias: Antialias,
+    /// Which code computes the image (both give the same image).
     pub engine: Engine,
 }
 
@@ -43,6 +48,7 @@ pub enum Engine {
 }
 
 impl RenderOptions {
+    /// The scene's own settings: its depth, spp and antialiasing, seed 0, the fast engine.
     pub fn of(scene: &Scene) -> RenderOptions {
         RenderOptions {
             max_depth: scene.max_depth,
@@ -64,7 +70,9 @@ const SPLAT_REACH: i64 = GAUSS_RADIUS as i64;
 /// One sample of a pixel: where it went, in pixel-relative (u, v) ∈ [0, 1)², and its value.
 #[derive(Clone, Copy, Debug)]
 pub struct Sample {
+    /// Where the sample went in the pixel, (u, v) ∈ [0, 1)², (0, 0) its top-left corner.
     pub uv: DVec2,
+    /// The intensity the sample's ray brought back.
     pub value: DVec3,
 }
 
@@ -79,6 +87,8 @@ pub struct Film<'s> {
 }
 
 impl<'s> Film<'s> {
+    /// The film of `scene` with `options` (building the fast wing's search when the engine is
+    /// `Fast`).
     pub fn new(scene: &'s Scene, options: RenderOptions) -> Film<'s> {
         Film {
             scene,

@@ -5,9 +5,12 @@ use super::image::{encode, Encoding};
 use super::Image;
 use glam::DVec3;
 
+/// How a terminal preview shows colours.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ColorMode {
+    /// 24-bit colour escapes.
     TrueColor,
+    /// The xterm 256-colour palette.
     Ansi256,
     /// No colour at all (NO_COLOR or a dumb terminal): an intensity ramp.
     Ascii,
@@ -31,16 +34,19 @@ impl ColorMode {
 /// The ramp from dark to bright.
 pub const RAMP: &[u8] = b" .:-=+*#%@";
 
-pub fn luminance(c: DVec3) -> f64 {
+/// Relative luminance of a linear RGB colour (Rec. 709 weights).
+fn luminance(c: DVec3) -> f64 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
-pub fn ramp_char(c: DVec3) -> char {
+/// The ramp character for a colour's brightness (sRGB-encoded luminance).
+pub(crate) fn ramp_char(c: DVec3) -> char {
     let l = encode(luminance(c), Encoding::Srgb) as usize;
     RAMP[(l * RAMP.len() / 256).min(RAMP.len() - 1)] as char
 }
 
-pub fn rgb8(c: DVec3) -> [u8; 3] {
+/// A linear colour as 8-bit sRGB.
+pub(crate) fn rgb8(c: DVec3) -> [u8; 3] {
     c.to_array().map(|v| encode(v, Encoding::Srgb))
 }
 

@@ -4,38 +4,59 @@ use glam::DVec3;
 
 use crate::geometry::Ray;
 
+/// How the camera maps image coordinates to points on its image plane.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Projection {
     /// Look-at camera. right = up × forward, so looking down +z with up +y puts +x on the
     /// right of the image: the same frame as the lecture's window model (u = +x, w = +z) and
     /// as POV-Ray, so scenes translate between them unchanged.
     LookAt {
+        /// The eye point e, world space: every primary ray starts here.
         eye: DVec3,
+        /// Unit viewing direction, from the eye towards the target; the image plane lies at
+        /// distance 1 along it.
         forward: DVec3,
+        /// Unit vector to the right in the image.
         right: DVec3,
+        /// Unit vector up in the image, perpendicular to `forward` and `right`.
         up: DVec3,
+        /// tan(fov/2), the half height of the image plane at distance 1 (fov vertical).
         tan_half_fov: f64,
     },
     /// Seed 001: pixel (i, j) lies at p_C = (wl + i·Δu, wt + j·Δv, f) in camera coordinates,
     /// p_W = e + p_C.x·u + p_C.y·v + p_C.z·w in the world.
     Window {
+        /// The eye point e, world space.
         eye: DVec3,
+        /// Camera axis u, along which pixel columns i step by Δu (world space).
         u: DVec3,
+        /// Camera axis v, along which pixel rows j step by Δv.
         v: DVec3,
+        /// Camera axis w (viewing direction).
         w: DVec3,
+        /// Distance f of the window along w.
         f: f64,
+        /// The window's edges [wl, wr, wt, wb] in camera coordinates: left, right, top, bottom
+        /// pixel centres.
         window: [f64; 4],
     },
 }
 
+/// The eye and the image: which primary ray goes through each point of the image.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
+    /// Look-at or window model.
     pub projection: Projection,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
 }
 
 impl Camera {
+    /// A camera at `eye` looking at `target`, `up` roughly up, with a vertical field of view of
+    /// `fov_degrees` (degrees) over a `width` × `height` image; left-handed frame (right = up ×
+    /// forward).
     pub fn look_at(
         eye: DVec3,
         target: DVec3,
@@ -95,6 +116,7 @@ impl Camera {
         }
     }
 
+    /// The eye point e, where primary rays start (world space).
     pub fn eye(&self) -> DVec3 {
         match &self.projection {
             Projection::LookAt { eye, .. } | Projection::Window { eye, .. } => *eye,
@@ -148,6 +170,8 @@ impl Camera {
         }
     }
 
+    /// The primary ray from the eye through image coordinates (sx, sy) (pixel (x, y)'s centre is (x
+    /// + ½, y + ½)), with a unit direction.
     pub fn ray(&self, sx: f64, sy: f64) -> Ray {
         let eye = self.eye();
         Ray::new(eye, self.image_point(sx, sy) - eye)

@@ -3,17 +3,23 @@
 
 use std::fmt;
 
+/// An error in a scene file, located at a line and column, shown with the offending line.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SceneError {
+    /// The scene file's name as given to the loader.
     pub file: String,
+    /// Line of the error, from 1.
     pub line: u64,
+    /// Column of the error, from 1.
     pub column: u64,
+    /// What is wrong, for the user.
     pub message: String,
     /// The text of the line the error points at, when the scene's text is known.
     pub source_line: Option<String>,
 }
 
 impl SceneError {
+    /// An error in `file` at `pos`; the source line is added later, when the text is at hand.
     pub fn new(file: &str, pos: Pos, message: impl Into<String>) -> SceneError {
         SceneError {
             file: file.into(),
@@ -88,7 +94,9 @@ impl std::error::Error for SceneError {}
 /// A position in the scene file (line and column from 1), for errors found after parsing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Pos {
+    /// Line, from 1.
     pub line: u64,
+    /// Column, from 1.
     pub column: u64,
 }
 
@@ -100,6 +108,7 @@ impl Default for Pos {
 }
 
 impl Pos {
+    /// The position of a YAML parser location (line and column clamped to at least 1).
     pub fn of(loc: &serde_saphyr::Location) -> Pos {
         Pos {
             line: loc.line().max(1),

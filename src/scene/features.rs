@@ -13,13 +13,19 @@ use crate::geometry::Ray;
 use crate::shading::{LightKind, Material};
 use crate::stats::Stats;
 
+/// What a compiled scene uses, to skip work it does not need (no reflection rays without kr, …) and
+/// to tell the user.
 #[derive(Clone, Debug, Default)]
 pub struct Features {
+    /// Some material has kr > 0.
     pub reflective: bool,
+    /// Some material has kt > 0.
     pub transparent: bool,
+    /// Some object is a CSG tree.
     pub csg: bool,
     /// Some material draws random numbers (glossy or frosted lobes).
     pub sampled: bool,
+    /// Number of lights.
     pub lights: usize,
     /// Objects with a transparent material (kt > 0) and their index of refraction: the media
     /// a refracted ray can be in.

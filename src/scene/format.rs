@@ -24,8 +24,12 @@ pub enum Handedness {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Integrator {
+    /// Whitted's recursion: local shading plus one reflection and one refraction ray per hit (the
+    /// lecture's ray tree).
     #[default]
     Whitted,
+    /// A Monte Carlo path tracer: one randomly chosen continuation per hit, averaged over many
+    /// samples.
     Path,
 }
 

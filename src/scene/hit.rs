@@ -13,23 +13,30 @@ use crate::shading::{Paint, PatternPoint};
 /// The cheap record of an intersection: enough to find everything else later.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
+    /// Distance along the ray (world space, unit direction).
     pub t: f64,
+    /// Index of the object hit in `Scene::objects`.
     pub object: u32,
+    /// The primitive surface hit (leaf, face, and whether CSG flipped its normal).
     pub surface: Surface,
 }
 
 /// The shading record, built only for the hit that is shaded.
 #[derive(Clone, Copy, Debug)]
 pub struct Interaction {
+    /// The hit point, world space.
     pub point: DVec3,
     /// Unit normal facing the incoming ray (the one the formulas use).
     pub normal: DVec3,
     /// True when the ray arrives from inside the solid (it is leaving it).
     pub inside: bool,
+    /// Index of the primitive in `Scene::leaves`.
     pub leaf: u32,
     /// The leaf's face (a mesh's triangle).
     pub face: u32,
+    /// Index of the object in `Scene::objects`.
     pub object: u32,
+    /// Index of the surface's material in `Scene::materials`.
     pub material: u32,
     /// O, kd, ks, kr and kt here: the material's own, or its patterns looked up at the point.
     pub paint: Paint,

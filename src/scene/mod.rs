@@ -12,7 +12,7 @@ mod compile;
 mod error;
 mod features;
 mod flow;
-pub mod format;
+pub(crate) mod format;
 mod hit;
 mod load;
 mod objects;
@@ -39,19 +39,27 @@ pub use settings::{Antialias, Filter, StopRules, DEFAULT_THRESHOLD};
 
 use crate::shading::{Light, Material};
 
+/// A compiled scene: camera, lights, materials, objects, the recursion's settings and the search
+/// structures, ready to trace.
 #[derive(Clone, Debug)]
 pub struct Scene {
     /// The file the scene was read from, if any.
     pub source: Option<PathBuf>,
 
     // What is seen, and from where.
+    /// The eye and the image.
     pub camera: Camera,
+    /// Intensity of rays that hit nothing.
     pub background: DVec3,
+    /// Ambient light Ia of the local model's ka·Ia·O term.
     pub ambient: DVec3,
+    /// The light sources.
     pub lights: Vec<Light>,
+    /// The materials, indexed by `Leaf::material`.
     pub materials: Vec<Material>,
     /// Every primitive: the plain objects and the leaves of CSG trees.
     pub leaves: Vec<Leaf>,
+    /// The objects of the scene file (a primitive, a CSG tree or a group each), in file order.
     pub objects: Vec<Object>,
 
     // How the recursion runs.
@@ -70,7 +78,9 @@ pub struct Scene {
     pub csg_pruning: bool,
 
     // How the image is sampled.
+    /// Samples (primary rays) per pixel.
     pub spp: u32,
+    /// Whitted's recursion or the path tracer.
     pub integrator: Integrator,
     /// Where a pixel's primary rays go (`spp` of them).
     pub antialias: Antialias,
@@ -78,7 +88,9 @@ pub struct Scene {
     pub filter: Filter,
 
     // Derived from all of the above.
+    /// What the scene uses, derived from its materials, lights and objects.
     pub features: Features,
+    /// The objects arranged for the nearest-hit search (BVH or brute force).
     pub index: SearchIndex,
 
     /// What is legal but probably not meant (a mesh of degenerate triangles only), with where
@@ -95,10 +107,12 @@ impl Scene {
         self
     }
 
+    /// Material number `index` (panics when it is out of range).
     pub fn material(&self, index: u32) -> &Material {
         &self.materials[index as usize]
     }
 
+    /// The index of the object named `name`, if there is one.
     pub fn object_index(&self, name: &str) -> Option<u32> {
         self.objects
             .iter()

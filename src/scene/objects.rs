@@ -17,11 +17,13 @@ pub struct Leaf {
     pub object: u32,
     /// The CSG operations from the object's root down to this leaf ("union/difference").
     pub path: Vec<String>,
+    /// The primitive, in its own space when `transform` is set, else in world space.
     pub shape: Shape,
     /// From the shape's own space to the world, when the shape is not stored in world space
     /// (a transform that changes its kind, or a material with patterns, which are looked up
     /// in the object's own space).
     pub transform: Option<Transform>,
+    /// Index of its material in `Scene::materials`.
     pub material: u32,
     /// World-space bounds.
     pub bounds: Aabb,
@@ -36,6 +38,8 @@ impl Leaf {
         }
     }
 
+    /// The interval of the world-space ray inside the primitive (over the whole line), or None; the
+    /// ray is taken into the shape's space when it has one, keeping t.
     pub fn span(&self, ray: &Ray) -> Option<Span> {
         match &self.transform {
             Some(tf) => self.shape.span(&tf.ray_to_local(ray)),
@@ -110,11 +114,14 @@ impl Leaf {
     }
 }
 
+/// What an object is made of.
 #[derive(Clone, Debug)]
 pub enum Geometry {
     /// A single primitive (index into `Scene::leaves`).
     Leaf(u32),
+    /// A CSG tree over primitives in `Scene::leaves`.
     Csg(CsgNode),
+    /// A group of objects moved and searched as one.
     Group(Box<Group>),
 }
 
@@ -123,15 +130,18 @@ pub enum Geometry {
 /// all of them.
 #[derive(Clone, Debug)]
 pub struct Group {
+    /// The member objects.
     pub members: Vec<Object>,
     /// The hierarchy over the members with a box; its item i is member `bounded[i]`.
     pub bvh: Bvh,
+    /// The members with a finite box, in the hierarchy's item order.
     pub bounded: Vec<u32>,
     /// The members without a box (planes), tested by every ray that reaches the group.
     pub unbounded: Vec<u32>,
 }
 
 impl Group {
+    /// A group of `members`, with the hierarchy over those with a finite box.
     pub fn new(members: Vec<Object>) -> Group {
         let (bounded, unbounded): (Vec<u32>, Vec<u32>) =
             (0..members.len() as u32).partition(|&i| members[i as usize].bounds.is_finite());
@@ -155,9 +165,13 @@ impl Group {
     }
 }
 
+/// A named object of the scene: the thing a ray hits (a primitive, a CSG tree or a group).
 #[derive(Clone, Debug)]
 pub struct Object {
+    /// Name in the scene file (or a generated one), for the ray tree and messages.
     pub name: String,
+    /// Its primitive, CSG tree or group.
     pub geometry: Geometry,
+    /// World-space box around it (infinite for planes).
     pub bounds: Aabb,
 }

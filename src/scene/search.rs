@@ -29,6 +29,7 @@ pub trait Search: Sync {
 pub enum Accel {
     /// Test every object (the brute force a lesson compares the BVH with).
     None,
+    /// Search a bounding volume hierarchy over the objects with a box.
     #[default]
     Bvh,
 }
@@ -36,9 +37,11 @@ pub enum Accel {
 /// The objects arranged for the search.
 #[derive(Clone, Debug, Default)]
 pub struct SearchIndex {
+    /// Whether the search uses the BVH or tests every object.
     pub accel: Accel,
     /// The hierarchy over the bounded objects; its item i is object `bounded[i]`.
     pub bvh: Bvh,
+    /// The objects with a finite box, in the BVH's item order.
     pub bounded: Vec<u32>,
     /// The objects every ray tests, in scene order: those without a box, or all of them when
     /// the scene has no BVH.
@@ -194,6 +197,7 @@ impl Scene {
         self.index = SearchIndex::build(self, accel);
     }
 
+    /// Nodes in the scene's BVH (0 without one).
     pub fn bvh_nodes(&self) -> usize {
         self.index.bvh.node_count()
     }

@@ -5,12 +5,16 @@
 /// How a pixel's primary rays are placed.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
 pub enum Antialias {
+    /// n × n rays on a regular grid in the pixel.
     #[default]
     Grid,
+    /// The grid's strata, each ray at a random point of its cell (stratified sampling).
     Jittered,
     /// Split a square while its corners differ by more than `threshold` (the sum of the
     /// absolute differences of r, g and b, on values clamped to [0, 1]).
     Adaptive {
+        /// Largest difference between corners that stops the splitting (POV-Ray's default is
+        /// `DEFAULT_THRESHOLD`).
         threshold: f64,
     },
 }
@@ -19,6 +23,7 @@ pub enum Antialias {
 pub const DEFAULT_THRESHOLD: f64 = 0.3;
 
 impl Antialias {
+    /// The name as written in scene files (`grid`, `jittered`, `adaptive`).
     pub fn name(self) -> &'static str {
         match self {
             Antialias::Grid => "grid",

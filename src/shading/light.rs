@@ -2,23 +2,35 @@
 
 use glam::DVec3;
 
+/// What kind of emitter a light is, with where it sits and how it falls off.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightKind {
     /// A point light at a position, dimmed by fatt = 1/(c0 + c1·d + c2·d²).
     Point {
+        /// Where the light is, world space.
         position: DVec3,
+        /// The attenuation coefficients [c0, c1, c2] of fatt = 1/(c0 + c1·d + c2·d²), d the
+        /// distance to the light.
         attenuation: [f64; 3],
     },
     /// Parallel light travelling along `direction` (unit), from infinitely far away.
-    Directional { direction: DVec3 },
+    Directional {
+        /// Unit direction the light travels in (from the light towards the scene), world space.
+        direction: DVec3,
+    },
     /// A rectangle `corner + a·u + b·v` (0 ≤ a, b ≤ 1) emitting from the side of u × v.
     /// Whitted shading treats it as a point light at its centre whose shadow factor is the
     /// fraction of `samples × samples` points on it that are visible (soft shadows); the path
     /// tracer samples it as an area emitter of radiance `intensity`.
     Rect {
+        /// One corner of the rectangle, world space.
         corner: DVec3,
+        /// First edge from `corner` (its length is the side's length).
         u: DVec3,
+        /// Second edge from `corner`.
         v: DVec3,
+        /// Shadow rays per side: `samples × samples` points on the rectangle (1 gives a hard
+        /// shadow).
         samples: u32,
     },
     /// A glowing ball. Whitted shading treats it as a point light at its centre (with the
@@ -26,9 +38,14 @@ pub enum LightKind {
     /// points on the disc it shows the shaded point that are visible; the path tracer samples
     /// it as an emitter of radiance `intensity`.
     Sphere {
+        /// Centre of the ball, world space.
         center: DVec3,
+        /// Radius of the ball, in scene units.
         radius: f64,
+        /// The attenuation coefficients [c0, c1, c2] of fatt = 1/(c0 + c1·d + c2·d²), d the
+        /// distance to the centre.
         attenuation: [f64; 3],
+        /// Shadow rays per side: `samples × samples` points on the visible disc.
         samples: u32,
     },
 }
@@ -50,9 +67,12 @@ pub struct EmitterSample {
     pub pdf: f64,
 }
 
+/// A light source ℓ of the scene: its kind and its intensity Iℓ.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light {
+    /// Name in the scene file (or a generated one), for the ray tree and messages.
     pub name: String,
+    /// Point, directional, rectangle or sphere, with its placement.
     pub kind: LightKind,
     /// Iℓ
     pub intensity: DVec3,
@@ -286,6 +306,7 @@ impl Light {
         }
     }
 
+    /// Whether Iℓ = 0: the light adds nothing and needs no shadow rays.
     pub fn is_dark(&self) -> bool {
         self.intensity == DVec3::ZERO
     }

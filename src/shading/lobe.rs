@@ -13,18 +13,27 @@ use glam::DVec3;
 
 use crate::sampling::basis;
 
+/// The distribution of sampled directions about the principal one.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LobeShape {
-    /// σ, the standard deviation of the angle, in radians.
-    Normal { sigma: f64 },
-    /// The Phong exponent n.
-    Phong { exponent: f64 },
+    /// Seed 000's normal spread: the angle to the principal direction is Rayleigh-distributed.
+    Normal {
+        /// σ, the standard deviation of the angle, in radians.
+        sigma: f64,
+    },
+    /// Density (n + 1)/(2π)·cosⁿ θ about the principal direction.
+    Phong {
+        /// The Phong exponent n.
+        exponent: f64,
+    },
 }
 
 /// How rays spread about a principal direction, and how many a surface sends.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lobe {
+    /// How the sampled directions spread.
     pub shape: LobeShape,
+    /// How many rays the surface sends in place of the single mirror or refracted ray.
     pub samples: u32,
 }
 

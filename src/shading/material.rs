@@ -8,6 +8,7 @@ use serde::Serialize;
 use super::pattern::{Pattern, PatternPoint};
 use super::Lobe;
 
+/// Which highlight term the local model uses: Blinn's (h·n)^m or Phong's (r·v)^m.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Highlight {
@@ -18,30 +19,44 @@ pub enum Highlight {
     Phong,
 }
 
+/// Whether kr and kt are weighted by the Fresnel reflectance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
 #[serde(rename_all = "snake_case")]
 pub enum Fresnel {
+    /// kr and kt as given, whatever the angle (the notes' constant coefficients).
     #[default]
     None,
     /// Schlick's approximation R = R0 + (1 − R0)(1 − cos θ)^5 weights kr by R and kt by 1 − R.
     Schlick,
 }
 
+/// The surface properties of the local model and of Whitted's recursion.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
+    /// Name in the scene file, for the ray tree and messages.
     pub name: String,
     /// O, the object's colour. For this and the coefficients kd, ks, kr and kt: the value
     /// everywhere, or, where a pattern varies it, the largest value the pattern takes.
     pub color: DVec3,
+    /// Ambient coefficient ka: the ambient term is ka·Ia·O.
     pub ka: f64,
+    /// Diffuse coefficient kd: Lambert's term kd·O·(n·l) per light.
     pub kd: f64,
+    /// Specular coefficient ks: the highlight term ks·(h·n)^m per light.
     pub ks: f64,
     /// The specular exponent m.
     pub shininess: f64,
+    /// Blinn's or Phong's highlight.
     pub highlight: Highlight,
+    /// Reflection coefficient kr: the share of the reflected ray's intensity in this surface's
+    /// (Whitted's kr·I_r).
     pub kr: f64,
+    /// Transmission coefficient kt: the share of the refracted ray's intensity in this surface's
+    /// (Whitted's kt·I_t).
     pub kt: f64,
+    /// Index of refraction of the material (1 for vacuum, about 1.5 for glass), for Snell's law.
     pub ior: f64,
+    /// Constant kr and kt, or weighted by Schlick's Fresnel term.
     pub fresnel: Fresnel,
     /// Hall's transmitted highlight: a light behind the (transparent) surface makes a
     /// highlight with H′ in place of H (seed 004, "direct specular transmission").
@@ -61,10 +76,15 @@ pub struct Material {
 /// coefficients kd, ks, kr, kt.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Paint {
+    /// The colour O at the point.
     pub color: DVec3,
+    /// kd at the point.
     pub kd: f64,
+    /// ks at the point.
     pub ks: f64,
+    /// kr at the point.
     pub kr: f64,
+    /// kt at the point.
     pub kt: f64,
 }
 
@@ -72,10 +92,15 @@ pub struct Paint {
 /// values: its first channel is the coefficient.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Patterns {
+    /// The pattern of the colour O, if it varies.
     pub color: Option<Pattern>,
+    /// The pattern of kd, if it varies.
     pub kd: Option<Pattern>,
+    /// The pattern of ks, if it varies.
     pub ks: Option<Pattern>,
+    /// The pattern of kr, if it varies.
     pub kr: Option<Pattern>,
+    /// The pattern of kt, if it varies.
     pub kt: Option<Pattern>,
 }
 
@@ -111,6 +136,7 @@ impl Patterns {
     }
 }
 impl Material {
+    /// A diffuse material of colour O = `color` (kd = 1, nothing else) named `name`.
     pub fn matte(name: &str, color: DVec3) -> Material {
         Material {
             name: name.into(),
@@ -144,10 +170,12 @@ impl Material {
         }
     }
 
+    /// Whether kr > 0: a hit spawns a reflection ray.
     pub fn reflective(&self) -> bool {
         self.kr > 0.0
     }
 
+    /// Whether kt > 0: a hit spawns a refraction ray.
     pub fn transparent(&self) -> bool {
         self.kt > 0.0
     }

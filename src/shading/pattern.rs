@@ -48,44 +48,65 @@ fn even(n: f64) -> bool {
 /// (u, v) there (read by `mapping: uv`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PatternPoint {
+    /// The hit point in the space the pattern is looked up in (the object's own at the top).
     pub point: DVec3,
+    /// The surface's own (u, v) at the hit point.
     pub uv: DVec2,
 }
 
 /// A value over a surface: a constant, or a pattern placed by its transform.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Pattern {
+    /// The same value everywhere.
     Constant(DVec3),
+    /// A pattern with its placement.
     Placed(Box<Placed>),
 }
 
 /// A pattern with its placement.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Placed {
+    /// Which pattern, with its values A and B.
     pub kind: Kind,
     /// The inverse of the pattern's `transform`: from the space it is looked up in (the
     /// object's, or the outer pattern's) to its own. None for no transform.
     pub to_pattern: Option<DAffine3>,
 }
 
+/// The patterns of the scene file (formulas in the module docs).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Kind {
+    /// A where ⌊x⌋ is even, else B.
     Stripes([Pattern; 2]),
+    /// A + (B − A)·(x − ⌊x⌋).
     Gradient([Pattern; 2]),
+    /// A where ⌊√(x² + z²)⌋ is even, else B.
     Rings([Pattern; 2]),
+    /// A where ⌊x⌋ + ⌊y⌋ + ⌊z⌋ is even, else B.
     Checker([Pattern; 2]),
+    /// (1 − w)·A + w·B.
     Blend {
+        /// The weight w of B.
         weight: f64,
+        /// A and B.
         values: [Pattern; 2],
     },
+    /// A where ⌊u·width⌋ + ⌊v·height⌋ is even, else B.
     UvChecker {
+        /// Checks across u.
         width: f64,
+        /// Checks across v.
         height: f64,
+        /// How the point gets its (u, v).
         mapping: Mapping,
+        /// A and B.
         values: [Pattern; 2],
     },
+    /// An image looked up at (u, v), bilinearly filtered.
     Image {
+        /// The decoded image.
         image: Arc<Image>,
+        /// How the point gets its (u, v).
         mapping: Mapping,
     },
 }

@@ -18,8 +18,11 @@ use crate::shading::optics::{reflect, refract, schlick};
 use crate::shading::Light;
 use crate::stats::Stats;
 
+/// A Monte Carlo path tracer over a scene: each sample follows one random path from the eye, with
+/// next-event estimation and Russian roulette.
 #[derive(Clone, Copy)]
 pub struct PathTracer<'s> {
+    /// The scene traced.
     pub scene: &'s Scene,
     /// Where rays find their hits: the scene's own search, or the fast wing's.
     pub search: &'s dyn Search,
@@ -43,6 +46,7 @@ pub struct PathVertex {
     pub event: &'static str,
     /// The object (or light) met.
     pub object: Option<String>,
+    /// Where the path met the surface (world space).
     pub point: DVec3,
     /// The path's throughput after this vertex.
     pub throughput: DVec3,
@@ -72,6 +76,9 @@ fn power_heuristic(a: f64, b: f64) -> f64 {
 }
 
 impl<'s> PathTracer<'s> {
+    /// A path tracer of `scene` with paths of at most `max_depth` segments, searching the scene
+    /// itself, with next-event estimation and roulette on and the scene's stop rule at the maximum
+    /// depth.
     pub fn new(scene: &'s Scene, max_depth: u32) -> PathTracer<'s> {
         PathTracer {
             scene,

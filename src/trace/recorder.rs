@@ -7,20 +7,33 @@ use glam::DVec3;
 
 /// The start of a ray, as the tracer announces it.
 pub struct RayStart {
+    /// Primary, shadow, reflection or refraction.
     pub kind: RayKind,
+    /// 0 for the primary ray, one more per bounce.
     pub depth: u32,
+    /// Where the ray starts (world space).
     pub origin: DVec3,
+    /// Unit direction of the ray.
     pub direction: DVec3,
+    /// Product of the kr/kt coefficients from the primary ray down to this ray.
     pub weight: f64,
+    /// The coefficient the parent multiplies this ray's intensity by (1 for primary and shadow
+    /// rays).
     pub coefficient: f64,
 }
 
+/// An observer of the tracer: it is told when each ray of the ray tree starts, what it met and how
+/// it ended, in depth-first order.
 pub trait Recorder {
     /// False for recorders that throw everything away: the tracer then skips building records.
     const ACTIVE: bool;
+    /// A new ray starts: it becomes the open node, a child of the node open before it.
     fn begin(&mut self, ray: RayStart);
+    /// The open node's ray hit a surface.
     fn hit(&mut self, hit: HitInfo);
+    /// The local illumination at the open node's hit, term by term.
     fn local(&mut self, local: Local);
+    /// The open node is a refraction ray, from medium n1 into n2.
     fn indices(&mut self, indices: Indices);
     /// The open node is the shadow test of `light`: s is the fraction of its `rays` shadow
     /// rays that got through.
@@ -32,9 +45,12 @@ pub trait Recorder {
     /// The node closed last was divided by `divisor` before its parent weighted it (the
     /// attenuation of secondary rays by distance).
     fn attenuated(&mut self, divisor: f64);
+    /// The open node's ray is done: its intensity, and why it stopped early if it did; its parent
+    /// becomes the open node again.
     fn end(&mut self, color: DVec3, terminated: Option<Termination>);
 }
 
+/// The recorder that records nothing (rendering): its calls compile away.
 pub struct NoRecorder;
 
 impl Recorder for NoRecorder {
@@ -58,10 +74,12 @@ pub struct TreeRecorder {
 }
 
 impl TreeRecorder {
+    /// A recorder with no tree yet.
     pub fn new() -> TreeRecorder {
         TreeRecorder::default()
     }
 
+    /// The ray tree of the pixel traced (panics when no ray was traced).
     pub fn into_tree(self) -> RayNode {
         self.root.expect("the tracer closes every ray it opens")
     }

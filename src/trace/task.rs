@@ -6,9 +6,12 @@ use super::recorder::{RayStart, Recorder};
 use super::tree::{Indices, RayKind};
 use crate::geometry::Ray;
 
+/// A ray waiting to be traced, with its place in the ray tree.
 #[derive(Clone, Copy, Debug)]
 pub struct Task {
+    /// The ray itself (world space, unit direction).
     pub ray: Ray,
+    /// Primary, shadow, reflection or refraction.
     pub kind: RayKind,
     /// 0 for the primary ray, one more for each bounce.
     pub depth: u32,

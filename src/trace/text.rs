@@ -28,6 +28,7 @@ pub fn num(x: f64) -> String {
     }
 }
 
+/// A point or vector as "(x, y, z)", each number with at most six decimals.
 pub fn vec3(v: DVec3) -> String {
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
@@ -298,6 +299,8 @@ pub fn csg_trace(scene: &Scene, ray: &Ray, trace: &CsgTrace) -> String {
     out
 }
 
+/// A segment list as text: each segment's [t_in, t_out] and the points at its ends ("(empty)" for
+/// none).
 pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String {
     if segments.is_empty() {
         return "(empty)".into();
@@ -327,6 +330,7 @@ pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String 
 /// What the CSG listing of one ray holds: the objects it meets, each with its trace, and a
 /// line for every other object saying why it is not shown.
 pub struct CsgSurvey {
+    /// The objects the ray meets, by name, each with its CSG trace.
     pub met: Vec<(String, CsgTrace)>,
     /// "object X (op): culled: …" for a CSG object skipped whole, "object X: the ray meets none
     /// of its parts" for one evaluated to nothing, and one line naming the plain shapes the
@@ -386,6 +390,7 @@ pub fn csg_survey(scene: &Scene, ray: &Ray, all: bool) -> CsgSurvey {
     survey
 }
 
+/// Why a CSG node was skipped, in words.
 pub fn pruned_reason(p: Pruned) -> &'static str {
     match p {
         Pruned::Bounds => "ray misses its bounding box",

@@ -46,12 +46,18 @@ impl TraceOptions {
 /// The tracer of one scene, with the context its rays share: the recorder that watches them,
 /// the random numbers of glossy and frosted rays, and the counters of rays and skipped work.
 pub struct Tracer<'s, R: Recorder = NoRecorder> {
+    /// The scene traced.
     pub scene: &'s Scene,
     /// Where rays find their hits: the scene's own search, or the fast wing's.
     pub search: &'s dyn Search,
+    /// Depth limit, shadows and stop rules for this tracer's rays.
     pub options: TraceOptions,
+    /// The recorder told about every ray (`NoRecorder` when rendering, `TreeRecorder` for the ray
+    /// tree).
     pub rec: R,
+    /// Random numbers for glossy and frosted rays and area light samples.
     pub rng: Rng,
+    /// Counters of rays traced and work done or skipped.
     pub stats: Stats,
 }
 
@@ -70,11 +76,13 @@ impl<'s> Tracer<'s> {
 }
 
 impl<'s, R: Recorder> Tracer<'s, R> {
+    /// The same tracer with paths of at most `max_depth` rays (1: primary rays only).
     pub fn with_depth(mut self, max_depth: u32) -> Self {
         self.options.max_depth = max_depth;
         self
     }
 
+    /// The same tracer with other options.
     pub fn with_options(mut self, options: TraceOptions) -> Self {
         self.options = options;
         self

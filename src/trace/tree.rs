@@ -4,16 +4,22 @@
 use glam::{DVec2, DVec3};
 use serde::Serialize;
 
+/// What a ray of the ray tree is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum RayKind {
+    /// From the eye through a pixel (depth 0).
     Primary,
+    /// From a hit point towards a light: is the light visible (the shadow factor s)?
     Shadow,
+    /// In the mirror direction, weighted by kr.
     Reflection,
+    /// Through the surface by Snell's law, weighted by kt.
     Refraction,
 }
 
 impl RayKind {
+    /// The kind's name (`primary`, `shadow`, `reflection`, `refraction`).
     pub fn name(self) -> &'static str {
         match self {
             RayKind::Primary => "primary",
@@ -44,6 +50,7 @@ pub enum Termination {
 }
 
 impl Termination {
+    /// The reason's name as shown and serialised (`background`, `max_depth`, …).
     pub fn name(self) -> &'static str {
         match self {
             Termination::Background => "background",
@@ -56,6 +63,7 @@ impl Termination {
     }
 }
 
+/// Where a ray hit, and what: the record of a node's intersection.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct HitInfo {
     /// The object hit.
@@ -65,8 +73,11 @@ pub struct HitInfo {
     /// CSG operations from the object's root down to the leaf.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub csg_path: Vec<String>,
+    /// Name of the surface's material.
     pub material: String,
+    /// Distance along the ray to the hit.
     pub t: f64,
+    /// The hit point, world space.
     pub point: DVec3,
     /// Unit normal facing the incoming ray.
     pub normal: DVec3,
@@ -81,13 +92,16 @@ pub struct HitInfo {
     pub uv: Option<DVec2>,
 }
 
+/// One light's term of the local model at a hit: s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct LightTerm {
+    /// Name of the light.
     pub light: String,
     /// s: 1 lit, 0 in shadow.
     pub shadow: f64,
     /// Unit vector towards the light.
     pub l: DVec3,
+    /// n·l, the cosine of the angle of incidence.
     pub n_dot_l: f64,
     /// fatt (1 for a directional light).
     pub attenuation: f64,
@@ -102,10 +116,12 @@ pub struct LightTerm {
     pub skipped: Option<String>,
 }
 
+/// The local illumination at a hit, term by term: I_local = ka·Ia·O + Σ_ℓ (light terms).
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct Local {
     /// ka·Ia·O
     pub ambient: DVec3,
+    /// One term per light of the scene.
     pub lights: Vec<LightTerm>,
     /// O at the hit, when the material has patterns.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -121,9 +137,13 @@ pub struct Local {
 /// The coefficients a pattern may vary, as they are at one point.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Coefficients {
+    /// Diffuse coefficient kd.
     pub kd: f64,
+    /// Specular coefficient ks.
     pub ks: f64,
+    /// Reflection coefficient kr.
     pub kr: f64,
+    /// Transmission coefficient kt.
     pub kt: f64,
 }
 
@@ -145,6 +165,7 @@ pub struct PatternLookup {
 }
 
 impl Local {
+    /// I_local: the ambient term plus every light's diffuse and specular terms, shadowed.
     pub fn total(&self) -> DVec3 {
         self.ambient
             + self
@@ -158,16 +179,22 @@ impl Local {
 /// Media on each side of a refracting surface.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Indices {
+    /// Index of refraction of the medium the ray leaves.
     pub n1: f64,
+    /// Index of refraction of the medium the ray enters.
     pub n2: f64,
 }
 
+/// A node of the ray tree: one ray, what it hit, the local terms there, and its child rays.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RayNode {
+    /// Primary, shadow, reflection or refraction.
     pub kind: RayKind,
     /// 0 for the primary ray; a child is one deeper than its parent.
     pub depth: u32,
+    /// Where the ray starts (world space).
     pub origin: DVec3,
+    /// Unit direction of the ray.
     pub direction: DVec3,
     /// Product of the kr/kt coefficients from the primary ray down to this ray.
     pub weight: f64,
@@ -181,6 +208,7 @@ pub struct RayNode {
     /// stopped at a light source, that light.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub light: Option<String>,
+    /// How far a shadow ray looked for blockers (up to its light; ∞ for a directional one).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub t_max: Option<f64>,
     /// The shadow factor s found by a shadow ray.
@@ -199,11 +227,15 @@ pub struct RayNode {
     /// its intensity was divided by before its parent weighted it (seeds 000, 004).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub attenuation: Option<f64>,
+    /// What the ray hit, or None when it reached the background or was not traced.
     pub hit: Option<HitInfo>,
+    /// The local illumination at the hit, when the surface was shaded.
     pub local: Option<Local>,
     /// This node's intensity: local + coefficient-weighted children (linear).
     pub color: DVec3,
+    /// Why the ray stopped before its children, if it did.
     pub terminated: Option<Termination>,
+    /// The reflection, refraction and shadow rays it spawned, in the order traced.
     pub children: Vec<RayNode>,
 }
 
@@ -241,8 +273,11 @@ impl RayNode {
 /// The `inspect --format json` document.
 #[derive(Clone, Debug, Serialize)]
 pub struct Inspection {
+    /// The pixel inspected, when a pixel was named.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub pixel: Option<[u32; 2]>,
+    /// The intensity reported: the root's, or the rendered pixel's when `inspect` rendered it.
     pub color: DVec3,
+    /// The ray tree of the inspected primary ray.
     pub tree: RayNode,
 }

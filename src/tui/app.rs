@@ -41,44 +41,61 @@ pub const BIG_STEP: i32 = 10;
 /// How often the scene file is checked for changes.
 pub const WATCH_INTERVAL: Duration = Duration::from_millis(300);
 
+/// Which screen the explorer shows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Screen {
     /// The lesson list (`raytree explore` without an argument).
     Lessons,
+    /// A scene: preview, ray tree, details, and the lesson beside them.
     Scene,
 }
 
 /// The pane that arrow keys act on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Focus {
+    /// The preview image, where arrows move the picked pixel.
     Preview,
+    /// The ray tree, where arrows select and open nodes.
     Tree,
     /// Node details or the CSG panel.
     Lower,
+    /// The lesson's README or exercises.
     Lesson,
     /// The ray diagram: arrows pan it.
     Diagram,
 }
 
+/// The explorer's whole state (the model of model–update–view): what is open, picked and shown.
 pub struct App {
+    /// The lesson list or the scene screen.
     pub screen: Screen,
+    /// The scene file shown, its compiled scene, and what went wrong loading it.
     pub file: SceneFile,
+    /// The preview image and the render under way.
     pub preview: Preview,
     /// The picked pixel and its ray tree.
     pub tree: RayTree,
+    /// The CSG panel (`c`): the segment lists along the picked pixel's ray.
     pub csg: CsgPanel,
     /// The ray diagram pane (`d`).
     pub diagram: DiagramPane,
+    /// The lesson beside the scene, when one is open.
     pub lesson: Option<LessonPanel>,
+    /// The lesson list, when it is shown.
     pub list: Option<LessonList>,
+    /// The pane that arrow keys act on.
     pub focus: Focus,
+    /// The line being typed (pixel coordinates, an answer), if any.
     pub prompt: Option<Prompt>,
     /// The last message for the user (`message_text` says what the message line shows).
     message: Option<Note>,
+    /// The key help is shown over everything (`?`).
     pub show_help: bool,
+    /// How the preview shows colours (true colour, 256 colours or ASCII).
     pub color: ColorMode,
     /// The terminal size in cells.
     pub size: (u16, u16),
+    /// The user asked to leave; the main loop ends.
     pub quit: bool,
 }
 
@@ -241,6 +258,7 @@ impl App {
         self.file.image_size()
     }
 
+    /// Whether a lesson is open beside the scene.
     pub fn lesson_open(&self) -> bool {
         self.lesson.as_ref().is_some_and(|l| l.open)
     }

@@ -19,6 +19,8 @@ pub fn event(app: &App, ev: &Event) -> Option<Msg> {
     }
 }
 
+/// The message for a mouse event (a click picks or selects, a drag picks or pans, the wheel
+/// scrolls), or None when it means nothing here.
 pub fn mouse(app: &App, m: &MouseEvent) -> Option<Msg> {
     if app.show_help || app.prompt.is_some() {
         return None;
@@ -39,6 +41,8 @@ pub fn mouse(app: &App, m: &MouseEvent) -> Option<Msg> {
     }
 }
 
+/// The message for a key press, given what is on screen and focused; None for keys that mean
+/// nothing there.
 pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
     if k.kind == KeyEventKind::Release {
         return None;

@@ -19,13 +19,17 @@ pub struct Panes {
     pub image: Rect,
     /// The preview image's size in pixels.
     pub image_px: (u32, u32),
+    /// The ray tree.
     pub tree: Rect,
     /// Node details or the CSG panel (absent when a narrow screen gives it to the lesson).
     pub lower: Option<Rect>,
+    /// The lesson, when it is open.
     pub lesson: Option<Rect>,
     /// The ray diagram, when it is open.
     pub diagram: Option<Rect>,
+    /// The status line.
     pub status: Rect,
+    /// The message line.
     pub message: Rect,
 }
 
@@ -60,7 +64,9 @@ pub fn bottom_lines(area: Rect, message_rows: u16) -> (Rect, Rect, Rect) {
 /// The panels open beside the preview and the tree.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Open {
+    /// The lesson is open.
     pub lesson: bool,
+    /// The ray diagram is open.
     pub diagram: bool,
 }
 

@@ -11,14 +11,14 @@
 pub mod app;
 pub mod input;
 pub mod layout;
-pub mod markdown;
-pub mod msg;
-pub mod state;
-pub mod terminal;
-pub mod tree;
+pub(crate) mod markdown;
+pub(crate) mod msg;
+pub(crate) mod state;
+pub(crate) mod terminal;
+pub(crate) mod tree;
 pub mod ui;
 pub mod worker;
-pub mod wrap;
+pub(crate) mod wrap;
 
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -37,7 +37,9 @@ pub struct Options {
     pub target: Option<PathBuf>,
     /// Force the ASCII preview.
     pub ascii: bool,
+    /// Pick this pixel (x, y) at the start.
     pub pixel: Option<[u32; 2]>,
+    /// Start with this maximum depth (rays per path) instead of the scene's.
     pub depth: Option<u32>,
 }
 

@@ -3,8 +3,11 @@
 
 use super::worker::Done;
 
+/// Everything that can happen to the explorer: keys, mouse, time and finished renders, each a
+/// change `update` makes to the `App`.
 #[derive(Debug)]
 pub enum Msg {
+    /// Leave the explorer (`q`, Esc, Ctrl-C).
     Quit,
     /// The terminal's size in cells.
     Resize(u16, u16),
@@ -16,29 +19,42 @@ pub enum Msg {
     Click(u16, u16),
     /// A mouse wheel over a cell: lines (negative: up).
     Wheel(u16, u16, i32),
+    /// Focus the next pane (Tab).
     FocusNext,
+    /// Focus the previous pane (Shift-Tab).
     FocusPrev,
     /// Arrow keys in the focused pane (tree, panel, list).
     Up,
+    /// Arrow down in the focused pane.
     Down,
+    /// Opens the selected tree node (→).
     Expand,
+    /// Closes the selected tree node (←).
     Collapse,
+    /// Opens or closes the selected tree node (Enter, space).
     Toggle,
     /// Opens every node, or back to the default.
     ExpandAll,
     /// Page up (negative) / down in the panel.
     Page(i32),
+    /// One more ray per path (`+`): the maximum depth up by one.
     DepthUp,
+    /// One ray fewer per path (`-`): the maximum depth down by one.
     DepthDown,
     /// Steps the tree open one recursion level / closes one.
     LevelNext,
+    /// Closes the deepest open recursion level of the tree (`p`).
     LevelPrev,
+    /// Shows or hides the CSG panel (`c`).
     ToggleCsg,
     /// The ray diagram pane (`d`), its view (`v`), the BVH boxes over it (`b`), the hit
     /// points marked on the preview (`m`).
     ToggleDiagram,
+    /// The diagram's next view: top, side, front (`v`).
     CycleView,
+    /// Shows or hides the BVH boxes over the diagram (`b`).
     ToggleBvh,
+    /// Shows or hides the hit points on the preview (`m`).
     ToggleMarks,
     /// Zooms the diagram in (positive) or out, in steps.
     Zoom(i32),
@@ -50,7 +66,9 @@ pub enum Msg {
     Release,
     /// The CSG panel with every object evaluated whole, or the objects met only (`C`).
     CsgAll,
+    /// Shows or hides the lesson's README (`r`).
     ToggleReadme,
+    /// Shows or hides the key help (`?`).
     ToggleHelp,
     /// The lesson's next scene (`s`).
     NextScene,
@@ -62,7 +80,9 @@ pub enum Msg {
     Goto,
     /// Back to the lesson list (`o`).
     LessonList,
+    /// A character typed into the prompt.
     Input(char),
+    /// Deletes the prompt's last character.
     Backspace,
     /// Enter: confirms a prompt, opens a lesson, answers an exercise.
     Submit,
@@ -72,5 +92,6 @@ pub enum Msg {
     Tick,
     /// Render progress: generation, rows done, rows in the pass.
     Progress(u64, u32, u32),
+    /// A render pass finished on the worker thread.
     Rendered(Done),
 }

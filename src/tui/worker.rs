@@ -16,10 +16,15 @@ use crate::stats::Stats;
 pub struct Job {
     /// Results of older generations are ignored.
     pub generation: u64,
+    /// The scene to render.
     pub scene: Arc<Scene>,
+    /// Rays per path (the explorer's current depth).
     pub depth: u32,
+    /// Image width in pixels.
     pub width: u32,
+    /// Image height in pixels.
     pub height: u32,
+    /// Samples per pixel of the final pass.
     pub spp: u32,
 }
 
@@ -35,20 +40,27 @@ impl std::fmt::Debug for Job {
     }
 }
 
+/// Which of a job's two passes a result is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Pass {
     /// A quarter of the resolution, one sample per pixel: something to look at at once.
     Draft,
+    /// The full resolution with the job's samples per pixel.
     Final,
 }
 
 /// A finished pass.
 #[derive(Clone, Debug)]
 pub struct Done {
+    /// The job's generation (results of older generations are ignored).
     pub generation: u64,
+    /// Draft or final.
     pub pass: Pass,
+    /// The rendered image.
     pub image: Image,
+    /// Counters of the rays traced.
     pub stats: Stats,
+    /// Wall-clock time of the pass.
     pub elapsed: Duration,
     /// The render panicked: why (the preview goes dark, the explorer keeps running).
     pub failure: Option<String>,
@@ -118,6 +130,8 @@ struct Progress {
     total: AtomicU32,
 }
 
+/// The preview renderer on its own thread: jobs go in, finished passes come out, and a new job
+/// cancels the one running.
 pub struct Worker {
     jobs: Option<Sender<(Job, Arc<AtomicBool>)>>,
     results: Receiver<Done>,
@@ -127,6 +141,7 @@ pub struct Worker {
 }
 
 impl Worker {
+    /// Starts the render thread.
     pub fn spawn() -> Worker {
         let (job_tx, job_rx) = channel::<(Job, Arc<AtomicBool>)>();
         let (done_tx, done_rx) = channel();
@@ -154,7 +169,8 @@ impl Worker {
         }
     }
 
-    pub fn try_recv(&self) -> Option<Done> {
+    /// The next finished pass, if one is waiting (never blocks).
+    pub(crate) fn try_recv(&self) -> Option<Done> {
         self.results.try_recv().ok()
     }
 

@@ -26,7 +26,9 @@ use crate::scene::format::SceneFile;
 pub struct Limits {
     /// Largest image (width × height) rendered.
     pub max_pixels: u64,
+    /// Largest `max_depth` accepted (rays per path).
     pub max_depth: u32,
+    /// Largest `spp` accepted (samples per pixel).
     pub max_spp: u32,
     /// Deepest CSG nesting accepted.
     pub max_csg_depth: usize,

@@ -49,6 +49,7 @@ pub fn drawing(app: &App) -> Option<Drawing> {
     ))
 }
 
+/// Draws the ray diagram pane of the picked pixel's tree into `area` ("no scene" without one).
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let Some(d) = drawing(app) else {
         f.render_widget(

@@ -69,7 +69,8 @@ pub fn screen_text(app: &App, width: u16, height: u16) -> String {
     buffer_text(term.backend().buffer())
 }
 
-pub fn buffer_text(buf: &Buffer) -> String {
+/// The characters of a drawn buffer, one line per row, trailing spaces dropped.
+fn buffer_text(buf: &Buffer) -> String {
     let a = buf.area;
     let mut out = String::new();
     for y in a.top()..a.bottom() {
