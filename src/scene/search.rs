@@ -235,22 +235,30 @@ impl Scene {
         stats: &mut Stats,
     ) -> Option<Hit> {
         let geometry = &self.objects[o as usize].geometry;
-        self.geometry_crossing(o, geometry, ray, inv_dir, t_min, t_max, stats)
+        let reach = Reach {
+            ray,
+            inv_dir,
+            t_min,
+            t_max,
+        };
+        self.geometry_crossing(o, geometry, reach, stats)
     }
 
     /// The nearest crossing of a geometry's surface with t_min < t < t_max, reported as a hit
     /// on object o (a group's members report the group).
-    #[allow(clippy::too_many_arguments)]
     fn geometry_crossing(
         &self,
         o: u32,
         geometry: &Geometry,
-        ray: &Ray,
-        inv_dir: DVec3,
-        t_min: f64,
-        t_max: f64,
+        reach: Reach,
         stats: &mut Stats,
     ) -> Option<Hit> {
+        let Reach {
+            ray,
+            inv_dir,
+            t_min,
+            t_max,
+        } = reach;
         stats.primitives_tested += 1;
         let (t, surface) = match geometry {
             Geometry::Leaf(leaf) => {
@@ -285,9 +293,7 @@ impl Scene {
                 let r = self.csg_ray(ray, inv_dir, t_min, t_max);
                 first_crossing(&self.csg_segments(root, &r, stats), t_min)?
             }
-            Geometry::Group(group) => {
-                return self.group_crossing(o, group, ray, inv_dir, t_min, t_max, stats)
-            }
+            Geometry::Group(group) => return self.group_crossing(o, group, reach, stats),
         };
         (t > t_min && t < t_max && t.is_finite()).then_some(Hit {
             t,
@@ -298,17 +304,19 @@ impl Scene {
 
     /// The nearest hit among a group's members: those without a box first, then the group's
     /// own hierarchy, each member behind its box (as objects are in the scene's).
-    #[allow(clippy::too_many_arguments)]
     fn group_crossing(
         &self,
         o: u32,
         group: &Group,
-        ray: &Ray,
-        inv_dir: DVec3,
-        t_min: f64,
-        t_max: f64,
+        reach: Reach,
         stats: &mut Stats,
     ) -> Option<Hit> {
+        let Reach {
+            ray,
+            inv_dir,
+            t_min,
+            t_max,
+        } = reach;
         let (mut best, mut limit) = (None, t_max);
         let member_hit = |m: u32, limit: f64, stats: &mut Stats| {
             let member = &group.members[m as usize];
@@ -318,7 +326,11 @@ impl Scene {
                 stats.bounds_skipped += 1;
                 return None;
             }
-            self.geometry_crossing(o, &member.geometry, ray, inv_dir, t_min, limit, stats)
+            let reach = Reach {
+                t_max: limit,
+                ..reach
+            };
+            self.geometry_crossing(o, &member.geometry, reach, stats)
         };
         if self.index.accel == Accel::None {
             // Brute force, as for the scene's objects: every member.
@@ -365,4 +377,13 @@ impl Scene {
     pub fn tested_behind_box(&self, o: u32) -> bool {
         self.member_behind_box(&self.objects[o as usize])
     }
+}
+
+/// The stretch of a ray a search looks along: t_min < t < t_max, with 1/d for the boxes.
+#[derive(Clone, Copy)]
+struct Reach<'r> {
+    ray: &'r Ray,
+    inv_dir: DVec3,
+    t_min: f64,
+    t_max: f64,
 }
