@@ -12,7 +12,9 @@ use crate::scene::{parse, Accel, Limits, Scene};
 /// One line of the scaling table.
 #[derive(Clone, Debug)]
 pub struct Row {
+    /// The scene: `spheres` or `mesh`.
     pub kind: &'static str,
+    /// Its size: the number of spheres, or of the mesh's triangles.
     pub n: usize,
     /// Seconds to parse and compile the scene, BVH included.
     pub build: f64,
@@ -20,7 +22,9 @@ pub struct Row {
     pub bvh_ns: f64,
     /// Nanoseconds per ray testing everything (None when skipped as too slow).
     pub brute_ns: Option<f64>,
+    /// BVH nodes visited per ray, on average.
     pub nodes_per_ray: f64,
+    /// Primitives tested for a hit per ray with the BVH, on average.
     pub prims_per_ray: f64,
 }
 
@@ -107,6 +111,7 @@ pub fn table(rows: &[Row]) -> String {
     s
 }
 
+/// The scaling table's header line, for printing the rows one at a time as they are measured.
 pub fn table_header() -> String {
     format!(
         "{:<8} {:>9} {:>10} {:>14} {:>16} {:>8} {:>12} {:>12}\n",
@@ -114,6 +119,7 @@ pub fn table_header() -> String {
     )
 }
 
+/// One line of the scaling table; the brute-force columns read `(skipped)` when not measured.
 pub fn table_row(r: &Row) -> String {
     let (brute, ratio) = match r.brute_ns {
         Some(b) => (format!("{b:.0}"), format!("{:.1}×", b / r.bvh_ns)),

@@ -79,12 +79,17 @@ impl Knob {
 /// One setting of the knob: its cost and its error against the reference.
 #[derive(Clone, Debug)]
 pub struct SweepRow {
+    /// The knob's setting.
     pub value: f64,
+    /// Wall-clock seconds to render the image.
     pub seconds: f64,
+    /// Rays traced: primary, shadow, reflected and refracted.
     pub rays: u64,
+    /// Root mean square error against the reference, over every channel of every pixel.
     pub rmse: f64,
     /// Mean of ((x − ref)/(ref + 0.01))²: error relative to brightness.
     pub rel_mse: f64,
+    /// The largest absolute difference from the reference, over every channel.
     pub max_abs: f64,
     /// 20·log10(1/RMSE) for intensities in [0, 1].
     pub psnr: f64,
@@ -196,6 +201,8 @@ fn efficiency(r: &SweepRow) -> String {
     }
 }
 
+/// The sweep as a text table: a line per setting, with PSNR in dB and the efficiency
+/// 1/(seconds·MSE) (higher is better).
 pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
     let mut s = format!(
         "{:>10} {:>10} {:>14} {:>11} {:>11} {:>10} {:>8} {:>14}\n",
@@ -224,6 +231,8 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
     s
 }
 
+/// The sweep as CSV: a header line (the knob's name, then seconds, rays, rmse, rel_mse,
+/// max_abs, psnr) and a line per setting.
 pub fn sweep_csv(knob: Knob, rows: &[SweepRow]) -> String {
     let mut s = format!("{},seconds,rays,rmse,rel_mse,max_abs,psnr\n", knob.name());
     for r in rows {

@@ -5,9 +5,12 @@ use glam::DVec3;
 use super::error::AnswerError;
 use super::tolerance::Tolerance;
 
+/// An answer to an exercise, a student's or raytree's.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Answer {
+    /// A number: a t, a count, a factor, or a grey intensity.
     Number(f64),
+    /// A point, a direction, barycentric coordinates, or an r, g, b intensity.
     Vector(DVec3),
     /// A segment list [(t_in, t_out), ...]; empty for a miss.
     Segments(Vec<(f64, f64)>),
@@ -25,6 +28,8 @@ impl Answer {
         }
     }
 
+    /// The answer as `check` prints it and a student may type it: numbers with at most six
+    /// decimals, `x, y, z`, `a, b; c, d` for a segment list (`none` when empty), or `tir`.
     pub fn show(&self) -> String {
         use crate::trace::text::num;
         match self {

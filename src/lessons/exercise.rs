@@ -16,20 +16,37 @@ use crate::shading::Highlight;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Ask {
+    /// p_W, the world point of the pixel's centre on the window (window camera): a vector.
     WindowPoint,
+    /// The unit direction of the node's ray.
     RayDirection,
+    /// The origin of the node's ray.
     RayOrigin,
+    /// The node's total intensity (for the root of a pixel: the pixel intensity): a number
+    /// when grey, else r, g, b.
     Intensity,
+    /// The node's local term: ambient + Σ over the lights of diffuse + specular.
     Local,
+    /// t of the node's nearest hit; directions are unit, so t is a distance.
     HitT,
+    /// The node's nearest hit point, o + t·d.
     HitPoint,
+    /// The unit normal at the hit, facing the incoming ray.
     Normal,
+    /// v' = v − 2(v·n)n at the node's hit.
     ReflectedDirection,
+    /// The refracted direction by Snell's law at the node's hit, or `tir` for total internal
+    /// reflection.
     RefractedDirection,
+    /// The shadow factor s (0 or 1) of `light` at the node's hit.
     ShadowFactor,
+    /// `light`'s diffuse term s·fatt·Iℓ·kd·O·(n·l) at the node's hit.
     Diffuse,
+    /// `light`'s specular term s·fatt·Iℓ·ks·(h·n)^m (or (r·v)^m with Phong) at the node's hit.
     Specular,
+    /// The segment list (t_in, t_out pairs) of `object` along the node's ray.
     Segments,
+    /// The barycentric coordinates (λ1, λ2, λ3) of the hit on a triangle.
     Barycentric,
     /// The rendered value of `pixel`: all its primary rays, with the scene's `spp`,
     /// `antialias` and integrator (path tracing with the fixed seed 0, so it is repeatable).
@@ -57,25 +74,38 @@ impl Ask {
     }
 }
 
+/// An explicit ray an exercise traces instead of a pixel's primary ray.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RaySpec {
+    /// Where the ray starts, in world coordinates.
     pub origin: DVec3,
+    /// Its direction, not zero; raytree normalises it before tracing, so t is a distance.
     pub direction: DVec3,
 }
 
+/// One exercise of exercises.yaml: a question about one value of a traced ray (or of the
+/// rendered image), whose answer raytree works out from the lesson's scene.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Exercise {
+    /// Short, unique in the lesson, kebab-case: how `check`, the README's answer lines and the
+    /// answers CSV name the exercise.
     pub id: String,
+    /// The question as the student reads it (varied values filled in).
     pub question: String,
+    /// Which value is asked for, and so which kind of answer.
     pub ask: Ask,
+    /// The pixel whose primary ray is traced, [x, y] with (0, 0) at the top left.
     pub pixel: Option<[u32; 2]>,
+    /// A ray traced instead of a pixel's.
     pub ray: Option<RaySpec>,
     /// Path from the root of the ray tree: "", "reflection", "refraction/reflection".
     #[serde(default)]
     pub node: String,
+    /// The light's name, for `shadow_factor`, `diffuse` and `specular`.
     pub light: Option<String>,
+    /// The object's name, for `segments` and `leaves_evaluated`.
     pub object: Option<String>,
     /// Another scene file of the lesson (default scene.yaml).
     pub scene: Option<String>,
@@ -109,6 +139,7 @@ pub enum Solutions {
 pub struct VariantOf {
     /// The lesson it was made from (its folder name).
     pub lesson: String,
+    /// The student ID the values were drawn for.
     pub student: String,
     /// The varied values this student got, as written in the scene.
     pub values: BTreeMap<String, String>,
@@ -127,15 +158,25 @@ struct ExerciseFile {
     exercises: Vec<Exercise>,
 }
 
+/// A lesson: its folder's exercises.yaml and README.md, loaded; for a student, with their
+/// varied values written in.
 #[derive(Clone, Debug, Default)]
 pub struct Lesson {
+    /// The lesson's folder, where its scene files are.
     pub dir: PathBuf,
     /// The folder name, e.g. "08-pixel-intensity".
     pub id: String,
+    /// The title, from exercises.yaml.
     pub title: String,
+    /// What the lesson is about in a sentence or two, from exercises.yaml (shown in lesson
+    /// lists).
     pub summary: String,
+    /// The text of README.md, the lesson itself with its `**Answer (ID):**` lines; empty when
+    /// the folder has none.
     pub readme: String,
+    /// The exercises in file order, their questions filled in with the varied values.
     pub exercises: Vec<Exercise>,
+    /// Whether the worked solutions are shown (`solutions:` of exercises.yaml).
     pub solutions: Solutions,
     /// Scene values that vary from student to student (see `vary.rs`).
     pub vary: BTreeMap<String, Range>,
@@ -271,6 +312,8 @@ impl Lesson {
             .map(String::as_str)
     }
 
+    /// The exercise of that id; fails with `LessonError::UnknownExercise`, which lists the
+    /// lesson's exercises.
     pub fn exercise(&self, id: &str) -> Result<&Exercise, LessonError> {
         self.exercises
             .iter()
@@ -282,6 +325,8 @@ impl Lesson {
             })
     }
 
+    /// The file of an exercise's scene: its `scene`, else scene.yaml, in the lesson's folder
+    /// (a variant's text may replace it: `scene_source`).
     pub fn scene_path(&self, ex: &Exercise) -> PathBuf {
         self.dir.join(ex.scene.as_deref().unwrap_or("scene.yaml"))
     }

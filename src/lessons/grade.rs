@@ -17,42 +17,63 @@ use super::exercise::Lesson;
 pub struct Row {
     /// The row's line in the file (1 is the first).
     pub line: u64,
+    /// The student's ID, as given to `raytree homework --student` (their variant is drawn
+    /// from it).
     pub student: String,
+    /// The exercise's id.
     pub exercise: String,
+    /// The answer as written; the fields after the third are joined back with ", ".
     pub answer: String,
 }
 
 /// A row not graded, and why.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Problem {
+    /// The row's line in the file (1 is the first; 0 when a row that does not read has no
+    /// known line).
     pub line: u64,
+    /// What is wrong with the row, in words.
     pub message: String,
 }
 
 /// One exercise of one student.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Graded {
+    /// The exercise's id.
     pub exercise: String,
     /// As written; None when the student gave no answer.
     pub answer: Option<String>,
+    /// Within the exercise's tolerance of this student's expected answer; false when not
+    /// answered.
     pub correct: bool,
+    /// Why the answer is wrong: a common mistake, "not answered", an answer that does not
+    /// read, or another student's expected answer.
     pub hint: Option<String>,
     /// This student's expected answer.
     pub expected: Option<String>,
 }
 
+/// One student's grades.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct StudentReport {
+    /// The student's ID.
     pub student: String,
+    /// The exercises answered right.
     pub score: usize,
+    /// The exercises of the lesson, answered or not.
     pub total: usize,
+    /// Every exercise of the lesson, in the lesson's order.
     pub exercises: Vec<Graded>,
 }
 
+/// A class graded on one lesson (`raytree grade`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
+    /// The lesson's id (its folder name).
     pub lesson: String,
+    /// One report per student, in the order they first appear in the answers file.
     pub students: Vec<StudentReport>,
+    /// The rows not graded, and duplicate answers, by line.
     pub problems: Vec<Problem>,
 }
 

@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use super::error::LessonError;
 use super::exercise::Lesson;
 
+/// The exercises a student has answered right, lesson by lesson, as `progress.json` keeps them.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct Progress {
     /// Lesson folder → the exercises answered right.

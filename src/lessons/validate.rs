@@ -11,7 +11,9 @@ use super::exercise::Lesson;
 /// What a validation found.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Validation {
+    /// Lessons that loaded and were checked.
     pub lessons: usize,
+    /// Exercises of those lessons; each is worked out, one that cannot be is a problem.
     pub exercises: usize,
     /// README answers compared.
     pub answers: usize,

@@ -33,9 +33,17 @@ pub enum Range {
     /// `[[x, y, z], [x, y, z]]`: each coordinate in its own range, in steps of 0.01.
     Vectors([[f64; 3]; 2]),
     /// `{ between: [lo, hi], step: s }`.
-    Stepped { between: [f64; 2], step: f64 },
+    Stepped {
+        /// [lo, hi]: the values drawn are lo, lo + s, … up to hi.
+        between: [f64; 2],
+        /// The spacing s of the values drawn, > 0.
+        step: f64,
+    },
     /// `{ one_of: [...] }`: one of the values listed (numbers or vectors).
-    OneOf { one_of: Vec<Pick> },
+    OneOf {
+        /// The values listed, each as likely to be drawn.
+        one_of: Vec<Pick>,
+    },
 }
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]

@@ -9,9 +9,12 @@ use glam::DVec3;
 
 use super::error::{ImageError, WriteError};
 
+/// A rendered image: one linear intensity (r, g, b) per pixel, before any encoding.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// Width in pixels.
     pub width: u32,
+    /// Height in pixels.
     pub height: u32,
     /// Linear intensities, row by row from the top.
     pub pixels: Vec<DVec3>,
@@ -28,6 +31,7 @@ pub enum Encoding {
 }
 
 impl Image {
+    /// A black image (every intensity 0) of that size.
     pub fn new(width: u32, height: u32) -> Image {
         Image {
             width,
@@ -36,6 +40,7 @@ impl Image {
         }
     }
 
+    /// The intensity of pixel (x, y), (0, 0) at the top left; x < width and y < height.
     pub fn get(&self, x: u32, y: u32) -> DVec3 {
         self.pixels[(y * self.width + x) as usize]
     }
@@ -46,6 +51,7 @@ impl Image {
         Some((i as u32 % self.width, i as u32 / self.width))
     }
 
+    /// The pixels as 8-bit r, g, b bytes, row by row from the top, in `encoding`.
     pub fn to_rgb8(&self, encoding: Encoding) -> Vec<u8> {
         self.pixels
             .iter()
@@ -149,8 +155,11 @@ impl Image {
 /// An image file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// PNG, 8 bits per channel, encoded.
     Png,
+    /// Binary PPM (P6), 8 bits per channel, encoded.
     Ppm,
+    /// OpenEXR, 32-bit float linear intensities, not encoded.
     Exr,
 }
 

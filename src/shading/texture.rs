@@ -42,6 +42,8 @@ impl Mapping {
         }
     }
 
+    /// The mapping as a scene file writes it: `spherical`, `planar`, `cylindrical`, `cube` or
+    /// `uv`.
     pub fn name(self) -> &'static str {
         match self {
             Mapping::Spherical => "spherical",
@@ -57,7 +59,9 @@ impl Mapping {
 pub struct Image {
     /// The file as the scene names it.
     pub name: String,
+    /// Width in texels.
     pub width: u32,
+    /// Height in texels.
     pub height: u32,
     texels: Vec<[f32; 3]>,
 }
@@ -249,14 +253,19 @@ impl Image {
 /// Where a point falls among an image's texel centres (`Image::footprint`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Footprint {
-    /// Column and row in the grid of texel centres (0 at the first centre).
+    /// Column in the grid of texel centres (0 at the first centre): u·width − ½, u wrapped into
+    /// [0, 1).
     pub x: f64,
+    /// Row in the grid of texel centres (0 at the first centre, at the top): (1 − v)·height − ½,
+    /// v wrapped into [0, 1).
     pub y: f64,
-    /// The texel at the top left of the four around it.
+    /// Column of the texel at the top left of the four around the point, ⌊x⌋.
     pub i: i64,
+    /// Row of that texel, ⌊y⌋.
     pub j: i64,
-    /// How far past that texel's centre, in texels.
+    /// How far right of that texel's centre, in texels: x − i, in [0, 1).
     pub fx: f64,
+    /// How far below that texel's centre, in texels: y − j, in [0, 1).
     pub fy: f64,
 }
 

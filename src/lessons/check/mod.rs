@@ -43,20 +43,30 @@ use crate::trace::{text, RayNode, Tracer};
 
 /// Everything the exercise is about, computed.
 pub struct Worked {
+    /// The exercise's scene, every material in the highlight model the exercise states.
     pub scene: Scene,
+    /// The traced ray: the pixel's primary ray, the exercise's own ray, or for a question
+    /// about the whole image the first pixel's.
     pub ray: Ray,
+    /// The max_depth traced with: the exercise's `depth`, else the scene's, within 1..=64.
     pub depth: u32,
+    /// The ray tree traced from `ray`; the exercise asks about its node `node`.
     pub tree: RayNode,
+    /// raytree's answer, computed from the scene.
     pub expected: Answer,
     /// The rule an answer is held to: the exercise's, with a Monte Carlo mean's standard
     /// error filled in.
     pub tolerance: Tolerance,
 }
 
+/// What `check` found of a student's answer.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Verdict {
+    /// Whether the answer is within the tolerance of the expected one.
     pub correct: bool,
+    /// The student's answer, as read.
     pub given: Answer,
+    /// raytree's answer.
     pub expected: Answer,
     /// The rule the answer was held to.
     pub tolerance: Tolerance,
@@ -68,6 +78,8 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// The verdict as `raytree check` prints it: right or wrong with the expected answer and
+    /// the tolerance, then the hint and the highlight model, each on a line of its own.
     pub fn message(&self) -> String {
         let mut out = if self.correct {
             format!(
@@ -269,6 +281,9 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, CheckError> {
     })
 }
 
+/// Checks a student's answer (`input`, as typed) to an exercise against the answer raytree
+/// works out, with a hint when it is wrong. Fails when the answer does not read or the exercise
+/// cannot be worked out.
 pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, CheckError> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
