@@ -79,6 +79,18 @@ mod tests {
     }
 
     #[test]
+    fn at_the_limiting_angle_itself_the_ray_still_refracts_along_the_surface() {
+        // n1 = 1.25 → n2 = 1, sin θi = 0.8: sin θt = 1.25·0.8 = 1 exactly (1 − η²(1 − c1²) is
+        // 0 in floating point too). TIR begins past this angle, where the root is imaginary:
+        // the transmitted ray grazes the surface, t = η·d + η·c1·n = (1, 0, 0).
+        let d = DVec3::new(0.8, -0.6, 0.0);
+        let t = refract(d, DVec3::Y, 1.25, 1.0).expect("sin θt = 1 is not yet TIR");
+        assert!((t - DVec3::X).length() < 1e-15, "{t}");
+        // Equal indices never reflect totally, even at grazing incidence (c1 = 0, η = 1).
+        assert_eq!(refract(DVec3::X, DVec3::Y, 1.5, 1.5), Some(DVec3::X));
+    }
+
+    #[test]
     fn schlick_is_r0_head_on_and_one_at_grazing() {
         assert!((schlick(1.0, 1.0, 1.5) - 0.04).abs() < 1e-15);
         assert!((schlick(0.0, 1.0, 1.5) - 1.0).abs() < 1e-15);
