@@ -407,3 +407,51 @@ fn bench_threads_prints_both_speed_ups_and_refuses_one_thread() {
     assert_eq!(one.status.code(), Some(2));
     assert!(stderr(&one).contains("--threads"), "{}", stderr(&one));
 }
+
+#[test]
+fn bench_explorer_times_depth_keys_and_picks_per_scene() {
+    let o = raytree(&[
+        "bench",
+        "explorer",
+        "08-pixel-intensity",
+        "benches/peers/whitted.yaml",
+        "--runs",
+        "3",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).expect("JSON");
+    assert!(v["raytree_version"].is_string());
+    assert_eq!(v["terminal"], serde_json::json!([160, 48]));
+    let scenes = v["scenes"].as_array().unwrap();
+    let names: Vec<&str> = scenes
+        .iter()
+        .map(|s| s["scene"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["08-pixel-intensity", "whitted.yaml"]);
+    for s in scenes {
+        let (w, h) = (
+            s["preview"][0].as_u64().unwrap(),
+            s["preview"][1].as_u64().unwrap(),
+        );
+        assert!(w > 0 && h > 0 && w <= 160 && h <= 96, "{s}");
+        let full = s["full_ms"].as_f64().unwrap();
+        assert!(full > 0.0, "{s}");
+        // The draft comes first: the full preview's wait includes it.
+        if let Some(draft) = s["draft_ms"].as_f64() {
+            assert!(draft > 0.0 && draft <= full, "{s}");
+        }
+        assert!(s["pick_ms"].as_f64().unwrap() >= 0.0, "{s}");
+    }
+    // The scene file has no lesson beside it: its preview gets the wider pane.
+    assert!(scenes[1]["preview"][0].as_u64() > scenes[0]["preview"][0].as_u64());
+
+    let small = raytree(&["bench", "explorer", "--size", "10x10"]);
+    assert_eq!(small.status.code(), Some(2));
+    assert!(
+        stderr(&small).contains("COLUMNSxROWS"),
+        "{}",
+        stderr(&small)
+    );
+}

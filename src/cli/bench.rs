@@ -15,7 +15,8 @@ use crate::diagram::raster;
 #[command(after_help = "Examples:
   raytree bench sweep lessons/examples/glossy.yaml --knob spp --values 1,4,16,64 --plot sweep.svg
   raytree bench scaling --max-spheres 10000 --max-subdivisions 6 --format json
-  raytree bench threads benches/peers/whitted.yaml --runs 3")]
+  raytree bench threads benches/peers/whitted.yaml --runs 3
+  raytree bench explorer 08-pixel-intensity 10-csg")]
 pub struct Args {
     #[command(subcommand)]
     measure: Measure,
@@ -103,6 +104,40 @@ enum Measure {
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
     },
+    /// How long the explorer makes its user wait: for each lesson (or scene), a depth key to
+    /// the draft and to the full preview, and a picked pixel to its ray tree, in a terminal of
+    /// the given size, driven headlessly. Prints medians in milliseconds.
+    #[command(after_help = "Examples:
+  raytree bench explorer
+  raytree bench explorer 08-pixel-intensity lessons/examples/cornell.yaml --size 160x48
+  raytree bench explorer --runs 9 --format json")]
+    Explorer {
+        /// Lesson folders or scene files (default: every built-in lesson).
+        targets: Vec<std::path::PathBuf>,
+        /// The terminal, COLUMNSxROWS.
+        #[arg(long, default_value = "160x48", value_parser = parse_size)]
+        size: (u16, u16),
+        /// Depth changes and picks per scene; the table shows their medians.
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
+        runs: u64,
+        /// Output: the table to read, or JSON for programs.
+        #[arg(long, value_enum, default_value_t = Format::Text)]
+        format: Format,
+    },
+}
+
+/// A terminal size, `COLUMNSxROWS`.
+fn parse_size(s: &str) -> Result<(u16, u16), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("`{s}`: give the size as COLUMNSxROWS, e.g. 160x48"))?;
+    let number = |n: &str| match n.trim().parse::<u16>() {
+        Ok(v) if (20..=1000).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "`{s}`: COLUMNSxROWS, each a whole number from 20 to 1000"
+        )),
+    };
+    Ok((number(w)?, number(h)?))
 }
 
 /// A number for JSON, which has no infinity: PSNR is infinite for an exact image.
@@ -378,6 +413,76 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 }))?,
             }
         }
+        Measure::Explorer {
+            targets,
+            size,
+            runs,
+            format,
+        } => explorer(targets, size, runs as usize, format)?,
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `bench explorer`: one row per lesson or scene.
+fn explorer(
+    targets: Vec<std::path::PathBuf>,
+    size: (u16, u16),
+    runs: usize,
+    format: Format,
+) -> Result<(), Failure> {
+    let targets: Vec<std::path::PathBuf> = if targets.is_empty() {
+        let root = crate::lessons::lessons_root().map_err(|e| Failure(e.to_string()))?;
+        crate::lessons::all_lessons(&root)
+            .map_err(|e| Failure(e.to_string()))?
+            .into_iter()
+            .map(|l| l.dir)
+            .collect()
+    } else {
+        targets
+            .iter()
+            .map(|t| crate::lessons::find_lesson(t))
+            .collect()
+    };
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    let mut rows = vec![];
+    for target in &targets {
+        let l =
+            crate::tui::latency::measure(target, size, runs).map_err(|e| Failure(e.to_string()))?;
+        let name = target
+            .file_name()
+            .map_or(target.display().to_string(), |n| n.to_string_lossy().into());
+        rows.push((name, l));
+    }
+    match format {
+        Format::Text => {
+            let mut out = format!(
+                "{} × {} terminal, medians of {runs} runs (ms)\n{:<24} {:>9} {:>8} {:>8} {:>8}\n",
+                size.0, size.1, "scene", "preview", "draft", "full", "pick"
+            );
+            for (name, l) in &rows {
+                let draft = l.draft.map_or("—".to_string(), |d| format!("{:.1}", ms(d)));
+                out += &format!(
+                    "{:<24} {:>9} {:>8} {:>8.1} {:>8.2}\n",
+                    name,
+                    format!("{}×{}", l.preview.0, l.preview.1),
+                    draft,
+                    ms(l.full),
+                    ms(l.pick)
+                );
+            }
+            print(&out)?;
+        }
+        Format::Json => print_json(serde_json::json!({
+            "terminal": [size.0, size.1],
+            "runs": runs,
+            "scenes": rows.iter().map(|(name, l)| serde_json::json!({
+                "scene": name,
+                "preview": [l.preview.0, l.preview.1],
+                "draft_ms": l.draft.map(ms),
+                "full_ms": ms(l.full),
+                "pick_ms": ms(l.pick),
+            })).collect::<Vec<_>>(),
+        }))?,
+    }
+    Ok(())
 }

@@ -10,6 +10,7 @@
 
 pub mod app;
 pub mod input;
+pub mod latency;
 pub mod layout;
 pub(crate) mod markdown;
 pub(crate) mod msg;
