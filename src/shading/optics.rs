@@ -96,4 +96,12 @@ mod tests {
         assert!((schlick(0.0, 1.0, 1.5) - 1.0).abs() < 1e-15);
         assert_eq!(schlick(0.2, 1.5, 1.0), 1.0);
     }
+
+    #[test]
+    fn schlick_between_two_dense_media_uses_the_transmitted_angle() {
+        // n1 = 1.6 → n2 = 1.2 (η = 4/3, neither index 1), sin θi = 0.6: sin θt = 0.8, so
+        // cos θt = 0.6. R0 = (0.4/2.8)² = 1/49, R = 1/49 + (48/49)·0.4⁵ = 1.49152/49.
+        let r = schlick(0.8, 1.6, 1.2);
+        assert!((r - 1.49152 / 49.0).abs() < 1e-12, "{r}");
+    }
 }
