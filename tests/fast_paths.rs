@@ -16,7 +16,7 @@ use proptest::prelude::*;
 use raytree::fast::{plane_hit, sphere_hit, FastScene};
 use raytree::geometry::{Plane, Ray, Sphere};
 use raytree::render::film::Film;
-use raytree::render::{render_simple, Engine, RenderOptions};
+use raytree::render::{render_simple, render_through, Engine, RenderOptions};
 use raytree::scene::{parse, Accel, Hit, Limits, Scene, Search};
 use raytree::stats::Stats;
 use raytree::trace::Tracer;
@@ -966,5 +966,31 @@ proptest! {
         pruning in prop::bool::ANY,
     ) {
         assert_flat_hit_is_the_lists_first_crossing(&object, &r, t_min, f64::INFINITY, pruning)?;
+    }
+}
+
+/// The explorer's preview renders the scene through a smaller camera without copying the
+/// scene: the image is the one of the same scene file written at that size, bit for bit.
+#[test]
+fn a_scene_rendered_through_a_resized_camera_is_the_scene_at_that_size() {
+    for name in ["whitted", "csg"] {
+        let small = small_peer_scene(name);
+        let yaml = std::fs::read_to_string(format!("benches/peers/{name}.yaml")).unwrap();
+        let full = parse(&yaml, name, None, &Limits::default()).unwrap();
+        assert_eq!(full.camera.width, 800);
+        let options = RenderOptions {
+            spp: 4,
+            ..RenderOptions::of(&small)
+        };
+        let cancel = std::sync::atomic::AtomicBool::new(false);
+        let (a, sa) = raytree::render::render(&small, options, &|_| {}, &cancel).unwrap();
+        let camera = full.camera.resized(40, 30);
+        let (b, sb) = render_through(&full, camera, options, &|_| {}, &cancel).unwrap();
+        assert_eq!((b.width, b.height), (40, 30));
+        assert_eq!(sa, sb, "{name}: counters differ");
+        for (i, (p, q)) in a.pixels.iter().zip(&b.pixels).enumerate() {
+            let bits = |c: &DVec3| c.to_array().map(f64::to_bits);
+            assert_eq!(bits(p), bits(q), "{name}: pixel {i}: {p} against {q}");
+        }
     }
 }

@@ -16,7 +16,7 @@ use super::Image;
 use crate::fast::{trace_packet, FastScene, PACKET};
 use crate::geometry::Ray;
 use crate::sampling::Rng;
-use crate::scene::{Antialias, Filter, Integrator, Scene, Search};
+use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
 use crate::stats::Stats;
 use crate::trace::path::PathTracer;
 use crate::trace::Tracer;
@@ -80,6 +80,8 @@ pub struct Sample {
 /// the fast engine) the fast wing's search, which the film's tracers find their hits with.
 pub struct Film<'s> {
     scene: &'s Scene,
+    /// The scene's camera, or another one through the same scene (a preview's smaller image).
+    camera: Camera,
     fast: Option<FastScene<'s>>,
     options: RenderOptions,
     path: Option<PathTracer<'s>>,
@@ -90,8 +92,14 @@ impl<'s> Film<'s> {
     /// The film of `scene` with `options` (building the fast wing's search when the engine is
     /// `Fast`).
     pub fn new(scene: &'s Scene, options: RenderOptions) -> Film<'s> {
+        Film::through(scene, scene.camera.clone(), options)
+    }
+
+    /// The film of `scene` seen through `camera` instead of the scene's own.
+    pub fn through(scene: &'s Scene, camera: Camera, options: RenderOptions) -> Film<'s> {
         Film {
             scene,
+            camera,
             fast: (options.engine == Engine::Fast).then(|| FastScene::new(scene)),
             options,
             path: (scene.integrator == Integrator::Path)
@@ -132,7 +140,7 @@ impl<'s> Film<'s> {
 
     /// The value seen through image point (px, py) (pixel (x, y) covers [x, x+1) × [y, y+1)).
     pub fn sample(&self, t: &mut Tracer, px: f64, py: f64) -> DVec3 {
-        let ray = self.scene.camera.ray(px, py);
+        let ray = self.camera.ray(px, py);
         match &self.path {
             None => t.radiance(&ray),
             Some(pt) => pt
@@ -189,7 +197,7 @@ impl<'s> Film<'s> {
         for chunk in self.offsets.chunks(PACKET) {
             let rays: ArrayVec<Ray, PACKET> = chunk
                 .iter()
-                .map(|o| self.scene.camera.ray(fx + o.x, fy + o.y))
+                .map(|o| self.camera.ray(fx + o.x, fy + o.y))
                 .collect();
             let mut values = [DVec3::ZERO; PACKET];
             trace_packet(t, fast, &rays, &mut values[..rays.len()]);
@@ -265,7 +273,7 @@ impl<'s> Film<'s> {
         columns: std::ops::RangeInclusive<i64>,
         visit: &mut dyn FnMut(i64, i64, f64, DVec3),
     ) {
-        let w = self.scene.camera.width as i64;
+        let w = self.camera.width as i64;
         for sx in columns {
             if sx < 0 || sx >= w {
                 continue;
@@ -290,7 +298,7 @@ impl<'s> Film<'s> {
 
     /// What row `sy`'s samples add to rows sy − 2 … sy + 2.
     fn splat_row(&self, t: &mut Tracer, sy: u32) -> Band {
-        let w = self.scene.camera.width;
+        let w = self.camera.width;
         let mut band = Band::new(w);
         self.splats_of_row(t, sy, 0..=w as i64 - 1, &mut |dy, tx, weight, value| {
             band.add((dy + SPLAT_REACH) as usize, tx as usize, weight, value)
@@ -305,7 +313,7 @@ impl<'s> Film<'s> {
         }
         // The rows whose samples reach this pixel, each summed on its own and then added in
         // row order, as `render` adds its bands.
-        let h = self.scene.camera.height as i64;
+        let h = self.camera.height as i64;
         let (x, y) = (x as i64, y as i64);
         let mut total = Splat::default();
         for sy in (y - SPLAT_REACH).max(0)..=(y + SPLAT_REACH).min(h - 1) {
@@ -372,7 +380,19 @@ pub fn render(
     on_row: &(dyn Fn(u32) + Sync),
     cancel: &AtomicBool,
 ) -> Option<(Image, Stats)> {
-    let film = Film::new(scene, options);
+    render_through(scene, scene.camera.clone(), options, on_row, cancel)
+}
+
+/// `render` through another camera than the scene's (the explorer's preview, at the size of
+/// its pane), without copying the scene.
+pub fn render_through(
+    scene: &Scene,
+    camera: Camera,
+    options: RenderOptions,
+    on_row: &(dyn Fn(u32) + Sync),
+    cancel: &AtomicBool,
+) -> Option<(Image, Stats)> {
+    let film = Film::through(scene, camera, options);
     let image = if film.splats() {
         splatted(&film, on_row, cancel)
     } else {
@@ -387,7 +407,7 @@ fn per_pixel(
     on_row: &(dyn Fn(u32) + Sync),
     cancel: &AtomicBool,
 ) -> Option<(Image, Stats)> {
-    let cam = &film.scene.camera;
+    let cam = &film.camera;
     let (w, h) = (cam.width, cam.height);
     // Adaptive antialiasing first traces the (w+1) × (h+1) pixel corners.
     let (corners, mut stats) = match film.antialias() {
@@ -451,7 +471,7 @@ fn splatted(
     on_row: &(dyn Fn(u32) + Sync),
     cancel: &AtomicBool,
 ) -> Option<(Image, Stats)> {
-    let cam = &film.scene.camera;
+    let cam = &film.camera;
     let (w, h) = (cam.width, cam.height);
     let bands: Vec<(Band, Stats)> = (0..h)
         .into_par_iter()

@@ -8,5 +8,5 @@ mod image;
 pub mod preview;
 
 pub use error::{ImageError, WriteError};
-pub use film::{render, render_simple, Engine, RenderOptions};
+pub use film::{render, render_simple, render_through, Engine, RenderOptions};
 pub use image::{encode, write_atomically, Encoding, Format as ImageFormat, Image};

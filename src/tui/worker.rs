@@ -7,7 +7,7 @@ use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
-use crate::render::{render, Image, RenderOptions};
+use crate::render::{render_through, Image, RenderOptions};
 use crate::scene::Scene;
 use crate::stats::Stats;
 
@@ -83,12 +83,11 @@ pub fn render_pass(
         Pass::Draft => ((job.width / 4).max(1), (job.height / 4).max(1), 1),
         Pass::Final => (job.width.max(1), job.height.max(1), job.spp.max(1)),
     };
-    let mut small = (*job.scene).clone();
-    small.camera = job.scene.camera.resized(w, h);
+    let camera = job.scene.camera.resized(w, h);
     let options = RenderOptions {
         max_depth: job.depth,
         spp,
-        ..RenderOptions::of(&small)
+        ..RenderOptions::of(&job.scene)
     };
     // A bug in the renderer must not take the terminal down with it: catch the panic here and
     // let the explorer say what happened.
@@ -96,7 +95,7 @@ pub fn render_pass(
         if std::env::var("RAYTREE_EXPLORE_TEST_PANIC").as_deref() == Ok("worker") {
             panic!("a deliberate panic in the render thread (RAYTREE_EXPLORE_TEST_PANIC=worker)");
         }
-        render(&small, options, on_row, cancel)
+        render_through(&job.scene, camera, options, on_row, cancel)
     }));
     let (image, stats, failure) = match rendered {
         Ok(result) => {

@@ -464,16 +464,19 @@ impl RayTree {
 /// centre ray: several samples or corners.
 fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
     use crate::render::film::Film;
-    use crate::render::RenderOptions;
+    use crate::render::{Engine, RenderOptions};
     use crate::scene::Antialias;
+    // The textbook core gives the pixel the fast engine renders, bit for bit
+    // (tests/fast_paths.rs), and one pixel does not repay building the fast wing's search.
     let options = RenderOptions {
         max_depth: depth,
+        engine: Engine::Core,
         ..RenderOptions::of(scene)
     };
-    let film = Film::new(scene, options);
     if options.spp <= 1 && options.antialias == Antialias::Grid {
         return None;
     }
+    let film = Film::new(scene, options);
     let value = film.lone_pixel(&mut film.tracer(), x, y);
     let mut how = format!("{} spp {}", options.spp, film.antialias().name());
     if film.splats() {
