@@ -192,6 +192,30 @@ mod tests {
         }
     }
 
+    /// A light exactly at the horizon (n·l = 0) lights neither term: no diffuse, and no
+    /// highlight either, though the halfway vector between it and the viewer leans toward n
+    /// (Blinn's h·n = cos 22.5° here, Phong's r·v = cos 45°).
+    #[test]
+    fn a_light_at_the_horizon_makes_no_highlight() {
+        for highlight in [Highlight::Blinn, Highlight::Phong] {
+            let m = Material {
+                ks: 0.5,
+                shininess: 2.0,
+                highlight,
+                ..Material::matte("shiny", DVec3::ONE)
+            };
+            let v = DVec3::new(-1.0, 1.0, 0.0).normalize();
+            let t = light_terms(&m, &m.paint(), DVec3::Y, v, DVec3::X, DVec3::ONE, true);
+            assert_eq!(t.n_dot_l, 0.0);
+            assert!(t.highlight_cos > 0.38, "{highlight:?}: {}", t.highlight_cos);
+            assert_eq!(
+                (t.diffuse, t.specular),
+                (DVec3::ZERO, DVec3::ZERO),
+                "{highlight:?}"
+            );
+        }
+    }
+
     /// Hall's transmitted highlight peaks (h′·n = 1) exactly where the refracted view ray
     /// points at the light, from air into glass (η = 1.5) and from glass into air (η = 1/1.5);
     /// with η = 1 nothing bends and there is no highlight.
