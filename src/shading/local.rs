@@ -216,6 +216,22 @@ mod tests {
         }
     }
 
+    /// H′ facing away from the viewer's side (h′·n ≤ 0) makes no transmitted highlight, even
+    /// with m = 0, where cos⁰ would be 1: from air into glass (η = 1.5), viewer on the normal,
+    /// light behind at l = (−0.8, −0.6, 0): H′ ∝ −(η·l + v)/(η − 1) = (2.4, −0.2, 0)/0.5.
+    #[test]
+    fn no_transmitted_highlight_from_a_facet_facing_away() {
+        let m = Material {
+            ks: 0.5,
+            kt: 0.9,
+            shininess: 0.0,
+            ..Material::matte("glass", DVec3::ONE)
+        };
+        let l = DVec3::new(-0.8, -0.6, 0.0);
+        let t = transmitted_terms(&m, &m.paint(), DVec3::Y, DVec3::Y, l, 1.5, DVec3::ONE);
+        assert_eq!((t.highlight_cos, t.specular), (0.0, DVec3::ZERO));
+    }
+
     /// Hall's transmitted highlight peaks (h′·n = 1) exactly where the refracted view ray
     /// points at the light, from air into glass (η = 1.5) and from glass into air (η = 1/1.5);
     /// with η = 1 nothing bends and there is no highlight.
