@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use super::recorder::Recorder;
 use super::task::Task;
+use super::tree::Indices;
 use super::Tracer;
 use crate::geometry::Ray;
 use crate::scene::Interaction;
@@ -63,6 +64,16 @@ pub struct Across {
     pub n2: f64,
     /// The media a refracted ray is inside.
     pub beyond: Media,
+}
+
+impl Across {
+    /// n1 → n2, as the ray tree shows them on a refraction ray.
+    pub fn indices(&self) -> Indices {
+        Indices {
+            n1: self.n1,
+            n2: self.n2,
+        }
+    }
 }
 
 impl<R: Recorder> Tracer<'_, R> {

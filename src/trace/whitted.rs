@@ -19,6 +19,7 @@
 
 use glam::DVec3;
 
+use super::media::Across;
 use super::task::Task;
 use super::tree::{Indices, LightTerm, Local, Termination};
 use super::Tracer;
@@ -255,17 +256,8 @@ impl<R: Recorder> Tracer<'_, R> {
     pub(crate) fn secondary(&mut self, task: &Task, si: &Interaction) -> DVec3 {
         let m = self.scene.material(si.material);
         let d = task.ray.dir;
-        let across = self.across(task, si, m);
-        let indices = Indices {
-            n1: across.n1,
-            n2: across.n2,
-        };
-        let (kr, kt) = fresnel_weights(
-            m.fresnel,
-            -d.dot(si.normal),
-            (indices.n1, indices.n2),
-            (si.paint.kr, si.paint.kt),
-        );
+        let (across, kr, kt) = self.coefficients(task, si, m);
+        let indices = across.indices();
         let mirror = reflect(d, si.normal);
         let mut sum = DVec3::ZERO;
         if kr > 0.0 {
@@ -291,6 +283,24 @@ impl<R: Recorder> Tracer<'_, R> {
                 };
         }
         sum
+    }
+
+    /// The media on both sides of the surface, and kr and kt there after the Fresnel term.
+    #[inline(always)]
+    pub(crate) fn coefficients(
+        &mut self,
+        task: &Task,
+        si: &Interaction,
+        m: &Material,
+    ) -> (Across, f64, f64) {
+        let across = self.across(task, si, m);
+        let (kr, kt) = fresnel_weights(
+            m.fresnel,
+            -task.ray.dir.dot(si.normal),
+            (across.n1, across.n2),
+            (si.paint.kr, si.paint.kt),
+        );
+        (across, kr, kt)
     }
 
     /// Beyond the limiting angle no light is transmitted: the refraction ray becomes a
