@@ -409,7 +409,7 @@ fn bench_threads_prints_both_speed_ups_and_refuses_one_thread() {
 }
 
 #[test]
-fn bench_explorer_times_depth_keys_and_picks_per_scene() {
+fn bench_explorer_times_depth_keys_picks_and_reloads_per_scene() {
     let o = raytree(&[
         "bench",
         "explorer",
@@ -443,6 +443,7 @@ fn bench_explorer_times_depth_keys_and_picks_per_scene() {
             assert!(draft > 0.0 && draft <= full, "{s}");
         }
         assert!(s["pick_ms"].as_f64().unwrap() >= 0.0, "{s}");
+        assert!(s["reload_ms"].as_f64().unwrap() > 0.0, "{s}");
     }
     // The scene file has no lesson beside it: its preview gets the wider pane.
     assert!(scenes[1]["preview"][0].as_u64() > scenes[0]["preview"][0].as_u64());

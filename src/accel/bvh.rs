@@ -9,13 +9,15 @@ use glam::DVec3;
 use super::aabb::SlabRay;
 use super::Aabb;
 
-/// A node of the flattened tree. Aligned so that a node (55 bytes) never straddles two cache
-/// lines.
+/// A node of the flattened tree, 32 bytes. Its box is kept in single precision, each bound
+/// rounded outward: half the memory of a double-precision box, and a box that only grows never
+/// loses a hit (it can only let a ray visit a subtree it would have skipped by less than the
+/// rounding, where every item is then tested exactly as before).
 #[derive(Clone, Copy, Debug)]
-#[repr(align(64))]
+#[repr(align(32))]
 pub struct Node {
-    /// The box around everything below this node.
-    pub bounds: Aabb,
+    min: [f32; 3],
+    max: [f32; 3],
     /// Leaf: first index into `items`. Interior: index of the right child.
     pub offset: u32,
     /// Leaf: number of items (> 0). Interior: 0.
@@ -24,12 +26,55 @@ pub struct Node {
     pub axis: u8,
 }
 
+impl Node {
+    fn new(bounds: Aabb, offset: u32, count: u16) -> Node {
+        Node {
+            min: bounds.min.to_array().map(round_down),
+            max: bounds.max.to_array().map(round_up),
+            offset,
+            count,
+            axis: 0,
+        }
+    }
+
+    /// The box around everything below this node (exact in double precision).
+    pub fn bounds(&self) -> Aabb {
+        let wide = |v: [f32; 3]| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64);
+        Aabb {
+            min: wide(self.min),
+            max: wide(self.max),
+        }
+    }
+}
+
+/// The largest f32 at or below x (−∞ below f32's range).
+fn round_down(x: f64) -> f32 {
+    let f = x as f32;
+    if f as f64 > x {
+        f.next_down()
+    } else {
+        f
+    }
+}
+
+/// The smallest f32 at or above x (+∞ above f32's range).
+fn round_up(x: f64) -> f32 {
+    let f = x as f32;
+    if (f as f64) < x {
+        f.next_up()
+    } else {
+        f
+    }
+}
+
 /// A bounding volume hierarchy over a list of boxes, built by the surface area heuristic (SAH) and
 /// flattened into an array; the items are indices into the boxes it was built from.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     nodes: Vec<Node>,
     items: Vec<u32>,
+    /// The SAH's cost of a box test relative to an item's, while building.
+    box_cost: f64,
 }
 
 /// Work done by one traversal.
@@ -43,21 +88,43 @@ pub struct Visits {
 
 const BINS: usize = 12;
 const MAX_LEAF: usize = 4;
-/// Cost of one box test relative to one primitive test, for the SAH.
-const TRAVERSAL_COST: f64 = 0.5;
 
 impl Bvh {
-    /// Builds over the given item boxes (all finite); item i is reported as `i`.
+    /// Builds over the given item boxes (all finite); item i is reported as `i`. The SAH
+    /// counts a box test as half an item's test: the items are a scene's objects (spheres, CSG
+    /// trees, whole meshes), each dearer than a box.
     pub fn build(boxes: &[Aabb]) -> Bvh {
+        Bvh::build_with_box_cost(boxes, 0.5)
+    }
+
+    /// Builds over the boxes of a mesh's triangles. A triangle test costs about a box test, so
+    /// the SAH counts them alike: leaves then hold two or three triangles instead of one, which
+    /// halves the nodes (the tree of a million triangles would otherwise outweigh them) for the
+    /// same time per ray.
+    pub fn build_over_triangles(boxes: &[Aabb]) -> Bvh {
+        Bvh::build_with_box_cost(boxes, 1.0)
+    }
+
+    /// `box_cost`: the SAH's cost of one box test relative to one item's test.
+    fn build_with_box_cost(boxes: &[Aabb], box_cost: f64) -> Bvh {
         let mut bvh = Bvh {
             nodes: Vec::with_capacity(2 * boxes.len()),
             items: (0..boxes.len() as u32).collect(),
+            box_cost,
         };
         if !boxes.is_empty() {
             let centers: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
             bvh.build_node(boxes, &centers, 0, boxes.len(), 0);
         }
+        // The tree has fewer than the 2N nodes reserved for it (leaves hold up to MAX_LEAF).
+        bvh.nodes.shrink_to_fit();
         bvh
+    }
+
+    /// The bytes the tree holds on the heap: its nodes and its item indices.
+    pub fn heap_bytes(&self) -> usize {
+        self.nodes.capacity() * std::mem::size_of::<Node>()
+            + self.items.capacity() * std::mem::size_of::<u32>()
     }
 
     /// How many nodes, leaves and interior, the flattened tree has (0 when built from no boxes).
@@ -77,7 +144,7 @@ impl Bvh {
 
     /// The root's box, around every item; empty when there are none.
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::empty(), |n| n.bounds)
+        self.nodes.first().map_or(Aabb::empty(), Node::bounds)
     }
 
     fn build_node(
@@ -93,12 +160,8 @@ impl Bvh {
         let bounds = items
             .iter()
             .fold(Aabb::empty(), |b, &i| b.union(&boxes[i as usize]));
-        self.nodes.push(Node {
-            bounds,
-            offset: start as u32,
-            count: (end - start) as u16,
-            axis: 0,
-        });
+        self.nodes
+            .push(Node::new(bounds, start as u32, (end - start) as u16));
         let n = end - start;
         if n <= 1 {
             return index;
@@ -191,7 +254,7 @@ impl Bvh {
         }
         let n = end - start;
         let leaf_cost = n as f64;
-        let split_cost = TRAVERSAL_COST + best.0 / bounds.surface_area().max(f64::MIN_POSITIVE);
+        let split_cost = self.box_cost + best.0 / bounds.surface_area().max(f64::MIN_POSITIVE);
         if best.0.is_infinite() || (n <= MAX_LEAF && split_cost >= leaf_cost) {
             return None;
         }
@@ -243,7 +306,7 @@ impl Bvh {
             top -= 1;
             let node = &self.nodes[stack[top] as usize];
             work.nodes += 1;
-            let entered = node.bounds.hit_slabs(&slabs, t_min, t_max);
+            let entered = node.bounds().hit_slabs(&slabs, t_min, t_max);
             watch(stack[top], entered);
             if !entered {
                 continue;
@@ -305,7 +368,7 @@ impl Bvh {
             let index = stack[top];
             let node = &self.nodes[index as usize];
             work.nodes += 1;
-            let entered = node.bounds.hit_slabs(&slabs, t_min, t_max);
+            let entered = node.bounds().hit_slabs(&slabs, t_min, t_max);
             watch(index, entered);
             if !entered {
                 continue;
@@ -361,5 +424,72 @@ mod tests {
                 .collect();
             assert_eq!(found, brute);
         }
+    }
+
+    /// A node's single-precision box holds the double-precision box it was built from, and
+    /// is at most one f32 step larger on each side; beyond f32's range it is unbounded.
+    #[test]
+    fn a_node_box_is_rounded_outward_by_at_most_one_step() {
+        let values: [f64; 11] = [
+            0.1,
+            -0.1,
+            1.0,
+            1.0 / 3.0,
+            -7.25,
+            1e-30,
+            -1e-300,
+            123_456_789.123,
+            3.0e38,
+            -1e39,
+            1e300,
+        ];
+        for &a in &values {
+            for &b in &values {
+                let (lo, hi) = (a.min(b), a.max(b));
+                let exact = Aabb::new(DVec3::splat(lo), DVec3::new(hi, hi, lo.max(0.5)));
+                let node = Node::new(exact, 0, 1).bounds();
+                for k in 0..3 {
+                    let (min, max) = (node.min[k], node.max[k]);
+                    assert!(
+                        min <= exact.min[k] && max >= exact.max[k],
+                        "{exact:?} {node:?}"
+                    );
+                    let step = |x: f64| (x as f32).next_up() as f64 - x as f32 as f64;
+                    for (rounded, x) in [(min, exact.min[k]), (max, exact.max[k])] {
+                        if x.abs() > f32::MAX as f64 {
+                            assert!(rounded.is_infinite() || rounded.abs() == f32::MAX as f64);
+                        } else {
+                            assert!(
+                                (rounded - x).abs() <= step(x).max(step(rounded)),
+                                "{x} → {rounded}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        assert_eq!(
+            Node::new(Aabb::new(DVec3::splat(0.5), DVec3::ONE), 0, 1)
+                .bounds()
+                .min
+                .x,
+            0.5
+        );
+        assert_eq!(std::mem::size_of::<Node>(), 32);
+    }
+
+    /// The tree holds no more nodes than it has: the 2N reserved while building are given back.
+    #[test]
+    fn the_tree_keeps_only_its_nodes() {
+        let boxes: Vec<Aabb> = (0..1000)
+            .map(|i| Aabb::new(DVec3::splat(i as f64), DVec3::splat(i as f64 + 0.5)))
+            .collect();
+        let bvh = Bvh::build(&boxes);
+        assert!(bvh.node_count() < 2 * boxes.len());
+        assert_eq!(
+            bvh.heap_bytes(),
+            bvh.node_count() * 32 + boxes.len() * 4,
+            "32 bytes a node and an item index per box"
+        );
     }
 }

@@ -1,11 +1,13 @@
 //! The scaling sweep: how the time per ray grows with the number of objects, with and without
 //! the BVH (seed 002's O(n·p) → O(p·log n)).
 
+use std::sync::Arc;
 use std::time::Instant;
 
 use glam::DVec3;
 
 use super::error::BenchError;
+use crate::geometry::{Mesh, Shape};
 use crate::render::{render_simple, RenderOptions};
 use crate::scene::{parse, Accel, Limits, Scene};
 
@@ -26,6 +28,8 @@ pub struct Row {
     pub nodes_per_ray: f64,
     /// Primitives tested for a hit per ray with the BVH, on average.
     pub prims_per_ray: f64,
+    /// A mesh's heap bytes per triangle: vertices, triangles and its BVH (None for spheres).
+    pub bytes_per_triangle: Option<f64>,
 }
 
 const HEADER: &str =
@@ -85,6 +89,8 @@ pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<
     let start = Instant::now();
     let mut scene = parse(yaml, kind, None, &Limits::default())?;
     let build = start.elapsed().as_secs_f64();
+    let mesh_bytes: usize = meshes(&scene).map(|m| m.memory().total()).sum();
+    let bytes_per_triangle = (mesh_bytes > 0).then(|| mesh_bytes as f64 / n as f64);
     let (bvh_ns, stats) = time_per_ray(&scene);
     let rays = stats.rays() as f64;
     let brute_ns = brute.then(|| {
@@ -99,7 +105,23 @@ pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<
         brute_ns,
         nodes_per_ray: stats.bvh_nodes_visited as f64 / rays,
         prims_per_ray: stats.primitives_tested as f64 / rays,
+        bytes_per_triangle,
     })
+}
+
+/// The scene's triangle meshes, each once.
+fn meshes(scene: &Scene) -> impl Iterator<Item = &Mesh> {
+    let mut seen = vec![];
+    scene
+        .leaves
+        .iter()
+        .filter_map(move |leaf| match &leaf.shape {
+            Shape::Mesh(m) if !seen.iter().any(|s| Arc::ptr_eq(s, m)) => {
+                seen.push(m.clone());
+                Some(&**m)
+            }
+            _ => None,
+        })
 }
 
 /// The scaling table: its header and a line per row.
@@ -114,8 +136,16 @@ pub fn table(rows: &[Row]) -> String {
 /// The scaling table's header line, for printing the rows one at a time as they are measured.
 pub fn table_header() -> String {
     format!(
-        "{:<8} {:>9} {:>10} {:>14} {:>16} {:>8} {:>12} {:>12}\n",
-        "scene", "N", "load s", "BVH ns/ray", "brute ns/ray", "ratio", "nodes/ray", "prims/ray"
+        "{:<8} {:>9} {:>10} {:>14} {:>16} {:>8} {:>12} {:>12} {:>10}\n",
+        "scene",
+        "N",
+        "load s",
+        "BVH ns/ray",
+        "brute ns/ray",
+        "ratio",
+        "nodes/ray",
+        "prims/ray",
+        "bytes/tri"
     )
 }
 
@@ -125,8 +155,11 @@ pub fn table_row(r: &Row) -> String {
         Some(b) => (format!("{b:.0}"), format!("{:.1}×", b / r.bvh_ns)),
         None => ("(skipped)".into(), "".into()),
     };
+    let bytes = r
+        .bytes_per_triangle
+        .map_or("".into(), |b| format!("{b:.1}"));
     format!(
-        "{:<8} {:>9} {:>10.3} {:>14.0} {:>16} {:>8} {:>12.1} {:>12.1}\n",
-        r.kind, r.n, r.build, r.bvh_ns, brute, ratio, r.nodes_per_ray, r.prims_per_ray
+        "{:<8} {:>9} {:>10.3} {:>14.0} {:>16} {:>8} {:>12.1} {:>12.1} {:>10}\n",
+        r.kind, r.n, r.build, r.bvh_ns, brute, ratio, r.nodes_per_ray, r.prims_per_ray, bytes
     )
 }

@@ -105,8 +105,9 @@ enum Measure {
         format: Format,
     },
     /// How long the explorer makes its user wait: for each lesson (or scene), a depth key to
-    /// the draft and to the full preview, and a picked pixel to its ray tree, in a terminal of
-    /// the given size, driven headlessly. Prints medians in milliseconds.
+    /// the draft and to the full preview, a picked pixel to its ray tree, and a changed scene
+    /// file to its full preview, in a terminal of the given size, driven headlessly. Prints
+    /// medians in milliseconds.
     #[command(after_help = "Examples:
   raytree bench explorer
   raytree bench explorer 08-pixel-intensity lessons/examples/cornell.yaml --size 160x48
@@ -380,6 +381,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                         "brute_ns_per_ray": r.brute_ns,
                         "nodes_per_ray": r.nodes_per_ray,
                         "primitives_per_ray": r.prims_per_ray,
+                        "bytes_per_triangle": r.bytes_per_triangle,
                     })).collect::<Vec<_>>(),
                 }))?;
             }
@@ -456,18 +458,19 @@ fn explorer(
     match format {
         Format::Text => {
             let mut out = format!(
-                "{} × {} terminal, medians of {runs} runs (ms)\n{:<24} {:>9} {:>8} {:>8} {:>8}\n",
-                size.0, size.1, "scene", "preview", "draft", "full", "pick"
+                "{} × {} terminal, medians of {runs} runs (ms)\n{:<24} {:>9} {:>8} {:>8} {:>8} {:>8}\n",
+                size.0, size.1, "scene", "preview", "draft", "full", "pick", "reload"
             );
             for (name, l) in &rows {
                 let draft = l.draft.map_or("—".to_string(), |d| format!("{:.1}", ms(d)));
                 out += &format!(
-                    "{:<24} {:>9} {:>8} {:>8.1} {:>8.2}\n",
+                    "{:<24} {:>9} {:>8} {:>8.1} {:>8.2} {:>8.1}\n",
                     name,
                     format!("{}×{}", l.preview.0, l.preview.1),
                     draft,
                     ms(l.full),
-                    ms(l.pick)
+                    ms(l.pick),
+                    ms(l.reload)
                 );
             }
             print(&out)?;
@@ -481,6 +484,7 @@ fn explorer(
                 "draft_ms": l.draft.map(ms),
                 "full_ms": ms(l.full),
                 "pick_ms": ms(l.pick),
+                "reload_ms": ms(l.reload),
             })).collect::<Vec<_>>(),
         }))?,
     }

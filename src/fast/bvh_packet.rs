@@ -223,7 +223,7 @@ fn walk_packet(
         }
         let node = &bvh.nodes()[index as usize];
         work.nodes += active.count_ones() as u64;
-        let hit = packet.hits(&node.bounds, t_min, t_max, reach, active);
+        let hit = packet.hits(&node.bounds(), t_min, t_max, reach, active);
         if hit == 0 {
             continue;
         }

@@ -28,6 +28,24 @@ pub struct Mesh {
     bounds: Aabb,
 }
 
+/// The heap bytes of a mesh (see `Mesh::memory`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MeshMemory {
+    /// Positions, and the normals and texture coordinates when it has them.
+    pub vertices: usize,
+    /// The three vertex indices of each triangle.
+    pub triangles: usize,
+    /// The BVH over the triangles: nodes and item indices.
+    pub bvh: usize,
+}
+
+impl MeshMemory {
+    /// All of it.
+    pub fn total(&self) -> usize {
+        self.vertices + self.triangles + self.bvh
+    }
+}
+
 impl fmt::Debug for Mesh {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
@@ -70,12 +88,17 @@ impl Mesh {
             })
             .collect();
         let bounds = boxes.iter().fold(Aabb::empty(), |acc, b| acc.union(b));
-        let bvh = Bvh::build(&boxes);
-        let normals = if normals.len() == positions.len() {
+        let bvh = Bvh::build_over_triangles(&boxes);
+        let mut normals = if normals.len() == positions.len() {
             normals
         } else {
             vec![]
         };
+        // Loaders grow these by pushing: keep only what the mesh uses.
+        let (mut positions, mut triangles) = (positions, triangles);
+        positions.shrink_to_fit();
+        normals.shrink_to_fit();
+        triangles.shrink_to_fit();
         (
             Mesh {
                 positions,
@@ -113,6 +136,18 @@ impl Mesh {
     pub fn triangle(&self, i: u32) -> Triangle {
         let [a, b, c] = self.triangles[i as usize].map(|v| self.positions[v as usize]);
         Triangle { a, b, c }
+    }
+
+    /// The bytes the mesh holds on the heap, part by part.
+    pub fn memory(&self) -> MeshMemory {
+        fn bytes<T>(v: &Vec<T>) -> usize {
+            v.capacity() * std::mem::size_of::<T>()
+        }
+        MeshMemory {
+            vertices: bytes(&self.positions) + bytes(&self.normals) + bytes(&self.texcoords),
+            triangles: bytes(&self.triangles),
+            bvh: self.bvh.heap_bytes(),
+        }
     }
 
     /// The object-space box around all triangles.
@@ -454,5 +489,24 @@ mod tests {
             let (hit, _) = mesh.hit(&ray, 0.0, f64::INFINITY);
             assert!(hit.is_some());
         }
+    }
+
+    /// What an icosphere holds, part by part, from Euler's formula: 20·4^k triangles, half as
+    /// many vertices plus 2 (V − E + F = 2 with E = 3F/2), a position and a normal (two f64
+    /// vectors, 48 bytes) per vertex, three u32 indices per triangle, and the BVH's 32-byte
+    /// nodes and item indices; all of it within the 80 bytes per triangle raytree budgets.
+    #[test]
+    fn an_icosphere_holds_its_parts_and_at_most_80_bytes_a_triangle() {
+        let k = 5;
+        let mesh = Mesh::icosphere(k);
+        let triangles = 20 * 4usize.pow(k);
+        let vertices = triangles / 2 + 2;
+        assert_eq!(mesh.triangles.len(), triangles);
+        let memory = mesh.memory();
+        assert_eq!(memory.vertices, vertices * 48);
+        assert_eq!(memory.triangles, triangles * 12);
+        assert_eq!(memory.bvh, mesh.bvh.node_count() * 32 + triangles * 4);
+        let per_triangle = memory.total() as f64 / triangles as f64;
+        assert!(per_triangle <= 80.0, "{per_triangle} bytes a triangle");
     }
 }

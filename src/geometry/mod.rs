@@ -18,7 +18,7 @@ pub mod uv;
 pub use aabox::Aabox;
 pub use cone::Cone;
 pub use cylinder::Cylinder;
-pub use mesh::{Mesh, ObjBudget};
+pub use mesh::{Mesh, MeshMemory, ObjBudget};
 pub use plane::Plane;
 pub use ray::Ray;
 pub use segment::{first_crossing, Segment, SegmentList, Surface};

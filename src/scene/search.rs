@@ -177,7 +177,7 @@ impl Scene {
     pub fn visited_boxes(&self, ray: &Ray, t_max: f64, shadow: bool) -> Visited {
         let nodes = self.index.bvh.nodes();
         let mut boxes = vec![];
-        let watch = |node: u32, entered: bool| boxes.push((nodes[node as usize].bounds, entered));
+        let watch = |node: u32, entered: bool| boxes.push((nodes[node as usize].bounds(), entered));
         let mut stats = Stats::default();
         let hit = if shadow {
             self.blocker_watched(ray, 0.0, t_max, &mut stats, watch)

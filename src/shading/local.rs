@@ -216,6 +216,32 @@ mod tests {
         }
     }
 
+    /// With m = 0 the highlight is ks wherever the light reaches, cos⁰ = 1, also where the
+    /// cosine itself is 0: Phong with the light on the normal (r = n) and the viewer at the
+    /// horizon (r·v = 0). Any m > 0 makes no highlight there.
+    #[test]
+    fn shininess_zero_makes_a_uniform_highlight() {
+        for (shininess, expected) in [(0.0, 0.5), (1.0, 0.0), (0.5, 0.0)] {
+            let m = Material {
+                ks: 0.5,
+                shininess,
+                highlight: Highlight::Phong,
+                ..Material::matte("flat", DVec3::ONE)
+            };
+            let t = light_terms(
+                &m,
+                &m.paint(),
+                DVec3::Y,
+                DVec3::X,
+                DVec3::Y,
+                DVec3::ONE,
+                true,
+            );
+            assert_eq!(t.highlight_cos, 0.0);
+            assert_eq!(t.specular, DVec3::splat(expected), "m = {shininess}");
+        }
+    }
+
     /// H′ facing away from the viewer's side (h′·n ≤ 0) makes no transmitted highlight, even
     /// with m = 0, where cos⁰ would be 1: from air into glass (η = 1.5), viewer on the normal,
     /// light behind at l = (−0.8, −0.6, 0): H′ ∝ −(η·l + v)/(η − 1) = (2.4, −0.2, 0)/0.5.

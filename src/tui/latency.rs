@@ -24,10 +24,13 @@ pub struct Latency {
     pub full: Duration,
     /// A picked pixel to its ray tree on screen (traced, recorded and laid out).
     pub pick: Duration,
+    /// The scene file changed on disk to the full preview on screen: read, parsed and compiled
+    /// again on the reload thread, the tree traced again, then the draft and the full preview.
+    pub reload: Duration,
 }
 
 /// Opens `target` (a scene file or a lesson folder) in a `size` terminal and measures `runs`
-/// depth changes and pixel picks.
+/// depth changes, pixel picks and reloads of the scene file.
 pub fn measure(target: &Path, size: (u16, u16), runs: usize) -> Result<Latency, String> {
     let mut app = App::open(Some(target), ColorMode::TrueColor)?;
     update(&mut app, Msg::Resize(size.0, size.1));
@@ -36,7 +39,7 @@ pub fn measure(target: &Path, size: (u16, u16), runs: usize) -> Result<Latency, 
     if w == 0 || h == 0 {
         return Err(format!("{}: no preview to measure", target.display()));
     }
-    let (mut drafts, mut fulls, mut picks) = (vec![], vec![], vec![]);
+    let (mut drafts, mut fulls, mut picks, mut reloads) = (vec![], vec![], vec![], vec![]);
     let cancel = AtomicBool::new(false);
     for run in 0..runs.max(1) {
         // Down and up in turn, so the depth stays near the scene's own; at a limit, the
@@ -61,16 +64,9 @@ pub fn measure(target: &Path, size: (u16, u16), runs: usize) -> Result<Latency, 
                 target.display()
             ));
         };
-        // The worker renders the draft, then the full preview: the user waits for both.
-        if wants_draft(&job) {
-            render_pass(&job, Pass::Draft, &cancel, &|_| {});
-            drafts.push(start.elapsed());
-        }
-        let done = render_pass(&job, Pass::Final, &cancel, &|_| {});
-        fulls.push(start.elapsed());
-        if let Some(done) = done {
-            update(&mut app, Msg::Rendered(done));
-        }
+        let (draft, full) = preview(&mut app, &job, start, &cancel);
+        drafts.extend(draft);
+        fulls.push(full);
         // Pixels spread over the image, a different one each run.
         let (iw, ih) = app.image_size();
         let k = run as u32 + 1;
@@ -78,13 +74,56 @@ pub fn measure(target: &Path, size: (u16, u16), runs: usize) -> Result<Latency, 
         let start = Instant::now();
         update(&mut app, Msg::Pick(pixel.0, pixel.1));
         picks.push(start.elapsed());
+
+        let before = app.file.scene.clone();
+        app.file.mark_changed();
+        let start = Instant::now();
+        update(&mut app, Msg::Tick);
+        let replaced = match (&before, &app.file.scene) {
+            (Some(a), Some(b)) => !std::sync::Arc::ptr_eq(a, b),
+            _ => false,
+        };
+        if !replaced {
+            return Err(match &app.file.error {
+                Some(e) => e.clone(),
+                None => format!("{}: the scene did not reload", target.display()),
+            });
+        }
+        let Some(job) = app.take_job() else {
+            return Err(format!(
+                "{}: a reload asked for no new preview",
+                target.display()
+            ));
+        };
+        reloads.push(preview(&mut app, &job, start, &cancel).1);
     }
     Ok(Latency {
         preview: (w, h),
         draft: (!drafts.is_empty()).then(|| median(&mut drafts)),
         full: median(&mut fulls),
         pick: median(&mut picks),
+        reload: median(&mut reloads),
     })
+}
+
+/// Renders `job` as the worker does, the draft (when it wants one) and then the full preview,
+/// and hands the result to the app: the times from `start` to each on screen.
+fn preview(
+    app: &mut App,
+    job: &super::worker::Job,
+    start: Instant,
+    cancel: &AtomicBool,
+) -> (Option<Duration>, Duration) {
+    let draft = wants_draft(job).then(|| {
+        render_pass(job, Pass::Draft, cancel, &|_| {});
+        start.elapsed()
+    });
+    let done = render_pass(job, Pass::Final, cancel, &|_| {});
+    let full = start.elapsed();
+    if let Some(done) = done {
+        update(app, Msg::Rendered(done));
+    }
+    (draft, full)
 }
 
 fn median(times: &mut [Duration]) -> Duration {

@@ -97,6 +97,12 @@ impl SceneFile {
         self.error = None;
     }
 
+    /// Takes the file as changed on disk: the next poll loads it again (the explorer's latency
+    /// bench times a reload this way without touching the user's file).
+    pub(crate) fn mark_changed(&mut self) {
+        self.signature = None;
+    }
+
     /// The scene file again if it changed on disk and loads; a file that does not load is kept
     /// in `error` instead. The load runs on its own thread: a poll starts it, and this poll or
     /// a later one takes its result.
