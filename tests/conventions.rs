@@ -196,6 +196,16 @@ fn every_json_document_parses_and_carries_the_version() {
     // 16 × 12 pixels, one primary ray each.
     assert_eq!(doc["stats"]["primary_rays"], 192);
     assert_eq!(doc["width"], 16);
+    // The peak resident memory of the process: at least the 1 MB any process here maps (Linux
+    // reports it; elsewhere null).
+    if cfg!(target_os = "linux") {
+        assert!(
+            doc["peak_memory_bytes"].as_u64().unwrap() > 1 << 20,
+            "{doc}"
+        );
+    } else {
+        assert!(doc["peak_memory_bytes"].is_null());
+    }
 
     let reference = scratch("reference.exr");
     ok(&raytree(&[

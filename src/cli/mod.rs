@@ -18,6 +18,7 @@ mod inspect;
 mod lessons;
 mod man;
 mod output;
+mod peak_memory;
 mod preview;
 mod render;
 

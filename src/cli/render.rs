@@ -380,6 +380,7 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             "seconds": seconds,
             "rays": stats.rays(),
             "rays_per_second": stats.rays() as f64 / seconds.max(1e-9),
+            "peak_memory_bytes": super::peak_memory::peak_resident_bytes(),
             "stats": stats,
         }))?;
     } else if a.stats {
@@ -397,6 +398,13 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             "rays per second",
             stats.rays() as f64 / elapsed.as_secs_f64().max(1e-9)
         ));
+        if let Some(peak) = super::peak_memory::peak_resident_bytes() {
+            eprintln(&format!(
+                "{:<40} {:>11.1} MB",
+                "peak memory (the whole process)",
+                peak as f64 / 1e6
+            ));
+        }
         for line in stats.report().lines() {
             eprintln(line);
         }
