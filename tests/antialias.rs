@@ -241,3 +241,53 @@ fn the_gaussian_filter_keeps_a_flat_image_flat_and_softens_an_edge() {
         roughness(&boxed)
     );
 }
+
+/// Mitsuba's Gaussian filter, f(x) = exp(−x²/2σ²) − exp(−r²/2σ²) for |x| < r, σ = ½ pixel,
+/// r = 2 pixels (written here from its definition), applied to a straight edge: a pixel
+/// centred at c, with the scene lit below the edge at y0, has the value ∫ f(x)·[c + x > y0] dx
+/// / ∫ f(x) dx (the filter is separable and the scene constant along the edge).
+fn filtered_step(c: f64, y0: f64) -> f64 {
+    let (sigma, r) = (0.5, 2.0);
+    let f =
+        |x: f64| (-x * x / (2.0 * sigma * sigma)).exp() - (-r * r / (2.0 * sigma * sigma)).exp();
+    let n = 200_000;
+    let dx = 2.0 * r / n as f64;
+    let (mut lit, mut all) = (0.0, 0.0);
+    for i in 0..n {
+        let x = -r + (i as f64 + 0.5) * dx;
+        all += f(x);
+        if c + x > y0 {
+            lit += f(x);
+        }
+    }
+    lit / all
+}
+
+/// A white box on black (ambient only: a pixel's value is what the filter sees of it) whose
+/// top edge lies at row 7.7 of a 16 × 16 image, above the eye, so that only its front face
+/// shows: the rows around the edge take the values of the filtered step, 0.345 on the edge's
+/// row and 0.945 below it, where a box filter would give 0.3 and 1. Averaged along the edge,
+/// jittered 256 samples a pixel.
+#[test]
+fn the_gaussian_filter_blurs_an_edge_as_the_filtered_step_predicts() {
+    let y0 = 7.7;
+    // Row y0 of a 16-row image with a vertical field of view of 30°, seen at distance 10.
+    let edge = (1.0 - y0 / 8.0) * 10.0 * 15f64.to_radians().tan();
+    let s = scene(&format!(
+        "camera: {{ eye: [0, 0, -10], look_at: [0, 0, 0], fov: 30, width: 16, height: 16 }}\n\
+         background: 0\nambient: 1\nfilter: gaussian\n\
+         materials: {{ white: {{ color: 1, ka: 1 }} }}\n\
+         objects:\n  - {{ box: {{ min: [-100, -100, 0], max: [100, {edge}, 1] }}, material: white }}\n"
+    ));
+    let (image, _) = render_simple(&s, options(&s, 256, Antialias::Jittered, 3));
+    for row in 5..12 {
+        let mean = (0..16).map(|x| image.pixels[row * 16 + x].x).sum::<f64>() / 16.0;
+        let expected = filtered_step(row as f64 + 0.5, y0);
+        assert!(
+            (mean - expected).abs() < 0.01,
+            "row {row}: {mean} against {expected}"
+        );
+    }
+    assert!((filtered_step(7.5, y0) - 0.345).abs() < 0.001);
+    assert!((filtered_step(8.5, y0) - 0.945).abs() < 0.001);
+}
