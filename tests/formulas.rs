@@ -89,6 +89,59 @@ fn schlick_weights_at_sixty_degrees_outside_and_inside() {
     assert_eq!((indices.n1, indices.n2), (1.5, 1.0));
 }
 
+/// An opaque varnished ball (kr = 1, kt = 0, n = 1.5, Schlick): its media still set the
+/// Fresnel term, so head on the reflection carries R0 = 0.04 (with the media left out, n1 = n2
+/// and R0 would be 0) and at 60° from the normal 0.07.
+#[test]
+fn schlick_weights_an_opaque_surface_by_its_index() {
+    let s = common::scene(&GLASS_BALL.replace("kr: 1, kt: 1", "kr: 1, kt: 0"));
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 0.0, -5.0), DVec3::Z));
+    assert!((child(&tree, RayKind::Reflection).coefficient - 0.04).abs() < E);
+    assert!(tree.children.iter().all(|c| c.kind != RayKind::Refraction));
+    let y = 60f64.to_radians().sin();
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, y, -5.0), DVec3::Z));
+    let r = 0.04 + 0.96 / 32.0;
+    assert!((child(&tree, RayKind::Reflection).coefficient - r).abs() < 1e-9);
+}
+
+/// An air bubble (n = 1) in a glass block (n = 1.5), the bubble listed first in the file. A ray
+/// along the x axis enters the block, then the bubble, leaves the bubble and then the block:
+/// its refraction rays name n1 → n2 as 1 → 1.5, 1.5 → 1, 1 → 1.5, 1.5 → 1, whatever order the
+/// file lists the solids in.
+#[test]
+fn nested_media_follow_the_geometry_not_the_file_order() {
+    let s = common::scene(
+        "camera: { eye: [-5, 0, 0], look_at: [0, 0, 0] }
+max_depth: 6
+materials:
+  glass: { kt: 1, ior: 1.5 }
+  air: { kt: 1, ior: 1 }
+objects:
+  - { name: bubble, sphere: { center: [0, 0, 0], radius: 0.5 }, material: air }
+  - { name: block, box: { min: [-2, -2, -2], max: [2, 2, 2] }, material: glass }
+",
+    );
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(-5.0, 0.0, 0.0), DVec3::X));
+    let mut node = &tree;
+    let mut crossings = vec![];
+    while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
+        let i = next.indices.expect("a refraction ray names its media");
+        crossings.push((node.hit.as_ref().unwrap().object.clone(), i.n1, i.n2));
+        node = next;
+    }
+    let expected = [
+        ("block", 1.0, 1.5),
+        ("bubble", 1.5, 1.0),
+        ("bubble", 1.0, 1.5),
+        ("block", 1.5, 1.0),
+    ];
+    let got: Vec<(&str, f64, f64)> = crossings
+        .iter()
+        .map(|(o, a, b)| (o.as_str(), *a, *b))
+        .collect();
+    assert_eq!(got, expected);
+}
+
 /// With kr = 0.3 and kt = 0.6 the weights kr·R + kt·(1 − R) lie between 0.3 and 0.6 at every
 /// angle, inside the ball and out (0 ≤ R ≤ 1): the Fresnel term moves energy between the two
 /// rays and never creates any.

@@ -140,3 +140,21 @@ impl<R: Recorder> Tracer<'_, R> {
         out
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stack holds eight media; a ninth nested solid is not recorded (the ray keeps the
+    /// eighth's index) rather than written past the end.
+    #[test]
+    fn a_ninth_nested_medium_is_left_out() {
+        let mut m = Media::default();
+        for k in 0..9 {
+            m = m.entering(k, 1.0 + k as f64 / 10.0);
+        }
+        assert_eq!(m.iter().count(), 8);
+        assert_eq!(m.current(), 1.7);
+        assert!(m.contains(7) && !m.contains(8));
+    }
+}
