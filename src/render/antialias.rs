@@ -48,13 +48,16 @@ pub fn cell(spp: usize) -> f64 {
 pub const GAUSS_RADIUS: f64 = 2.0;
 const GAUSS_SIGMA: f64 = 0.5;
 
-/// f(x) of the Gaussian filter, 0 at and beyond the radius.
+/// g(r) = exp(−r²/2σ²) = e⁻⁸ at the radius, which f subtracts so that it reaches 0 there.
+const GAUSS_AT_RADIUS: f64 = 0.000_335_462_627_902_511_85;
+
+/// f(x) = g(x) − g(r) of the Gaussian filter, g(x) = exp(−x²/2σ²); 0 at and beyond the
+/// radius.
 pub fn gaussian_weight(x: f64) -> f64 {
     if x.abs() >= GAUSS_RADIUS {
         return 0.0;
     }
-    let g = |x: f64| (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp();
-    g(x) - g(GAUSS_RADIUS)
+    (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp() - GAUSS_AT_RADIUS
 }
 
 /// How many times a pixel may be halved: the finest squares are 2^levels to a side, the
@@ -269,6 +272,8 @@ mod tests {
 
     #[test]
     fn the_gaussian_filter_is_mitsubas() {
+        let g = |x: f64| (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp();
+        assert_eq!(GAUSS_AT_RADIUS, g(GAUSS_RADIUS));
         assert_eq!(gaussian_weight(2.0), 0.0);
         assert_eq!(gaussian_weight(-2.5), 0.0);
         // e^0 − e^(−8) at the centre; e^(−0.5) − e^(−8) one σ out.

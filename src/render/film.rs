@@ -280,13 +280,20 @@ impl<'s> Film<'s> {
             }
             self.for_each_own_sample(t, sx as u32, sy, &mut |s| {
                 let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
+                // The filter is separable, f(x)·f(y): the columns' factors once per sample.
+                let first = (sx - SPLAT_REACH).max(0);
+                let targets = first..=(sx + SPLAT_REACH).min(w - 1);
+                let mut wx = [0.0; 2 * SPLAT_REACH as usize + 1];
+                for (f, tx) in wx.iter_mut().zip(targets.clone()) {
+                    *f = gaussian_weight(tx as f64 + 0.5 - px);
+                }
                 for dy in -SPLAT_REACH..=SPLAT_REACH {
                     let wy = gaussian_weight((sy as i64 + dy) as f64 + 0.5 - py);
                     if wy == 0.0 {
                         continue;
                     }
-                    for tx in (sx - SPLAT_REACH).max(0)..=(sx + SPLAT_REACH).min(w - 1) {
-                        let weight = wy * gaussian_weight(tx as f64 + 0.5 - px);
+                    for (tx, f) in targets.clone().zip(wx) {
+                        let weight = wy * f;
                         if weight > 0.0 {
                             visit(dy, tx, weight, s.value);
                         }
