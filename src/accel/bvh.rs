@@ -73,8 +73,6 @@ fn round_up(x: f64) -> f32 {
 pub struct Bvh {
     nodes: Vec<Node>,
     items: Vec<u32>,
-    /// The SAH's cost of a box test relative to an item's, while building.
-    box_cost: f64,
 }
 
 /// Work done by one traversal.
@@ -107,18 +105,26 @@ impl Bvh {
 
     /// `box_cost`: the SAH's cost of one box test relative to one item's test.
     fn build_with_box_cost(boxes: &[Aabb], box_cost: f64) -> Bvh {
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * boxes.len()),
-            items: (0..boxes.len() as u32).collect(),
-            box_cost,
-        };
+        Bvh::build_with(boxes, box_cost, PARALLEL_ITEMS)
+    }
+
+    /// Subtrees over `parallel_items` items or more build their halves on two threads.
+    fn build_with(boxes: &[Aabb], box_cost: f64, parallel_items: usize) -> Bvh {
+        let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
+        let mut nodes = Vec::with_capacity(2 * boxes.len());
         if !boxes.is_empty() {
             let centers: Vec<DVec3> = boxes.iter().map(Aabb::center).collect();
-            bvh.build_node(boxes, &centers, 0, boxes.len(), 0);
+            let builder = Builder {
+                boxes,
+                centers: &centers,
+                box_cost,
+                parallel_items,
+            };
+            builder.node(&mut items, 0, 0, &mut nodes);
         }
         // The tree has fewer than the 2N nodes reserved for it (leaves hold up to MAX_LEAF).
-        bvh.nodes.shrink_to_fit();
-        bvh
+        nodes.shrink_to_fit();
+        Bvh { nodes, items }
     }
 
     /// The bytes the tree holds on the heap: its nodes and its item indices.
@@ -145,128 +151,6 @@ impl Bvh {
     /// The root's box, around every item; empty when there are none.
     pub fn bounds(&self) -> Aabb {
         self.nodes.first().map_or(Aabb::empty(), Node::bounds)
-    }
-
-    fn build_node(
-        &mut self,
-        boxes: &[Aabb],
-        centers: &[DVec3],
-        start: usize,
-        end: usize,
-        depth: usize,
-    ) -> usize {
-        let index = self.nodes.len();
-        let items = &self.items[start..end];
-        let bounds = items
-            .iter()
-            .fold(Aabb::empty(), |b, &i| b.union(&boxes[i as usize]));
-        self.nodes
-            .push(Node::new(bounds, start as u32, (end - start) as u16));
-        let n = end - start;
-        if n <= 1 {
-            return index;
-        }
-        let centroid_bounds = items
-            .iter()
-            .fold(Aabb::empty(), |b, &i| b.grow(centers[i as usize]));
-        let extent = centroid_bounds.max - centroid_bounds.min;
-        let axis = extent.max_position();
-        if extent[axis] <= 0.0 {
-            // All centres coincide: no split separates them.
-            if n <= u16::MAX as usize {
-                return index;
-            }
-        }
-        // Deep down, halve at the median so the traversal stack (64 entries) can never overflow.
-        let split = if depth < 40 {
-            self.sah_split(boxes, centers, start..end, axis, &centroid_bounds, &bounds)
-        } else {
-            None
-        };
-        let mid = match split {
-            Some(mid) => mid,
-            None if n <= MAX_LEAF
-                || (depth >= 40 && n <= u16::MAX as usize && extent[axis] <= 0.0) =>
-            {
-                return index
-            }
-            // The SAH prefers a leaf but it is too big: split at the median.
-            None => {
-                self.items[start..end].sort_by(|&a, &b| {
-                    centers[a as usize][axis].total_cmp(&centers[b as usize][axis])
-                });
-                start + n / 2
-            }
-        };
-        self.nodes[index].count = 0;
-        self.nodes[index].axis = axis as u8;
-        self.build_node(boxes, centers, start, mid, depth + 1);
-        let right = self.build_node(boxes, centers, mid, end, depth + 1);
-        self.nodes[index].offset = right as u32;
-        index
-    }
-
-    /// Binned SAH: partitions the items and returns the split point, or None when a leaf is
-    /// cheaper than any split.
-    fn sah_split(
-        &mut self,
-        boxes: &[Aabb],
-        centers: &[DVec3],
-        items: std::ops::Range<usize>,
-        axis: usize,
-        cb: &Aabb,
-        bounds: &Aabb,
-    ) -> Option<usize> {
-        let (start, end) = (items.start, items.end);
-        let (lo, width) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
-        if width <= 0.0 {
-            return None;
-        }
-        let bin_of = |c: DVec3| (((c[axis] - lo) / width * BINS as f64) as usize).min(BINS - 1);
-        let mut bins = [(Aabb::empty(), 0usize); BINS];
-        for &i in &self.items[start..end] {
-            let b = &mut bins[bin_of(centers[i as usize])];
-            b.0 = b.0.union(&boxes[i as usize]);
-            b.1 += 1;
-        }
-        // Sweep from the right to get the cost of every "left of bin k | right" split.
-        let mut right_area = [0.0; BINS];
-        let mut right_count = [0usize; BINS];
-        let (mut acc, mut cnt) = (Aabb::empty(), 0);
-        for k in (1..BINS).rev() {
-            acc = acc.union(&bins[k].0);
-            cnt += bins[k].1;
-            right_area[k] = acc.surface_area();
-            right_count[k] = cnt;
-        }
-        let (mut acc, mut cnt) = (Aabb::empty(), 0);
-        let mut best = (f64::INFINITY, 0);
-        for k in 1..BINS {
-            acc = acc.union(&bins[k - 1].0);
-            cnt += bins[k - 1].1;
-            if cnt == 0 || right_count[k] == 0 {
-                continue;
-            }
-            let cost = acc.surface_area() * cnt as f64 + right_area[k] * right_count[k] as f64;
-            if cost < best.0 {
-                best = (cost, k);
-            }
-        }
-        let n = end - start;
-        let leaf_cost = n as f64;
-        let split_cost = self.box_cost + best.0 / bounds.surface_area().max(f64::MIN_POSITIVE);
-        if best.0.is_infinite() || (n <= MAX_LEAF && split_cost >= leaf_cost) {
-            return None;
-        }
-        let items = &mut self.items[start..end];
-        let mut left = 0;
-        for i in 0..items.len() {
-            if bin_of(centers[items[i] as usize]) < best.1 {
-                items.swap(i, left);
-                left += 1;
-            }
-        }
-        Some(start + left)
     }
 
     /// Visits items in near-to-far order of their subtrees. `visit(item, t_max)` returns a
@@ -391,6 +275,151 @@ impl Bvh {
     }
 }
 
+/// What every step of a build reads: the items' boxes and centres, the SAH's cost of a box
+/// test relative to an item's, and from how many items on a subtree is built on two threads.
+struct Builder<'a> {
+    boxes: &'a [Aabb],
+    centers: &'a [DVec3],
+    box_cost: f64,
+    parallel_items: usize,
+}
+
+/// A subtree over at least this many items builds its right half on another thread, when
+/// there is one (below it, moving the half's nodes in would cost more than the thread saves).
+const PARALLEL_ITEMS: usize = 1 << 16;
+
+impl Builder<'_> {
+    /// Appends the subtree over `items` to `nodes` in depth-first order and returns its root's
+    /// index; `first` is the index of `items[0]` in the whole list. Interior nodes' offsets count
+    /// from the start of `nodes`.
+    fn node(&self, items: &mut [u32], first: usize, depth: usize, nodes: &mut Vec<Node>) -> usize {
+        let index = nodes.len();
+        let bounds = items
+            .iter()
+            .fold(Aabb::empty(), |b, &i| b.union(&self.boxes[i as usize]));
+        nodes.push(Node::new(bounds, first as u32, items.len() as u16));
+        let n = items.len();
+        if n <= 1 {
+            return index;
+        }
+        let centroid_bounds = items
+            .iter()
+            .fold(Aabb::empty(), |b, &i| b.grow(self.centers[i as usize]));
+        let extent = centroid_bounds.max - centroid_bounds.min;
+        let axis = extent.max_position();
+        if extent[axis] <= 0.0 {
+            // All centres coincide: no split separates them.
+            if n <= u16::MAX as usize {
+                return index;
+            }
+        }
+        // Deep down, halve at the median so the traversal stack (64 entries) can never overflow.
+        let split = if depth < 40 {
+            self.sah_split(items, axis, &centroid_bounds, &bounds)
+        } else {
+            None
+        };
+        let mid = match split {
+            Some(mid) => mid,
+            None if n <= MAX_LEAF
+                || (depth >= 40 && n <= u16::MAX as usize && extent[axis] <= 0.0) =>
+            {
+                return index
+            }
+            // The SAH prefers a leaf but it is too big: split at the median.
+            None => {
+                items.sort_by(|&a, &b| {
+                    self.centers[a as usize][axis].total_cmp(&self.centers[b as usize][axis])
+                });
+                n / 2
+            }
+        };
+        nodes[index].count = 0;
+        nodes[index].axis = axis as u8;
+        let (left, right) = items.split_at_mut(mid);
+        let right_index = if n >= self.parallel_items && rayon::current_num_threads() > 1 {
+            // The same tree as one thread builds: the right subtree on its own, then moved in
+            // behind the left one with its offsets shifted.
+            let ((), subtree) = rayon::join(
+                || {
+                    self.node(left, first, depth + 1, nodes);
+                },
+                || {
+                    let mut own = vec![];
+                    self.node(right, first + mid, depth + 1, &mut own);
+                    own
+                },
+            );
+            let base = nodes.len();
+            nodes.extend(subtree.into_iter().map(|mut node| {
+                if node.count == 0 {
+                    node.offset += base as u32;
+                }
+                node
+            }));
+            base
+        } else {
+            self.node(left, first, depth + 1, nodes);
+            self.node(right, first + mid, depth + 1, nodes)
+        };
+        nodes[index].offset = right_index as u32;
+        index
+    }
+
+    /// Binned SAH: partitions the items and returns the split point, or None when a leaf is
+    /// cheaper than any split.
+    fn sah_split(&self, items: &mut [u32], axis: usize, cb: &Aabb, bounds: &Aabb) -> Option<usize> {
+        let (lo, width) = (cb.min[axis], cb.max[axis] - cb.min[axis]);
+        if width <= 0.0 {
+            return None;
+        }
+        let bin_of = |c: DVec3| (((c[axis] - lo) / width * BINS as f64) as usize).min(BINS - 1);
+        let mut bins = [(Aabb::empty(), 0usize); BINS];
+        for &i in items.iter() {
+            let b = &mut bins[bin_of(self.centers[i as usize])];
+            b.0 = b.0.union(&self.boxes[i as usize]);
+            b.1 += 1;
+        }
+        // Sweep from the right to get the cost of every "left of bin k | right" split.
+        let mut right_area = [0.0; BINS];
+        let mut right_count = [0usize; BINS];
+        let (mut acc, mut cnt) = (Aabb::empty(), 0);
+        for k in (1..BINS).rev() {
+            acc = acc.union(&bins[k].0);
+            cnt += bins[k].1;
+            right_area[k] = acc.surface_area();
+            right_count[k] = cnt;
+        }
+        let (mut acc, mut cnt) = (Aabb::empty(), 0);
+        let mut best = (f64::INFINITY, 0);
+        for k in 1..BINS {
+            acc = acc.union(&bins[k - 1].0);
+            cnt += bins[k - 1].1;
+            if cnt == 0 || right_count[k] == 0 {
+                continue;
+            }
+            let cost = acc.surface_area() * cnt as f64 + right_area[k] * right_count[k] as f64;
+            if cost < best.0 {
+                best = (cost, k);
+            }
+        }
+        let n = items.len();
+        let leaf_cost = n as f64;
+        let split_cost = self.box_cost + best.0 / bounds.surface_area().max(f64::MIN_POSITIVE);
+        if best.0.is_infinite() || (n <= MAX_LEAF && split_cost >= leaf_cost) {
+            return None;
+        }
+        let mut left = 0;
+        for i in 0..n {
+            if bin_of(self.centers[items[i] as usize]) < best.1 {
+                items.swap(i, left);
+                left += 1;
+            }
+        }
+        Some(left)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -491,5 +520,31 @@ mod tests {
             bvh.node_count() * 32 + boxes.len() * 4,
             "32 bytes a node and an item index per box"
         );
+    }
+
+    /// Built on two threads, the tree is the one a single thread builds: the same nodes in the
+    /// same order and the same items, for objects (SAH box cost ½) and triangles (1).
+    #[test]
+    fn a_parallel_build_is_the_sequential_build() {
+        let boxes: Vec<Aabb> = (0..5000)
+            .map(|i| {
+                let t = i as f64;
+                let c = DVec3::new((t * 7.31).sin() * 50.0, (t * 3.17).cos() * 20.0, t % 13.0);
+                Aabb::new(c - 0.3 - 0.2 * (t * 1.7).sin().abs(), c + 0.4)
+            })
+            .collect();
+        for box_cost in [0.5, 1.0] {
+            let one = Bvh::build_with(&boxes, box_cost, usize::MAX);
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build()
+                .unwrap();
+            let two = pool.install(|| Bvh::build_with(&boxes, box_cost, 64));
+            assert_eq!(one.items, two.items);
+            let key = |n: &Node| (n.min, n.max, n.offset, n.count, n.axis);
+            let keys = |b: &Bvh| b.nodes.iter().map(key).collect::<Vec<_>>();
+            assert_eq!(keys(&one), keys(&two));
+            assert!(one.node_count() > 1000);
+        }
     }
 }
