@@ -65,3 +65,31 @@ impl Transform {
         Transform::new(self.to_world * inner.to_world)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DMat3;
+
+    /// Scale by 2, rotate 90° about z, then move by (1, 0, 0): the object point (1, 2, 3) goes
+    /// to (2, 4, 6), then to (−4, 2, 6), then to (−3, 2, 6); and the world ray from (−3, 2, 0)
+    /// along z, which meets that point at t = 6, taken to object space meets (1, 2, 3) at t = 6
+    /// too (its direction is not renormalised).
+    #[test]
+    fn points_go_to_the_world_and_rays_come_back() {
+        let to_world = DAffine3::from_translation(DVec3::X)
+            * DAffine3::from_mat3(DMat3::from_rotation_z(std::f64::consts::FRAC_PI_2))
+            * DAffine3::from_scale(DVec3::splat(2.0));
+        let t = Transform::new(to_world);
+        let p = t.point_to_world(DVec3::new(1.0, 2.0, 3.0));
+        assert!((p - DVec3::new(-3.0, 2.0, 6.0)).length() < 1e-12, "{p}");
+        let ray = Ray::new(DVec3::new(-3.0, 2.0, 0.0), DVec3::Z);
+        let local = t.ray_to_local(&ray);
+        let at = local.origin + 6.0 * local.dir;
+        assert!((at - DVec3::new(1.0, 2.0, 3.0)).length() < 1e-12, "{at}");
+        assert_eq!(
+            t.similarity_scale().map(|s| (s * 1e12).round() / 1e12),
+            Some(2.0)
+        );
+    }
+}
