@@ -92,7 +92,7 @@ impl Bvh {
     /// counts a box test as half an item's test: the items are a scene's objects (spheres, CSG
     /// trees, whole meshes), each dearer than a box.
     pub fn build(boxes: &[Aabb]) -> Bvh {
-        Bvh::build_with_box_cost(boxes, 0.5)
+        Bvh::build_with(boxes, 0.5, PARALLEL_ITEMS)
     }
 
     /// Builds over the boxes of a mesh's triangles. A triangle test costs about a box test, so
@@ -100,15 +100,11 @@ impl Bvh {
     /// halves the nodes (the tree of a million triangles would otherwise outweigh them) for the
     /// same time per ray.
     pub fn build_over_triangles(boxes: &[Aabb]) -> Bvh {
-        Bvh::build_with_box_cost(boxes, 1.0)
+        Bvh::build_with(boxes, 1.0, PARALLEL_ITEMS)
     }
 
-    /// `box_cost`: the SAH's cost of one box test relative to one item's test.
-    fn build_with_box_cost(boxes: &[Aabb], box_cost: f64) -> Bvh {
-        Bvh::build_with(boxes, box_cost, PARALLEL_ITEMS)
-    }
-
-    /// Subtrees over `parallel_items` items or more build their halves on two threads.
+    /// `box_cost`: the SAH's cost of one box test relative to one item's test. Subtrees over
+    /// `parallel_items` items or more build their halves on two threads.
     fn build_with(boxes: &[Aabb], box_cost: f64, parallel_items: usize) -> Bvh {
         let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
         let mut nodes = Vec::with_capacity(2 * boxes.len());
