@@ -243,12 +243,17 @@ fn every_json_document_parses_and_carries_the_version() {
         "--max-brute",
         "10",
         "--max-subdivisions",
-        "2",
+        "3",
         "--format",
         "json",
     ])));
     assert_eq!(doc["rows"][0]["kind"], "spheres");
     assert_eq!(doc["rows"][0]["n"], 10);
+    assert!(doc["rows"][0]["bytes_per_triangle"].is_null());
+    // The 1 280-triangle icosphere: 36 bytes a triangle of vertices and indices, and its BVH.
+    assert_eq!(doc["rows"][1]["n"], 1280);
+    let bytes = doc["rows"][1]["bytes_per_triangle"].as_f64().unwrap();
+    assert!(bytes > 36.0 && bytes <= 80.0, "{bytes}");
 
     let doc = versioned(&ok(&raytree(&[
         "bench",

@@ -122,6 +122,25 @@ impl Quadratic {
 mod tests {
     use super::*;
 
+    /// A ray that starts on the unit sphere and runs along its tangent plane touches it at
+    /// t = 0, also where |oc|² rounds to 1 + 2⁻⁵² (the point at 25.2° on the equator): the
+    /// division-free miss test must weigh its margin by b² + a·(|oc|² + r²), not by the
+    /// terms' difference, which is as small as the rounding there.
+    #[test]
+    fn a_tangent_ray_from_the_surface_touches_at_zero() {
+        let s = Sphere {
+            center: DVec3::ZERO,
+            radius: 1.0,
+        };
+        let angle = 56.0 * std::f64::consts::PI / 400.0;
+        let origin = DVec3::new(angle.cos(), angle.sin(), 0.0);
+        assert!(origin.length_squared() > 1.0);
+        let span = s
+            .span(&Ray::new(origin, DVec3::Z))
+            .expect("a tangent touch");
+        assert_eq!((span.t_in, span.t_out), (0.0, 0.0));
+    }
+
     #[test]
     fn lecture_tangent_ray_has_double_root_at_three() {
         // Seed 004: P = (−3, 1), d = (0.8, −0.6) against the unit circle: t = 3 twice.
