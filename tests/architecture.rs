@@ -181,3 +181,21 @@ fn a_forbidden_import_is_reported() {
     assert!(violations("geometry", "// see crate::render::film").is_empty());
     assert!(violations("render", "use crate::fast::FastScene;").is_empty());
 }
+
+/// The textbook core reads as the lecture writes it: compiler hints for speed belong to the fast
+/// wing (`src/fast/`), which calls its own copies of the per-ray steps it needs inlined.
+#[test]
+fn the_textbook_core_carries_no_speed_hints() {
+    let mut files = vec![];
+    rust_files(Path::new("src/trace"), &mut files);
+    assert!(files.iter().any(|p| p.ends_with("whitted.rs")));
+    let hinted: Vec<String> = files
+        .iter()
+        .filter(|p| {
+            let text = std::fs::read_to_string(p).unwrap();
+            text.contains("#[inline(always)]") || text.contains("target_feature")
+        })
+        .map(|p| p.display().to_string())
+        .collect();
+    assert!(hinted.is_empty(), "speed hints in the core: {hinted:?}");
+}

@@ -18,6 +18,7 @@ mod csg_crossing;
 mod csg_lanes;
 mod hull;
 mod lanes;
+mod light_share;
 mod outgoing;
 mod packet_search;
 mod packet_trace;

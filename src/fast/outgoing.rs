@@ -1,11 +1,12 @@
 //! The rays a surface sends on, as tasks to trace later: the core's `Tracer::secondary` traces
 //! its reflection and refraction rays at once, one surface after another; a packet of surfaces
 //! first gathers all their rays (`packet_trace::secondary_packet`) and traces them as packets
-//! of their own. Built from the core's own pieces (`Tracer::coefficients`, `reflect`, `refract`,
-//! `Tracer::spawn`, the `Task` constructors), so the rays are the core's to the bit.
+//! of their own. Built from the core's own pieces (`Tracer::across`, `fresnel_weights`,
+//! `reflect`, `refract`, `Tracer::spawn`, the `Task` constructors), so the rays are the core's
+//! to the bit.
 
 use crate::scene::Interaction;
-use crate::shading::optics::{reflect, refract};
+use crate::shading::optics::{fresnel_weights, reflect, refract};
 use crate::trace::{Task, Tracer};
 
 /// A surface's secondary rays, before the depth limit and the adaptive threshold have their
@@ -31,7 +32,14 @@ pub(super) enum Transmission {
 pub(super) fn outgoing(t: &mut Tracer, task: &Task, si: &Interaction) -> Outgoing {
     let m = t.scene.material(si.material);
     let d = task.ray.dir;
-    let (across, kr, kt) = t.coefficients(task, si, m);
+    // `Tracer::coefficients`, written out to be compiled into the packet loop.
+    let across = t.across(task, si, m);
+    let (kr, kt) = fresnel_weights(
+        m.fresnel,
+        -d.dot(si.normal),
+        (across.n1, across.n2),
+        (si.paint.kr, si.paint.kt),
+    );
     let indices = across.indices();
     let mirror = reflect(d, si.normal);
     // Plain branches, not closures: the compiler inlines them into the packet loop.

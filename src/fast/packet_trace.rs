@@ -1,10 +1,11 @@
 //! The Whitted recursion for a packet of rays: a pixel's grid samples, then the secondary rays
-//! of their surfaces, wave after wave. The core's steps (`Tracer::light_share`,
-//! `shadow_factor`, `finish`, …, and `outgoing` for `secondary`) in another order: every ray's local terms of a
-//! light first, then all their shadow rays toward it together, then the secondary rays as
-//! packets of their own. Each ray's intensity, the counters and the random numbers drawn are
-//! those of tracing the rays one after another with `Tracer::radiance`. The tracer must find
-//! its hits through the same `FastScene` the packets are searched with.
+//! of their surfaces, wave after wave. The core's steps (`light_share` for
+//! `Tracer::light_share`, `Tracer::shadow_factor`, `Tracer::finish`, …, and `outgoing` for
+//! `Tracer::secondary`) in another order: every ray's local terms of a light first, then all
+//! their shadow rays toward it together, then the secondary rays as packets of their own. Each
+//! ray's intensity, the counters and the random numbers drawn are those of tracing the rays
+//! one after another with `Tracer::radiance`. The tracer must find its hits through the same
+//! `FastScene` the packets are searched with.
 
 use std::borrow::Cow;
 
@@ -13,6 +14,7 @@ use glam::DVec3;
 
 use super::bvh_packet::PACKET;
 use super::lanes::UNUSED;
+use super::light_share::light_share;
 use super::outgoing::{outgoing, Transmission};
 use super::search::FastScene;
 use crate::geometry::Ray;
@@ -155,9 +157,9 @@ fn shade_packet<L: Lanes + ?Sized>(
         for i in 0..n {
             let Some(si) = &shaded[i] else { continue };
             let m = scene.material(si.material);
-            let (sample, lit, skipped) = t.light_share(m, si, &tasks.task(i), k, false);
-            terms[i] = lit.diffuse + lit.specular;
-            if skipped.is_some() {
+            let (sample, lit, skipped) = light_share(t, m, si, &tasks.task(i), k);
+            terms[i] = lit;
+            if skipped {
                 // As `color += s · terms` with s = 0, to the bit.
                 out[i] += 0.0 * terms[i];
             } else if single {

@@ -84,7 +84,6 @@ impl<R: Recorder> Tracer<'_, R> {
     /// n2 stay right where two glasses touch in a shared face. With one transparent object
     /// nothing can touch or nest, and entering or leaving says it all; a surface that
     /// transmits nothing and has no Fresnel term needs neither index.
-    #[inline(always)]
     pub(crate) fn across(&mut self, task: &Task, si: &Interaction, m: &Material) -> Across {
         let (near, beyond) = if si.paint.kt == 0.0 && m.fresnel == Fresnel::None {
             (task.media, task.media)

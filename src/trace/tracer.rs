@@ -136,7 +136,6 @@ impl<'s, R: Recorder> Tracer<'s, R> {
     // --- Bookkeeping ---
 
     /// Counts a ray among the rays of its kind.
-    #[inline(always)]
     pub(crate) fn count(&mut self, kind: RayKind) {
         match kind {
             RayKind::Primary => self.stats.primary_rays += 1,

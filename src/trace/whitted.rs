@@ -14,8 +14,7 @@
 //!
 //! The same code renders images and builds the ray trees the explorer shows: a `Recorder`
 //! watches it (`NoRecorder` compiles to nothing). It asks a `Search` for hits: the scene's own,
-//! or the renderer's faster one, which finds the same hits. (`#[inline(always)]` marks the
-//! steps the fast wing's packet loops call for every ray; it changes no result.)
+//! or the renderer's faster one, which finds the same hits.
 
 use glam::DVec3;
 
@@ -32,7 +31,6 @@ use crate::trace::recorder::Recorder;
 
 impl<R: Recorder> Tracer<'_, R> {
     /// Traces one ray: its intensity, and how far away it comes from (∞ for the background).
-    #[inline(always)]
     pub(crate) fn trace(&mut self, task: &Task) -> (DVec3, f64) {
         let hit = self
             .search
@@ -73,7 +71,6 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// Whether a surface ends the path under seed 002's rule: a diffuse surface (kd > 0 where
     /// the ray meets it) sends no reflection or refraction ray.
-    #[inline(always)]
     pub(crate) fn stops_at(&self, at: &Paint) -> bool {
         self.options.stop_at_diffuse && at.kd > 0.0
     }
@@ -96,7 +93,6 @@ impl<R: Recorder> Tracer<'_, R> {
     }
 
     /// The node's total from its local intensity: the secondary rays' kr·I_r + kt·I_t added.
-    #[inline(always)]
     pub(crate) fn finish(&mut self, task: &Task, si: &Interaction, mut color: DVec3) -> DVec3 {
         let mut stopped = None;
         if si.paint.kr > 0.0 || si.paint.kt > 0.0 {
@@ -156,7 +152,6 @@ impl<R: Recorder> Tracer<'_, R> {
     /// highlight: then a transparent surface is lit through itself, its highlight made with H′
     /// (`transmitted_terms`, η from the media on both sides), and the shadow ray goes through
     /// the surface toward the light.
-    #[inline(always)]
     pub(crate) fn light_share(
         &mut self,
         m: &Material,
@@ -178,10 +173,24 @@ impl<R: Recorder> Tracer<'_, R> {
         } else {
             light_terms(m, &si.paint, si.normal, v, sample.l, strength, shows)
         };
-        let skipped = if lit.n_dot_l <= 0.0 && !through {
+        let skipped = self.no_shadow_ray(si, k, lit.n_dot_l, through);
+        (sample, lit, skipped)
+    }
+
+    /// Why light k needs no shadow ray at a surface, if it does not (then s = 0): it is behind
+    /// the surface, dark, or outside the convex solid the point is inside of. `through`: the
+    /// light is seen through the surface (Hall's transmitted highlight).
+    pub(crate) fn no_shadow_ray(
+        &mut self,
+        si: &Interaction,
+        k: usize,
+        n_dot_l: f64,
+        through: bool,
+    ) -> Option<&'static str> {
+        if n_dot_l <= 0.0 && !through {
             self.stats.shadow_skipped_backfacing += 1;
             Some("light behind the surface (n·l ≤ 0)")
-        } else if light.is_dark() {
+        } else if self.scene.lights[k].is_dark() {
             self.stats.shadow_skipped_dark += 1;
             Some("light has zero intensity")
         } else if si.inside
@@ -195,8 +204,7 @@ impl<R: Recorder> Tracer<'_, R> {
             Some("inside a convex solid the light is outside of: the solid blocks it")
         } else {
             None
-        };
-        (sample, lit, skipped)
+        }
     }
 
     /// s for one light: a shadow ray from the surface toward it. A point light is blocked by a
@@ -242,7 +250,6 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// A shadow ray from the surface along `dir`, and how far it looks for blockers: up to a
     /// light `distance` away.
-    #[inline(always)]
     pub(crate) fn shadow_ray(&self, si: &Interaction, dir: DVec3, distance: f64) -> (Ray, f64) {
         let (from, moved) = self.scene.offset(si, dir, si.point);
         (Ray { origin: from, dir }, shadow_reach(distance, moved))
@@ -286,7 +293,6 @@ impl<R: Recorder> Tracer<'_, R> {
     }
 
     /// The media on both sides of the surface, and kr and kt there after the Fresnel term.
-    #[inline(always)]
     pub(crate) fn coefficients(
         &mut self,
         task: &Task,
@@ -355,7 +361,6 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// Why a secondary ray is not traced, if it is not: its depth reached the limit, or its
     /// weight fell below the adaptive threshold (it could change the pixel too little).
-    #[inline(always)]
     fn limit(&self, task: &Task) -> Option<Termination> {
         if task.depth >= self.options.max_depth {
             Some(Termination::MaxDepth)
@@ -367,7 +372,6 @@ impl<R: Recorder> Tracer<'_, R> {
     }
 
     /// `limit`, counted among the work skipped.
-    #[inline(always)]
     pub(crate) fn stopped(&mut self, task: &Task) -> Option<Termination> {
         let why = self.limit(task);
         match why {
@@ -380,7 +384,6 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// A secondary ray's intensity as its parent receives it: with `secondary_attenuation`,
     /// divided by c0 + c1·d + c2·d² for the distance d it travelled (seed 004).
-    #[inline(always)]
     pub(crate) fn attenuated(&self, color: DVec3, distance: f64) -> DVec3 {
         match self.attenuation_at(distance) {
             Some(divisor) => color / divisor,
@@ -389,7 +392,6 @@ impl<R: Recorder> Tracer<'_, R> {
     }
 
     /// c0 + c1·d + c2·d² for a secondary ray that travelled d, with `secondary_attenuation`.
-    #[inline(always)]
     fn attenuation_at(&self, distance: f64) -> Option<f64> {
         match self.scene.secondary_attenuation {
             Some([c0, c1, c2]) if distance.is_finite() => {
