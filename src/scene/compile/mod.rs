@@ -6,6 +6,7 @@
 mod camera;
 mod lights;
 mod materials;
+mod meshes;
 mod objects;
 mod patterns;
 mod settings;

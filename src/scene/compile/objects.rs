@@ -434,7 +434,7 @@ impl Builder<'_> {
 
 impl Builder<'_> {
     /// A leaf's shape; meshes and icospheres are counted against the triangle budget before
-    /// they are built.
+    /// they are built (or taken from an earlier compilation, `meshes`).
     fn shape(&mut self, spec: &ObjectSpec, p: Pos, object: &str) -> Result<Shape, Invalid> {
         if let Some(m) = &spec.mesh {
             let path = self.base.join(&m.file.value);
@@ -445,9 +445,8 @@ impl Builder<'_> {
                 total: self.limits.max_triangles,
                 raise: Limits::RAISE,
             };
-            let (mesh, dropped) =
-                crate::geometry::Mesh::load_obj(&path, m.smooth.unwrap_or(true), &budget)
-                    .or_else(|e| invalid(pos(&m.file), e))?;
+            let (mesh, dropped) = super::meshes::obj(&path, m.smooth.unwrap_or(true), &budget)
+                .or_else(|e| invalid(pos(&m.file), e))?;
             if mesh.triangles.is_empty() {
                 self.warnings.push((
                     pos(&m.file),
@@ -458,7 +457,7 @@ impl Builder<'_> {
                 ));
             }
             self.triangles += mesh.triangles.len() as u64;
-            return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+            return Ok(Shape::Mesh(mesh));
         }
         if let Some(i) = &spec.icosphere {
             let k = i.subdivisions.value;
@@ -481,11 +480,8 @@ impl Builder<'_> {
                 );
             }
             self.triangles += count;
-            let mut mesh = crate::geometry::Mesh::icosphere(k as u32);
-            if i.smooth == Some(false) {
-                mesh = crate::geometry::Mesh::new(mesh.positions, vec![], mesh.triangles).0;
-            }
-            return Ok(Shape::Mesh(std::sync::Arc::new(mesh)));
+            let smooth = i.smooth != Some(false);
+            return Ok(Shape::Mesh(super::meshes::icosphere(k as u32, smooth)));
         }
         shape(spec, p)
     }
