@@ -114,10 +114,11 @@ objects:
 
 /// A mirror floor and a ball of light: the mirror ray that meets the ball stops there under
 /// seed 000's rule and brings back the light's intensity; without the rule it passes through
-/// the light to the background. A diffuse mirror stops under seed 002's rule.
+/// the light to the background. A diffuse mirror stops under seed 002's rule; a matte surface,
+/// which sends no secondary ray, is not marked as stopped.
 #[test]
 fn stop_rules_end_rays_at_lights_and_at_diffuse_surfaces() {
-    let yaml = |rules: &str, kd: f64| {
+    let yaml_kr = |rules: &str, kd: f64, kr: f64| {
         scene(&format!(
             "camera: {{ eye: [-3, 4, 0], look_at: [0, 0, 0], up: [0, 1, 0], fov: 60, width: 8, height: 6 }}
 background: 0.2
@@ -127,12 +128,13 @@ stop_rules: [{rules}]
 lights:
   - {{ name: ball, sphere: {{ center: [3, 4, 0], radius: 0.5 }}, intensity: 2 }}
 materials:
-  floor: {{ color: 1, kd: {kd}, kr: 0.5 }}
+  floor: {{ color: 1, kd: {kd}, kr: {kr} }}
 objects:
   - {{ name: floor, plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }}
 "
         ))
     };
+    let yaml = |rules: &str, kd: f64| yaml_kr(rules, kd, 0.5);
     let view = ray([-3.0, 4.0, 0.0], [0.6, -0.8, 0.0]);
 
     let s = yaml("light", 0.0);
@@ -164,6 +166,9 @@ objects:
     assert!(tree.secondary().next().is_none());
     let with = Tracer::new(&yaml("", 0.3)).inspect(&view);
     assert!(with.secondary().next().is_some());
+    // A matte floor sends no secondary ray at all: the rule has nothing to stop.
+    let matte = Tracer::new(&yaml_kr("diffuse", 0.3, 0.0)).inspect(&view);
+    assert_eq!(matte.terminated, None);
 
     // Options of the tracer: the scene's rules are its default, and a caller can override them.
     let s = yaml("light, diffuse", 0.3);
