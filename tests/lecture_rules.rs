@@ -74,6 +74,67 @@ fn a_light_behind_glass_makes_the_transmitted_highlight_through_a_cast_shadow_ra
     assert_eq!(term.specular, DVec3::ZERO);
 }
 
+/// A glass half-space (y < 0, η = 1.5) with a lamp in the air at (0, 5, 0), seen from inside
+/// the glass along (0.6, 0.8, 0) at the origin: the viewer's side has the index 1.5, the
+/// light's 1, so η = 1/1.5 and H′ ∝ −(η·l + v)/(η − 1) with l = (0, 1, 0), v = (−0.6, −0.8, 0):
+/// −((0, ⅔, 0) + v)/(−⅓) = (−1.8, −0.4, 0). With n = (0, −1, 0) toward the viewer,
+/// h′·n = 0.4/√3.4, and with m = 2 the highlight is ks·0.16/3.4.
+#[test]
+fn the_transmitted_highlight_seen_from_inside_the_glass_takes_eta_as_light_over_viewer() {
+    let s = scene(
+        "camera: { eye: [-3, -4, 0], look_at: [0, 0, 0], up: [0, 1, 0], fov: 60, width: 8, height: 6 }
+background: 0.1
+max_depth: 1
+lights:
+  - { name: L, point: [0, 5, 0], intensity: 1 }
+materials:
+  glass: { color: 1, ks: 0.5, shininess: 2, kt: 0.9, ior: 1.5, transmitted_highlight: true }
+objects:
+  - { name: surface, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: glass }
+",
+    );
+    let tree = Tracer::new(&s).inspect(&ray([-3.0, -4.0, 0.0], [0.6, 0.8, 0.0]));
+    let term = &tree.local.as_ref().unwrap().lights[0];
+    assert_eq!(term.skipped, None);
+    assert!((term.n_dot_l + 1.0).abs() < 1e-12, "{}", term.n_dot_l);
+    assert!(
+        (term.highlight_cos - 0.4 / 3.4f64.sqrt()).abs() < 1e-12,
+        "{}",
+        term.highlight_cos
+    );
+    assert!((term.specular.x - 0.5 * 0.16 / 3.4).abs() < 1e-12);
+}
+
+/// The transmitted highlight is for transparent surfaces, and for lights behind them: an
+/// opaque surface (kt = 0) that asks for it gets nothing from a light behind it, and a light in
+/// the surface's own plane (n·l = 0 exactly) lights neither side; neither casts a shadow ray.
+#[test]
+fn no_transmitted_highlight_through_an_opaque_surface_or_from_the_horizon() {
+    let setup = |kt: f64, light: &str| {
+        scene(&format!(
+            "camera: {{ eye: [0, 4, 0], look_at: [0, 0, 0], up: [0, 0, 1], fov: 60, width: 8, height: 6 }}
+background: 0.1
+max_depth: 1
+lights:
+  - {{ name: L, point: {light}, intensity: 1 }}
+materials:
+  m: {{ color: 1, ks: 0.5, shininess: 1, kt: {kt}, ior: 1.5, transmitted_highlight: true }}
+objects:
+  - {{ name: surface, plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: m }}
+"
+        ))
+    };
+    let down = ray([0.0, 4.0, 0.0], [0.0, -1.0, 0.0]);
+    for (kt, light, n_dot_l) in [(0.0, "[0, -5, 0]", -1.0), (0.9, "[3, 0, 0]", 0.0)] {
+        let tree = Tracer::new(&setup(kt, light)).inspect(&down);
+        let term = &tree.local.as_ref().unwrap().lights[0];
+        assert_eq!(term.n_dot_l, n_dot_l, "kt {kt}");
+        assert!(term.skipped.is_some(), "kt {kt}: {term:?}");
+        assert_eq!(term.specular, DVec3::ZERO);
+        assert!(tree.children.iter().all(|c| c.kind != RayKind::Shadow));
+    }
+}
+
 /// With `secondary_attenuation: [1, 0, 0.25]` a mirror at y = 0 reflects the ray from
 /// (−3, 4, 0) along (0.6, −0.8, 0) to a matte wall x = 3, d = 5 away (from (0, 0, 0) along
 /// (0.6, 0.8, 0) to (3, 4, 0)): I_r is divided by 1 + 0.25·25 = 7.25, and the printed terms add
