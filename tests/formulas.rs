@@ -214,7 +214,8 @@ objects:
 /// centres of its strata (x = −0.75, −0.25, 0.25, 0.75), with a box hiding every point with
 /// x < 0 from the origin: exactly half the shadow rays pass, s = ½ (at the strata's corners,
 /// x = −1, −0.5, 0, 0.5, the ray to x = 0 grazes the box and 3 of 4 columns are hidden). Its
-/// l is toward the rectangle's centre: straight up.
+/// l is toward the rectangle's centre (0, 10, 0): straight up, and from (3, 0, 0) along
+/// (−3, 10, 0)/√109.
 #[test]
 fn a_rectangle_light_half_hidden_gives_a_shadow_factor_of_one_half() {
     let s = common::scene(
@@ -230,6 +231,11 @@ objects:
     let light = &tree.local.as_ref().unwrap().lights[0];
     assert_eq!(light.shadow, 0.5);
     assert!((light.l - DVec3::Y).length() < E, "{}", light.l);
+
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(3.0, 1.0, 0.0), -DVec3::Y));
+    let light = &tree.local.as_ref().unwrap().lights[0];
+    let toward_centre = DVec3::new(-3.0, 10.0, 0.0) / 109f64.sqrt();
+    assert!((light.l - toward_centre).length() < E, "{}", light.l);
 }
 
 /// Adaptive depth control at its boundary: mirrors with kr = ½ facing each other, threshold
