@@ -211,27 +211,33 @@ objects:
 }
 
 /// A rectangle light 2 × 2 at height 10 straight above the shaded point, sampled 4 × 4 at the
-/// centres of its strata (x = −0.75, −0.25, 0.25, 0.75), with a box hiding every point with
-/// x < 0 from the origin: exactly half the shadow rays pass, s = ½ (at the strata's corners,
-/// x = −1, −0.5, 0, 0.5, the ray to x = 0 grazes the box and 3 of 4 columns are hidden). Its
-/// l is toward the rectangle's centre (0, 10, 0): straight up, and from (3, 0, 0) along
-/// (−3, 10, 0)/√109.
+/// centres of its strata (x and z = −0.75, −0.25, 0.25, 0.75), with a box hiding every point
+/// with x < 0 from the origin, or every point with z < 0: exactly half the shadow rays pass,
+/// s = ½ (at the strata's corners, −1, −0.5, 0, 0.5, the ray to 0 grazes the box and 3 of 4
+/// columns or rows are hidden). Its l is toward the rectangle's centre (0, 10, 0): straight up,
+/// and from (3, 0, 0) along (−3, 10, 0)/√109.
 #[test]
 fn a_rectangle_light_half_hidden_gives_a_shadow_factor_of_one_half() {
-    let s = common::scene(
-        "camera: { eye: [0, 1, -3], look_at: [0, 0, 0] }
-lights: [ { name: panel, rect: { corner: [-1, 10, -1], u: [2, 0, 0], v: [0, 0, 2] }, samples: 4 } ]
-materials: { floor: { kd: 1 }, black: {} }
+    let panel = |blocker_max: &str| {
+        common::scene(&format!(
+            "camera: {{ eye: [0, 1, -3], look_at: [0, 0, 0] }}
+lights: [ {{ name: panel, rect: {{ corner: [-1, 10, -1], u: [2, 0, 0], v: [0, 0, 2] }}, samples: 4 }} ]
+materials: {{ floor: {{ kd: 1 }}, black: {{}} }}
 objects:
-  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
-  - { name: blocker, box: { min: [-5, 4, -5], max: [0, 5, 5] }, material: black }
-",
-    );
-    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 1.0, 0.0), -DVec3::Y));
-    let light = &tree.local.as_ref().unwrap().lights[0];
-    assert_eq!(light.shadow, 0.5);
-    assert!((light.l - DVec3::Y).length() < E, "{}", light.l);
+  - {{ name: floor, plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }}
+  - {{ name: blocker, box: {{ min: [-5, 4, -5], max: {blocker_max} }}, material: black }}
+"
+        ))
+    };
+    for blocker_max in ["[0, 5, 5]", "[5, 5, 0]"] {
+        let s = panel(blocker_max);
+        let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 1.0, 0.0), -DVec3::Y));
+        let light = &tree.local.as_ref().unwrap().lights[0];
+        assert_eq!(light.shadow, 0.5, "blocker up to {blocker_max}");
+        assert!((light.l - DVec3::Y).length() < E, "{}", light.l);
+    }
 
+    let s = panel("[0, 5, 5]");
     let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(3.0, 1.0, 0.0), -DVec3::Y));
     let light = &tree.local.as_ref().unwrap().lights[0];
     let toward_centre = DVec3::new(-3.0, 10.0, 0.0) / 109f64.sqrt();
