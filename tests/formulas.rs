@@ -214,7 +214,8 @@ objects:
 /// centres of its strata (x and z = −0.75, −0.25, 0.25, 0.75), with a box hiding every point
 /// with x < 0 from the origin, or every point with z < 0: exactly half the shadow rays pass,
 /// s = ½ (at the strata's corners, −1, −0.5, 0, 0.5, the ray to 0 grazes the box and 3 of 4
-/// columns or rows are hidden). Its l is toward the rectangle's centre (0, 10, 0): straight up,
+/// columns or rows are hidden); a box hiding the quarter x < 0, z < 0 leaves s = ¾ (a grid
+/// that took one index for both axes would sample only its diagonal, and give ½). Its l is toward the rectangle's centre (0, 10, 0): straight up,
 /// and from (3, 0, 0) along (−3, 10, 0)/√109.
 #[test]
 fn a_rectangle_light_half_hidden_gives_a_shadow_factor_of_one_half() {
@@ -229,11 +230,11 @@ objects:
 "
         ))
     };
-    for blocker_max in ["[0, 5, 5]", "[5, 5, 0]"] {
-        let s = panel(blocker_max);
-        let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 1.0, 0.0), -DVec3::Y));
+    for (blocker_max, s) in [("[0, 5, 5]", 0.5), ("[5, 5, 0]", 0.5), ("[0, 5, 0]", 0.75)] {
+        let scene = panel(blocker_max);
+        let tree = Tracer::new(&scene).inspect(&Ray::new(DVec3::new(0.0, 1.0, 0.0), -DVec3::Y));
         let light = &tree.local.as_ref().unwrap().lights[0];
-        assert_eq!(light.shadow, 0.5, "blocker up to {blocker_max}");
+        assert_eq!(light.shadow, s, "blocker up to {blocker_max}");
         assert!((light.l - DVec3::Y).length() < E, "{}", light.l);
     }
 

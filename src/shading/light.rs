@@ -202,17 +202,6 @@ impl Light {
         }
     }
 
-    /// The rectangle of an area light: (corner, u, v, unit normal, area).
-    pub fn rect(&self) -> Option<(DVec3, DVec3, DVec3, DVec3, f64)> {
-        match &self.kind {
-            LightKind::Rect { corner, u, v, .. } => {
-                let n = u.cross(*v);
-                Some((*corner, *u, *v, n.normalize(), n.length()))
-            }
-            _ => None,
-        }
-    }
-
     /// The emitter a path can hit: the front of a rectangle, or a sphere light.
     pub fn emitter_hit(&self, ray: &crate::geometry::Ray, t_max: f64) -> Option<EmitterHit> {
         match &self.kind {
