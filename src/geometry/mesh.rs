@@ -226,8 +226,9 @@ impl Mesh {
     }
 
     /// A unit icosphere: an icosahedron with each face split into 4, `subdivisions` times
-    /// (20·4^k triangles), vertices pushed onto the sphere; its normals are the positions.
-    pub fn icosphere(subdivisions: u32) -> Mesh {
+    /// (20·4^k triangles), vertices pushed onto the sphere; `smooth`: its normals are the
+    /// positions (else each triangle is flat).
+    pub fn icosphere(subdivisions: u32, smooth: bool) -> Mesh {
         let g = (1.0 + 5f64.sqrt()) / 2.0;
         let mut positions: Vec<DVec3> = [
             (-1.0, g, 0.0),
@@ -289,7 +290,7 @@ impl Mesh {
                 })
                 .collect();
         }
-        let normals = positions.clone();
+        let normals = if smooth { positions.clone() } else { vec![] };
         Mesh::new(positions, normals, triangles).0
     }
 
@@ -406,17 +407,19 @@ fn face_triangles(text: &[u8]) -> u64 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    const BUDGET: ObjBudget = ObjBudget {
+    /// A budget no test file comes near.
+    pub(crate) const BUDGET: ObjBudget = ObjBudget {
         max_bytes: 1 << 20,
         max_triangles: 1000,
         total: 1000,
         raise: "raise it",
     };
 
-    fn obj(name: &str, text: &[u8]) -> std::path::PathBuf {
+    /// Writes `text` to the OBJ file `name` in this test process's own folder.
+    pub(crate) fn obj(name: &str, text: &[u8]) -> std::path::PathBuf {
         let dir = std::env::temp_dir().join(format!("raytree-mesh-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join(name);
@@ -455,7 +458,7 @@ mod tests {
 
     #[test]
     fn icosphere_is_watertight_through_edges_and_vertices() {
-        let mesh = Mesh::icosphere(2);
+        let mesh = Mesh::icosphere(2, true);
         assert_eq!(mesh.triangles.len(), 320);
         // Aim at every vertex and every edge midpoint from outside, steeply (a ray grazing a
         // silhouette vertex may legitimately only touch it): the ray must enter and leave.
@@ -498,7 +501,7 @@ mod tests {
     #[test]
     fn an_icosphere_holds_its_parts_and_at_most_80_bytes_a_triangle() {
         let k = 5;
-        let mesh = Mesh::icosphere(k);
+        let mesh = Mesh::icosphere(k, true);
         let triangles = 20 * 4usize.pow(k);
         let vertices = triangles / 2 + 2;
         assert_eq!(mesh.triangles.len(), triangles);

@@ -18,6 +18,8 @@ pub mod uv;
 pub use aabox::Aabox;
 pub use cone::Cone;
 pub use cylinder::Cylinder;
+#[cfg(test)]
+pub(crate) use mesh::tests as mesh_tests;
 pub use mesh::{Mesh, MeshMemory, ObjBudget};
 pub use plane::Plane;
 pub use ray::Ray;

@@ -7,6 +7,7 @@
 //! The cache holds weak references: a mesh lives as long as some scene uses it (the explorer
 //! keeps the last good scene on screen while the new one compiles), and not a moment longer.
 
+use std::convert::Infallible;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, Weak};
 use std::time::SystemTime;
@@ -68,18 +69,10 @@ pub(super) fn icosphere(subdivisions: u32, smooth: bool) -> Arc<Mesh> {
         subdivisions,
         smooth,
     };
-    let built = cached(Some(source), || {
-        let mesh = Mesh::icosphere(subdivisions);
-        Ok::<_, String>(if smooth {
-            (mesh, 0)
-        } else {
-            Mesh::new(mesh.positions, vec![], mesh.triangles)
-        })
+    let Ok((mesh, _)) = cached(Some(source), || {
+        Ok::<_, Infallible>((Mesh::icosphere(subdivisions, smooth), 0))
     });
-    match built {
-        Ok((mesh, _)) => mesh,
-        Err(never) => unreachable!("{never}"),
-    }
+    mesh
 }
 
 /// The live mesh built from `source`, or `build`'s, remembered for the next compilation.
@@ -117,24 +110,11 @@ fn lookup(source: &Source) -> Option<(Arc<Mesh>, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    const BUDGET: ObjBudget = ObjBudget {
-        max_bytes: 1 << 20,
-        max_triangles: 1000,
-        total: 1000,
-        raise: "",
-    };
-
-    fn write(path: &Path, text: &str) {
-        std::fs::write(path, text).unwrap();
-    }
+    use crate::geometry::mesh_tests::{obj as write_obj, BUDGET};
 
     #[test]
     fn an_unchanged_file_gives_the_mesh_a_scene_still_holds() {
-        let dir = std::env::temp_dir().join(format!("raytree-meshes-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("one.obj");
-        write(&path, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        let path = write_obj("cached.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
         let (first, _) = obj(&path, true, &BUDGET).unwrap();
         let (again, _) = obj(&path, true, &BUDGET).unwrap();
         assert!(Arc::ptr_eq(&first, &again), "the same file built twice");
@@ -148,9 +128,9 @@ mod tests {
         assert!(!Arc::ptr_eq(&first, &obj(&path, false, &BUDGET).unwrap().0));
 
         // A changed file (another length) is read again.
-        write(
-            &path,
-            "v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\nf 1 2 3\nf 2 4 3\n",
+        write_obj(
+            "cached.obj",
+            b"v 0 0 0\nv 2 0 0\nv 0 2 0\nv 2 2 0\nf 1 2 3\nf 2 4 3\n",
         );
         let (changed, _) = obj(&path, true, &BUDGET).unwrap();
         assert_eq!(changed.triangles.len(), 2);
@@ -160,17 +140,13 @@ mod tests {
         drop(changed);
         assert!(weak.upgrade().is_none(), "the cache kept a mesh alive");
         assert_eq!(obj(&path, true, &BUDGET).unwrap().0.triangles.len(), 2);
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
     fn a_refused_file_is_refused_again() {
-        let dir = std::env::temp_dir().join(format!("raytree-refused-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("two.obj");
-        write(
-            &path,
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n",
+        let path = write_obj(
+            "refused.obj",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n",
         );
         let tight = ObjBudget {
             max_triangles: 1,
@@ -179,7 +155,6 @@ mod tests {
         let (_held, _) = obj(&path, true, &BUDGET).unwrap();
         assert!(obj(&path, true, &tight).is_err());
         assert!(obj(&path, true, &tight).is_err());
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
