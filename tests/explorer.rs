@@ -238,6 +238,73 @@ fn lesson_readme_renders_markdown() {
     insta::assert_snapshot!("lesson_markdown_160x48", text);
 }
 
+/// A figure drawn in a code block is never wrapped, which would break its lines apart: the pane
+/// shows it through a window that ← → move once the README has the focus, with ‹ › where it
+/// goes on. A shell command wider than the pane wraps instead.
+#[test]
+fn a_wide_figure_in_a_readme_stays_whole_and_moves_sideways() {
+    let root = demo_lesson("lesson-figure");
+    let dir = root.join("01-demo");
+    let rule = "-".repeat(70);
+    std::fs::write(
+        dir.join("README.md"),
+        format!(
+            "# 01 — A figure\n\n```\nleft  +{rule}+  right\n      | eye ──► ball{}|\n```\n\n\
+             ```sh\nraytree render lessons/01-demo/scene.yaml --width 640 --height 480 -o \
+             demo.png\n```\n",
+            " ".repeat(58)
+        ),
+    )
+    .unwrap();
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    let pane = app.panes().lesson.expect("the README is open");
+    let text = pane_text(&app, pane);
+    let rows: Vec<&str> = text.lines().collect();
+    // 85 cells of figure in a pane 62 wide: cut at the right edge, not wrapped.
+    assert_eq!(pane.width - 2, 62);
+    assert!(
+        rows[2].starts_with("left  +---") && rows[2].ends_with("-›"),
+        "{text}"
+    );
+    assert!(rows[3].starts_with("      | eye ──► ball"), "{text}");
+    assert!(!text.contains("right"), "{text}");
+    assert!(text.contains("raytree render lessons/01-demo/scene.yaml --width 640 --height"));
+    assert!(
+        text.contains("\n    480 -o demo.png"),
+        "the command wraps: {text}"
+    );
+    assert!(screen(&app).contains("Tab, ← →: the figures sideways"));
+
+    // ← → move the pixel until the README has the focus.
+    while app.focus != Focus::Lesson {
+        press(&mut app, KeyCode::Tab);
+    }
+    for _ in 0..3 {
+        press(&mut app, KeyCode::Right);
+    }
+    let moved = pane_text(&app, pane);
+    let rows: Vec<&str> = moved.lines().collect();
+    // As far as the widest line goes: its last 61 cells after the ‹.
+    assert_eq!(app.lesson.as_ref().unwrap().pan, 85 - 62);
+    assert!(
+        rows[2].starts_with('‹') && rows[2].ends_with("-+  right"),
+        "{moved}"
+    );
+    assert!(
+        rows[3].starts_with('‹') && rows[3].trim_end().ends_with('|'),
+        "{moved}"
+    );
+    assert!(
+        moved.contains("\n    480 -o demo.png"),
+        "commands stay: {moved}"
+    );
+    insta::assert_snapshot!("lesson_figure_moved_sideways", moved);
+    for _ in 0..3 {
+        press(&mut app, KeyCode::Left);
+    }
+    assert_eq!(pane_text(&app, pane), text);
+}
+
 #[test]
 fn lesson_panel_with_a_checked_answer() {
     let root = demo_lesson("lesson-panel");

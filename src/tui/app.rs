@@ -127,6 +127,7 @@ pub fn update(app: &mut App, msg: Msg) {
         Msg::FocusNext => app.cycle_focus(true),
         Msg::FocusPrev => app.cycle_focus(false),
         Msg::Up | Msg::Down | Msg::Page(_) => app.focused(&msg),
+        Msg::Sideways(steps) => app.pan_lesson(steps),
         Msg::Expand | Msg::Collapse | Msg::Toggle | Msg::ExpandAll => app.tree_update(&msg),
         Msg::DepthUp => app.step_depth(true),
         Msg::DepthDown => app.step_depth(false),

@@ -176,7 +176,9 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
             }
         }
         Focus::Lower | Focus::Lesson => {
-            if up {
+            if app.focus == Focus::Lesson && (left || right) {
+                Some(Msg::Sideways(if left { -1 } else { 1 }))
+            } else if up {
                 Some(Msg::Up)
             } else if down {
                 Some(Msg::Down)

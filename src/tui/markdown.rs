@@ -1,10 +1,11 @@
 //! A lesson README laid out for a pane of a given width: parsed as Markdown (pulldown-cmark),
 //! paragraphs and list items word-wrapped (textwrap's first-fit over styled words), tables
-//! aligned in columns, code blocks kept line for line. Each row is a list of spans tagged with
-//! how they are drawn; the lesson panel scrolls through the rows and the drawing code styles
-//! them.
+//! aligned in columns, shell commands wrapped under their first line, and every other code
+//! block (a figure drawn in characters, a listing) kept whole, line for line, for the pane to
+//! show through a window that moves sideways. Each row is a list of spans tagged with how they
+//! are drawn; the lesson panel scrolls through the rows and the drawing code styles them.
 
-use pulldown_cmark::{Alignment, Event, Options, Parser, Tag, TagEnd};
+use pulldown_cmark::{Alignment, CodeBlockKind, Event, Options, Parser, Tag, TagEnd};
 use textwrap::core::Fragment;
 use textwrap::wrap_algorithms::wrap_first_fit;
 
@@ -14,8 +15,10 @@ use super::wrap::{width as cells, wrap_hang};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Md {
     Heading,
-    /// A line of a code block.
+    /// A line of a shell command, wrapped to the pane.
     Code,
+    /// A line of any other code block: kept whole, never wrapped (a figure must not break).
+    Figure,
     Text,
     /// A paragraph that starts "Answer (": the worked solution's result.
     Answer,
@@ -31,7 +34,8 @@ pub enum Md {
 /// One row of the pane: its spans, left to right.
 pub type Row = Vec<(String, Md)>;
 
-/// The README laid out in rows at most `width` cells wide (a word longer than a row is cut).
+/// The README laid out in rows at most `width` cells wide (a word longer than a row is cut),
+/// except the rows of figures, which are as wide as they were written (see `window`).
 pub fn markdown(text: &str, width: usize) -> Vec<Row> {
     let mut w = Writer {
         width: width.max(4),
@@ -46,6 +50,71 @@ pub fn markdown(text: &str, width: usize) -> Vec<Row> {
         w.rows.pop();
     }
     w.rows
+}
+
+/// The languages of fenced code blocks that are shell commands: wrapped like prose, since a
+/// command reads as well on two rows and a figure does not.
+const SHELLS: [&str; 5] = ["sh", "shell", "bash", "console", "zsh"];
+
+/// How far the widest row sticks out of a pane `width` cells wide (0 when every row fits):
+/// how far the window over the figures can move.
+pub fn overhang(rows: &[Row], width: usize) -> usize {
+    rows.iter()
+        .map(|r| r.iter().map(|(s, _)| cells(s)).sum::<usize>())
+        .max()
+        .unwrap_or(0)
+        .saturating_sub(width)
+}
+
+/// A row as the pane shows it: the rows of figures seen through a window `width` cells wide
+/// that starts `pan` cells into the figure, with `‹` and `›` where more of it is hidden;
+/// other rows as they are.
+pub fn window(row: &Row, pan: usize, width: usize) -> Row {
+    if !row.iter().any(|(_, m)| *m == Md::Figure) {
+        return row.clone();
+    }
+    let lead: usize = row
+        .iter()
+        .filter(|(_, m)| *m != Md::Figure)
+        .map(|(s, _)| cells(s))
+        .sum();
+    let room = width.saturating_sub(lead);
+    row.iter()
+        .map(|(s, m)| match m {
+            Md::Figure => (window_text(s, pan, room), Md::Figure),
+            _ => (s.clone(), *m),
+        })
+        .collect()
+}
+
+/// The cells `pan .. pan + room` of a line, the first and last of them turned into `‹`, `›`
+/// when the line goes on beyond them with something more than spaces.
+fn window_text(line: &str, pan: usize, room: usize) -> String {
+    let chars: Vec<(char, usize)> = line
+        .chars()
+        .map(|c| (c, cells(c.encode_utf8(&mut [0; 4]))))
+        .collect();
+    let mut at = 0;
+    let (mut before, mut shown, mut after) = (String::new(), vec![], String::new());
+    for (c, w) in chars {
+        if at < pan {
+            before.push(c);
+        } else if at + w <= pan + room {
+            shown.push(c);
+        } else {
+            after.push(c);
+        }
+        at += w;
+    }
+    if room > 1 && !after.trim().is_empty() {
+        if let Some(last) = shown.last_mut() {
+            *last = '›';
+        }
+    }
+    if room > 1 && !before.trim().is_empty() && !shown.is_empty() {
+        shown[0] = '‹';
+    }
+    shown.into_iter().collect::<String>().trim_end().to_string()
 }
 
 /// A word: its pieces, each with its style (`**bold**,` is two pieces, one word).
@@ -82,7 +151,8 @@ struct Writer {
     marker: Option<String>,
     quotes: usize,
     heading: bool,
-    code: Option<String>,
+    /// The code block being read, and whether it wraps (a shell command).
+    code: Option<(String, bool)>,
     /// Rows of cells of the table being read.
     table: Option<Vec<Vec<String>>>,
     aligns: Vec<Alignment>,
@@ -112,7 +182,7 @@ impl Writer {
             Event::Start(tag) => self.start(tag),
             Event::End(tag) => self.end(tag),
             Event::Text(t) => {
-                if let Some(code) = &mut self.code {
+                if let Some((code, _)) = &mut self.code {
                     code.push_str(&t);
                 } else if let Some(cell) = self.cell() {
                     cell.push_str(&t);
@@ -177,9 +247,13 @@ impl Writer {
                 self.flush(None);
                 self.quotes += 1;
             }
-            Tag::CodeBlock(_) => {
+            Tag::CodeBlock(kind) => {
                 self.flush(None);
-                self.code = Some(String::new());
+                let shell = match kind {
+                    CodeBlockKind::Fenced(lang) => SHELLS.contains(&lang.trim()),
+                    CodeBlockKind::Indented => false,
+                };
+                self.code = Some((String::new(), shell));
             }
             Tag::Table(aligns) => {
                 self.flush(None);
@@ -233,12 +307,17 @@ impl Writer {
                 self.blank();
             }
             TagEnd::CodeBlock => {
-                let code = self.code.take().unwrap_or_default();
+                let (code, shell) = self.code.take().unwrap_or_default();
                 let (bars, indent) = self.indent();
                 for line in code.lines() {
                     let mut row = vec![];
                     if !bars.is_empty() {
                         row.push((bars.clone(), Md::Rule));
+                    }
+                    if !shell {
+                        row.push((format!("{indent}{line}"), Md::Figure));
+                        self.rows.push(row);
+                        continue;
                     }
                     let room = self.width.saturating_sub(cells(&bars));
                     for (k, l) in wrap_hang(&format!("{indent}{line}"), room, "    ")
@@ -436,7 +515,7 @@ fn words(spans: &[(String, Md)], max: usize, restyle: impl Fn(Md) -> Md) -> Vec<
 
 #[cfg(test)]
 mod tests {
-    use super::{markdown, Md};
+    use super::{markdown, overhang, window, Md};
 
     fn text(rows: &[super::Row]) -> Vec<String> {
         rows.iter()
@@ -489,6 +568,45 @@ mod tests {
     fn links_say_where_they_go() {
         let rows = markdown("See [the tracer](src/trace/whitted.rs).", 80);
         assert_eq!(text(&rows), vec!["See the tracer (src/trace/whitted.rs)."]);
+    }
+
+    #[test]
+    fn figures_stay_whole_and_commands_wrap() {
+        let md = "```\n+----------------------+\n|        figure        |\n```\n\n\
+                  ```sh\nraytree render scene.yaml -o out.png\n```\n";
+        let rows = markdown(md, 20);
+        assert_eq!(
+            text(&rows),
+            vec![
+                "+----------------------+",
+                "|        figure        |",
+                "",
+                "raytree render",
+                "    scene.yaml -o",
+                "    out.png"
+            ]
+        );
+        assert!(rows[0].iter().all(|(_, m)| *m == Md::Figure));
+        assert!(rows[3].iter().all(|(_, m)| *m == Md::Code));
+        assert_eq!(overhang(&rows, 20), 4, "24 cells in a pane of 20");
+        assert_eq!(overhang(&rows, 30), 0);
+    }
+
+    #[test]
+    fn a_window_shows_part_of_a_figure_with_marks_where_it_goes_on() {
+        let row = vec![
+            ("│ ".to_string(), Md::Rule),
+            ("abcdefghij".to_string(), Md::Figure),
+        ];
+        // 6 cells: 2 for the quote bar, 4 for the figure.
+        assert_eq!(text(&[window(&row, 0, 6)]), vec!["│ abc›"]);
+        assert_eq!(text(&[window(&row, 3, 6)]), vec!["│ ‹ef›"]);
+        assert_eq!(text(&[window(&row, 6, 6)]), vec!["│ ‹hij"]);
+        // Only spaces hidden: no mark.
+        let short = vec![("ab      ".to_string(), Md::Figure)];
+        assert_eq!(text(&[window(&short, 0, 4)]), vec!["ab"]);
+        let prose = vec![("some words".to_string(), Md::Text)];
+        assert_eq!(window(&prose, 3, 6), prose);
     }
 
     #[test]

@@ -35,6 +35,8 @@ pub enum Msg {
     Toggle,
     /// Opens every node, or back to the default.
     ExpandAll,
+    /// ← → in the lesson pane: its README's figures moved sideways by steps (negative: left).
+    Sideways(i32),
     /// Page up (negative) / down in the panel.
     Page(i32),
     /// One more ray per path (`+`): the maximum depth up by one.

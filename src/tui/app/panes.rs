@@ -86,6 +86,17 @@ impl App {
         }
     }
 
+    /// ← → in the README: its figures, a quarter of the pane's width per step.
+    pub(super) fn pan_lesson(&mut self, steps: i32) {
+        let pane = self.panes().lesson;
+        let step = pane.map_or(0, |r| (inner(r).width / 4).max(1) as i32);
+        if let Some(l) = &mut self.lesson {
+            if !l.in_exercises() {
+                l.pan_by(steps * step, pane);
+            }
+        }
+    }
+
     pub(super) fn toggle_csg(&mut self) {
         if !self.csg.toggle() {
             return;

@@ -16,7 +16,7 @@ use crate::lessons::{self, Ask, CheckError, Lesson, Solutions, Verdict};
 use crate::scene::Scene;
 use crate::trace::text;
 use crate::tui::layout::inner;
-use crate::tui::markdown::markdown;
+use crate::tui::markdown::{markdown, overhang};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LessonView {
@@ -37,6 +37,8 @@ pub struct LessonPanel {
     pub view: LessonView,
     /// Scroll of the README.
     pub scroll: u16,
+    /// How many cells into its figures the README is shown (they are never wrapped).
+    pub pan: u16,
     /// The exercise selected in the exercises view.
     pub exercise: usize,
     /// The last answer to each exercise.
@@ -86,6 +88,7 @@ impl LessonPanel {
             open: true,
             view: LessonView::Readme,
             scroll: 0,
+            pan: 0,
             exercise: 0,
             answers: vec![None; n],
             work: None,
@@ -315,6 +318,16 @@ impl LessonPanel {
     /// Scrolls the README by `delta` rows, within the limit of the view shown.
     pub fn scroll_by(&mut self, delta: i32, pane: Option<Rect>) {
         self.scroll = scrolled(self.scroll, delta, self.max_scroll(pane));
+    }
+
+    /// Moves the window over the README's figures sideways by `delta` cells, as far as the
+    /// widest figure goes in the pane.
+    pub fn pan_by(&mut self, delta: i32, pane: Option<Rect>) {
+        let Some(r) = pane else { return };
+        let width = (inner(r).width as usize).max(10);
+        let most = overhang(&markdown(&self.lesson.readme, width), width);
+        let most = most.min(u16::MAX as usize) as u16;
+        self.pan = scrolled(self.pan, delta, most);
     }
 
     /// Scrolls the selected exercise's text by `delta` rows.

@@ -33,7 +33,10 @@ pub const KEYS: &[(&str, &str)] = &[
     ("r s", "lesson README · s: the lesson's next scene"),
     ("a", "lesson exercises: ↑↓ choose, Enter answer"),
     ("w", "the selected exercise's worked solution"),
-    ("PgUp PgDn", "scroll the panel"),
+    (
+        "PgUp PgDn ← →",
+        "scroll the panel · ← →: a README's figures sideways",
+    ),
     ("o", "lesson list"),
     ("? q Esc", "this help · quit"),
 ];

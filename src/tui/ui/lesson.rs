@@ -9,9 +9,10 @@ use ratatui::Frame;
 
 use super::{inner, pane, position_note, scroll_window, themed};
 use crate::tui::app::{App, Focus};
-use crate::tui::markdown::{markdown, Md};
+use crate::tui::markdown::{markdown, overhang, window, Md};
 use crate::tui::state::exercises::{self, ExKind, ExRow};
 use crate::tui::state::lesson::{LessonPanel, LessonView};
+use crate::tui::wrap::width as cells;
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let Some(l) = &app.lesson else { return };
@@ -22,12 +23,14 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
 }
 
 fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
-    let width = inner(area).width as usize;
-    let lines: Vec<Line> = markdown(&l.lesson.readme, width.max(10))
-        .into_iter()
+    let width = (inner(area).width as usize).max(10);
+    let rows = markdown(&l.lesson.readme, width);
+    let lines: Vec<Line> = rows
+        .iter()
         .map(|row| {
             Line::from(
-                row.into_iter()
+                window(row, l.pan as usize, width)
+                    .into_iter()
                     .map(|(text, kind)| Span::styled(text, themed(app, md_style(kind))))
                     .collect::<Vec<_>>(),
             )
@@ -35,12 +38,26 @@ fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
         .collect();
     let total = lines.len();
     let (shown, start) = scroll_window(&lines, l.scroll, inner(area).height);
+    // A figure on screen is cut: say how to see the rest.
+    let cut = overhang(&rows[start..start + shown.len()], width) > 0;
     let title = format!(
         " {} · {} · README (r closes, a: exercises) ",
         l.lesson.id, l.lesson.title
     );
     let mut block = pane(app, title, Some(Focus::Lesson));
-    if let Some(note) = position_note(start, shown.len(), total) {
+    let note = position_note(start, shown.len(), total);
+    if cut {
+        let keys = if app.focus == Focus::Lesson {
+            " ← →: the figures sideways "
+        } else {
+            " Tab, ← →: the figures sideways "
+        };
+        let room = (area.width as usize).saturating_sub(note.as_ref().map_or(0, |n| cells(n)) + 3);
+        if let Some(keys) = [keys, " ← → "].into_iter().find(|k| cells(k) <= room) {
+            block = block.title_bottom(Line::from(keys).alignment(Alignment::Left));
+        }
+    }
+    if let Some(note) = note {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
     f.render_widget(Paragraph::new(shown).block(block), area);
@@ -50,7 +67,7 @@ fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
 fn md_style(kind: Md) -> Style {
     match kind {
         Md::Heading => Style::new().add_modifier(Modifier::BOLD).fg(Color::Yellow),
-        Md::Code | Md::InlineCode => Style::new().fg(Color::Green),
+        Md::Code | Md::Figure | Md::InlineCode => Style::new().fg(Color::Green),
         Md::Answer | Md::Strong => Style::new().add_modifier(Modifier::BOLD),
         Md::Emphasis => Style::new().add_modifier(Modifier::ITALIC),
         Md::Link => Style::new()
