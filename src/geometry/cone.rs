@@ -221,4 +221,41 @@ mod tests {
         assert!((s.t_in - 1.0).abs() < 1e-12 && (s.t_out - 3.0).abs() < 1e-9);
         assert_eq!(s.face_in, BASE_CAP);
     }
+
+    /// A 45° cone (cos²θ = ½ exactly): the ray up its axis is inside the double cone on both
+    /// sides of the apex, f(t) = ½(2 − t)² ≥ 0 with a double root at the apex (t = 2), so both
+    /// pieces of the nappe meet the slab [1, 2]: the span is their hull, entered through the
+    /// base (t = 1) and left at the apex (t = 2).
+    #[test]
+    fn up_the_axis_of_a_45_degree_cone_both_pieces_meet_at_the_apex() {
+        let cone = Cone {
+            apex: DVec3::new(0.0, 1.0, 0.0),
+            base: DVec3::ZERO,
+            radius: 1.0,
+        };
+        assert_eq!(cone.cos2(), 0.5);
+        let s = cone
+            .span(&Ray::raw(DVec3::new(0.0, -1.0, 0.0), DVec3::Y))
+            .unwrap();
+        assert_eq!((s.t_in, s.face_in), (1.0, BASE_CAP));
+        assert_eq!((s.t_out, s.face_out), (2.0, SIDE));
+    }
+
+    /// A ray parallel to a generator of the open 45° cone (direction (1, −1, 0), the line from
+    /// the apex to the rim point (1, 0, 0)) crosses the other side once: from (−1.5, 1, 0) it
+    /// meets x = −(1 − y) at t = 0.75, the point (−0.75, 0.25, 0), 0.75 below the apex. There
+    /// f is linear: qa = 1 − ½·2 = 0, qb = ½·1.5, qc = −½·1.5², t = −qc/(2·qb).
+    #[test]
+    fn a_ray_parallel_to_a_generator_crosses_the_open_cone_once() {
+        let cone = Cone {
+            apex: DVec3::new(0.0, 1.0, 0.0),
+            base: DVec3::ZERO,
+            radius: 1.0,
+        };
+        let ray = Ray::raw(DVec3::new(-1.5, 1.0, 0.0), DVec3::new(1.0, -1.0, 0.0));
+        assert_eq!(cone.open_span(&ray), Some(Span::new(0.75, SIDE, 0.75, SIDE)));
+        // Along the generator itself (through the apex) f is 0 everywhere: no crossing.
+        let along = Ray::raw(DVec3::new(-1.0, 2.0, 0.0), DVec3::new(1.0, -1.0, 0.0));
+        assert_eq!(cone.open_span(&along), None);
+    }
 }
