@@ -195,6 +195,61 @@ fn tick_until(app: &mut App, done: impl Fn(&App) -> bool) {
 /// or for a link to /dev/zero (reading it would never end): the explorer says so at once and
 /// keeps the last good scene; `q` still quits.
 #[cfg(unix)]
+/// Whether a process is still running: not gone, and not a zombie waiting for its parent.
+fn running(pid: &str) -> bool {
+    let stat = std::fs::read_to_string(format!("/proc/{pid}/stat")).unwrap_or_default();
+    // "pid (name) S ...": the state follows the name's closing parenthesis.
+    let state = stat.rsplit_once(')').map(|(_, rest)| rest.trim_start());
+    state.is_some_and(|s| !s.starts_with('Z') && !s.starts_with('X'))
+}
+
+/// The terminal hangs up under the explorer (the tmux server killed, as a closed window or a
+/// lost SSH connection would): the explorer ends, rather than living on with its reader
+/// spinning on the dead terminal.
+#[test]
+fn a_terminal_that_hangs_up_ends_the_explorer() {
+    if !have_tmux() {
+        return;
+    }
+    let tmux = Tmux {
+        socket: format!("raytree-hangup-{}", std::process::id()),
+    };
+    let script = format!(
+        "'{}' explore lessons/08-pixel-intensity; sleep 60",
+        bin().display()
+    );
+    tmux.run(&[
+        "new-session",
+        "-d",
+        "-s",
+        "explore",
+        "-x",
+        "100",
+        "-y",
+        "30",
+        "-c",
+        env!("CARGO_MANIFEST_DIR"),
+        "sh",
+        "-c",
+        &script,
+    ]);
+    tmux.wait_until("the explorer's screen", |t| {
+        t.flag("#{alternate_on}") == "1"
+    });
+    let shell = tmux.flag("#{pane_pid}");
+    let explorer = children(&shell);
+    assert_eq!(explorer.len(), 1, "the shell's children: {explorer:?}");
+    tmux.run(&["kill-server"]);
+    let start = Instant::now();
+    while running(&explorer[0]) {
+        if start.elapsed() > Duration::from_secs(10) {
+            let _ = Command::new("kill").args(["-KILL", &explorer[0]]).status();
+            panic!("the explorer outlived its terminal by 10 s");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
 #[test]
 fn a_watched_file_swapped_for_a_fifo_or_a_device_never_freezes_the_explorer() {
     let dir = scratch("swapped");

@@ -253,7 +253,10 @@ mod tests {
             radius: 1.0,
         };
         let ray = Ray::raw(DVec3::new(-1.5, 1.0, 0.0), DVec3::new(1.0, -1.0, 0.0));
-        assert_eq!(cone.open_span(&ray), Some(Span::new(0.75, SIDE, 0.75, SIDE)));
+        assert_eq!(
+            cone.open_span(&ray),
+            Some(Span::new(0.75, SIDE, 0.75, SIDE))
+        );
         // Along the generator itself (through the apex) f is 0 everywhere: no crossing.
         let along = Ray::raw(DVec3::new(-1.0, 2.0, 0.0), DVec3::new(1.0, -1.0, 0.0));
         assert_eq!(cone.open_span(&along), None);

@@ -5,10 +5,12 @@
 //! `update` (app.rs); keys to messages (input.rs); pane geometry (layout.rs) and word wrap
 //! (wrap.rs, markdown.rs) shared by the model and the drawing; drawing as pure functions of
 //! `&App`, one per pane (ui/); the preview renderer on its own thread (worker.rs); terminal
-//! setup and restore (terminal.rs). Everything but the last two runs without a terminal, which
-//! is how tests/explorer.rs drives it.
+//! setup and restore (terminal.rs), and a watchdog that ends the explorer when its terminal
+//! hangs up (hangup.rs). Everything but the last three runs without a terminal, which is how
+//! tests/explorer.rs drives it.
 
 pub mod app;
+pub(crate) mod hangup;
 pub mod input;
 pub mod latency;
 pub mod layout;
@@ -81,6 +83,7 @@ pub fn run(options: Options) -> Result<(), String> {
     let signals =
         crate::signals::Signals::catch().map_err(|e| format!("cannot catch signals: {e}"))?;
     let mut guard = terminal::setup().map_err(|e| format!("cannot set up the terminal: {e}"))?;
+    hangup::watch().map_err(|e| format!("cannot watch the terminal: {e}"))?;
     let result = event_loop(&mut guard.term, &mut app, signals.stop());
     drop(guard);
     signals.finish();
