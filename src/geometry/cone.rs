@@ -241,6 +241,18 @@ mod tests {
         assert_eq!((s.t_out, s.face_out), (2.0, SIDE));
     }
 
+    /// At the apex the gradient of f vanishes: the normal is taken along the axis, out of the
+    /// tip (away from the base), so a ray that ends exactly on the tip still shades.
+    #[test]
+    fn the_normal_at_the_apex_points_out_of_the_tip() {
+        let cone = Cone {
+            apex: DVec3::new(0.0, 2.0, 0.0),
+            base: DVec3::ZERO,
+            radius: 1.0,
+        };
+        assert_eq!(cone.normal(cone.apex, SIDE), DVec3::Y);
+    }
+
     /// A ray parallel to a generator of the open 45° cone (direction (1, −1, 0), the line from
     /// the apex to the rim point (1, 0, 0)) crosses the other side once: from (−1.5, 1, 0) it
     /// meets x = −(1 − y) at t = 0.75, the point (−0.75, 0.25, 0), 0.75 below the apex. There
