@@ -37,13 +37,13 @@ impl CsgOp {
         }
     }
 
-    /// Inside the result, given inside A and inside B.
+    /// Inside the result of a binary operation, given inside A and inside B.
     fn keeps(self, a: bool, b: bool) -> bool {
         match self {
             CsgOp::Union => a || b,
             CsgOp::Intersection => a && b,
             CsgOp::Difference => a && !b,
-            CsgOp::Complement => !a,
+            CsgOp::Complement => unreachable!("combine takes the complement whole"),
         }
     }
 }
@@ -301,6 +301,7 @@ fn event(list: &[Segment], k: usize) -> Option<Event> {
 /// - Each list is one segment (two convex primitives) and no two ends coincide: see `pair`.
 pub fn combine(op: CsgOp, a: &[Segment], b: &[Segment]) -> SegmentList {
     match (op, a, b) {
+        (CsgOp::Complement, _, _) => complement(a),
         (CsgOp::Intersection, [], _)
         | (CsgOp::Intersection, _, [])
         | (CsgOp::Difference, [], _) => SegmentList::new(),
@@ -623,6 +624,101 @@ mod tests {
             &list(&[(1.0, 2.0)], 1),
         );
         assert!(face.is_empty(), "a shared face has no thickness");
+    }
+
+    /// The complement is unary: `combine` gives the complement of its first list, surfaces
+    /// flipped (the inside of the result is the outside of A), whatever the second.
+    #[test]
+    fn combining_by_complement_is_the_complement_of_the_first_list() {
+        let a = list(&[(0.0, 10.0), (12.0, 14.0)], 0);
+        let b = list(&[(4.0, 6.0)], 1);
+        let c = combine(CsgOp::Complement, &a, &b);
+        assert_eq!(c, complement(&a));
+        assert_eq!(
+            ts(&c),
+            vec![
+                (f64::NEG_INFINITY, 0.0),
+                (10.0, 12.0),
+                (14.0, f64::INFINITY)
+            ]
+        );
+        assert_eq!(c[1].enter, Surface::new(0, 0).flipped());
+    }
+
+    /// Leaves as fixed lists along any ray: 0 is missed, 1 is [2, 3], 2 is [1, 4].
+    struct Lists;
+
+    impl LeafSegments for Lists {
+        fn leaf_segments(&self, leaf: u32, _: &Ray) -> SegmentList {
+            match leaf {
+                0 => list(&[], 0),
+                1 => list(&[(2.0, 3.0)], 1),
+                _ => list(&[(1.0, 4.0)], 2),
+            }
+        }
+        fn leaf_name(&self, leaf: u32) -> String {
+            format!("leaf {leaf}")
+        }
+    }
+
+    fn op(op: CsgOp, leaves: &[u32]) -> CsgNode {
+        let leaf = |leaf| CsgNode::Leaf {
+            leaf,
+            bounds: Aabb::everything(),
+        };
+        CsgNode::Op {
+            op,
+            name: op.name().into(),
+            children: leaves.iter().map(|&l| leaf(l)).collect(),
+            bounds: Aabb::everything(),
+        }
+    }
+
+    /// The notes' pruning rules: an intersection or a difference whose first operand is empty
+    /// is empty, so its second is never intersected with the ray (one leaf tested, one node
+    /// pruned); with pruning off both are tested. A union always needs both.
+    #[test]
+    fn an_empty_first_operand_prunes_the_second_of_an_intersection_or_difference() {
+        let ray = Ray::new(DVec3::ZERO, DVec3::X);
+        let counts = |node: &CsgNode, prune: bool| {
+            let r = CsgRay {
+                ray: &ray,
+                inv_dir: ray.dir.recip(),
+                t_min: 0.0,
+                t_max: f64::INFINITY,
+                use_bounds: false,
+                prune,
+            };
+            let mut work = CsgWork::default();
+            let (list, trace) = node.trace(&Lists, &r, &mut work);
+            let why = trace.children.iter().map(|c| c.pruned).collect::<Vec<_>>();
+            (ts(&list), work.leaves_tested, work.pruned, why)
+        };
+        let empty: Vec<(f64, f64)> = vec![];
+        let intersection = op(CsgOp::Intersection, &[0, 1]);
+        assert_eq!(
+            counts(&intersection, true),
+            (
+                empty.clone(),
+                1,
+                1,
+                vec![None, Some(Pruned::EmptyIntersection)]
+            )
+        );
+        assert_eq!(
+            counts(&intersection, false),
+            (empty.clone(), 2, 0, vec![None, None])
+        );
+        let difference = op(CsgOp::Difference, &[0, 2]);
+        assert_eq!(
+            counts(&difference, true),
+            (empty, 1, 1, vec![None, Some(Pruned::EmptyDifference)])
+        );
+        let union = op(CsgOp::Union, &[1, 2]);
+        assert_eq!(
+            counts(&union, true),
+            (vec![(1.0, 4.0)], 2, 0, vec![None, None])
+        );
     }
 
     #[test]
