@@ -230,6 +230,20 @@ impl Cylinder {
 mod tests {
     use super::*;
 
+    /// The outward normals of a capped cylinder standing on the origin (axis +y, height 2,
+    /// radius 1): down out of the base, up out of the top, straight out of the side.
+    #[test]
+    fn each_face_has_its_outward_normal() {
+        let c = Cylinder {
+            base: DVec3::ZERO,
+            top: DVec3::new(0.0, 2.0, 0.0),
+            radius: 1.0,
+        };
+        assert_eq!(c.normal(DVec3::new(0.5, 0.0, 0.0), BASE_CAP), -DVec3::Y);
+        assert_eq!(c.normal(DVec3::new(0.5, 2.0, 0.0), TOP_CAP), DVec3::Y);
+        assert_eq!(c.normal(DVec3::new(0.0, 1.0, -1.0), SIDE), -DVec3::Z);
+    }
+
     /// Fuzzing finding (tests/fuzz/regressions/intersect-nan-normal.bin): a hit on the axis of
     /// a very thin cylinder gave a NaN normal.
     #[test]
