@@ -6,6 +6,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+mod common;
+
+use common::tmux::{have_tmux, Tmux};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use raytree::render::preview::ColorMode;
 use raytree::render::{render_simple, RenderOptions};
@@ -1025,57 +1028,6 @@ fn m_marks_where_the_rays_landed_on_the_preview() {
 // ---------------------------------------------------------------------------------------
 // The real binary in a real terminal (tmux)
 
-struct Tmux {
-    socket: String,
-}
-
-impl Tmux {
-    fn run(&self, args: &[&str]) -> String {
-        let out = Command::new("tmux")
-            .arg("-L")
-            .arg(&self.socket)
-            .args(args)
-            .output()
-            .expect("tmux runs");
-        String::from_utf8_lossy(&out.stdout).into_owned()
-    }
-
-    fn capture(&self) -> String {
-        self.run(&["capture-pane", "-p", "-t", "explore"])
-    }
-
-    /// Waits until every one of `what` is on the screen at once. A frame reaches the terminal
-    /// in pieces, top to bottom, so a capture can hold half of one: wait for all the text the
-    /// assertions need, not for the first line of the frame.
-    fn wait_for(&self, what: &[&str]) -> String {
-        let start = Instant::now();
-        loop {
-            let screen = self.capture();
-            if what.iter().all(|w| screen.contains(w)) {
-                return screen;
-            }
-            if start.elapsed() > Duration::from_secs(20) {
-                panic!("{what:?} never all appeared; the screen:\n{screen}");
-            }
-            std::thread::sleep(Duration::from_millis(100));
-        }
-    }
-}
-
-impl Drop for Tmux {
-    fn drop(&mut self) {
-        self.run(&["kill-server"]);
-    }
-}
-
-fn have_tmux() -> bool {
-    let ok = Command::new("tmux").arg("-V").output().is_ok();
-    if !ok {
-        println!("skipping: tmux is not on PATH");
-    }
-    ok
-}
-
 /// Starts `raytree explore MIRROR` (with `env` before it) in a detached 100 × 30 tmux session
 /// on a server of its own; after the explorer exits, the shell records its exit status and the
 /// terminal's modes (stty -a), then prints DONE.
@@ -1089,36 +1041,13 @@ fn start_in_tmux_on(name: &str, env: &str, target: &str) -> (Tmux, PathBuf, Path
     let dir = scratch(name);
     let status = dir.join("status");
     let stty = dir.join("stty");
-    let tmux = Tmux {
-        socket: format!("raytree-{name}-{}", std::process::id()),
-    };
-    let script = format!(
+    let tmux = Tmux::new(name);
+    tmux.start(&format!(
         "{env} '{bin}' explore {target}; echo \"exit $?\" > '{}'; stty -a > '{}'; echo DONE; sleep 60",
         status.display(),
         stty.display()
-    );
-    tmux.run(&[
-        "new-session",
-        "-d",
-        "-s",
-        "explore",
-        "-x",
-        "100",
-        "-y",
-        "30",
-        "-c",
-        env!("CARGO_MANIFEST_DIR"),
-        "sh",
-        "-c",
-        &script,
-    ]);
+    ));
     (tmux, status, stty)
-}
-
-fn flag(tmux: &Tmux, f: &str) -> String {
-    tmux.run(&["display", "-p", "-t", "explore", f])
-        .trim()
-        .to_string()
 }
 
 /// The terminal is back to normal: cooked mode with echo, main screen, no mouse reporting,
@@ -1130,9 +1059,9 @@ fn assert_restored(tmux: &Tmux, stty: &Path) {
         words.contains(&"icanon") && words.contains(&"echo"),
         "{modes}"
     );
-    assert_eq!(flag(tmux, "#{alternate_on}"), "0");
-    assert_eq!(flag(tmux, "#{mouse_any_flag}"), "0");
-    assert_eq!(flag(tmux, "#{cursor_flag}"), "1", "the cursor is shown");
+    assert_eq!(tmux.flag("#{alternate_on}"), "0");
+    assert_eq!(tmux.flag("#{mouse_any_flag}"), "0");
+    assert_eq!(tmux.flag("#{cursor_flag}"), "1", "the cursor is shown");
 }
 
 #[test]
@@ -1143,8 +1072,8 @@ fn in_tmux() {
     let (tmux, status, stty) = start_in_tmux("tmux", "");
     tmux.wait_for(&["ray tree · pixel 24,18", "preview"]);
     tmux.wait_for(&["preview 100%"]);
-    assert_eq!(flag(&tmux, "#{alternate_on}"), "1");
-    assert_eq!(flag(&tmux, "#{mouse_any_flag}"), "1");
+    assert_eq!(tmux.flag("#{alternate_on}"), "1");
+    assert_eq!(tmux.flag("#{mouse_any_flag}"), "1");
     tmux.run(&["send-keys", "-t", "explore", "Right", "Right", "j"]);
     tmux.wait_for(&["pixel 26,19", "primary: hit"]);
     tmux.run(&["send-keys", "-t", "explore", "?"]);

@@ -7,6 +7,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
+mod common;
+
+use common::tmux::{have_tmux, Tmux};
 use raytree::render::preview::ColorMode;
 use raytree::tui::{update, App, Msg};
 
@@ -23,54 +26,6 @@ fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
-}
-
-/// A tmux server of this test's own, killed at the end.
-struct Tmux {
-    socket: String,
-}
-
-impl Tmux {
-    fn run(&self, args: &[&str]) -> String {
-        let out = Command::new("tmux")
-            .arg("-L")
-            .arg(&self.socket)
-            .args(args)
-            .output()
-            .expect("tmux runs");
-        String::from_utf8_lossy(&out.stdout).into_owned()
-    }
-
-    fn flag(&self, f: &str) -> String {
-        self.run(&["display", "-p", "-t", "explore", f])
-            .trim()
-            .to_string()
-    }
-
-    fn wait_until(&self, what: &str, done: impl Fn(&Tmux) -> bool) {
-        let start = Instant::now();
-        while !done(self) {
-            if start.elapsed() > Duration::from_secs(30) {
-                let screen = self.run(&["capture-pane", "-p", "-t", "explore"]);
-                panic!("{what} never happened; the screen:\n{screen}");
-            }
-            std::thread::sleep(Duration::from_millis(50));
-        }
-    }
-}
-
-impl Drop for Tmux {
-    fn drop(&mut self) {
-        self.run(&["kill-server"]);
-    }
-}
-
-fn have_tmux() -> bool {
-    let ok = Command::new("tmux").arg("-V").output().is_ok();
-    if !ok {
-        println!("skipping: tmux is not on PATH");
-    }
-    ok
 }
 
 /// The children of a process (Linux).
@@ -93,30 +48,13 @@ fn a_signal_restores_the_terminal_as_q_does() {
     for (signal, number) in [("TERM", 15), ("HUP", 1), ("INT", 2)] {
         let dir = scratch(&format!("sig{signal}"));
         let (status, stty) = (dir.join("status"), dir.join("stty"));
-        let tmux = Tmux {
-            socket: format!("raytree-sig{signal}-{}", std::process::id()),
-        };
-        let script = format!(
+        let tmux = Tmux::new(&format!("sig{signal}"));
+        tmux.start(&format!(
             "'{}' explore lessons/08-pixel-intensity; echo \"exit $?\" > '{}'; stty -a > '{}'; echo DONE; sleep 60",
             bin().display(),
             status.display(),
             stty.display()
-        );
-        tmux.run(&[
-            "new-session",
-            "-d",
-            "-s",
-            "explore",
-            "-x",
-            "100",
-            "-y",
-            "30",
-            "-c",
-            env!("CARGO_MANIFEST_DIR"),
-            "sh",
-            "-c",
-            &script,
-        ]);
+        ));
         tmux.wait_until("the explorer's screen", |t| {
             t.flag("#{alternate_on}") == "1" && t.flag("#{mouse_any_flag}") == "1"
         });
@@ -129,10 +67,7 @@ fn a_signal_restores_the_terminal_as_q_does() {
             .status()
             .unwrap();
         assert!(sent.success());
-        tmux.wait_until("the shell's DONE", |t| {
-            t.run(&["capture-pane", "-p", "-t", "explore"])
-                .contains("DONE")
-        });
+        tmux.wait_until("the shell's DONE", |t| t.capture().contains("DONE"));
         let code = std::fs::read_to_string(&status).unwrap();
         assert_eq!(code.trim(), format!("exit {}", 128 + number), "SIG{signal}");
         let modes = std::fs::read_to_string(&stty).unwrap();
@@ -211,28 +146,11 @@ fn a_terminal_that_hangs_up_ends_the_explorer() {
     if !have_tmux() {
         return;
     }
-    let tmux = Tmux {
-        socket: format!("raytree-hangup-{}", std::process::id()),
-    };
-    let script = format!(
+    let tmux = Tmux::new("hangup");
+    tmux.start(&format!(
         "'{}' explore lessons/08-pixel-intensity; sleep 60",
         bin().display()
-    );
-    tmux.run(&[
-        "new-session",
-        "-d",
-        "-s",
-        "explore",
-        "-x",
-        "100",
-        "-y",
-        "30",
-        "-c",
-        env!("CARGO_MANIFEST_DIR"),
-        "sh",
-        "-c",
-        &script,
-    ]);
+    ));
     tmux.wait_until("the explorer's screen", |t| {
         t.flag("#{alternate_on}") == "1"
     });
