@@ -306,6 +306,20 @@ fn a_wide_figure_in_a_readme_stays_whole_and_moves_sideways() {
         press(&mut app, KeyCode::Left);
     }
     assert_eq!(pane_text(&app, pane), text);
+
+    // Moved sideways, then a terminal wide enough for the whole figure: it is shown whole.
+    for _ in 0..3 {
+        press(&mut app, KeyCode::Right);
+    }
+    update(&mut app, Msg::Resize(260, 48));
+    let wide = app.panes().lesson.unwrap();
+    assert!(wide.width - 2 >= 85, "{wide:?}");
+    let whole = pane_text(&app, wide);
+    assert!(
+        whole.contains("left  +---") && whole.contains("-+  right"),
+        "{whole}"
+    );
+    assert!(!whole.contains('‹') && !whole.contains('›'), "{whole}");
 }
 
 #[test]

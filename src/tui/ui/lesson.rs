@@ -25,11 +25,13 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
 fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
     let width = (inner(area).width as usize).max(10);
     let rows = markdown(&l.lesson.readme, width);
+    // A wider pane (or a README changed on disk) may need less of a shift than was asked.
+    let pan = (l.pan as usize).min(overhang(&rows, width));
     let lines: Vec<Line> = rows
         .iter()
         .map(|row| {
             Line::from(
-                window(row, l.pan as usize, width)
+                window(row, pan, width)
                     .into_iter()
                     .map(|(text, kind)| Span::styled(text, themed(app, md_style(kind))))
                     .collect::<Vec<_>>(),
