@@ -645,6 +645,18 @@ mod tests {
         assert_eq!(c[1].enter, Surface::new(0, 0).flipped());
     }
 
+    /// A list open at either end (a plane's half-space, say) has no gap beyond that end: the
+    /// complement of (−∞, 2] ∪ [3, ∞) is [2, 3] alone, and that of nothing is the whole line.
+    #[test]
+    fn the_complement_has_no_empty_piece_beyond_an_infinite_end() {
+        let inf = f64::INFINITY;
+        let c = complement(&list(&[(-inf, 2.0), (3.0, inf)], 0));
+        assert_eq!(ts(&c), vec![(2.0, 3.0)]);
+        assert_eq!(ts(&complement(&list(&[(-inf, 2.0)], 0))), vec![(2.0, inf)]);
+        assert_eq!(ts(&complement(&list(&[(3.0, inf)], 0))), vec![(-inf, 3.0)]);
+        assert_eq!(ts(&complement(&[])), vec![(-inf, inf)]);
+    }
+
     /// Leaves as fixed lists along any ray: 0 is missed, 1 is [2, 3], 2 is [1, 4].
     struct Lists;
 

@@ -31,13 +31,13 @@ impl Triangle {
     /// triangles are never missed); None when it misses or the triangle is seen edge-on.
     pub fn intersect(&self, ray: &Ray) -> Option<TriangleHit> {
         // Shear and permute so the ray runs along +z from the origin; the test becomes 2-D.
+        // (Woop et al. also swap kx and ky when d[kz] < 0, to keep the winding for back-face
+        // culling. This test takes both windings, and the swap would only negate u, v, w and
+        // their sum exactly, leaving t and the barycentrics as they are.)
         let d = ray.dir;
         let kz = d.abs().max_position();
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let kx = (kz + 1) % 3;
+        let ky = (kx + 1) % 3;
         let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
         let (a, b, c) = (
             self.a - ray.origin,
@@ -102,6 +102,51 @@ mod tests {
         assert!((hit.t - 1.0).abs() < 1e-15);
         assert!((hit.bary - DVec3::new(0.5, 0.2, 0.3)).length() < 1e-15);
         assert!((tri.barycentric(ray.at(hit.t)) - hit.bary).length() < 1e-15);
+    }
+
+    /// (x, y, z) → (z, x, y), k times: the same figure with another axis as its normal.
+    fn turned(p: DVec3, k: usize) -> DVec3 {
+        (0..k).fold(p, |p, _| DVec3::new(p.z, p.x, p.y))
+    }
+
+    #[test]
+    fn a_ray_past_any_edge_misses_from_either_side_along_any_axis() {
+        // The triangle (0, 0), (2, 0), (0, 2) in the plane z = 2, turned so that x, y and z in
+        // turn are its normal, met head-on from the front (z = 0) and from behind (z = 4), its
+        // vertices in either order (the signs of the edge functions flip with the winding).
+        for (k, wound) in (0..3).flat_map(|k| [(k, false), (k, true)]) {
+            let (b, c) = (DVec3::new(2.0, 0.0, 2.0), DVec3::new(0.0, 2.0, 2.0));
+            let (b, c) = if wound { (c, b) } else { (b, c) };
+            let tri = Triangle {
+                a: turned(DVec3::new(0.0, 0.0, 2.0), k),
+                b: turned(b, k),
+                c: turned(c, k),
+            };
+            // At (0.5, 0.25): λ = x/2 = 0.25 for (2, 0), y/2 = 0.125 for (0, 2), 0.625 for a.
+            let bary = if wound {
+                DVec3::new(0.625, 0.125, 0.25)
+            } else {
+                DVec3::new(0.625, 0.25, 0.125)
+            };
+            let rays = |x: f64, y: f64| {
+                [(0.0, 1.0), (4.0, -1.0)].map(|(z, dz)| {
+                    let o = turned(DVec3::new(x, y, z), k);
+                    Ray::new(o, turned(DVec3::new(0.0, 0.0, dz), k))
+                })
+            };
+            // Inside, at distance 2 either way.
+            for r in rays(0.5, 0.25) {
+                let hit = tri.intersect(&r).unwrap();
+                assert!((hit.t - 2.0).abs() < 1e-15, "k = {k}");
+                assert!((hit.bary - bary).length() < 1e-15);
+            }
+            // Just past each edge: y < 0, x < 0, x + y > 2.
+            for (x, y) in [(1.0, -0.1), (-0.1, 1.0), (1.1, 1.0)] {
+                for r in rays(x, y) {
+                    assert_eq!(tri.intersect(&r), None, "k = {k}, ({x}, {y}), {r:?}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -219,4 +219,107 @@ mod tests {
         let tl = cam.pixel_ray(0, 0).dir;
         assert!(tl.x < 0.0 && tl.y > 0.0);
     }
+
+    fn close(a: DVec3, b: DVec3) -> bool {
+        (a - b).length() < 1e-12
+    }
+
+    #[test]
+    fn the_image_plane_spans_tan_half_fov_up_and_the_aspect_ratio_across() {
+        // Eye at (1, 2, 3) looking down +z, fov 60°: the plane at distance 1 reaches
+        // tan 30° = 1/√3 up and down, and (w/h)·(1/√3) = 2/√3 left and right of a 4 × 2 image.
+        let eye = DVec3::new(1.0, 2.0, 3.0);
+        let cam = Camera::look_at(eye, eye + DVec3::new(0.0, 0.0, 5.0), DVec3::Y, 60.0, 4, 2);
+        let t = 1.0 / 3f64.sqrt();
+        assert!(close(
+            cam.image_point(0.0, 0.0),
+            eye + DVec3::new(-2.0 * t, t, 1.0)
+        ));
+        assert!(close(
+            cam.image_point(4.0, 2.0),
+            eye + DVec3::new(2.0 * t, -t, 1.0)
+        ));
+        assert!(close(cam.image_point(2.0, 1.0), eye + DVec3::Z));
+        // Pixel (3, 0)'s centre is (3.5, 0.5): x = (2·3.5/4 − 1)·t·2 = 1.5t, y = (1 − 2·0.5/2)·t.
+        let r = cam.pixel_ray(3, 0);
+        assert_eq!(r.origin, eye);
+        let d = DVec3::new(1.5 * t, 0.5 * t, 1.0);
+        assert!(close(r.dir, d.normalize()));
+    }
+
+    #[test]
+    fn a_right_handed_camera_sees_the_mirror_image() {
+        // right = forward × up = z × y = −x; up = right × forward = (−x) × z = y.
+        let cam = Camera::look_at_right_handed(DVec3::ZERO, DVec3::Z, DVec3::Y, 90.0, 2, 2);
+        let Projection::LookAt { right, up, .. } = cam.projection else {
+            unreachable!()
+        };
+        assert!(close(right, DVec3::NEG_X) && close(up, DVec3::Y));
+        assert!(close(cam.image_point(0.0, 0.0), DVec3::new(1.0, 1.0, 1.0)));
+    }
+
+    #[test]
+    fn a_tilted_up_vector_is_made_perpendicular_to_the_view() {
+        // up = (0, 1, 1) looking down +z: the image's up is y, its right x (left-handed).
+        let cam = Camera::look_at(DVec3::ZERO, DVec3::Z, DVec3::new(0.0, 1.0, 1.0), 90.0, 2, 2);
+        let Projection::LookAt {
+            forward, right, up, ..
+        } = cam.projection
+        else {
+            unreachable!()
+        };
+        assert!(close(forward, DVec3::Z) && close(right, DVec3::X) && close(up, DVec3::Y));
+    }
+
+    #[test]
+    fn a_one_pixel_window_covers_the_whole_window() {
+        // n = 1: no Δ between pixel centres; the pixel's centre is the window's centre and its
+        // corners are the window's corners.
+        let cam = Camera {
+            projection: Projection::Window {
+                eye: DVec3::new(0.0, 0.0, -5.0),
+                u: DVec3::X,
+                v: DVec3::Y,
+                w: DVec3::Z,
+                f: 2.0,
+                window: [-1.0, 3.0, 2.0, -2.0],
+            },
+            width: 1,
+            height: 1,
+        };
+        assert_eq!(cam.image_point(0.5, 0.5), DVec3::new(1.0, 0.0, -3.0));
+        assert_eq!(cam.image_point(0.0, 0.0), DVec3::new(-1.0, 2.0, -3.0));
+        assert_eq!(cam.image_point(1.0, 1.0), DVec3::new(3.0, -2.0, -3.0));
+    }
+
+    #[test]
+    fn the_window_model_uses_its_own_axes() {
+        // Camera axes u = y, v = z, w = x: p_W = e + p_C.x·u + p_C.y·v + p_C.z·w.
+        let cam = Camera {
+            projection: Projection::Window {
+                eye: DVec3::new(1.0, 1.0, 1.0),
+                u: DVec3::Y,
+                v: DVec3::Z,
+                w: DVec3::X,
+                f: 3.0,
+                window: [-1.0, 1.0, 1.0, -1.0],
+            },
+            width: 5,
+            height: 3,
+        };
+        // Pixel (4, 2): p_C = (−1 + 4·0.5, 1 + 2·(−1), 3) = (1, −1, 3).
+        assert_eq!(cam.image_point(4.5, 2.5), DVec3::new(4.0, 2.0, 0.0));
+        let r = cam.pixel_ray(4, 2);
+        assert_eq!(r.origin, DVec3::new(1.0, 1.0, 1.0));
+        assert!(close(r.dir, DVec3::new(3.0, 1.0, -1.0).normalize()));
+    }
+
+    #[test]
+    fn resizing_keeps_the_view() {
+        let cam = Camera::look_at(DVec3::ONE, DVec3::ZERO, DVec3::Y, 40.0, 8, 8);
+        let big = cam.resized(32, 16);
+        assert_eq!((big.width, big.height), (32, 16));
+        assert_eq!(big.projection, cam.projection);
+        assert_eq!(big.eye(), DVec3::ONE);
+    }
 }
