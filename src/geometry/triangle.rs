@@ -140,6 +140,21 @@ mod tests {
                 assert!((hit.t - 2.0).abs() < 1e-15, "k = {k}");
                 assert!((hit.bary - bary).length() < 1e-15);
             }
+            // Exactly through each edge and each vertex: a hit (the triangle is closed), one
+            // edge function 0 (two at a vertex), whatever the sign of the others.
+            for (x, y) in [
+                (1.0, 0.0),
+                (0.0, 1.0),
+                (1.0, 1.0),
+                (0.0, 0.0),
+                (2.0, 0.0),
+                (0.0, 2.0),
+            ] {
+                for r in rays(x, y) {
+                    let hit = tri.intersect(&r);
+                    assert_eq!(hit.map(|h| h.t), Some(2.0), "k = {k}, ({x}, {y}), {r:?}");
+                }
+            }
             // Just past each edge: y < 0, x < 0, x + y > 2.
             for (x, y) in [(1.0, -0.1), (-0.1, 1.0), (1.1, 1.0)] {
                 for r in rays(x, y) {
@@ -147,6 +162,21 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_triangle_too_large_for_its_edge_functions_is_never_hit_at_a_wrong_distance() {
+        // Half sides of 7.7e153: each edge function (≈ 0.6e308 and 1.2e308) is finite but
+        // their sum overflows, while the plane z = 1e−10 keeps the numerator of t finite.
+        let l = 7.7e153;
+        let z = 1e-10;
+        let tri = Triangle {
+            a: DVec3::new(-l, -l, z),
+            b: DVec3::new(l, -l, z),
+            c: DVec3::new(0.0, l, z),
+        };
+        let hit = tri.intersect(&Ray::new(DVec3::ZERO, DVec3::Z));
+        assert!(hit.is_none_or(|h| (h.t - z).abs() < 1e-25), "{hit:?}");
     }
 
     #[test]

@@ -334,6 +334,7 @@ fn concentric_disc(a: f64, b: f64) -> (f64, f64) {
 mod tests {
     use super::*;
     use crate::sampling::{basis, Rng};
+    use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_8};
 
     fn ball() -> Light {
         Light {
@@ -389,6 +390,41 @@ mod tests {
 
     /// A point light on the surface with fatt = 1/d: the limit along the surface is 0 (n·l = 0
     /// there), not ∞ · 0 = NaN.
+    /// Shirley and Chiu's map, by hand: in the wedge |x| > |y| (x = 2a − 1, y = 2b − 1) the
+    /// point goes to radius x at angle (π/4)·(y/x); otherwise to radius y at π/2 − (π/4)·(x/y).
+    #[test]
+    fn the_concentric_map_takes_squares_to_circles_and_their_edges_to_angles() {
+        let close = |(x, y): (f64, f64), (u, v): (f64, f64)| (x - u).abs() + (y - v).abs() < 1e-15;
+        let (c8, s8) = (FRAC_PI_8.cos(), FRAC_PI_8.sin());
+        let h = FRAC_1_SQRT_2;
+        for ((a, b), p) in [
+            ((0.5, 0.5), (0.0, 0.0)),
+            ((1.0, 0.5), (1.0, 0.0)),
+            ((0.75, 0.5), (0.5, 0.0)),
+            ((0.5, 1.0), (0.0, 1.0)),
+            ((0.0, 0.5), (-1.0, 0.0)),
+            ((0.5, 0.0), (0.0, -1.0)),
+            ((1.0, 1.0), (h, h)),
+            ((0.0, 0.0), (-h, -h)),
+            ((1.0, 0.75), (c8, s8)),
+            ((0.75, 1.0), (s8, c8)),
+            ((0.0, 0.25), (-c8, -s8)),
+            ((0.25, 0.0), (-s8, -c8)),
+            ((0.75, 0.0), (s8, -c8)),
+        ] {
+            assert!(close(concentric_disc(a, b), p), "({a}, {b}) → {p:?}");
+        }
+        // The square of half side ρ around the centre goes onto the circle of radius ρ, so
+        // equal areas stay equal: the inner square [¼, ¾]² (a quarter) onto the disc of radius ½.
+        for k in 0..40 {
+            let s = 0.25 + 0.5 * k as f64 / 40.0;
+            for (a, b) in [(s, 0.25), (0.75, s), (s, 0.75), (0.25, s)] {
+                let (x, y) = concentric_disc(a, b);
+                assert!((x.hypot(y) - 0.5).abs() < 1e-15, "({a}, {b})");
+            }
+        }
+    }
+
     #[test]
     fn a_light_at_the_shaded_point_adds_nothing() {
         let on = DVec3::new(1.0, 0.0, 2.0);
