@@ -187,21 +187,27 @@ impl Camera {
 mod tests {
     use super::*;
 
-    #[test]
-    fn window_model_places_pixels_as_seed_001() {
-        // 3 × 3 pixels over the window [−1, 1] × [1, −1] at f = 2: Δu = 1, Δv = −1.
-        let cam = Camera {
+    /// The window model with the world's axes (u = x, v = y, w = z), the eye at (0, 0, −5) and
+    /// the window at f = 2, over `window` = [wl, wr, wt, wb].
+    fn seed_001_window(window: [f64; 4], width: u32, height: u32) -> Camera {
+        Camera {
             projection: Projection::Window {
                 eye: DVec3::new(0.0, 0.0, -5.0),
                 u: DVec3::X,
                 v: DVec3::Y,
                 w: DVec3::Z,
                 f: 2.0,
-                window: [-1.0, 1.0, 1.0, -1.0],
+                window,
             },
-            width: 3,
-            height: 3,
-        };
+            width,
+            height,
+        }
+    }
+
+    #[test]
+    fn window_model_places_pixels_as_seed_001() {
+        // 3 × 3 pixels over the window [−1, 1] × [1, −1] at f = 2: Δu = 1, Δv = −1.
+        let cam = seed_001_window([-1.0, 1.0, 1.0, -1.0], 3, 3);
         assert_eq!(cam.image_point(0.5, 0.5), DVec3::new(-1.0, 1.0, -3.0));
         assert_eq!(cam.image_point(2.5, 1.5), DVec3::new(1.0, 0.0, -3.0));
     }
@@ -275,18 +281,7 @@ mod tests {
     fn a_one_pixel_window_covers_the_whole_window() {
         // n = 1: no Δ between pixel centres; the pixel's centre is the window's centre and its
         // corners are the window's corners.
-        let cam = Camera {
-            projection: Projection::Window {
-                eye: DVec3::new(0.0, 0.0, -5.0),
-                u: DVec3::X,
-                v: DVec3::Y,
-                w: DVec3::Z,
-                f: 2.0,
-                window: [-1.0, 3.0, 2.0, -2.0],
-            },
-            width: 1,
-            height: 1,
-        };
+        let cam = seed_001_window([-1.0, 3.0, 2.0, -2.0], 1, 1);
         assert_eq!(cam.image_point(0.5, 0.5), DVec3::new(1.0, 0.0, -3.0));
         assert_eq!(cam.image_point(0.0, 0.0), DVec3::new(-1.0, 2.0, -3.0));
         assert_eq!(cam.image_point(1.0, 1.0), DVec3::new(3.0, -2.0, -3.0));
