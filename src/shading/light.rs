@@ -388,8 +388,6 @@ mod tests {
         assert!(chi2 < 172.0, "chi² = {chi2}");
     }
 
-    /// A point light on the surface with fatt = 1/d: the limit along the surface is 0 (n·l = 0
-    /// there), not ∞ · 0 = NaN.
     /// Shirley and Chiu's map, by hand: in the wedge |x| > |y| (x = 2a − 1, y = 2b − 1) the
     /// point goes to radius x at angle (π/4)·(y/x); otherwise to radius y at π/2 − (π/4)·(x/y).
     #[test]
@@ -427,6 +425,8 @@ mod tests {
         }
     }
 
+    /// A point light on the surface with fatt = 1/d: the limit along the surface is 0 (n·l = 0
+    /// there), not ∞ · 0 = NaN.
     #[test]
     fn a_light_at_the_shaded_point_adds_nothing() {
         let on = DVec3::new(1.0, 0.0, 2.0);
