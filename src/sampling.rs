@@ -1,5 +1,6 @@
 //! Random numbers and the sampling routines of the Monte Carlo integrators. Every pixel gets
-//! its own generator seeded from (seed, x, y), so images do not depend on the thread count.
+//! its own generator seeded from (seed, x, y), so images do not depend on the thread count;
+//! the path tracer's samples draw from well-spread sample points instead (`sobol`).
 
 use std::f64::consts::PI;
 
@@ -7,18 +8,19 @@ use glam::DVec3;
 use rand::{Rng as _, SeedableRng};
 use rand_pcg::Pcg64Mcg;
 
+pub mod sobol;
+
+pub use sobol::{pixel_key, SamplePoint};
+
 /// The random number generator of a pixel's samples: PCG-64, seeded per pixel so that images do not
 /// depend on thread scheduling.
 #[derive(Clone, Debug)]
 pub struct Rng(Pcg64Mcg);
 
 impl Rng {
-    /// The generator of pixel (x, y) for a given seed (SplitMix64 mixes the three).
+    /// The generator of pixel (x, y) for a given seed.
     pub fn for_pixel(seed: u64, x: u32, y: u32) -> Rng {
-        let mut z = seed ^ ((x as u64) << 32 | y as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        Rng(Pcg64Mcg::seed_from_u64(z ^ (z >> 31)))
+        Rng(Pcg64Mcg::seed_from_u64(pixel_key(seed, x, y)))
     }
 
     /// Uniform in [0, 1).

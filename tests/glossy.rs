@@ -8,7 +8,7 @@ use common::scene;
 use glam::DVec3;
 use raytree::geometry::Ray;
 use raytree::render::{render_simple, RenderOptions};
-use raytree::sampling::Rng;
+use raytree::sampling::{pixel_key, Rng, SamplePoint};
 use raytree::scene::Scene;
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
@@ -252,9 +252,13 @@ fn sphere_light_estimates_are_unbiased_with_and_without_light_sampling() {
             let ray = s.camera.pixel_ray(x, y);
             let t = -ray.origin.y / ray.dir.y;
             let exact = analytic(ray.at(t));
-            let mut rng = Rng::for_pixel(9, x, y);
+            // Independent estimates (each from a pixel key of its own), so that the sample
+            // variance gives the standard error of their mean.
             let values: Vec<f64> = (0..runs)
-                .map(|_| tracer.radiance(&ray, &mut rng, &mut Stats::default()).x)
+                .map(|k| {
+                    let point = SamplePoint::new(pixel_key(9 + k, x, y), 0);
+                    tracer.radiance(&ray, &point, &mut Stats::default()).x
+                })
                 .collect();
             let mean = values.iter().sum::<f64>() / runs as f64;
             let var = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (runs - 1) as f64;
@@ -279,9 +283,11 @@ fn light_sampling_beats_bsdf_sampling_on_a_small_light() {
             next_event,
             ..PathTracer::new(&s, 2)
         };
-        let mut rng = Rng::for_pixel(1, 3, 3);
         let v: Vec<f64> = (0..2000)
-            .map(|_| tracer.radiance(&ray, &mut rng, &mut Stats::default()).x)
+            .map(|k| {
+                let point = SamplePoint::new(pixel_key(k, 3, 3), 0);
+                tracer.radiance(&ray, &point, &mut Stats::default()).x
+            })
             .collect();
         let m = v.iter().sum::<f64>() / v.len() as f64;
         v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / v.len() as f64
@@ -289,4 +295,37 @@ fn light_sampling_beats_bsdf_sampling_on_a_small_light() {
     // The light covers (r/d)²/4 ≈ 1.5 % of the hemisphere's cosine-weighted measure: BSDF
     // sampling rarely finds it, light sampling always does.
     assert!(spread(true) * 20.0 < spread(false));
+}
+
+/// What the sample points are for: a pixel's 16 points spread over each pair of numbers a path
+/// draws, so their mean misses the closed form by less than the mean of 16 independent points
+/// (each from a key of its own) does: under half the squared error, over 64 pixels' keys.
+#[test]
+fn a_pixels_spread_sample_points_beat_independent_ones() {
+    let s = lit_floor();
+    let tracer = PathTracer::new(&s, 2);
+    let ray = s.camera.pixel_ray(3, 3);
+    let exact = analytic(ray.at(-ray.origin.y / ray.dir.y));
+    let mse = |point: &dyn Fn(u64, u32) -> SamplePoint| {
+        let trials = 64;
+        (0..trials)
+            .map(|trial| {
+                let sum: f64 = (0..16)
+                    .map(|i| {
+                        let p = point(trial, i);
+                        tracer.radiance(&ray, &p, &mut Stats::default()).x
+                    })
+                    .sum();
+                (sum / 16.0 - exact).powi(2)
+            })
+            .sum::<f64>()
+            / trials as f64
+    };
+    let spread = mse(&|trial, i| SamplePoint::new(pixel_key(trial, 3, 3), i));
+    let independent =
+        mse(&|trial, i| SamplePoint::new(pixel_key(1000 + trial * 16 + i as u64, 3, 3), 0));
+    assert!(
+        spread * 2.0 < independent,
+        "MSE {spread} spread, {independent} independent"
+    );
 }

@@ -252,7 +252,7 @@ objects:
 /// cut path brings back 0.
 #[test]
 fn a_path_at_the_maximum_depth_can_contribute_its_local_illumination() {
-    use raytree::sampling::Rng;
+    use raytree::sampling::{pixel_key, SamplePoint};
     use raytree::stats::Stats;
     use raytree::trace::path::PathTracer;
     let yaml = |rules: &str| {
@@ -277,8 +277,8 @@ objects:
         let mut stats = Stats::default();
         (0..20_000)
             .map(|k| {
-                pt.radiance(&view, &mut Rng::for_pixel(k, 0, 7), &mut stats)
-                    .x
+                let point = SamplePoint::new(pixel_key(k, 0, 7), 0);
+                pt.radiance(&view, &point, &mut stats).x
             })
             .collect()
     };

@@ -9,7 +9,7 @@ use std::path::Path;
 
 use glam::DVec3;
 use raytree::render::{render_simple, Image, RenderOptions};
-use raytree::sampling::Rng;
+use raytree::sampling::{pixel_key, SamplePoint};
 use raytree::scene::{load, Limits, Scene};
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
@@ -18,8 +18,28 @@ fn mean(img: &Image) -> DVec3 {
     img.pixels.iter().sum::<DVec3>() / img.pixels.len() as f64
 }
 
+/// How a pixel's samples draw their random numbers.
+#[derive(Clone, Copy)]
+enum Points {
+    /// As the film does: sample i of the pixel is point i of the pixel's spread points.
+    Spread,
+    /// Plain Monte Carlo: every sample a point of its own, independent of the others.
+    Independent,
+}
+
 /// Average radiance over the image with the given integrator switches.
 fn estimate(s: &Scene, spp: u32, next_event: bool, roulette: bool, seed: u64) -> Image {
+    estimate_with(s, spp, next_event, roulette, seed, Points::Spread)
+}
+
+fn estimate_with(
+    s: &Scene,
+    spp: u32,
+    next_event: bool,
+    roulette: bool,
+    seed: u64,
+    points: Points,
+) -> Image {
     let tracer = PathTracer {
         next_event,
         roulette,
@@ -29,11 +49,18 @@ fn estimate(s: &Scene, spp: u32, next_event: bool, roulette: bool, seed: u64) ->
     let mut img = Image::new(cam.width, cam.height);
     for y in 0..cam.height {
         for x in 0..cam.width {
-            let mut rng = Rng::for_pixel(seed, x, y);
             let mut sum = DVec3::ZERO;
-            for _ in 0..spp {
-                let ray = cam.ray(x as f64 + rng.uniform(), y as f64 + rng.uniform());
-                sum += tracer.radiance(&ray, &mut rng, &mut Stats::default());
+            for i in 0..spp {
+                let point = match points {
+                    Points::Spread => SamplePoint::new(pixel_key(seed, x, y), i),
+                    Points::Independent => {
+                        SamplePoint::new(pixel_key(seed << 32 | i as u64, x, y), 0)
+                    }
+                };
+                // As the film takes them: pair 0 is the point in the pixel.
+                let [u, v] = point.pair(0);
+                let ray = cam.ray(x as f64 + u, y as f64 + v);
+                sum += tracer.radiance(&ray, &point, &mut Stats::default());
             }
             img.pixels[(y * cam.width + x) as usize] = sum / spp as f64;
         }
@@ -87,35 +114,50 @@ fn rmse(a: &Image, b: &Image) -> f64 {
     raytree::bench::errors(a, b).0
 }
 
+/// Least-squares slope of log RMSE against log N.
+fn slope(spps: &[u32], errors: &[f64]) -> f64 {
+    let xs: Vec<f64> = spps.iter().map(|&n| (n as f64).ln()).collect();
+    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
+    let k = xs.len() as f64;
+    let (mx, my) = (xs.iter().sum::<f64>() / k, ys.iter().sum::<f64>() / k);
+    xs.iter()
+        .zip(&ys)
+        .map(|(x, y)| (x - mx) * (y - my))
+        .sum::<f64>()
+        / xs.iter().map(|x| (x - mx).powi(2)).sum::<f64>()
+}
+
+/// Plain Monte Carlo's error falls as 1/√N; the film's spread points fall at least as fast
+/// and lie below it at every N; and next-event estimation changes the noise, not the image.
 #[test]
 fn error_falls_as_one_over_root_n_and_next_event_estimation_is_unbiased() {
     let s = small_cornell();
     let reference = estimate(&s, 4096, true, true, 99);
     let spps = [16u32, 64, 256];
-    // One RMSE is noisy (paths to a small bright light are heavy-tailed): pool three seeds.
-    let errors: Vec<f64> = spps
-        .iter()
-        .map(|&n| {
-            let mse: f64 = [5u64, 6, 7]
-                .iter()
-                .map(|&seed| rmse(&estimate(&s, n, true, true, seed), &reference).powi(2))
-                .sum();
-            (mse / 3.0).sqrt()
-        })
-        .collect();
-    // Least-squares slope of log RMSE against log N.
-    let xs: Vec<f64> = spps.iter().map(|&n| (n as f64).ln()).collect();
-    let ys: Vec<f64> = errors.iter().map(|e| e.ln()).collect();
-    let (mx, my) = (xs.iter().sum::<f64>() / 3.0, ys.iter().sum::<f64>() / 3.0);
-    let slope = xs
-        .iter()
-        .zip(&ys)
-        .map(|(x, y)| (x - mx) * (y - my))
-        .sum::<f64>()
-        / xs.iter().map(|x| (x - mx).powi(2)).sum::<f64>();
+    // One RMSE is noisy (paths to a small bright light are heavy-tailed): pool six seeds.
+    let errors = |points: Points| -> Vec<f64> {
+        spps.iter()
+            .map(|&n| {
+                let mse: f64 = [5u64, 6, 7, 8, 9, 10]
+                    .iter()
+                    .map(|&seed| {
+                        let image = estimate_with(&s, n, true, true, seed, points);
+                        rmse(&image, &reference).powi(2)
+                    })
+                    .sum();
+                (mse / 6.0).sqrt()
+            })
+            .collect()
+    };
+    let (independent, spread) = (errors(Points::Independent), errors(Points::Spread));
+    let plain = slope(&spps, &independent);
     assert!(
-        (-0.65..=-0.35).contains(&slope),
-        "slope {slope}, errors {errors:?}"
+        (-0.65..=-0.35).contains(&plain),
+        "slope {plain}, errors {independent:?}"
+    );
+    assert!(
+        slope(&spps, &spread) <= plain && spread.iter().zip(&independent).all(|(a, b)| a < b),
+        "spread {spread:?}, independent {independent:?}"
     );
     // BSDF sampling alone converges to the same image: compare means within their noise.
     let without = mean(&estimate(&s, 512, false, true, 3));

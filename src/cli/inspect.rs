@@ -17,7 +17,6 @@ use crate::render::film::Film;
 use crate::render::{Engine, RenderOptions};
 use crate::sampling::Rng;
 use crate::scene::{Antialias, Filter, Scene};
-use crate::stats::Stats;
 use crate::trace::tree::Inspection;
 use crate::trace::{text, Tracer};
 
@@ -59,7 +58,6 @@ pub enum Format {
 
 /// A path-traced pixel: its estimate over the scene's samples, and the first few paths.
 fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
-    use crate::trace::path::PathTracer;
     const SHOWN: usize = 4;
     let [x, y] = a
         .target
@@ -67,7 +65,6 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
         .ok_or_else(|| Failure("a path-traced scene is inspected by --pixel X,Y".into()))?;
     a.target.ray(scene)?;
     let max_depth = depth(scene, a.depth)?;
-    let tracer = PathTracer::new(scene, max_depth);
     let options = RenderOptions {
         max_depth,
         seed: a.seed,
@@ -78,17 +75,7 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
     let film = Film::new(scene, options);
     let estimate = film.lone_pixel(&mut film.tracer(), x, y);
     let spp = options.spp.max(1);
-    let offsets = grid_offsets(spp);
-    let cell = cell(offsets.len());
-    let mut rng = Rng::for_pixel(options.seed, x, y);
-    let mut shown = vec![];
-    for o in offsets.iter().take(SHOWN) {
-        let j = jitter(*o, cell, &mut rng);
-        let ray = scene.camera.ray(x as f64 + j.x, y as f64 + j.y);
-        let mut log = vec![];
-        let value = tracer.sample(&ray, &mut rng, &mut Stats::default(), Some(&mut log));
-        shown.push((value, log));
-    }
+    let shown = film.replay_paths(x, y, SHOWN);
     if a.format == Format::Dot {
         return Err(Failure(
             "--format dot draws a Whitted ray tree; a path-traced pixel has sampled paths (use text or json)".into(),
@@ -210,7 +197,7 @@ fn pixel_ray(
             let at = DVec2::new(px, py);
             return Ok((scene.camera.ray(px, py), t.rng, Traced::Sample(k, at)));
         }
-        film.sample(&mut t, px, py);
+        film.sample(&mut t, px, py, film.sample_point(x, y, i as u32));
     }
     unreachable!("k is at most the number of offsets")
 }

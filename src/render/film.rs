@@ -15,10 +15,10 @@ use super::antialias::{
 use super::Image;
 use crate::fast::{trace_packet, FastScene, PACKET};
 use crate::geometry::Ray;
-use crate::sampling::Rng;
+use crate::sampling::{pixel_key, Rng, SamplePoint};
 use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
 use crate::stats::Stats;
-use crate::trace::path::PathTracer;
+use crate::trace::path::{PathTracer, PathVertex};
 use crate::trace::Tracer;
 
 /// How an image is rendered: depth, samples per pixel, seed, antialiasing and engine.
@@ -123,8 +123,9 @@ impl<'s> Film<'s> {
         }
     }
 
-    /// The antialiasing actually used: the path tracer always jitters (a regular grid would
-    /// alias its noise into patterns).
+    /// The antialiasing actually used: the path tracer never takes the regular grid (it would
+    /// alias its noise into patterns) but spreads its samples over the pixel with their sample
+    /// points (pair 0, `sampling::sobol`).
     pub fn antialias(&self) -> Antialias {
         match (self.options.antialias, &self.path) {
             (Antialias::Grid, Some(_)) => Antialias::Jittered,
@@ -139,23 +140,50 @@ impl<'s> Film<'s> {
     }
 
     /// The value seen through image point (px, py) (pixel (x, y) covers [x, x+1) × [y, y+1)).
-    pub fn sample(&self, t: &mut Tracer, px: f64, py: f64) -> DVec3 {
+    /// A path draws its random numbers from `point`; the Whitted tracer from `t.rng`.
+    pub fn sample(&self, t: &mut Tracer, px: f64, py: f64, point: SamplePoint) -> DVec3 {
         let ray = self.camera.ray(px, py);
         match &self.path {
             None => t.radiance(&ray),
             Some(pt) => pt
                 .with_search(t.search)
-                .radiance(&ray, &mut t.rng, &mut t.stats),
+                .radiance(&ray, &point, &mut t.stats),
         }
+    }
+
+    /// The sample point of pixel (x, y)'s sample number `index` (from 0).
+    pub fn sample_point(&self, x: u32, y: u32, index: u32) -> SamplePoint {
+        SamplePoint::new(pixel_key(self.options.seed, x, y), index)
     }
 
     /// The value at the image corner (i, j) (adaptive antialiasing shares these).
     pub fn corner(&self, t: &mut Tracer, i: u32, j: u32) -> DVec3 {
         t.rng = Rng::for_pixel(self.options.seed ^ CORNER_STREAM, i, j);
-        self.sample(t, i as f64, j as f64)
+        let point = SamplePoint::new(pixel_key(self.options.seed ^ CORNER_STREAM, i, j), 0);
+        self.sample(t, i as f64, j as f64, point)
     }
 
-    /// The grid or jittered samples of pixel (x, y), in order, from the pixel's generator.
+    /// The first `n` samples of pixel (x, y) of a path-traced film, traced again with the
+    /// random numbers the film gives them, each with its path's vertices: the paths that went
+    /// into the pixel (none when the film traces no paths).
+    pub fn replay_paths(&self, x: u32, y: u32, n: usize) -> Vec<(DVec3, Vec<PathVertex>)> {
+        let Some(pt) = &self.path else {
+            return vec![];
+        };
+        let mut paths = vec![];
+        for i in 0..n.min(self.offsets.len()) as u32 {
+            let point = self.sample_point(x, y, i);
+            let [u, v] = point.pair(0);
+            let ray = self.camera.ray(x as f64 + u, y as f64 + v);
+            let mut log = vec![];
+            let value = pt.sample(&ray, &point, &mut Stats::default(), Some(&mut log));
+            paths.push((value, log));
+        }
+        paths
+    }
+
+    /// The grid or jittered samples of pixel (x, y), in order, from the pixel's generator (a
+    /// path-traced film's: at the first pair of their sample points).
     pub fn own_samples(&self, t: &mut Tracer, x: u32, y: u32) -> Vec<Sample> {
         let mut out = Vec::with_capacity(self.offsets.len());
         self.for_each_own_sample(t, x, y, &mut |s| out.push(s));
@@ -173,13 +201,16 @@ impl<'s> Film<'s> {
             return;
         }
         let cell = cell(self.offsets.len());
-        for o in &self.offsets {
-            let uv = if jittered {
+        for (i, o) in self.offsets.iter().enumerate() {
+            let point = self.sample_point(x, y, i as u32);
+            let uv = if self.path.is_some() {
+                DVec2::from(point.pair(0))
+            } else if jittered {
                 jitter(*o, cell, &mut t.rng)
             } else {
                 *o
             };
-            let value = self.sample(t, fx + uv.x, fy + uv.y);
+            let value = self.sample(t, fx + uv.x, fy + uv.y, point);
             visit(Sample { uv, value });
         }
     }
@@ -251,11 +282,16 @@ impl<'s> Film<'s> {
         let levels = adaptive_levels(self.options.spp);
         t.rng = Rng::for_pixel(self.options.seed, x, y);
         let (fx, fy) = (x as f64, y as f64);
+        let mut taken = 0;
         let (value, splits) = adaptive_pixel_observed(
             corners,
             levels,
             threshold,
-            &mut |u, v| self.sample(t, fx + u, fy + v),
+            &mut |u, v| {
+                let point = self.sample_point(x, y, taken);
+                taken += 1;
+                self.sample(t, fx + u, fy + v, point)
+            },
             observe,
         );
         t.stats.aa_splits += splits as u64;

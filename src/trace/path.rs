@@ -5,13 +5,16 @@
 //! The same materials are read physically: diffuse albedo kd·O, mirror reflectance kr,
 //! transmission kt with ior, `emission` for glowing surfaces, the background as a uniform
 //! environment, rectangle lights as emitters of radiance `intensity`.
+//!
+//! A path draws its random numbers from its sample point (`sampling::sobol`), a pair for each
+//! decision of each bounce (`Draw`), so that a pixel's samples spread evenly over every one.
 
 use std::f64::consts::PI;
 
 use glam::DVec3;
 
 use crate::geometry::Ray;
-use crate::sampling::{cosine_hemisphere, cosine_pdf, Rng};
+use crate::sampling::{cosine_hemisphere, cosine_pdf, SamplePoint};
 use crate::scene::{Interaction, Scene, Search};
 use crate::shading::lobe::spread;
 use crate::shading::optics::{reflect, refract, schlick};
@@ -65,6 +68,19 @@ struct LightHit<'a> {
     normal: DVec3,
 }
 
+/// What a bounce draws random numbers for, each from its own pair of the sample point.
+#[derive(Clone, Copy)]
+enum Draw {
+    /// Which lobe scatters the path, and whether Russian roulette stops it.
+    Lobe,
+    /// The direction the lobe scatters to (cosine, glossy or frosted).
+    Direction,
+    /// Reflection or refraction, by Fresnel's weights.
+    Fresnel,
+    /// A point on light number i, for next-event estimation.
+    Light(usize),
+}
+
 /// The power heuristic for two strategies (β = 2).
 fn power_heuristic(a: f64, b: f64) -> f64 {
     let (a2, b2) = (a * a, b * b);
@@ -112,16 +128,28 @@ impl<'s> PathTracer<'s> {
         best
     }
 
-    /// One sample of the radiance arriving along a primary ray.
-    pub fn radiance(&self, primary: &Ray, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
-        self.sample(primary, rng, stats, None)
+    /// The pair of random numbers `point` gives the bounce at `depth` for `draw`.
+    fn draw(&self, point: &SamplePoint, depth: u32, draw: Draw) -> [f64; 2] {
+        let slot = match draw {
+            Draw::Lobe => 0,
+            Draw::Direction => 1,
+            Draw::Fresnel => 2,
+            Draw::Light(i) => 3 + i as u32,
+        };
+        let per_bounce = 3 + self.scene.lights.len() as u32;
+        point.pair(1 + depth * per_bounce + slot)
+    }
+
+    /// One sample of the radiance arriving along a primary ray, the path drawn from `point`.
+    pub fn radiance(&self, primary: &Ray, point: &SamplePoint, stats: &mut Stats) -> DVec3 {
+        self.sample(primary, point, stats, None)
     }
 
     /// The same sample, writing down every vertex of the path when `log` is given.
     pub fn sample(
         &self,
         primary: &Ray,
-        rng: &mut Rng,
+        point: &SamplePoint,
         stats: &mut Stats,
         mut log: Option<&mut Vec<PathVertex>>,
     ) -> DVec3 {
@@ -208,12 +236,13 @@ impl<'s> PathTracer<'s> {
                 if why == "max_depth" && self.local_at_max_depth {
                     // Seed 002: the path "contributes just its local illumination".
                     let p = si.point + scene.bias(ray.origin, si.point) * si.normal;
-                    sum += throughput * diffuse * self.local(p, si.normal, rng, stats);
+                    sum += throughput * diffuse * self.local(p, si.normal, point, depth, stats);
                 }
                 note(why, Some(object), si.point, throughput, sum - before);
                 break;
             }
-            let pick = rng.uniform() * total;
+            let [pick, survive] = self.draw(point, depth, Draw::Lobe);
+            let pick = pick * total;
             let n = si.normal;
             let offset = scene.bias(ray.origin, si.point);
             if pick < weights[0] {
@@ -221,9 +250,10 @@ impl<'s> PathTracer<'s> {
                 // (f·cos/pdf = albedo).
                 let lobe = throughput * diffuse * (total / weights[0]);
                 if self.next_event {
-                    sum += lobe * self.direct(si.point + offset * n, n, rng, stats);
+                    sum += lobe * self.direct(si.point + offset * n, n, point, depth, stats);
                 }
-                let dir = cosine_hemisphere(n, rng.uniform(), rng.uniform());
+                let [u1, u2] = self.draw(point, depth, Draw::Direction);
+                let dir = cosine_hemisphere(n, u1, u2);
                 bsdf_pdf = Some(cosine_pdf(n, dir));
                 throughput = lobe;
                 note("diffuse", Some(object), si.point, throughput, sum - before);
@@ -236,9 +266,10 @@ impl<'s> PathTracer<'s> {
                 throughput *= at.kr * (total / weights[1]);
                 bsdf_pdf = None;
                 let mirror = reflect(ray.dir, n);
+                let [u1, u2] = self.draw(point, depth, Draw::Direction);
                 let dir = match m.glossy {
                     None => mirror,
-                    Some(l) => spread(l.shape, mirror, n, rng.uniform(), rng.uniform()),
+                    Some(l) => spread(l.shape, mirror, n, u1, u2),
                 };
                 let event = if m.glossy.is_some() {
                     "glossy"
@@ -260,7 +291,8 @@ impl<'s> PathTracer<'s> {
                     (1.0, m.ior)
                 };
                 let r = schlick(-ray.dir.dot(n), n1, n2);
-                let refracted = refract(ray.dir, n, n1, n2).filter(|_| rng.uniform() >= r);
+                let [fresnel, _] = self.draw(point, depth, Draw::Fresnel);
+                let refracted = refract(ray.dir, n, n1, n2).filter(|_| fresnel >= r);
                 let event = if refracted.is_some() {
                     "refraction"
                 } else {
@@ -270,9 +302,10 @@ impl<'s> PathTracer<'s> {
                 ray = match refracted {
                     Some(dir) => {
                         stats.refraction_rays += 1;
+                        let [u1, u2] = self.draw(point, depth, Draw::Direction);
                         let dir = match m.frosted {
                             None => dir,
-                            Some(l) => spread(l.shape, dir, n, rng.uniform(), rng.uniform()),
+                            Some(l) => spread(l.shape, dir, n, u1, u2),
                         };
                         Ray {
                             origin: si.point - offset * n,
@@ -290,7 +323,7 @@ impl<'s> PathTracer<'s> {
             }
             if self.roulette && depth >= 3 {
                 let q = throughput.max_element().clamp(0.05, 0.95);
-                if rng.uniform() >= q {
+                if survive >= q {
                     note("roulette", None, ray.origin, DVec3::ZERO, DVec3::ZERO);
                     break;
                 }
@@ -302,23 +335,46 @@ impl<'s> PathTracer<'s> {
 
     /// Light arriving directly from the area lights at p, per unit albedo (i.e. the integral of
     /// Le·cos/π), one sample per light, weighted against BSDF sampling.
-    fn direct(&self, p: DVec3, n: DVec3, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
-        self.lights_at(p, n, rng, stats, true)
+    fn direct(
+        &self,
+        p: DVec3,
+        n: DVec3,
+        point: &SamplePoint,
+        depth: u32,
+        stats: &mut Stats,
+    ) -> DVec3 {
+        self.lights_at(p, n, point, depth, stats, true)
     }
 
     /// The direct light at the last surface of a path cut by the maximum depth, per unit
     /// albedo: one light sample per light, unweighted, since no bounce follows to find the
     /// lights the other way.
-    fn local(&self, p: DVec3, n: DVec3, rng: &mut Rng, stats: &mut Stats) -> DVec3 {
-        self.lights_at(p, n, rng, stats, false)
+    fn local(
+        &self,
+        p: DVec3,
+        n: DVec3,
+        point: &SamplePoint,
+        depth: u32,
+        stats: &mut Stats,
+    ) -> DVec3 {
+        self.lights_at(p, n, point, depth, stats, false)
     }
 
     /// One sample of the light arriving from each area light at p, per unit albedo; with
     /// `mis`, weighted against the BSDF sample that follows (power heuristic).
-    fn lights_at(&self, p: DVec3, n: DVec3, rng: &mut Rng, stats: &mut Stats, mis: bool) -> DVec3 {
+    fn lights_at(
+        &self,
+        p: DVec3,
+        n: DVec3,
+        point: &SamplePoint,
+        depth: u32,
+        stats: &mut Stats,
+        mis: bool,
+    ) -> DVec3 {
         let mut sum = DVec3::ZERO;
-        for light in &self.scene.lights {
-            let Some(e) = light.sample_emitter(p, rng.uniform(), rng.uniform()) else {
+        for (i, light) in self.scene.lights.iter().enumerate() {
+            let [u1, u2] = self.draw(point, depth, Draw::Light(i));
+            let Some(e) = light.sample_emitter(p, u1, u2) else {
                 continue;
             };
             let cos_s = n.dot(e.wi);

@@ -161,7 +161,7 @@ fn full_grid(w: &Worked, ex: &Exercise) -> Option<(DVec3, Stats)> {
 pub(super) struct Rendering<'s> {
     options: RenderOptions,
     pub(super) film: Film<'s>,
-    /// The antialiasing the film uses (the path tracer always jitters).
+    /// The antialiasing the film uses (the path tracer always spreads its samples).
     aa: Antialias,
     pub(super) spp: u32,
     /// How many times adaptive antialiasing may halve a square.
@@ -254,13 +254,22 @@ fn samples(r: &Rendering, [x, y]: [u32; 2], path: bool, out: &mut Vec<String>) -
     let (aa, spp) = (r.aa, r.spp);
     let n = (spp as f64).sqrt().round() as u32;
     let pattern = match (aa, n * n == spp) {
+        _ if path => "each path enters the pixel at the first pair of its sample point, a \
+                      scrambled Sobol net (for 2^m samples: one in each cell of every split of \
+                      the pixel into 2^j × 2^(m−j) cells)"
+            .to_string(),
         (Antialias::Grid, true) => {
             format!("a regular {n} × {n} grid: u, v at the centres of the cells, (k + ½)/{n}")
         }
         (Antialias::Grid, false) => "the R2 sequence (spp is not a square)".to_string(),
         _ => "jittered: one ray at a random point of each cell of the grid".to_string(),
     };
-    out.push(format!("{} antialiasing, spp {spp}: {pattern}", aa.name()));
+    let how = if path {
+        "path-traced samples".to_string()
+    } else {
+        format!("{} antialiasing", aa.name())
+    };
+    out.push(format!("{how}, spp {spp}: {pattern}"));
     let samples = r.film.own_samples(&mut r.film.tracer(), x, y);
     for smp in samples.iter().take(16) {
         out.push(format!(
@@ -306,7 +315,8 @@ fn spread(values: &[DVec3], mean: DVec3) -> String {
         / (count - 1.0);
     let sd = DVec3::new(var.x.sqrt(), var.y.sqrt(), var.z.sqrt());
     format!(
-        "spread of the samples: standard deviation s = {}; the mean's noise, s/√N = {}",
+        "spread of the samples: standard deviation s = {}; the mean's noise, s/√N = {} for \
+         independent samples (samples spread over strata do better)",
         text::color(sd),
         text::color(sd / count.sqrt())
     )

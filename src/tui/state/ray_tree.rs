@@ -489,10 +489,8 @@ fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, Stri
 /// A path-traced pixel as rendered (seed 0), and its first paths replayed with the same random
 /// numbers as `raytree inspect` replays them, so the paths shown are ones that went into it.
 fn sampled_paths(scene: &Scene, depth: u32, x: u32, y: u32) -> Paths {
-    use crate::render::antialias::{cell, grid_offsets, jitter};
     use crate::render::film::Film;
     use crate::render::RenderOptions;
-    use crate::trace::path::PathTracer;
     let options = RenderOptions {
         max_depth: depth,
         ..RenderOptions::of(scene)
@@ -500,27 +498,22 @@ fn sampled_paths(scene: &Scene, depth: u32, x: u32, y: u32) -> Paths {
     let film = Film::new(scene, options);
     let estimate = film.lone_pixel(&mut film.tracer(), x, y);
     let spp = options.spp.max(1);
-    let offsets = grid_offsets(spp);
-    let cell = cell(offsets.len());
-    let tracer = PathTracer::new(scene, depth);
-    let mut rng = Rng::for_pixel(options.seed, x, y);
-    let mut shown = vec![];
-    for o in offsets.iter().take(PATHS_SHOWN) {
-        let j = jitter(*o, cell, &mut rng);
-        let ray = scene.camera.ray(x as f64 + j.x, y as f64 + j.y);
-        let mut log = vec![];
-        let value = tracer.sample(&ray, &mut rng, &mut Stats::default(), Some(&mut log));
-        // Each vertex as the surface met (the light named as such), or what ended the path.
-        let steps: Vec<String> = log
-            .iter()
-            .map(|v| match (&v.object, v.event) {
-                (Some(o), "light") => format!("light {o}"),
-                (Some(o), _) => o.clone(),
-                (None, event) => event.to_string(),
-            })
-            .collect();
-        shown.push((value, steps.join(" → ")));
-    }
+    let shown = film
+        .replay_paths(x, y, PATHS_SHOWN)
+        .into_iter()
+        .map(|(value, log)| {
+            // Each vertex as the surface met (the light named as such), or what ended the path.
+            let steps: Vec<String> = log
+                .iter()
+                .map(|v| match (&v.object, v.event) {
+                    (Some(o), "light") => format!("light {o}"),
+                    (Some(o), _) => o.clone(),
+                    (None, event) => event.to_string(),
+                })
+                .collect();
+            (value, steps.join(" → "))
+        })
+        .collect();
     Paths {
         estimate,
         spp,
