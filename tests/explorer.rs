@@ -1404,12 +1404,13 @@ fn a_path_traced_pixel_shows_its_estimate_and_paths_before_the_whitted_reading()
     let film = raytree::render::film::Film::new(&scene, RenderOptions::of(&scene));
     let rendered = film.lone_pixel(&mut film.tracer(), 32, 20);
     let text = screen(&app);
-    // The rendered value as the tree pane writes it: three decimals (none of them a final 0
-    // for this pixel).
-    let estimate = format!(
-        "estimate ({:.3}, {:.3}, {:.3})",
-        rendered.x, rendered.y, rendered.z
-    );
+    // The rendered value as the tree pane writes it: three decimals, final zeros dropped.
+    let short = |v: f64| {
+        let s = format!("{v:.3}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    };
+    let [r, g, b] = rendered.to_array().map(short);
+    let estimate = format!("estimate ({r}, {g}, {b})");
     let lines: Vec<&str> = text.lines().collect();
     let at = |what: &str| lines.iter().position(|l| l.contains(what));
     let est = at("estimate").unwrap_or_else(|| panic!("no estimate:\n{text}"));

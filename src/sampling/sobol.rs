@@ -12,8 +12,11 @@
 
 /// A number for pixel (x, y) and a seed, different for every pixel (SplitMix64 mixes the three).
 pub fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
-    mix(seed ^ ((x as u64) << 32 | y as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15))
+    mix(seed ^ ((x as u64) << 32 | y as u64).wrapping_mul(GOLDEN))
 }
+
+/// 2⁶⁴ divided by the golden ratio, odd: multiplying by it spreads consecutive numbers apart.
+const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
 
 /// SplitMix64's finaliser: every input bit changes about half the output bits.
 pub(crate) fn mix(mut z: u64) -> u64 {
@@ -40,9 +43,9 @@ impl SamplePoint {
 
     /// Dimension pair `dim` of the point, in [0, 1)².
     pub fn pair(&self, dim: u32) -> [f64; 2] {
-        let seeds = mix(self.key ^ mix(dim as u64 + 1));
+        let seeds = mix(self.key ^ (dim as u64 + 1).wrapping_mul(GOLDEN));
         let (shuffle, sx) = (seeds as u32, (seeds >> 32) as u32);
-        let sy = mix(seeds) as u32;
+        let sy = (seeds.wrapping_mul(GOLDEN) >> 32) as u32;
         let i = owen_scramble(self.index, shuffle);
         // Owen's scramble of each coordinate, on the mirrored fractions `mirrored_sobol_pair`
         // gives (see `owen_scramble`).

@@ -128,7 +128,8 @@ impl<'s> PathTracer<'s> {
         best
     }
 
-    /// The pair of random numbers `point` gives the bounce at `depth` for `draw`.
+    /// The pair of random numbers `point` gives the bounce at `depth` for `draw`: each bounce
+    /// has pairs of its own, after pair 0, the film's point in the pixel.
     fn draw(&self, point: &SamplePoint, depth: u32, draw: Draw) -> [f64; 2] {
         let slot = match draw {
             Draw::Lobe => 0,
@@ -241,7 +242,14 @@ impl<'s> PathTracer<'s> {
                 note(why, Some(object), si.point, throughput, sum - before);
                 break;
             }
-            let [pick, survive] = self.draw(point, depth, Draw::Lobe);
+            // The lobe pair only where it decides something: between lobes, or for roulette.
+            let lobes = weights.iter().filter(|&&w| w > 0.0).count();
+            let roulette = self.roulette && depth >= 3;
+            let [pick, survive] = if lobes > 1 || roulette {
+                self.draw(point, depth, Draw::Lobe)
+            } else {
+                [0.5, 0.5]
+            };
             let pick = pick * total;
             let n = si.normal;
             let offset = scene.bias(ray.origin, si.point);
@@ -321,7 +329,7 @@ impl<'s> PathTracer<'s> {
                     }
                 };
             }
-            if self.roulette && depth >= 3 {
+            if roulette {
                 let q = throughput.max_element().clamp(0.05, 0.95);
                 if survive >= q {
                     note("roulette", None, ray.origin, DVec3::ZERO, DVec3::ZERO);
