@@ -138,7 +138,8 @@ impl<'s> PathTracer<'s> {
             Draw::Light(i) => 3 + i as u32,
         };
         let per_bounce = 3 + self.scene.lights.len() as u32;
-        point.pair(1 + depth * per_bounce + slot)
+        // Wrapping: a pair's number only seeds its scramble, and wraps for no real path.
+        point.pair(depth.wrapping_mul(per_bounce).wrapping_add(1 + slot))
     }
 
     /// One sample of the radiance arriving along a primary ray, the path drawn from `point`.
