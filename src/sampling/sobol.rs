@@ -19,7 +19,7 @@ pub fn pixel_key(seed: u64, x: u32, y: u32) -> u64 {
 const GOLDEN: u64 = 0x9E37_79B9_7F4A_7C15;
 
 /// SplitMix64's finaliser: every input bit changes about half the output bits.
-pub(crate) fn mix(mut z: u64) -> u64 {
+fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^ (z >> 31)
@@ -200,11 +200,34 @@ mod tests {
         }
     }
 
-    /// Padding: two pairs of the same sample are independent. The first coordinates of pairs
-    /// 0 and 1, over the 16 samples of many pixels, fill a 16 × 16 grid evenly (were the pairs
-    /// not shuffled apart, sample i would fall in the same column of both, on the diagonal).
+    /// Padding: two pairs of the same sample are independent, within a pixel. Were the pairs
+    /// not shuffled apart, sample i would take Sobol point i in both, and the second
+    /// coordinate's first digit, the parity of i, flipped by one coin per pair, would put
+    /// pair 0 and pair 1 in the same half for all 16 samples of a pixel or for none. Shuffled,
+    /// about half the samples agree, and hardly a pixel is all or nothing.
     #[test]
     fn two_pairs_of_a_sample_are_independent() {
+        let pixels = 400;
+        let (mut agree, mut all_or_none) = (0, 0);
+        for x in 0..pixels {
+            let key = pixel_key(11, x, 0);
+            let same = (0..16)
+                .filter(|&i| {
+                    let p = SamplePoint::new(key, i);
+                    (p.pair(0)[1] < 0.5) == (p.pair(1)[1] < 0.5)
+                })
+                .count();
+            agree += same;
+            all_or_none += usize::from(same == 0 || same == 16);
+        }
+        let mean = agree as f64 / pixels as f64;
+        assert!((mean - 8.0).abs() < 0.5, "mean agreement {mean} of 16");
+        assert!(
+            all_or_none * 20 < pixels as usize,
+            "{all_or_none} of {pixels} pixels"
+        );
+        // And over many pixels the first coordinates of the two pairs fill a 16 × 16 grid
+        // evenly.
         let mut counts = vec![0.0; 256];
         for x in 0..1_600 {
             let key = pixel_key(11, x, 0);

@@ -81,6 +81,14 @@ enum Draw {
     Light(usize),
 }
 
+/// Where one bounce of a path takes its random numbers: the path's sample point, at the
+/// bounce's depth.
+#[derive(Clone, Copy)]
+struct Bounce<'p> {
+    point: &'p SamplePoint,
+    depth: u32,
+}
+
 /// The power heuristic for two strategies (β = 2).
 fn power_heuristic(a: f64, b: f64) -> f64 {
     let (a2, b2) = (a * a, b * b);
@@ -128,9 +136,9 @@ impl<'s> PathTracer<'s> {
         best
     }
 
-    /// The pair of random numbers `point` gives the bounce at `depth` for `draw`: each bounce
-    /// has pairs of its own, after pair 0, the film's point in the pixel.
-    fn draw(&self, point: &SamplePoint, depth: u32, draw: Draw) -> [f64; 2] {
+    /// The pair of random numbers the bounce `at` draws for `draw`: each bounce has pairs of
+    /// its own, after pair 0, the film's point in the pixel.
+    fn draw(&self, at: Bounce, draw: Draw) -> [f64; 2] {
         let slot = match draw {
             Draw::Lobe => 0,
             Draw::Direction => 1,
@@ -139,7 +147,8 @@ impl<'s> PathTracer<'s> {
         };
         let per_bounce = 3 + self.scene.lights.len() as u32;
         // Wrapping: a pair's number only seeds its scramble, and wraps for no real path.
-        point.pair(depth.wrapping_mul(per_bounce).wrapping_add(1 + slot))
+        at.point
+            .pair(at.depth.wrapping_mul(per_bounce).wrapping_add(1 + slot))
     }
 
     /// One sample of the radiance arriving along a primary ray, the path drawn from `point`.
@@ -179,6 +188,7 @@ impl<'s> PathTracer<'s> {
         let mut bsdf_pdf: Option<f64> = None;
         stats.primary_rays += 1;
         for depth in 0..self.max_depth {
+            let bounce = Bounce { point, depth };
             let before = sum;
             let hit = self.search.nearest(&ray, 0.0, f64::INFINITY, stats);
             let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
@@ -238,7 +248,7 @@ impl<'s> PathTracer<'s> {
                 if why == "max_depth" && self.local_at_max_depth {
                     // Seed 002: the path "contributes just its local illumination".
                     let p = si.point + scene.bias(ray.origin, si.point) * si.normal;
-                    sum += throughput * diffuse * self.local(p, si.normal, point, depth, stats);
+                    sum += throughput * diffuse * self.local(p, si.normal, bounce, stats);
                 }
                 note(why, Some(object), si.point, throughput, sum - before);
                 break;
@@ -247,7 +257,7 @@ impl<'s> PathTracer<'s> {
             let lobes = weights.iter().filter(|&&w| w > 0.0).count();
             let roulette = self.roulette && depth >= 3;
             let [pick, survive] = if lobes > 1 || roulette {
-                self.draw(point, depth, Draw::Lobe)
+                self.draw(bounce, Draw::Lobe)
             } else {
                 [0.5, 0.5]
             };
@@ -259,9 +269,9 @@ impl<'s> PathTracer<'s> {
                 // (f·cos/pdf = albedo).
                 let lobe = throughput * diffuse * (total / weights[0]);
                 if self.next_event {
-                    sum += lobe * self.direct(si.point + offset * n, n, point, depth, stats);
+                    sum += lobe * self.direct(si.point + offset * n, n, bounce, stats);
                 }
-                let [u1, u2] = self.draw(point, depth, Draw::Direction);
+                let [u1, u2] = self.draw(bounce, Draw::Direction);
                 let dir = cosine_hemisphere(n, u1, u2);
                 bsdf_pdf = Some(cosine_pdf(n, dir));
                 throughput = lobe;
@@ -275,7 +285,7 @@ impl<'s> PathTracer<'s> {
                 throughput *= at.kr * (total / weights[1]);
                 bsdf_pdf = None;
                 let mirror = reflect(ray.dir, n);
-                let [u1, u2] = self.draw(point, depth, Draw::Direction);
+                let [u1, u2] = self.draw(bounce, Draw::Direction);
                 let dir = match m.glossy {
                     None => mirror,
                     Some(l) => spread(l.shape, mirror, n, u1, u2),
@@ -300,7 +310,7 @@ impl<'s> PathTracer<'s> {
                     (1.0, m.ior)
                 };
                 let r = schlick(-ray.dir.dot(n), n1, n2);
-                let [fresnel, _] = self.draw(point, depth, Draw::Fresnel);
+                let [fresnel, _] = self.draw(bounce, Draw::Fresnel);
                 let refracted = refract(ray.dir, n, n1, n2).filter(|_| fresnel >= r);
                 let event = if refracted.is_some() {
                     "refraction"
@@ -311,7 +321,7 @@ impl<'s> PathTracer<'s> {
                 ray = match refracted {
                     Some(dir) => {
                         stats.refraction_rays += 1;
-                        let [u1, u2] = self.draw(point, depth, Draw::Direction);
+                        let [u1, u2] = self.draw(bounce, Draw::Direction);
                         let dir = match m.frosted {
                             None => dir,
                             Some(l) => spread(l.shape, dir, n, u1, u2),
@@ -344,45 +354,23 @@ impl<'s> PathTracer<'s> {
 
     /// Light arriving directly from the area lights at p, per unit albedo (i.e. the integral of
     /// Le·cos/π), one sample per light, weighted against BSDF sampling.
-    fn direct(
-        &self,
-        p: DVec3,
-        n: DVec3,
-        point: &SamplePoint,
-        depth: u32,
-        stats: &mut Stats,
-    ) -> DVec3 {
-        self.lights_at(p, n, point, depth, stats, true)
+    fn direct(&self, p: DVec3, n: DVec3, at: Bounce, stats: &mut Stats) -> DVec3 {
+        self.lights_at(p, n, at, stats, true)
     }
 
     /// The direct light at the last surface of a path cut by the maximum depth, per unit
     /// albedo: one light sample per light, unweighted, since no bounce follows to find the
     /// lights the other way.
-    fn local(
-        &self,
-        p: DVec3,
-        n: DVec3,
-        point: &SamplePoint,
-        depth: u32,
-        stats: &mut Stats,
-    ) -> DVec3 {
-        self.lights_at(p, n, point, depth, stats, false)
+    fn local(&self, p: DVec3, n: DVec3, at: Bounce, stats: &mut Stats) -> DVec3 {
+        self.lights_at(p, n, at, stats, false)
     }
 
     /// One sample of the light arriving from each area light at p, per unit albedo; with
     /// `mis`, weighted against the BSDF sample that follows (power heuristic).
-    fn lights_at(
-        &self,
-        p: DVec3,
-        n: DVec3,
-        point: &SamplePoint,
-        depth: u32,
-        stats: &mut Stats,
-        mis: bool,
-    ) -> DVec3 {
+    fn lights_at(&self, p: DVec3, n: DVec3, at: Bounce, stats: &mut Stats, mis: bool) -> DVec3 {
         let mut sum = DVec3::ZERO;
         for (i, light) in self.scene.lights.iter().enumerate() {
-            let [u1, u2] = self.draw(point, depth, Draw::Light(i));
+            let [u1, u2] = self.draw(at, Draw::Light(i));
             let Some(e) = light.sample_emitter(p, u1, u2) else {
                 continue;
             };
