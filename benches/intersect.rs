@@ -2,6 +2,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;
+use raytree::fast::simd::Wide;
 use raytree::fast::{sphere_hit, FastScene, SphereGroup};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
 use raytree::render::{render_simple, RenderOptions};
@@ -117,7 +118,11 @@ fn sphere_group(c: &mut Criterion) {
     g.bench_function("group", |b| {
         b.iter(|| {
             rs.iter()
-                .filter(|r| group.nearest(black_box(r), 0.0, f64::INFINITY).is_some())
+                .filter(|r| {
+                    group
+                        .nearest::<Wide>(black_box(r), 0.0, f64::INFINITY)
+                        .is_some()
+                })
                 .count()
         })
     });

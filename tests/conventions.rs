@@ -206,6 +206,11 @@ fn every_json_document_parses_and_carries_the_version() {
     } else {
         assert!(doc["peak_memory_bytes"].is_null());
     }
+    // The copy of the fast wing the processor runs.
+    assert!(
+        ["x86-64", "x86-64-v3"].contains(&doc["cpu_level"].as_str().unwrap()),
+        "{doc}"
+    );
 
     let reference = scratch("reference.exr");
     ok(&raytree(&[

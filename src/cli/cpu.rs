@@ -1,9 +1,9 @@
 //! The instructions this build was compiled to use, checked against the CPU it runs on.
 //!
-//! `.cargo/config.toml` builds for x86-64-v3 (AVX2 and FMA among others): the fast wing's
-//! four-lane tests are then single AVX instructions. A CPU without them would stop the
-//! program with an illegal instruction somewhere in a render; this check runs first and says
-//! what is missing and how to build for that CPU instead.
+//! `.cargo/config.toml` builds for x86-64-v3 (AVX2 and FMA among others): the whole program
+//! then uses them. A CPU without them would stop the program with an illegal instruction
+//! somewhere in a render; this check runs first and says what is missing and how to build the
+//! portable program instead (whose fast wing picks its instructions when it runs).
 
 /// An x86 feature the compiler may use: its name (as `target_feature` spells it) and where
 /// CPUID reports it.
@@ -129,8 +129,9 @@ pub fn check() -> Result<(), String> {
         if !missing.is_empty() {
             return Err(format!(
                 "this build of raytree uses instructions this CPU does not have ({}).\n\
-                 Build it for this CPU from the project's folder:\n  \
-                 RUSTFLAGS=\"-C target-cpu=native\" cargo build --release",
+                 Build the portable program, which picks its instructions when it runs, from \
+                 the project's folder:\n  \
+                 RUSTFLAGS=\"\" cargo build --release",
                 missing.join(", ")
             ));
         }

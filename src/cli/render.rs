@@ -381,6 +381,7 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             "rays": stats.rays(),
             "rays_per_second": stats.rays() as f64 / seconds.max(1e-9),
             "peak_memory_bytes": super::peak_memory::peak_resident_bytes(),
+            "cpu_level": crate::render::instruction_level(),
             "stats": stats,
         }))?;
     } else if a.stats {
@@ -405,6 +406,11 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
                 peak as f64 / 1e6
             ));
         }
+        eprintln(&format!(
+            "{:<40} {:>14}",
+            "instructions of the fast wing",
+            crate::render::instruction_level()
+        ));
         for line in stats.report().lines() {
             eprintln(line);
         }

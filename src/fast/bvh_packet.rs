@@ -4,6 +4,7 @@
 //! `Bvh::any` would, in the same order, with the same arithmetic.
 
 use super::hull::{Hull, Verdict};
+use super::simd::F64x4;
 use crate::accel::aabb::slab;
 use crate::accel::{Aabb, Bvh, Visits};
 use crate::geometry::Ray;
@@ -18,11 +19,11 @@ pub fn signs(r: &Ray) -> [bool; 3] {
 /// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
 /// all of them: each group is one set of 4-wide vector instructions. The unused lanes of the
 /// last group repeat its first ray (their answers are masked off).
-struct Packet {
+struct Packet<V> {
     quads: [Quad; PACKET / 4],
     len: usize,
     /// The rays' hull, which answers most box tests for all of them at once.
-    hull: Option<Hull>,
+    hull: Option<Hull<V>>,
 }
 
 #[derive(Clone, Copy, Default)]
@@ -34,8 +35,9 @@ struct Quad {
 /// The most rays searched together.
 pub const PACKET: usize = 16;
 
-impl Packet {
-    fn new(rays: &[Ray]) -> Packet {
+impl<V: F64x4> Packet<V> {
+    #[inline(always)]
+    fn new(rays: &[Ray]) -> Packet<V> {
         assert!(
             !rays.is_empty() && rays.len() <= PACKET,
             "1 to 16 rays per packet"
@@ -97,43 +99,21 @@ impl Packet {
                     );
                 }
             }
-            mask |= (overlaps4(&enter, &exit) as u16) << (4 * q);
+            mask |= (overlaps4::<V>(&enter, &exit) as u16) << (4 * q);
         }
         mask & active
     }
 }
 
-/// `overlaps` for four lanes, as four bits (bit k for lane k).
+/// `overlaps` for four lanes, as four bits (bit k for lane k): one vector compare and one mask
+/// move (written lane by lane, the compiler takes the four bits out of the compare one at a
+/// time and puts them back together).
 #[inline(always)]
-fn overlaps4(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-    {
-        // One vector compare and one mask move: written portably, the compiler takes the four
-        // bits out of the compare one at a time and puts them back together.
-        use std::arch::x86_64::*;
-        // SAFETY: the target has AVX (checked at compile time); the loads read 4 f64 each
-        // from arrays of 4.
-        unsafe {
-            let e = _mm256_loadu_pd(enter.as_ptr());
-            let x = _mm256_loadu_pd(exit.as_ptr());
-            let abs = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
-            // exit + |exit|·4·ε, multiplied in `overlaps`' order so every bit is the same.
-            let slack = _mm256_mul_pd(
-                _mm256_mul_pd(abs, _mm256_set1_pd(4.0)),
-                _mm256_set1_pd(f64::EPSILON),
-            );
-            let bound = _mm256_add_pd(x, slack);
-            _mm256_movemask_pd(_mm256_cmp_pd::<_CMP_LE_OQ>(e, bound)) as u8
-        }
-    }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-    {
-        let mut bits = 0;
-        for lane in 0..4 {
-            bits |= (crate::accel::aabb::overlaps(enter[lane], exit[lane]) as u8) << lane;
-        }
-        bits
-    }
+fn overlaps4<V: F64x4>(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
+    let (enter, exit) = (V::new(*enter), V::new(*exit));
+    // exit + |exit|·4·ε, multiplied in `overlaps`' order so every bit is the same.
+    let slack = exit.abs() * V::splat(4.0) * V::splat(f64::EPSILON);
+    enter.simd_le(exit + slack).to_bitmask() as u8
 }
 
 /// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
@@ -144,7 +124,8 @@ fn overlaps4(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
 /// The rays' directions must have the signs of the first one's (see `signs`): then
 /// every ray visits the same nodes and items in the same order as `closest` would take it,
 /// with the same arithmetic, so its answer is `closest`'s to the last bit, ties included.
-pub fn closest_packet(
+#[inline(always)]
+pub fn closest_packet<V: F64x4>(
     bvh: &Bvh,
     rays: &[Ray],
     t_min: f64,
@@ -156,7 +137,7 @@ pub fn closest_packet(
     };
     let negative = signs(first);
     debug_assert!(rays.iter().all(|r| signs(r) == negative));
-    let (_, work) = walk_packet(bvh, rays, t_min, t_max, Some(negative), |i, item, t_max| {
+    let (_, work) = walk_packet::<V>(bvh, rays, t_min, t_max, Some(negative), |i, item, t_max| {
         if let Some(t) = visit(i, item, t_max[i]) {
             t_max[i] = t_max[i].min(t);
         }
@@ -169,7 +150,8 @@ pub fn closest_packet(
 /// answer is set when `visit(i, item)` returned true for some item. Each ray visits the
 /// nodes and items `any` would, in the same order, and leaves the packet at its first
 /// blocker; the directions may point anywhere (the order does not depend on them).
-pub fn any_packet(
+#[inline(always)]
+pub fn any_packet<V: F64x4>(
     bvh: &Bvh,
     rays: &[Ray],
     t_min: f64,
@@ -177,7 +159,7 @@ pub fn any_packet(
     mut visit: impl FnMut(usize, u32) -> bool,
 ) -> (u32, Visits) {
     let mut t_max = *t_max;
-    walk_packet(bvh, rays, t_min, &mut t_max, None, |i, item, _| {
+    walk_packet::<V>(bvh, rays, t_min, &mut t_max, None, |i, item, _| {
         visit(i, item)
     })
 }
@@ -187,7 +169,8 @@ pub fn any_packet(
 /// every ray that met the leaf's box, in order, and returns true when that ray is done
 /// (it leaves the packet). Children are visited nearer side first by the rays' common
 /// `signs`, or left first without them (as `any` does). Answers the rays that are done.
-fn walk_packet(
+#[inline(always)]
+fn walk_packet<V: F64x4>(
     bvh: &Bvh,
     rays: &[Ray],
     t_min: f64,
@@ -199,7 +182,7 @@ fn walk_packet(
     if bvh.nodes().is_empty() || rays.is_empty() {
         return (0, work);
     }
-    let packet = Packet::new(rays);
+    let packet = Packet::<V>::new(rays);
     let all = (u32::MAX >> (32 - rays.len())) as u16;
     let mut done = 0u16;
     // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
@@ -259,6 +242,7 @@ fn walk_packet(
 mod tests {
     use super::*;
     use crate::accel::aabb::SlabRay;
+    use crate::fast::simd::Wide;
     use glam::DVec3;
 
     /// The signs read off d are those of 1/d, which the slab tests order children by: at ±0,
@@ -319,7 +303,7 @@ mod tests {
         for chunk in pairs.chunks(4) {
             let enter = std::array::from_fn(|k| chunk[k % chunk.len()].0);
             let exit = std::array::from_fn(|k| chunk[k % chunk.len()].1);
-            let bits = overlaps4(&enter, &exit);
+            let bits = overlaps4::<Wide>(&enter, &exit);
             for lane in 0..4 {
                 let expected = crate::accel::aabb::overlaps(enter[lane], exit[lane]);
                 assert_eq!(

@@ -13,9 +13,9 @@
 
 use arrayvec::ArrayVec;
 use smallvec::SmallVec;
-use wide::f64x4;
 
 use super::lanes::LANES;
+use super::simd::F64x4;
 use super::sphere_group::SphereGroup;
 use crate::accel::Aabb;
 use crate::geometry::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
@@ -122,13 +122,19 @@ impl FlatCsg {
     ///
     /// Its pieces (the operands' spans, then the walk along the ends) are inlined into one
     /// function on purpose, so that the spans stay in registers.
-    pub fn nearest(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
+    #[inline(always)]
+    pub fn nearest<V: F64x4>(
+        &self,
+        env: &impl LeafSpans,
+        r: &CsgRay,
+        work: &mut CsgWork,
+    ) -> Crossing {
         // Most CSG objects have two operands: their spans stay in registers (held in a list,
         // each was stored and at once read back, and the read stalled on store forwarding).
         if self.leaves.len() == 2 {
-            return self.nearest_of_two(env, r, work);
+            return self.nearest_of_two::<V>(env, r, work);
         }
-        let grouped = self.spheres.as_ref().map(|g| g.spans(r.ray));
+        let grouped = self.spheres.as_ref().map(|g| g.spans::<V>(r.ray));
         let mut spans: ArrayVec<Option<Span>, MAX_LEAVES> = ArrayVec::new();
         let mut done = CsgWork::default();
         // The intersection so far: [latest entry, earliest exit], empty once an operand is.
@@ -245,7 +251,12 @@ impl FlatCsg {
 
     /// `nearest` for two operands.
     #[inline(always)]
-    fn nearest_of_two(&self, env: &impl LeafSpans, r: &CsgRay, work: &mut CsgWork) -> Crossing {
+    fn nearest_of_two<V: F64x4>(
+        &self,
+        env: &impl LeafSpans,
+        r: &CsgRay,
+        work: &mut CsgWork,
+    ) -> Crossing {
         // Two spheres' common part, searched from t = 0 on, is missed as soon as one sphere
         // is: passed by, or met only behind the origin (a ray leaving the lens outward). The
         // group says so before its square roots, and the count is the operands' own: the
@@ -253,7 +264,7 @@ impl FlatCsg {
         let unboxed = !r.use_bounds || self.leaves.iter().all(|(_, bounds)| bounds.is_none());
         let common = self.op == CsgOp::Intersection && r.t_min >= 0.0 && unboxed;
         let grouped = match &self.spheres {
-            Some(group) if common => match group.common_spans(r.ray) {
+            Some(group) if common => match group.common_spans::<V>(r.ray) {
                 Ok(spans) => Some(spans),
                 Err(empty) => {
                     let pruned = (r.prune && empty & 1 != 0) as u64;
@@ -262,7 +273,7 @@ impl FlatCsg {
                     return Crossing::Miss;
                 }
             },
-            Some(group) => Some(group.spans(r.ray)),
+            Some(group) => Some(group.spans::<V>(r.ray)),
             None => None,
         };
         let mut done = CsgWork::default();
@@ -272,7 +283,7 @@ impl FlatCsg {
         let Ok(b) = self.operand_span(env, r, 1, a.is_none(), &grouped, &mut done) else {
             return Crossing::Undecided;
         };
-        let result = self.first_change_of_two(a, b, r);
+        let result = self.first_change_of_two::<V>(a, b, r);
         if result != Crossing::Undecided {
             work.pruned += done.pruned;
             work.leaves_tested += done.leaves_tested;
@@ -291,17 +302,17 @@ impl FlatCsg {
     /// and the first such end in the window is the walk's answer; several ends at that t are
     /// left to the segment lists, as the walk leaves them.
     #[inline(always)]
-    fn first_change_of_two(&self, a: Option<Span>, b: Option<Span>, r: &CsgRay) -> Crossing {
+    fn first_change_of_two<V: F64x4>(
+        &self,
+        a: Option<Span>,
+        b: Option<Span>,
+        r: &CsgRay,
+    ) -> Crossing {
         let ends = |s: Option<Span>| s.map_or((f64::NAN, f64::NAN), |s| (s.t_in, s.t_out));
         let ((a_in, a_out), (b_in, b_out)) = (ends(a), ends(b));
-        let t = lanes(a_in, a_out, b_in, b_out);
-        let inside = |t_in: f64, t_out: f64| {
-            let (t_in, t_out) = (f64x4::splat(t_in), f64x4::splat(t_out));
-            let before = t_in.simd_lt(t) & t.simd_le(t_out);
-            let after = t_in.simd_le(t) & t.simd_lt(t_out);
-            (before.to_bitmask(), after.to_bitmask())
-        };
-        let ((a_before, a_after), (b_before, b_after)) = (inside(a_in, a_out), inside(b_in, b_out));
+        let t = V::setr(a_in, a_out, b_in, b_out);
+        let ((a_before, a_after), (b_before, b_after)) =
+            (inside_bits(a_in, a_out, t), inside_bits(b_in, b_out, t));
         // The rule, lane by lane on the flags' bits.
         let rule = |a: u32, b: u32| match self.op {
             CsgOp::Union => a | b,
@@ -309,9 +320,9 @@ impl FlatCsg {
             CsgOp::Difference => a & !b,
             CsgOp::Complement => unreachable!("complements stay trees"),
         };
-        let within = (t.simd_gt(f64x4::splat(r.t_min))
-            & t.simd_lt(f64x4::splat(r.t_max))
-            & t.abs().simd_lt(f64x4::splat(f64::INFINITY)))
+        let within = (t.simd_gt(V::splat(r.t_min))
+            & t.simd_lt(V::splat(r.t_max))
+            & t.abs().simd_lt(V::splat(f64::INFINITY)))
         .to_bitmask();
         let changes = (rule(a_before, b_before) ^ rule(a_after, b_after)) & within;
         if changes == 0 {
@@ -322,7 +333,7 @@ impl FlatCsg {
             .filter(|&k| changes & (1 << k) != 0)
             .min_by(|&i, &j| ts[i].total_cmp(&ts[j]))
             .expect("some end changes the result");
-        let at_t = t.simd_eq(f64x4::splat(ts[k])).to_bitmask() & within;
+        let at_t = t.simd_eq(V::splat(ts[k])).to_bitmask() & within;
         if at_t.count_ones() > 1 {
             return Crossing::Undecided;
         }
@@ -336,26 +347,21 @@ impl FlatCsg {
     }
 }
 
-/// Four numbers as one vector, put together in registers. `f64x4::new` goes through memory,
-/// where the one wide load of four narrow stores stalls on store forwarding.
+/// The bits of the ends t at which a span is inside just before and just after them (the
+/// walk's inside flags); a function rather than a closure, so that it is surely inlined into
+/// the lanes' copy for the processor (`simd::with_lanes`).
 #[inline(always)]
-fn lanes(a: f64, b: f64, c: f64, d: f64) -> f64x4 {
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-    {
-        use std::arch::x86_64::{__m256d, _mm256_setr_pd};
-        // SAFETY: the target has AVX (checked at compile time), and with AVX an f64x4 is one
-        // __m256d (the transmute checks the sizes).
-        unsafe { std::mem::transmute::<__m256d, f64x4>(_mm256_setr_pd(a, b, c, d)) }
-    }
-    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-    {
-        f64x4::new([a, b, c, d])
-    }
+fn inside_bits<V: F64x4>(t_in: f64, t_out: f64, t: V) -> (u32, u32) {
+    let (t_in, t_out) = (V::splat(t_in), V::splat(t_out));
+    let before = t_in.simd_lt(t) & t.simd_le(t_out);
+    let after = t_in.simd_le(t) & t.simd_lt(t_out);
+    (before.to_bitmask(), after.to_bitmask())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fast::simd::Wide;
     use glam::DVec3;
 
     /// Spans given directly, per leaf.
@@ -397,7 +403,7 @@ mod tests {
             prune: true,
         };
         let mut work = CsgWork::default();
-        let c = flat(op, spans.len() as u32).nearest(&Fixed(spans.to_vec()), &r, &mut work);
+        let c = flat(op, spans.len() as u32).nearest::<Wide>(&Fixed(spans.to_vec()), &r, &mut work);
         (c, work)
     }
 

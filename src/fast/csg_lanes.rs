@@ -4,7 +4,7 @@
 //! A lens (A ∩ B of two spheres) or a box with a spherical hole (A − B) is met by many rays:
 //! a glass lens's own refraction and reflection rays bounce inside it. Ray by ray, each test
 //! is a call into the CSG evaluation (`FlatCsg::nearest`). Here the same steps run for four
-//! rays side by side in `f64x4` lanes, one ray per lane: the operands' boxes and the notes'
+//! rays side by side in four lanes (`F64x4`), one ray per lane: the operands' boxes and the notes'
 //! pruning rule, both operands' spans (`span_lanes`: each primitive's own arithmetic, to the
 //! last bit), and the walk along the four span ends that finds where the operation's rule
 //! first changes its answer. Where that walk meets ends that coincide, or spans that are
@@ -12,9 +12,9 @@
 //! the segment lists do.
 
 use glam::{DAffine3, DVec3};
-use wide::f64x4;
 
 use super::lanes::{box_hit_lanes, lane_mask, RayLanes, SlabLanes};
+use super::simd::F64x4;
 use super::span_lanes::{self, SpanLanes};
 use crate::accel::Aabb;
 use crate::geometry::csg::CsgOp;
@@ -44,15 +44,15 @@ pub struct CsgLanes {
 
 /// What `CsgLanes::hits` finds for four rays (bit i and lane i: ray i).
 #[derive(Clone, Copy, Debug)]
-pub struct LanesHits {
+pub struct LanesHits<V> {
     /// The rays that hit the object within their window.
     pub hit: u32,
     /// Each hit's t.
-    pub t: f64x4,
+    pub t: V,
     /// The hits on B's surface (the others are on A's).
     pub on_b: u32,
     /// Each hit's face of its operand.
-    pub face: f64x4,
+    pub face: V,
     /// The rays to be evaluated one by one: coinciding span ends, or spans that are reversed
     /// or odd (`SpanLanes::odd`).
     pub undecided: u32,
@@ -61,12 +61,12 @@ pub struct LanesHits {
     pub pruned: u64,
 }
 
-impl LanesHits {
-    const NONE: LanesHits = LanesHits {
+impl<V: F64x4> LanesHits<V> {
+    const NONE: LanesHits<V> = LanesHits {
         hit: 0,
-        t: f64x4::ZERO,
+        t: V::ZERO,
         on_b: 0,
-        face: f64x4::ZERO,
+        face: V::ZERO,
         undecided: 0,
         pruned: 0,
     };
@@ -102,7 +102,8 @@ impl CsgLanes {
     }
 
     /// The surface of ray i's hit.
-    pub fn surface(&self, hits: &LanesHits, i: usize) -> Surface {
+    #[inline(always)]
+    pub fn surface<V: F64x4>(&self, hits: &LanesHits<V>, i: usize) -> Surface {
         let on_b = hits.on_b & (1 << i) != 0;
         let surface = Surface::new(self.leaves[on_b as usize], hits.face.to_array()[i] as u32);
         // B's surfaces bound a difference from the other side.
@@ -117,14 +118,14 @@ impl CsgLanes {
     /// `open`, exactly as `FlatCsg::nearest` finds it ray by ray (t_min = 0), with the
     /// operands' boxes tested when `use_bounds` and the notes' pruning rule when `prune`.
     #[inline(always)]
-    pub fn hits(
+    pub fn hits<V: F64x4>(
         &self,
-        slabs: &SlabLanes,
+        slabs: &SlabLanes<V>,
         open: u32,
-        t_max: f64x4,
+        t_max: V,
         use_bounds: bool,
         prune: bool,
-    ) -> LanesHits {
+    ) -> LanesHits<V> {
         if open == 0 {
             return LanesHits::NONE;
         }
@@ -132,13 +133,9 @@ impl CsgLanes {
         if let Some((a, b)) = self.lens() {
             return lens_hits(rays, a, b, open, t_max, prune);
         }
-        let open = lane_mask(open);
-        let box_missed = |k: usize| match &self.bounds[k] {
-            Some(b) if use_bounds => open & !lane_mask(box_hit_lanes(b, slabs, 0.0, t_max)),
-            _ => f64x4::ZERO,
-        };
+        let open = lane_mask::<V>(open);
         // Operand A, behind its box.
-        let a_pruned = box_missed(0);
+        let a_pruned = self.box_missed(0, slabs, open, t_max, use_bounds);
         let a = self.span(0, rays).only(open & !a_pruned);
         let a_empty = open & !a.exists();
         // Operand B: not needed where A is empty and the rule makes it irrelevant (∩, −),
@@ -146,9 +143,9 @@ impl CsgLanes {
         let b_irrelevant = if prune && self.op != CsgOp::Union {
             a_empty
         } else {
-            f64x4::ZERO
+            V::ZERO
         };
-        let b_pruned = b_irrelevant | box_missed(1);
+        let b_pruned = b_irrelevant | self.box_missed(1, slabs, open, t_max, use_bounds);
         let b_lanes = open & !b_pruned;
         let b = if b_lanes.to_bitmask() == 0 {
             SpanLanes::none()
@@ -168,6 +165,23 @@ impl CsgLanes {
         found
     }
 
+    /// All ones in the lanes of `open` whose ray misses operand k's box (none when the boxes
+    /// are not used).
+    #[inline(always)]
+    fn box_missed<V: F64x4>(
+        &self,
+        k: usize,
+        slabs: &SlabLanes<V>,
+        open: V,
+        t_max: V,
+        use_bounds: bool,
+    ) -> V {
+        match &self.bounds[k] {
+            Some(b) if use_bounds => open & !lane_mask::<V>(box_hit_lanes(b, slabs, 0.0, t_max)),
+            _ => V::ZERO,
+        }
+    }
+
     /// A ∩ B of two spheres without boxes of their own: a lens, whose evaluation leaves the
     /// spheres' common part early (`SphereGroup::common_spans`).
     fn lens(&self) -> Option<((DVec3, f64), (DVec3, f64))> {
@@ -183,7 +197,7 @@ impl CsgLanes {
 
     /// Operand k's spans along the four rays.
     #[inline(always)]
-    fn span(&self, k: usize, rays: &RayLanes) -> SpanLanes {
+    fn span<V: F64x4>(&self, k: usize, rays: &RayLanes<V>) -> SpanLanes<V> {
         match &self.operands[k] {
             Operand::Sphere(centre, r2) => span_lanes::sphere(rays, *centre, *r2),
             Operand::Solid(shape, to_local) => {
@@ -209,18 +223,18 @@ impl CsgLanes {
 /// The lens's evaluation: the steps of `FlatCsg::nearest_of_two` for the spheres' common part
 /// searched from t = 0 (`SphereGroup::common_spans`, then the walk).
 #[inline(always)]
-fn lens_hits(
-    rays: &RayLanes,
+fn lens_hits<V: F64x4>(
+    rays: &RayLanes<V>,
     (ca, ra2): (DVec3, f64),
     (cb, rb2): (DVec3, f64),
     open: u32,
-    t_max: f64x4,
+    t_max: V,
     prune: bool,
-) -> LanesHits {
+) -> LanesHits<V> {
     let a = span_lanes::sphere_quadratic(rays, ca, ra2);
     let b = span_lanes::sphere_quadratic(rays, cb, rb2);
     let ((a_disc, a_no_root), (b_disc, b_no_root)) = (a.disc(), b.disc());
-    let open = lane_mask(open);
+    let open = lane_mask::<V>(open);
     let finite = a.finite & b.finite;
     // The common part searched from t = 0 is missed as soon as one sphere is passed by, has
     // no root, or is met only behind the origin; B counts as pruned where A has no span.
@@ -244,28 +258,29 @@ fn lens_hits(
     let live = rest & finite & a_in.simd_le(a_out) & b_in.simd_le(b_out);
     let walk = walk(CsgOp::Intersection, [a_in, a_out, b_in, b_out], t_max);
     // A sphere has one face.
-    let found = walk.hits(live, [f64x4::ZERO; 4], rest & !live);
+    let found = walk.hits(live, [V::ZERO; 4], rest & !live);
     LanesHits { pruned, ..found }
 }
 
 /// Where the rule first changes along four rays.
-struct Walk {
+struct Walk<V> {
     /// The first end in the window (0, t_max) where the rule's answer changes (∞: none).
-    first: f64x4,
+    first: V,
     /// All ones where end k (A in, A out, B in, B out) lies at `first`.
-    at_first: [f64x4; 4],
+    at_first: [V; 4],
     /// Another end at the same t: left to the segment lists.
-    tie: f64x4,
+    tie: V,
 }
 
-impl Walk {
+impl<V: F64x4> Walk<V> {
     /// The hits of the rays in `live` where the walk found a change; `left` are rays already
     /// left to the one-ray path, joined by those whose first change ties with another end.
     /// Each hit's face is the one of its end among `faces` (A in, A out, B in, B out).
-    fn hits(&self, live: f64x4, faces: [f64x4; 4], left: f64x4) -> LanesHits {
-        let found = live & self.first.simd_lt(f64x4::splat(f64::INFINITY));
+    #[inline(always)]
+    fn hits(&self, live: V, faces: [V; 4], left: V) -> LanesHits<V> {
+        let found = live & self.first.simd_lt(V::splat(f64::INFINITY));
         let hit = found & !self.tie;
-        let mut face = f64x4::ZERO;
+        let mut face = V::ZERO;
         for (at, f) in self.at_first.iter().zip(faces) {
             face = at.bitselect(f, face);
         }
@@ -285,31 +300,30 @@ impl Walk {
 /// first end in the window where the rule's answer differs between the two. NaN ends (no
 /// span) are never inside and never in the window.
 #[inline(always)]
-fn walk(op: CsgOp, ends: [f64x4; 4], t_max: f64x4) -> Walk {
+fn walk<V: F64x4>(op: CsgOp, ends: [V; 4], t_max: V) -> Walk<V> {
     let [a_in, a_out, b_in, b_out] = ends;
-    let inside = |t_in: f64x4, t_out: f64x4, t: f64x4| {
-        let before = t_in.simd_lt(t) & t.simd_le(t_out);
-        let after = t_in.simd_le(t) & t.simd_lt(t_out);
-        (before, after)
-    };
-    let rule = |a: f64x4, b: f64x4| match op {
-        CsgOp::Union => a | b,
-        CsgOp::Intersection => a & b,
-        CsgOp::Difference => a & !b,
-        CsgOp::Complement => unreachable!("complements stay trees"),
-    };
-    let infinity = f64x4::splat(f64::INFINITY);
-    let within =
-        ends.map(|t| t.simd_gt(f64x4::ZERO) & t.simd_lt(t_max) & t.abs().simd_lt(infinity));
-    let mut first = infinity;
+    // (Helper functions rather than closures or array maps: each must be inlined into the
+    // lanes' copy for the processor, `simd::with_lanes`.)
+    let within = [
+        in_window(a_in, t_max),
+        in_window(a_out, t_max),
+        in_window(b_in, t_max),
+        in_window(b_out, t_max),
+    ];
+    let mut first = V::splat(f64::INFINITY);
     for (&t, &within) in ends.iter().zip(&within) {
         let (a_before, a_after) = inside(a_in, a_out, t);
         let (b_before, b_after) = inside(b_in, b_out, t);
-        let changes = (rule(a_before, b_before) ^ rule(a_after, b_after)) & within;
+        let changes = (rule(op, a_before, b_before) ^ rule(op, a_after, b_after)) & within;
         first = changes.bitselect(first.fast_min(t), first);
     }
-    let at_first: [f64x4; 4] = std::array::from_fn(|k| within[k] & ends[k].simd_eq(first));
-    let mut tie = f64x4::ZERO;
+    let at_first: [V; 4] = [
+        within[0] & a_in.simd_eq(first),
+        within[1] & a_out.simd_eq(first),
+        within[2] & b_in.simd_eq(first),
+        within[3] & b_out.simd_eq(first),
+    ];
+    let mut tie = V::ZERO;
     for i in 0..4 {
         for j in i + 1..4 {
             tie |= at_first[i] & at_first[j];
@@ -319,5 +333,30 @@ fn walk(op: CsgOp, ends: [f64x4; 4], t_max: f64x4) -> Walk {
         first,
         at_first,
         tie,
+    }
+}
+
+/// All ones where the end t lies in the window: 0 < t < t_max, finite.
+#[inline(always)]
+fn in_window<V: F64x4>(t: V, t_max: V) -> V {
+    t.simd_gt(V::ZERO) & t.simd_lt(t_max) & t.abs().simd_lt(V::splat(f64::INFINITY))
+}
+
+/// An operand's inside flag just before and just after t.
+#[inline(always)]
+fn inside<V: F64x4>(t_in: V, t_out: V, t: V) -> (V, V) {
+    let before = t_in.simd_lt(t) & t.simd_le(t_out);
+    let after = t_in.simd_le(t) & t.simd_lt(t_out);
+    (before, after)
+}
+
+/// The operation's rule on the operands' inside flags.
+#[inline(always)]
+fn rule<V: F64x4>(op: CsgOp, a: V, b: V) -> V {
+    match op {
+        CsgOp::Union => a | b,
+        CsgOp::Intersection => a & b,
+        CsgOp::Difference => a & !b,
+        CsgOp::Complement => unreachable!("complements stay trees"),
     }
 }

@@ -13,9 +13,9 @@
 //! with an infinite 1/d is not built, and such packets are tested ray by ray.
 
 use glam::DVec3;
-use wide::f64x4;
 
 use super::lanes::lane_mask;
+use super::simd::F64x4;
 use crate::accel::aabb::overlaps;
 use crate::accel::Aabb;
 
@@ -34,22 +34,22 @@ pub enum Verdict {
 /// a box's three slabs are tested at once: the hull test is the largest part of a packet's
 /// search of the BVH.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hull {
-    origin_lo: f64x4,
-    origin_hi: f64x4,
-    inv_lo: f64x4,
-    inv_hi: f64x4,
+pub struct Hull<V> {
+    origin_lo: V,
+    origin_hi: V,
+    inv_lo: V,
+    inv_hi: V,
     /// All ones on the axes where 1/d is negative, for every ray.
-    negative: f64x4,
+    negative: V,
 }
 
-impl Hull {
+impl<V: F64x4> Hull<V> {
     /// The hull of rays given as (origin, 1/d), or None when two rays' 1/d differ in sign on
     /// an axis, or an origin or a 1/d is infinite or NaN (the bounds would not bound them).
     /// Whole vectors at a time: built for every packet, it cost as much as a ray's own tests
     /// when done axis by axis.
-    #[inline]
-    pub fn new(rays: impl IntoIterator<Item = ([f64; 3], [f64; 3])>) -> Option<Hull> {
+    #[inline(always)]
+    pub fn new(rays: impl IntoIterator<Item = ([f64; 3], [f64; 3])>) -> Option<Hull<V>> {
         let mut rays = rays
             .into_iter()
             .map(|(o, inv)| (DVec3::from_array(o), DVec3::from_array(inv)));
@@ -83,11 +83,11 @@ impl Hull {
         let (far_lo, far_hi) = self.times(self.negative.bitselect(low, high));
         // The latest entry and earliest exit over the three slabs, as the ray-by-ray test
         // finds them (the order of max and min does not change their result).
-        let latest = |v: f64x4| {
+        let latest = |v: V| {
             let [x, y, z, _] = v.to_array();
             max(max(x, y), z)
         };
-        let earliest = |v: f64x4| {
+        let earliest = |v: V| {
             let [x, y, z, _] = v.to_array();
             min(min(x, y), z)
         };
@@ -108,7 +108,7 @@ impl Hull {
     /// The range of (plane − o)·(1/d) over the hull on each axis: the extremes are among the
     /// four corners of the box of (plane − o) and 1/d.
     #[inline(always)]
-    fn times(&self, plane: f64x4) -> (f64x4, f64x4) {
+    fn times(&self, plane: V) -> (V, V) {
         let (a_lo, a_hi) = (plane - self.origin_hi, plane - self.origin_lo);
         let corners = [
             a_lo * self.inv_lo,
@@ -125,8 +125,8 @@ impl Hull {
 
 /// A vector's x, y, z in lanes 0–2.
 #[inline(always)]
-fn lanes(v: DVec3) -> f64x4 {
-    f64x4::new([v.x, v.y, v.z, 0.0])
+fn lanes<V: F64x4>(v: DVec3) -> V {
+    V::new([v.x, v.y, v.z, 0.0])
 }
 
 // Plain comparisons (one instruction each): nothing here is NaN, so `f64::min`'s care for
@@ -153,6 +153,7 @@ fn max(a: f64, b: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::accel::aabb::SlabRay;
+    use crate::fast::simd::Wide;
     use crate::sampling::Rng;
 
     /// Packets of 16 rays (from one point, or from points spread over a patch; directions
@@ -182,7 +183,7 @@ mod tests {
                     (o, d)
                 })
                 .collect();
-            let hull = Hull::new(
+            let hull = Hull::<Wide>::new(
                 rays.iter()
                     .map(|(o, d)| (o.to_array(), d.recip().to_array())),
             );
@@ -234,13 +235,13 @@ mod tests {
     #[test]
     fn no_hull_for_parallel_rays_or_mixed_signs() {
         let o = [0.0, 0.0, 0.0];
-        assert!(Hull::new([(o, [1.0, f64::INFINITY, 1.0])]).is_none());
-        assert!(Hull::new([(o, [1.0, 2.0, 1.0]), (o, [1.0, -2.0, 1.0])]).is_none());
-        assert!(Hull::new([
+        assert!(Hull::<Wide>::new([(o, [1.0, f64::INFINITY, 1.0])]).is_none());
+        assert!(Hull::<Wide>::new([(o, [1.0, 2.0, 1.0]), (o, [1.0, -2.0, 1.0])]).is_none());
+        assert!(Hull::<Wide>::new([
             (o, [1.0, 2.0, 1.0]),
             ([f64::NAN, 0.0, 0.0], [1.0, 2.0, 1.0])
         ])
         .is_none());
-        assert!(Hull::new([(o, [1.0, 2.0, 1.0]), (o, [3.0, 0.5, 1.0])]).is_some());
+        assert!(Hull::<Wide>::new([(o, [1.0, 2.0, 1.0]), (o, [3.0, 0.5, 1.0])]).is_some());
     }
 }

@@ -1,10 +1,10 @@
-//! Rays in lanes: up to four rays laid out axis by axis in `f64x4` vectors (structure of
+//! Rays in lanes: up to four rays laid out axis by axis in four-lane vectors (`F64x4`: structure of
 //! arrays), so that one shape or box is tested against all of them with the same instructions.
 //! Every lane computes what the one-ray routine of the core computes, in the same order.
 
 use glam::DVec3;
-use wide::f64x4;
 
+use super::simd::F64x4;
 use crate::accel::Aabb;
 use crate::geometry::{Plane, Ray};
 
@@ -20,17 +20,17 @@ pub const UNUSED: Ray = Ray {
 /// Up to four rays, one per lane: a packet's rays tested against one sphere or plane at a
 /// time, or one ray repeated in every lane against a group of spheres.
 #[derive(Clone, Copy, Debug)]
-pub struct RayLanes {
-    pub origin: [f64x4; 3],
-    pub dir: [f64x4; 3],
+pub struct RayLanes<V> {
+    pub origin: [V; 3],
+    pub dir: [V; 3],
     /// d·d, as the sphere's quadratic computes it.
-    pub a: f64x4,
+    pub a: V,
 }
 
-impl RayLanes {
+impl<V: F64x4> RayLanes<V> {
     /// One ray in every lane.
     #[inline(always)]
-    pub fn splat(ray: &Ray) -> RayLanes {
+    pub fn splat(ray: &Ray) -> RayLanes<V> {
         let DVec3 {
             x: dx,
             y: dy,
@@ -38,27 +38,30 @@ impl RayLanes {
         } = ray.dir;
         let o = ray.origin;
         RayLanes {
-            origin: [o.x, o.y, o.z].map(f64x4::splat),
-            dir: [dx, dy, dz].map(f64x4::splat),
-            a: f64x4::splat(dx * dx + dy * dy + dz * dz),
+            origin: [o.x, o.y, o.z].map(V::splat),
+            dir: [dx, dy, dz].map(V::splat),
+            a: V::splat(dx * dx + dy * dy + dz * dz),
         }
     }
 
     /// The rays in lanes 0, 1, …; lanes beyond them hold `UNUSED`.
-    pub fn new(rays: &[Ray]) -> RayLanes {
+    #[inline(always)]
+    pub fn new(rays: &[Ray]) -> RayLanes<V> {
         assert!(rays.len() <= LANES);
         let (mut o, mut d) = ([UNUSED.origin; LANES], [UNUSED.dir; LANES]);
         for (k, r) in rays.iter().enumerate() {
             (o[k], d[k]) = (r.origin, r.dir);
         }
-        let axis = |v: &[DVec3; LANES], i: usize| f64x4::new(v.map(|p| p[i]));
+        // Put together in registers (`setr`): four stores and one wide load of them would
+        // stall on store forwarding.
+        let axis = |v: &[DVec3; LANES], i: usize| V::setr(v[0][i], v[1][i], v[2][i], v[3][i]);
         let dir = [axis(&d, 0), axis(&d, 1), axis(&d, 2)];
         RayLanes::from_lanes([axis(&o, 0), axis(&o, 1), axis(&o, 2)], dir)
     }
 
     /// Rays already in lanes: origins and directions, axis by axis.
     #[inline(always)]
-    pub fn from_lanes(origin: [f64x4; 3], dir: [f64x4; 3]) -> RayLanes {
+    pub fn from_lanes(origin: [V; 3], dir: [V; 3]) -> RayLanes<V> {
         RayLanes {
             origin,
             dir,
@@ -68,41 +71,44 @@ impl RayLanes {
 }
 
 /// All ones in lane i when bit i of `bits` is set.
-pub fn lane_mask(bits: u32) -> f64x4 {
+#[inline(always)]
+pub fn lane_mask<V: F64x4>(bits: u32) -> V {
     let on = f64::from_bits(u64::MAX);
-    f64x4::new([0, 1, 2, 3].map(|i| if bits & (1 << i) != 0 { on } else { 0.0 }))
+    V::new([0, 1, 2, 3].map(|i| if bits & (1 << i) != 0 { on } else { 0.0 }))
 }
 
 /// Four rays in lanes prepared for slab tests against many boxes: the core's `SlabRay` four at
 /// a time.
 #[derive(Clone, Copy, Debug)]
-pub struct SlabLanes {
-    origin: [f64x4; 3],
-    dir: [f64x4; 3],
+pub struct SlabLanes<V> {
+    origin: [V; 3],
+    dir: [V; 3],
     /// 1/d per component, as `DVec3::recip` finds it ray by ray.
-    inv_dir: [f64x4; 3],
+    inv_dir: [V; 3],
     /// All ones where 1/d is negative (`SlabRay::negative`).
-    negative: [f64x4; 3],
+    negative: [V; 3],
 }
 
-impl SlabLanes {
-    pub fn new(rays: &RayLanes) -> SlabLanes {
-        let inv_dir = rays.dir.map(|d| f64x4::ONE / d);
+impl<V: F64x4> SlabLanes<V> {
+    #[inline(always)]
+    pub fn new(rays: &RayLanes<V>) -> SlabLanes<V> {
+        let inv_dir = rays.dir.map(|d| V::ONE / d);
         SlabLanes {
             origin: rays.origin,
             dir: rays.dir,
             inv_dir,
-            negative: inv_dir.map(f64x4::is_sign_negative),
+            negative: inv_dir.map(V::is_sign_negative),
         }
     }
 
     /// The rays themselves, as `RayLanes::new` gave them.
     #[inline(always)]
-    pub fn rays(&self) -> RayLanes {
+    pub fn rays(&self) -> RayLanes<V> {
         RayLanes::from_lanes(self.origin, self.dir)
     }
 
     /// The 1/d of the ray in one lane, bit for bit `ray.dir.recip()`.
+    #[inline(always)]
     pub fn inv_dir(&self, lane: usize) -> DVec3 {
         DVec3::from_array(self.inv_dir.map(|axis| axis.to_array()[lane]))
     }
@@ -112,10 +118,10 @@ impl SlabLanes {
 /// whose ray passes through the box. Lane by lane the very arithmetic and comparisons of the
 /// core's `slab` and `overlaps`, so each bit is what the ray's own test answers.
 #[inline(always)]
-pub fn box_hit_lanes(b: &Aabb, r: &SlabLanes, t_min: f64, t_max: f64x4) -> u32 {
-    let (mut enter, mut exit) = (f64x4::splat(t_min), t_max);
+pub fn box_hit_lanes<V: F64x4>(b: &Aabb, r: &SlabLanes<V>, t_min: f64, t_max: V) -> u32 {
+    let (mut enter, mut exit) = (V::splat(t_min), t_max);
     for axis in 0..3 {
-        let (lo, hi) = (f64x4::splat(b.min[axis]), f64x4::splat(b.max[axis]));
+        let (lo, hi) = (V::splat(b.min[axis]), V::splat(b.max[axis]));
         let negative = r.negative[axis];
         let (near, far) = (negative.bitselect(hi, lo), negative.bitselect(lo, hi));
         let inv = r.inv_dir[axis];
@@ -125,7 +131,7 @@ pub fn box_hit_lanes(b: &Aabb, r: &SlabLanes, t_min: f64, t_max: f64x4) -> u32 {
         enter = t_near.simd_gt(enter).bitselect(t_near, enter);
         exit = t_far.simd_lt(exit).bitselect(t_far, exit);
     }
-    let slack = exit.abs() * f64x4::splat(4.0) * f64x4::splat(f64::EPSILON);
+    let slack = exit.abs() * V::splat(4.0) * V::splat(f64::EPSILON);
     enter.simd_le(exit + slack).to_bitmask()
 }
 
@@ -134,30 +140,31 @@ pub fn box_hit_lanes(b: &Aabb, r: &SlabLanes, t_min: f64, t_max: f64x4) -> u32 {
 /// t_min < t < t_max[i] (that t is then the one `plane_hit` returns). `plane_hit`'s early exit
 /// for height and rate of the same sign needs no test here: t = −height/rate ≤ 0 there.
 #[inline(always)]
-pub fn plane_hits_of_lanes(
+pub fn plane_hits_of_lanes<V: F64x4>(
     plane: &Plane,
-    rays: &RayLanes,
+    rays: &RayLanes<V>,
     t_min: f64,
-    t_max: f64x4,
-) -> (f64x4, u32) {
+    t_max: V,
+) -> (V, u32) {
     debug_assert!(t_min >= 0.0);
-    let [nx, ny, nz] = plane.normal.to_array().map(f64x4::splat);
-    let [px, py, pz] = plane.point.to_array().map(f64x4::splat);
+    let [nx, ny, nz] = plane.normal.to_array().map(V::splat);
+    let [px, py, pz] = plane.point.to_array().map(V::splat);
     let [dx, dy, dz] = rays.dir;
     let [ox, oy, oz] = rays.origin;
     let rate = dx * nx + dy * ny + dz * nz;
     let height = (ox - px) * nx + (oy - py) * ny + (oz - pz) * nz;
     let t = -height / rate;
-    let crossing = rate.simd_ne(f64x4::ZERO)
-        & t.simd_gt(f64x4::splat(t_min))
+    let crossing = rate.simd_ne(V::ZERO)
+        & t.simd_gt(V::splat(t_min))
         & t.simd_lt(t_max)
-        & t.abs().simd_lt(f64x4::splat(f64::INFINITY));
+        & t.abs().simd_lt(V::splat(f64::INFINITY));
     (t, crossing.to_bitmask())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fast::simd::Wide;
     use proptest::prelude::*;
 
     /// A coordinate that often sits exactly on a box's face (−1 or 1), at zero, or anywhere.
@@ -199,8 +206,8 @@ mod tests {
             // The box [−1, 1]³, or a flat one (a face with no thickness along y).
             let max = if flat { DVec3::new(1.0, -1.0, 1.0) } else { DVec3::ONE };
             let b = Aabb::new(-DVec3::ONE, max);
-            let slabs = SlabLanes::new(&RayLanes::new(&rays));
-            let bits = box_hit_lanes(&b, &slabs, 0.0, f64x4::new(t_max));
+            let slabs = SlabLanes::new(&RayLanes::<Wide>::new(&rays));
+            let bits = box_hit_lanes(&b, &slabs, 0.0, Wide::new(t_max));
             for (i, r) in rays.iter().enumerate() {
                 let inv = r.dir.recip();
                 prop_assert_eq!(slabs.inv_dir(i).to_array().map(f64::to_bits), inv.to_array().map(f64::to_bits));
@@ -222,8 +229,8 @@ mod tests {
             origin: DVec3::new(x, 0.0, -5.0),
             dir: z,
         });
-        let slabs = SlabLanes::new(&RayLanes::new(&rays));
-        let t_max = f64x4::new([f64::INFINITY, f64::INFINITY, f64::INFINITY, 3.9]);
+        let slabs = SlabLanes::new(&RayLanes::<Wide>::new(&rays));
+        let t_max = Wide::new([f64::INFINITY, f64::INFINITY, f64::INFINITY, 3.9]);
         assert_eq!(box_hit_lanes(&b, &slabs, 0.0, t_max), 0b0101);
     }
 }

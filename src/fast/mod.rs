@@ -24,6 +24,7 @@ mod packet_search;
 mod packet_trace;
 mod probe;
 mod search;
+pub mod simd;
 mod span_lanes;
 mod sphere_group;
 
@@ -31,4 +32,5 @@ pub use bvh_packet::PACKET;
 pub use packet_trace::trace_packet;
 pub use probe::{plane_hit, sphere_hit};
 pub use search::FastScene;
+pub use simd::{level, Level};
 pub use sphere_group::SphereGroup;

@@ -1,11 +1,10 @@
 //! The fast search for packets of rays: up to 16 rays (a pixel's grid samples, or the shadow
 //! or secondary rays of their surfaces) searched together. With a BVH, rays whose directions
 //! share their signs walk the tree as one packet (`bvh_packet.rs`); without one, every object
-//! is tested against four rays at a time in `f64x4` lanes. Every ray finds the hit, and counts
+//! is tested against four rays at a time in four lanes (`F64x4`). Every ray finds the hit, and counts
 //! the work, that the one-ray search finds for it.
 
 use glam::DVec3;
-use wide::f64x4;
 
 use super::bvh_packet::{any_packet, closest_packet, signs, PACKET};
 use super::csg_lanes::{CsgLanes, LanesHits};
@@ -14,6 +13,7 @@ use super::lanes::{
 };
 use super::probe::Probe;
 use super::search::FastScene;
+use super::simd::{with_lanes, F64x4};
 use super::sphere_group::sphere_against_lanes;
 use crate::geometry::{Ray, Surface};
 use crate::scene::{Hit, Search};
@@ -30,9 +30,19 @@ impl FastScene<'_> {
     /// that share the first one's direction signs go through the BVH as a packet (if there are
     /// at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
+        with_lanes!(V => self.intersect_packet_in::<V>(rays, hits, stats))
+    }
+
+    #[inline(always)]
+    fn intersect_packet_in<V: F64x4>(
+        &self,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        stats: &mut Stats,
+    ) {
         if self.in_lanes {
             for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
-                self.intersect_in_lanes(rays, hits, stats);
+                self.intersect_in_lanes::<V>(rays, hits, stats);
             }
             return;
         }
@@ -62,10 +72,10 @@ impl FastScene<'_> {
         let mut limits = [f64::INFINITY; PACKET];
         for lane in 0..n {
             let (ray, inv) = (&packet[lane], packet_inv[lane]);
-            let (hit, limit) = self.nearest_unbounded(ray, inv, 0.0, f64::INFINITY, stats);
+            let (hit, limit) = self.nearest_unbounded::<V>(ray, inv, 0.0, f64::INFINITY, stats);
             (hits[lanes[lane]], limits[lane]) = (hit, limit);
         }
-        let visits = closest_packet(
+        let visits = closest_packet::<V>(
             &self.scene.index.bvh,
             &packet[..n],
             0.0,
@@ -73,7 +83,7 @@ impl FastScene<'_> {
             |lane, item, limit| {
                 let probe = &self.bounded[item as usize];
                 let h =
-                    self.probe_hit(probe, &packet[lane], packet_inv[lane], 0.0, limit, stats)?;
+                    self.probe_hit::<V>(probe, &packet[lane], packet_inv[lane], 0.0, limit, stats)?;
                 hits[lanes[lane]] = Some(h);
                 Some(h.t)
             },
@@ -82,13 +92,20 @@ impl FastScene<'_> {
     }
 
     /// Whether a blocker with 0 < t < t_max is among the objects in the BVH.
-    fn occluded_in_bvh(&self, ray: &Ray, inv_dir: DVec3, t_max: f64, stats: &mut Stats) -> bool {
+    #[inline(always)]
+    fn occluded_in_bvh<V: F64x4>(
+        &self,
+        ray: &Ray,
+        inv_dir: DVec3,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> bool {
         let (blocked, visits) = self
             .scene
             .index
             .bvh
             .any(ray.origin, ray.dir, 0.0, t_max, |item| {
-                self.probe_blocker(
+                self.probe_blocker::<V>(
                     &self.bounded[item as usize],
                     ray,
                     inv_dir,
@@ -108,10 +125,15 @@ impl FastScene<'_> {
     /// Otherwise rays that get past the objects outside the BVH search it as a packet (any
     /// directions will do: an any-hit search visits the nodes in a fixed order).
     pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+        with_lanes!(V => self.occluded_packet_in::<V>(rays, t_max, stats))
+    }
+
+    #[inline(always)]
+    fn occluded_packet_in<V: F64x4>(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
         if self.in_lanes {
             let mut blocked = 0;
             for (k, (rays, t_max)) in rays.chunks(LANES).zip(t_max.chunks(LANES)).enumerate() {
-                blocked |= self.occluded_in_lanes(rays, t_max, stats) << (k * LANES);
+                blocked |= self.occluded_in_lanes::<V>(rays, t_max, stats) << (k * LANES);
             }
             return blocked;
         }
@@ -124,7 +146,7 @@ impl FastScene<'_> {
         for (i, ray) in rays.iter().enumerate() {
             let inv_dir = self.inv_dir(ray);
             if self.unbounded.iter().any(|p| {
-                self.probe_blocker(p, ray, inv_dir, 0.0, t_max[i], stats)
+                self.probe_blocker::<V>(p, ray, inv_dir, 0.0, t_max[i], stats)
                     .is_some()
             }) {
                 blocked |= 1 << i;
@@ -138,21 +160,21 @@ impl FastScene<'_> {
         }
         if n < PACKET_MIN {
             for k in 0..n {
-                if self.occluded_in_bvh(&packet[k], packet_inv[k], reach[k], stats) {
+                if self.occluded_in_bvh::<V>(&packet[k], packet_inv[k], reach[k], stats) {
                     let i = lanes[k];
                     blocked |= 1 << i;
                 }
             }
             return blocked;
         }
-        let (hit, visits) = any_packet(
+        let (hit, visits) = any_packet::<V>(
             &self.scene.index.bvh,
             &packet[..n],
             0.0,
             &reach,
             |lane, item| {
                 let probe = &self.bounded[item as usize];
-                self.probe_blocker(
+                self.probe_blocker::<V>(
                     probe,
                     &packet[lane],
                     packet_inv[lane],
@@ -177,38 +199,39 @@ impl FastScene<'_> {
     /// other object ray by ray, behind its box (tested against all the rays at once). Each
     /// ray meets the objects in the same order as in `intersect`, with the same arithmetic and
     /// the same shrinking limit, so it finds the same hit and counts the same tests.
-    fn intersect_in_lanes(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
-        let lanes = RayLanes::new(rays);
+    #[inline(always)]
+    fn intersect_in_lanes<V: F64x4>(
+        &self,
+        rays: &[Ray],
+        hits: &mut [Option<Hit>],
+        stats: &mut Stats,
+    ) {
+        let lanes = RayLanes::<V>::new(rays);
         let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
         let used = (1u32 << rays.len()) - 1;
-        let all = lane_mask(used);
-        let mut limit = f64x4::splat(f64::INFINITY);
+        let all = lane_mask::<V>(used);
+        let mut limit = V::splat(f64::INFINITY);
         hits.fill(None);
         // Lanes whose t lies in 0 < t < limit take it as their nearest hit so far.
-        let take = |hits: &mut [Option<Hit>],
-                    t: f64x4,
-                    bits: u32,
-                    object: u32,
-                    leaf: u32,
-                    limit: &mut f64x4| {
-            let bits = bits & used;
-            if bits == 0 {
-                return;
-            }
-            *limit = lane_mask(bits).bitselect(t, *limit);
-            let t = t.to_array();
-            for (i, hit) in hits.iter_mut().enumerate() {
-                if bits & (1 << i) != 0 {
-                    *hit = Some(Hit {
-                        t: t[i],
-                        object,
-                        surface: Surface::new(leaf, 0),
-                    });
+        let take =
+            |hits: &mut [Option<Hit>], t: V, bits: u32, object: u32, leaf: u32, limit: &mut V| {
+                let bits = bits & used;
+                if bits == 0 {
+                    return;
                 }
-            }
-        };
-        let within =
-            |t: f64x4, limit: f64x4| (t.simd_gt(f64x4::ZERO) & t.simd_lt(limit)).to_bitmask();
+                *limit = lane_mask::<V>(bits).bitselect(t, *limit);
+                let t = t.to_array();
+                for (i, hit) in hits.iter_mut().enumerate() {
+                    if bits & (1 << i) != 0 {
+                        *hit = Some(Hit {
+                            t: t[i],
+                            object,
+                            surface: Surface::new(leaf, 0),
+                        });
+                    }
+                }
+            };
+        let within = |t: V, limit: V| (t.simd_gt(V::ZERO) & t.simd_lt(limit)).to_bitmask();
         let n = rays.len() as u64;
         for p in &self.unbounded {
             match p {
@@ -248,7 +271,7 @@ impl FastScene<'_> {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
                     let mut t_max = limit.to_array();
                     self.object_in_lanes(*o, rays, slabs, &mut t_max, hits, stats);
-                    limit = f64x4::new(t_max);
+                    limit = V::new(t_max);
                 }
             }
         }
@@ -259,16 +282,18 @@ impl FastScene<'_> {
     /// any other object ray by ray, as in `intersect_in_lanes`. Each ray meets the objects in
     /// the same order as in `occluded`, with the same arithmetic, so it is blocked by the same
     /// one and counts the same tests.
-    fn occluded_in_lanes(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
-        let lanes = RayLanes::new(rays);
+    #[inline(always)]
+    fn occluded_in_lanes<V: F64x4>(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+        let lanes = RayLanes::<V>::new(rays);
         let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
-        let mut reach = [0.0; LANES];
-        reach[..t_max.len()].copy_from_slice(t_max);
-        let reach = f64x4::new(reach);
+        // Lane by lane, not `copy_from_slice`: a call to memcpy here would spill every vector
+        // register around it.
+        let reach = |i: usize| t_max.get(i).copied().unwrap_or(0.0);
+        let reach = V::setr(reach(0), reach(1), reach(2), reach(3));
         let all = (1u32 << rays.len()) - 1;
         let mut open = all;
         // The lanes whose t (NaN for none) lies in 0 < t < t_max.
-        let within = |t: f64x4| (t.simd_gt(f64x4::ZERO) & t.simd_lt(reach)).to_bitmask();
+        let within = |t: V| (t.simd_gt(V::ZERO) & t.simd_lt(reach)).to_bitmask();
         for p in &self.unbounded {
             if open == 0 {
                 break;
@@ -281,7 +306,7 @@ impl FastScene<'_> {
                 Probe::Sphere { sphere, .. } => {
                     stats.primitives_tested += open.count_ones() as u64;
                     let r2 = sphere.radius * sphere.radius;
-                    let open_lanes = lane_mask(open);
+                    let open_lanes = lane_mask::<V>(open);
                     if let Some(t) =
                         sphere_against_lanes(sphere.center, r2, &lanes, open_lanes, 0.0)
                     {
@@ -314,79 +339,92 @@ impl FastScene<'_> {
     /// against all of them at once, then the object ray by ray where it passed, and each ray's
     /// nearest hit so far and its limit t_max are updated as `intersect` would.
     /// Out of line, so that the lanes' loop over plain spheres and planes stays small.
-    #[inline(never)]
-    fn object_in_lanes(
+    #[inline(always)]
+    fn object_in_lanes<V: F64x4>(
         &self,
         o: u32,
         rays: &[Ray],
-        slabs: &SlabLanes,
+        slabs: &SlabLanes<V>,
         t_max: &mut [f64; LANES],
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
-        let used = (1 << rays.len()) - 1;
-        let limit = f64x4::new(*t_max);
-        let mut passed = self.box_passed_by(o, used, slabs, limit, stats);
-        if let Some((csg, found)) = self.csg_in_lanes(o, slabs, passed, limit, stats) {
-            let t = found.t.to_array();
-            for i in (0..rays.len()).filter(|i| found.hit & (1 << i) != 0) {
-                t_max[i] = t[i];
-                hits[i] = Some(Hit {
-                    t: t[i],
-                    object: o,
-                    surface: csg.surface(&found, i),
-                });
-            }
-            passed = found.undecided;
-        }
-        for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
-            if let Some(h) = self.object_hit(o, &rays[i], slabs.inv_dir(i), 0.0, t_max[i], stats) {
-                t_max[i] = h.t;
-                hits[i] = Some(h);
-            }
-        }
+        V::outlined(
+            #[inline(always)]
+            || {
+                let used = (1 << rays.len()) - 1;
+                let limit = V::new(*t_max);
+                let mut passed = self.box_passed_by(o, used, slabs, limit, stats);
+                if let Some((csg, found)) = self.csg_in_lanes(o, slabs, passed, limit, stats) {
+                    let t = found.t.to_array();
+                    for i in (0..rays.len()).filter(|i| found.hit & (1 << i) != 0) {
+                        t_max[i] = t[i];
+                        hits[i] = Some(Hit {
+                            t: t[i],
+                            object: o,
+                            surface: csg.surface(&found, i),
+                        });
+                    }
+                    passed = found.undecided;
+                }
+                for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
+                    if let Some(h) =
+                        self.object_hit::<V>(o, &rays[i], slabs.inv_dir(i), 0.0, t_max[i], stats)
+                    {
+                        t_max[i] = h.t;
+                        hits[i] = Some(h);
+                    }
+                }
+            },
+        )
     }
 
     /// Object o against the shadow rays of a packet still `open` (bit i: ray i), behind its
     /// box tried against all of them at once: the bits of the rays it blocks.
-    #[inline(never)]
-    fn object_blocks_lanes(
+    /// Out of line, as `object_in_lanes`.
+    #[inline(always)]
+    fn object_blocks_lanes<V: F64x4>(
         &self,
         o: u32,
         rays: &[Ray],
-        slabs: &SlabLanes,
-        t_max: f64x4,
+        slabs: &SlabLanes<V>,
+        t_max: V,
         open: u32,
         stats: &mut Stats,
     ) -> u32 {
-        let mut passed = self.box_passed_by(o, open, slabs, t_max, stats);
-        let reach = t_max.to_array();
-        let mut blocked = 0;
-        if let Some((_, found)) = self.csg_in_lanes(o, slabs, passed, t_max, stats) {
-            blocked = found.hit;
-            passed = found.undecided;
-        }
-        for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
-            if self
-                .object_hit(o, &rays[i], slabs.inv_dir(i), 0.0, reach[i], stats)
-                .is_some()
-            {
-                blocked |= 1 << i;
-            }
-        }
-        blocked
+        V::outlined(
+            #[inline(always)]
+            || {
+                let mut passed = self.box_passed_by(o, open, slabs, t_max, stats);
+                let reach = t_max.to_array();
+                let mut blocked = 0;
+                if let Some((_, found)) = self.csg_in_lanes(o, slabs, passed, t_max, stats) {
+                    blocked = found.hit;
+                    passed = found.undecided;
+                }
+                for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
+                    if self
+                        .object_hit::<V>(o, &rays[i], slabs.inv_dir(i), 0.0, reach[i], stats)
+                        .is_some()
+                    {
+                        blocked |= 1 << i;
+                    }
+                }
+                blocked
+            },
+        )
     }
 
     /// Which of the rays in `lanes` (bit i: lane i) pass through object o's box within
     /// [0, t_max] (all of them where the object is not tested behind its box), with the others
     /// counted as skipped, as `boxed_object_hit` counts them ray by ray.
     #[inline(always)]
-    fn box_passed_by(
+    fn box_passed_by<V: F64x4>(
         &self,
         o: u32,
         lanes: u32,
-        slabs: &SlabLanes,
-        t_max: f64x4,
+        slabs: &SlabLanes<V>,
+        t_max: V,
         stats: &mut Stats,
     ) -> u32 {
         if !self.tested_behind_box(o) {
@@ -402,14 +440,14 @@ impl FastScene<'_> {
     /// the rays whose bits are set in `open`, four at a time, counted as `object_hit` counts
     /// them ray by ray; the rays it leaves undecided are for `object_hit`.
     #[inline(always)]
-    fn csg_in_lanes(
+    fn csg_in_lanes<V: F64x4>(
         &self,
         o: u32,
-        slabs: &SlabLanes,
+        slabs: &SlabLanes<V>,
         open: u32,
-        t_max: f64x4,
+        t_max: V,
         stats: &mut Stats,
-    ) -> Option<(&CsgLanes, LanesHits)> {
+    ) -> Option<(&CsgLanes, LanesHits<V>)> {
         let csg = self.csg_lanes[o as usize].as_ref()?;
         let found = csg.hits(
             slabs,

@@ -17,6 +17,7 @@ use super::lanes::UNUSED;
 use super::light_share::light_share;
 use super::outgoing::{outgoing, Transmission};
 use super::search::FastScene;
+use super::simd::with_lanes;
 use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
 use crate::shading::local::ambient;
@@ -107,6 +108,11 @@ impl Children {
 /// what `Tracer::radiance` gives ray i, and the stats and the random numbers drawn are those of
 /// tracing the rays one after another.
 pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
+    with_lanes!(=> trace_packet_inline(t, fast, rays, out))
+}
+
+#[inline(always)]
+fn trace_packet_inline(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
     let n = rays.len();
     assert!(n <= PACKET && out.len() == n);
     if t.options.stop_at_lights {
@@ -126,6 +132,7 @@ pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [D
 /// task i. The shadow rays toward each light are searched together
 /// (`FastScene::occluded_packet`); the secondary rays go in waves (`secondary_packet`) where
 /// the objects are tested in lanes and nothing draws random numbers, else one after another.
+#[inline(always)]
 fn shade_packet<L: Lanes + ?Sized>(
     t: &mut Tracer,
     fast: &FastScene,
@@ -196,6 +203,7 @@ fn shade_packet<L: Lanes + ?Sized>(
 /// so the order rays are traced in changes nothing): all their reflection rays are traced
 /// together as one packet, then all their refraction rays (or, past the limiting angle, the
 /// mirror rays that stay inside) as another, and each surface sums kr·I_r + kt·I_t.
+#[inline(always)]
 fn secondary_packet<L: Lanes + ?Sized>(
     t: &mut Tracer,
     fast: &FastScene,
@@ -251,6 +259,11 @@ fn secondary_packet<L: Lanes + ?Sized>(
 
 /// Traces the children that are not stopped as one packet, and settles their parents' colours.
 fn trace_children(t: &mut Tracer, fast: &FastScene, children: &mut Children) {
+    with_lanes!(=> trace_children_inline(t, fast, children))
+}
+
+#[inline(always)]
+fn trace_children_inline(t: &mut Tracer, fast: &FastScene, children: &mut Children) {
     let n = children.tasks.len();
     if n == 0 {
         return;

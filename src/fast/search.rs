@@ -11,6 +11,7 @@ use glam::DVec3;
 use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
+use super::simd::{with_lanes, F64x4};
 use crate::geometry::csg::CsgWork;
 use crate::geometry::{first_crossing, Ray, Shape, Span, Surface};
 use crate::scene::{Geometry, Hit, Scene, Search};
@@ -152,7 +153,7 @@ impl<'s> FastScene<'s> {
     /// Inlined, so that 1/d stays in registers for the box test rather than going through
     /// memory and being read back at once (a store-forwarding stall).
     #[inline(always)]
-    fn boxed_object_hit(
+    fn boxed_object_hit<V: F64x4>(
         &self,
         o: u32,
         ray: &Ray,
@@ -169,7 +170,7 @@ impl<'s> FastScene<'s> {
             stats.bounds_skipped += 1;
             return None;
         }
-        self.object_hit(o, ray, inv_dir, t_min, t_max, stats)
+        self.object_hit::<V>(o, ray, inv_dir, t_min, t_max, stats)
     }
 
     /// Whether object o is tested behind its box: always, but for CSG objects with their boxes
@@ -184,8 +185,8 @@ impl<'s> FastScene<'s> {
     /// `Scene::object_crossing`, but for a flat CSG object, whose nearest crossing is read off
     /// its primitives' spans where the answer is clear. Kept out of line: its segment lists
     /// would otherwise give the probes' tight loops a large stack frame.
-    #[inline(never)]
-    pub(super) fn object_hit(
+    #[inline(always)]
+    pub(super) fn object_hit<V: F64x4>(
         &self,
         o: u32,
         ray: &Ray,
@@ -194,34 +195,41 @@ impl<'s> FastScene<'s> {
         t_max: f64,
         stats: &mut Stats,
     ) -> Option<Hit> {
-        let scene = self.scene;
-        let (Geometry::Csg(root), Some(flat)) = (
-            &scene.objects[o as usize].geometry,
-            &self.flat_csg[o as usize],
-        ) else {
-            return scene.object_crossing(o, ray, inv_dir, t_min, t_max, stats);
-        };
-        stats.primitives_tested += 1;
-        let r = scene.csg_ray(ray, inv_dir, t_min, t_max);
-        let mut work = CsgWork::default();
-        let crossing = flat.nearest(scene, &r, &mut work);
-        stats.csg_pruned += work.pruned;
-        let (t, surface) = match crossing {
-            Crossing::Hit(t, surface) => (t, surface),
-            Crossing::Miss => return None,
-            Crossing::Undecided => first_crossing(&scene.csg_segments(root, &r, stats), t_min)?,
-        };
-        (t > t_min && t < t_max && t.is_finite()).then_some(Hit {
-            t,
-            object: o,
-            surface,
-        })
+        V::outlined(
+            #[inline(always)]
+            || {
+                let scene = self.scene;
+                let (Geometry::Csg(root), Some(flat)) = (
+                    &scene.objects[o as usize].geometry,
+                    &self.flat_csg[o as usize],
+                ) else {
+                    return scene.object_crossing(o, ray, inv_dir, t_min, t_max, stats);
+                };
+                stats.primitives_tested += 1;
+                let r = scene.csg_ray(ray, inv_dir, t_min, t_max);
+                let mut work = CsgWork::default();
+                let crossing = flat.nearest::<V>(scene, &r, &mut work);
+                stats.csg_pruned += work.pruned;
+                let (t, surface) = match crossing {
+                    Crossing::Hit(t, surface) => (t, surface),
+                    Crossing::Miss => return None,
+                    Crossing::Undecided => {
+                        first_crossing(&scene.csg_segments(root, &r, stats), t_min)?
+                    }
+                };
+                (t > t_min && t < t_max && t.is_finite()).then_some(Hit {
+                    t,
+                    object: o,
+                    surface,
+                })
+            },
+        )
     }
 
     /// The hit of one object through its probe: `object_hit`'s answer, found faster for plain
     /// spheres and planes.
     #[inline(always)]
-    pub(super) fn probe_hit(
+    pub(super) fn probe_hit<V: F64x4>(
         &self,
         probe: &Probe,
         ray: &Ray,
@@ -259,11 +267,11 @@ impl<'s> FastScene<'s> {
                 leaves,
             } => {
                 stats.primitives_tested += group.len() as u64;
-                let (t, k) = group.nearest(ray, t_min, t_max)?;
+                let (t, k) = group.nearest::<V>(ray, t_min, t_max)?;
                 (t, objects[k], Surface::new(leaves[k], 0))
             }
             Probe::Object(o) => {
-                let h = self.boxed_object_hit(*o, ray, inv_dir, t_min, t_max, stats)?;
+                let h = self.boxed_object_hit::<V>(*o, ray, inv_dir, t_min, t_max, stats)?;
                 (h.t, h.object, h.surface)
             }
         };
@@ -274,7 +282,7 @@ impl<'s> FastScene<'s> {
     /// of spheres answers with its first sphere in the way (not the nearest), as testing them
     /// one after another until a blocker turns up does, and counts the spheres that took.
     #[inline(always)]
-    pub(super) fn probe_blocker(
+    pub(super) fn probe_blocker<V: F64x4>(
         &self,
         probe: &Probe,
         ray: &Ray,
@@ -289,9 +297,9 @@ impl<'s> FastScene<'s> {
             leaves,
         } = probe
         else {
-            return self.probe_hit(probe, ray, inv_dir, t_min, t_max, stats);
+            return self.probe_hit::<V>(probe, ray, inv_dir, t_min, t_max, stats);
         };
-        match group.first(ray, t_min, t_max) {
+        match group.first::<V>(ray, t_min, t_max) {
             Some((t, k)) => {
                 stats.primitives_tested += k as u64 + 1;
                 Some(Hit {
@@ -309,7 +317,7 @@ impl<'s> FastScene<'s> {
 
     /// The nearest hit among the objects outside the BVH, and the limit it sets for the rest.
     #[inline(always)]
-    pub(super) fn nearest_unbounded(
+    pub(super) fn nearest_unbounded<V: F64x4>(
         &self,
         ray: &Ray,
         inv_dir: DVec3,
@@ -319,7 +327,7 @@ impl<'s> FastScene<'s> {
     ) -> (Option<Hit>, f64) {
         let (mut best, mut limit) = (None, t_max);
         for p in &self.unbounded {
-            if let Some(h) = self.probe_hit(p, ray, inv_dir, t_min, limit, stats) {
+            if let Some(h) = self.probe_hit::<V>(p, ray, inv_dir, t_min, limit, stats) {
                 limit = h.t;
                 best = Some(h);
             }
@@ -330,13 +338,31 @@ impl<'s> FastScene<'s> {
 
 impl Search for FastScene<'_> {
     fn nearest(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        with_lanes!(V => self.nearest_in::<V>(ray, t_min, t_max, stats))
+    }
+
+    fn blocker(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+        with_lanes!(V => self.blocker_in::<V>(ray, t_min, t_max, stats))
+    }
+}
+
+impl FastScene<'_> {
+    /// `Search::nearest`, in lanes of type V.
+    #[inline(always)]
+    fn nearest_in<V: F64x4>(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
         let inv_dir = self.inv_dir(ray);
-        let (mut best, limit) = self.nearest_unbounded(ray, inv_dir, t_min, t_max, stats);
+        let (mut best, limit) = self.nearest_unbounded::<V>(ray, inv_dir, t_min, t_max, stats);
         if !self.bounded.is_empty() {
             let bvh = &self.scene.index.bvh;
             let visits = bvh.closest(ray.origin, ray.dir, t_min, limit, |item, limit| {
                 let probe = &self.bounded[item as usize];
-                let h = self.probe_hit(probe, ray, inv_dir, t_min, limit, stats)?;
+                let h = self.probe_hit::<V>(probe, ray, inv_dir, t_min, limit, stats)?;
                 best = Some(h);
                 Some(h.t)
             });
@@ -345,10 +371,18 @@ impl Search for FastScene<'_> {
         best
     }
 
-    fn blocker(&self, ray: &Ray, t_min: f64, t_max: f64, stats: &mut Stats) -> Option<Hit> {
+    /// `Search::blocker`, in lanes of type V.
+    #[inline(always)]
+    fn blocker_in<V: F64x4>(
+        &self,
+        ray: &Ray,
+        t_min: f64,
+        t_max: f64,
+        stats: &mut Stats,
+    ) -> Option<Hit> {
         let inv_dir = self.inv_dir(ray);
         for p in &self.unbounded {
-            if let Some(h) = self.probe_blocker(p, ray, inv_dir, t_min, t_max, stats) {
+            if let Some(h) = self.probe_blocker::<V>(p, ray, inv_dir, t_min, t_max, stats) {
                 return Some(h);
             }
         }
@@ -357,7 +391,7 @@ impl Search for FastScene<'_> {
             let bvh = &self.scene.index.bvh;
             let (_, visits) = bvh.any(ray.origin, ray.dir, t_min, t_max, |item| {
                 let probe = &self.bounded[item as usize];
-                blocker = self.probe_blocker(probe, ray, inv_dir, t_min, t_max, stats);
+                blocker = self.probe_blocker::<V>(probe, ray, inv_dir, t_min, t_max, stats);
                 blocker.is_some()
             });
             stats.bvh_nodes_visited += visits.nodes;

@@ -1,45 +1,47 @@
-//! Spans of convex primitives along four rays at once, one ray per `f64x4` lane: the same
+//! Spans of convex primitives along four rays at once, one ray per lane of an `F64x4`: the same
 //! arithmetic as each primitive's `span`, in the same order, so every lane's ends are the
 //! ray's own to the last bit. Where a primitive's scalar code would meet a NaN (degenerate
 //! input) a lane is marked `odd`, for the caller to ask the scalar code instead.
 
 use glam::{DAffine3, DVec3};
-use wide::f64x4;
 
 use super::lanes::RayLanes;
+use super::simd::F64x4;
 use super::sphere_group::LaneQuadratic;
 use crate::geometry::cylinder::{BASE_CAP, SIDE, TOP_CAP};
 use crate::geometry::{Aabox, Cone, Cylinder};
 
 /// Four rays' spans through one primitive.
 #[derive(Clone, Copy)]
-pub struct SpanLanes {
+pub struct SpanLanes<V> {
     /// Entry and exit t (NaN where a ray has no span).
-    pub t_in: f64x4,
-    pub t_out: f64x4,
+    pub t_in: V,
+    pub t_out: V,
     /// The faces entered and left through.
-    pub face_in: f64x4,
-    pub face_out: f64x4,
+    pub face_in: V,
+    pub face_out: V,
     /// All ones where the lanes cannot vouch for the scalar answer.
-    pub odd: f64x4,
+    pub odd: V,
 }
 
-impl SpanLanes {
+impl<V: F64x4> SpanLanes<V> {
     /// No span for any ray.
-    pub fn none() -> SpanLanes {
-        let none = f64x4::splat(f64::NAN);
+    #[inline(always)]
+    pub fn none() -> SpanLanes<V> {
+        let none = V::splat(f64::NAN);
         SpanLanes {
             t_in: none,
             t_out: none,
-            face_in: f64x4::ZERO,
-            face_out: f64x4::ZERO,
-            odd: f64x4::ZERO,
+            face_in: V::ZERO,
+            face_out: V::ZERO,
+            odd: V::ZERO,
         }
     }
 
     /// The spans in `lanes` (all ones), none elsewhere.
-    pub fn only(self, lanes: f64x4) -> SpanLanes {
-        let none = f64x4::splat(f64::NAN);
+    #[inline(always)]
+    pub fn only(self, lanes: V) -> SpanLanes<V> {
+        let none = V::splat(f64::NAN);
         SpanLanes {
             t_in: lanes.bitselect(self.t_in, none),
             t_out: lanes.bitselect(self.t_out, none),
@@ -48,32 +50,35 @@ impl SpanLanes {
     }
 
     /// All ones where there is a span (neither end NaN: a NaN span is no span).
-    pub fn exists(&self) -> f64x4 {
+    #[inline(always)]
+    pub fn exists(&self) -> V {
         self.t_in.simd_eq(self.t_in) & self.t_out.simd_eq(self.t_out)
     }
 }
 
 /// An interval of t with a face at each end, four rays at a time (`cylinder::Interval`).
 #[derive(Clone, Copy)]
-struct Interval {
-    t0: f64x4,
-    f0: f64x4,
-    t1: f64x4,
-    f1: f64x4,
+struct Interval<V> {
+    t0: V,
+    f0: V,
+    t1: V,
+    f1: V,
 }
 
-impl Interval {
-    fn everything(face: u8) -> Interval {
+impl<V: F64x4> Interval<V> {
+    #[inline(always)]
+    fn everything(face: u8) -> Interval<V> {
         Interval {
-            t0: f64x4::splat(f64::NEG_INFINITY),
+            t0: V::splat(f64::NEG_INFINITY),
             f0: face_lanes(face),
-            t1: f64x4::splat(f64::INFINITY),
+            t1: V::splat(f64::INFINITY),
             f1: face_lanes(face),
         }
     }
 
     /// `where_` (all ones) ? a : b, lane by lane.
-    fn select(where_: f64x4, a: Interval, b: Interval) -> Interval {
+    #[inline(always)]
+    fn select(where_: V, a: Interval<V>, b: Interval<V>) -> Interval<V> {
         Interval {
             t0: where_.bitselect(a.t0, b.t0),
             f0: where_.bitselect(a.f0, b.f0),
@@ -84,7 +89,8 @@ impl Interval {
 
     /// `Interval::overlap`: the later start and the earlier end, `other`'s on a tie going to
     /// `self`; and all ones where the overlap is not empty.
-    fn overlap(self, other: Interval) -> (Interval, f64x4) {
+    #[inline(always)]
+    fn overlap(self, other: Interval<V>) -> (Interval<V>, V) {
         let later = other.t0.simd_gt(self.t0);
         let earlier = other.t1.simd_lt(self.t1);
         let cut = Interval {
@@ -96,7 +102,8 @@ impl Interval {
         (cut, cut.t0.simd_le(cut.t1))
     }
 
-    fn span(self, exists: f64x4, odd: f64x4) -> SpanLanes {
+    #[inline(always)]
+    fn span(self, exists: V, odd: V) -> SpanLanes<V> {
         SpanLanes {
             t_in: self.t0,
             t_out: self.t1,
@@ -108,47 +115,63 @@ impl Interval {
     }
 }
 
-fn face_lanes(face: u8) -> f64x4 {
-    f64x4::splat(face as f64)
+#[inline(always)]
+fn face_lanes<V: F64x4>(face: u8) -> V {
+    V::splat(face as f64)
 }
 
 /// All ones where x and y are both zero (of either sign): `f64::min` and the lanes' min may
 /// pick different signs there.
-fn zero_tie(x: f64x4, y: f64x4) -> f64x4 {
-    x.simd_eq(y) & x.simd_eq(f64x4::ZERO)
+#[inline(always)]
+fn zero_tie<V: F64x4>(x: V, y: V) -> V {
+    x.simd_eq(y) & x.simd_eq(V::ZERO)
 }
 
-fn is_nan(v: f64x4) -> f64x4 {
+#[inline(always)]
+fn is_nan<V: F64x4>(v: V) -> V {
     v.simd_ne(v)
 }
 
-fn splat3(v: DVec3) -> [f64x4; 3] {
-    v.to_array().map(f64x4::splat)
+#[inline(always)]
+fn splat3<V: F64x4>(v: DVec3) -> [V; 3] {
+    v.to_array().map(V::splat)
+}
+
+/// [f(0), f(1), f(2)]: `std::array::from_fn`, which the compiler does not always inline into
+/// the lanes' copy for the processor (`simd::with_lanes`).
+#[inline(always)]
+fn axes<V: F64x4>(f: impl Fn(usize) -> V) -> [V; 3] {
+    [f(0), f(1), f(2)]
 }
 
 /// glam's `dot`: (x·x' + y·y') + z·z'.
-fn dot(u: [f64x4; 3], v: [f64x4; 3]) -> f64x4 {
+#[inline(always)]
+fn dot<V: F64x4>(u: [V; 3], v: [V; 3]) -> V {
     u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 }
 
 /// The quadratic of the sphere (centre, r²) along the four rays.
 #[inline(always)]
-pub(crate) fn sphere_quadratic(rays: &RayLanes, centre: DVec3, r2: f64) -> LaneQuadratic {
-    LaneQuadratic::new(rays, splat3(centre), f64x4::splat(r2))
+pub(crate) fn sphere_quadratic<V: F64x4>(
+    rays: &RayLanes<V>,
+    centre: DVec3,
+    r2: f64,
+) -> LaneQuadratic<V> {
+    LaneQuadratic::new(rays, splat3(centre), V::splat(r2))
 }
 
 /// `Sphere::span` of the sphere (centre, r²).
 #[inline(always)]
-pub fn sphere(rays: &RayLanes, centre: DVec3, r2: f64) -> SpanLanes {
+pub fn sphere<V: F64x4>(rays: &RayLanes<V>, centre: DVec3, r2: f64) -> SpanLanes<V> {
     let q = sphere_quadratic(rays, centre, r2);
     let (disc, no_root) = q.disc();
     let (t_in, t_out) = q.roots(disc);
     SpanLanes {
         t_in,
         t_out,
-        face_in: f64x4::ZERO,
-        face_out: f64x4::ZERO,
-        odd: f64x4::ZERO,
+        face_in: V::ZERO,
+        face_out: V::ZERO,
+        odd: V::ZERO,
     }
     .only(!(q.passes | no_root))
 }
@@ -156,13 +179,13 @@ pub fn sphere(rays: &RayLanes, centre: DVec3, r2: f64) -> SpanLanes {
 /// `Aabox::span`: the overlap of three slabs, each entered through its near face (the sign of
 /// d says which); a ray parallel to a slab is inside it everywhere or nowhere.
 #[inline(always)]
-pub fn aabox(shape: &Aabox, rays: &RayLanes) -> SpanLanes {
-    let zero = f64x4::ZERO;
+pub fn aabox<V: F64x4>(shape: &Aabox, rays: &RayLanes<V>) -> SpanLanes<V> {
+    let zero = V::ZERO;
     let mut span = Interval::everything(0);
     let mut outside = zero;
     for axis in 0..3 {
         let (o, d) = (rays.origin[axis], rays.dir[axis]);
-        let (lo, hi) = (f64x4::splat(shape.min[axis]), f64x4::splat(shape.max[axis]));
+        let (lo, hi) = (V::splat(shape.min[axis]), V::splat(shape.max[axis]));
         let parallel = d.simd_eq(zero);
         outside |= parallel & (o.simd_lt(lo) | o.simd_gt(hi));
         let (t0, t1) = ((lo - o) / d, (hi - o) / d);
@@ -185,11 +208,11 @@ pub fn aabox(shape: &Aabox, rays: &RayLanes) -> SpanLanes {
 /// `cylinder::quadratic`: the roots of a·t² + 2b·t + c = 0 in increasing order, all ones
 /// where they are real, and the odd lanes.
 #[inline(always)]
-fn quadratic(a: f64x4, b: f64x4, c: f64x4) -> (f64x4, f64x4, f64x4, f64x4) {
-    let zero = f64x4::ZERO;
+fn quadratic<V: F64x4>(a: V, b: V, c: V) -> (V, V, V, V) {
+    let zero = V::ZERO;
     let disc = b * b - a * c;
     let real = !disc.simd_lt(zero);
-    let sign = (b & f64x4::splat(-0.0)) | f64x4::ONE;
+    let sign = (b & V::splat(-0.0)) | V::ONE;
     let q = -(b + sign * disc.sqrt());
     let (x, y) = (q / a, c / q);
     let q0 = q.simd_eq(zero);
@@ -204,8 +227,14 @@ fn quadratic(a: f64x4, b: f64x4, c: f64x4) -> (f64x4, f64x4, f64x4, f64x4) {
 /// `cylinder::cap_slab`: the slab 0 ≤ height ≤ h, with height0 at t = 0 and changing at `rate`
 /// per unit t; and all ones where it is not empty.
 #[inline(always)]
-fn cap_slab(height0: f64x4, rate: f64x4, h: f64, base_face: u8, top_face: u8) -> (Interval, f64x4) {
-    let (zero, h) = (f64x4::ZERO, f64x4::splat(h));
+fn cap_slab<V: F64x4>(
+    height0: V,
+    rate: V,
+    h: f64,
+    base_face: u8,
+    top_face: u8,
+) -> (Interval<V>, V) {
+    let (zero, h) = (V::ZERO, V::splat(h));
     let flat = rate.simd_eq(zero);
     let (tb, tt) = (-height0 / rate, (h - height0) / rate);
     let (base, top) = (face_lanes(base_face), face_lanes(top_face));
@@ -225,18 +254,18 @@ fn cap_slab(height0: f64x4, rate: f64x4, h: f64, base_face: u8, top_face: u8) ->
 
 /// `Cylinder::span`: the infinite cylinder |w⊥|² = r² clipped by the slab between the caps.
 #[inline(always)]
-pub fn cylinder(shape: &Cylinder, rays: &RayLanes) -> SpanLanes {
+pub fn cylinder<V: F64x4>(shape: &Cylinder, rays: &RayLanes<V>) -> SpanLanes<V> {
     let axis = shape.top - shape.base;
     let h = axis.length();
     let a = splat3(axis / h);
     let base = splat3(shape.base);
-    let w: [f64x4; 3] = std::array::from_fn(|k| rays.origin[k] - base[k]);
+    let w: [V; 3] = axes(|k| rays.origin[k] - base[k]);
     let (wa, da) = (dot(w, a), dot(rays.dir, a));
-    let w_perp: [f64x4; 3] = std::array::from_fn(|k| w[k] - wa * a[k]);
-    let d_perp: [f64x4; 3] = std::array::from_fn(|k| rays.dir[k] - da * a[k]);
+    let w_perp: [V; 3] = axes(|k| w[k] - wa * a[k]);
+    let d_perp: [V; 3] = axes(|k| rays.dir[k] - da * a[k]);
     let qa = dot(d_perp, d_perp);
-    let qc = dot(w_perp, w_perp) - f64x4::splat(shape.radius * shape.radius);
-    let parallel = qa.simd_eq(f64x4::ZERO);
+    let qc = dot(w_perp, w_perp) - V::splat(shape.radius * shape.radius);
+    let parallel = qa.simd_eq(V::ZERO);
     let (t0, t1, real, roots_odd) = quadratic(qa, dot(d_perp, w_perp), qc);
     let roots = Interval {
         t0,
@@ -245,7 +274,7 @@ pub fn cylinder(shape: &Cylinder, rays: &RayLanes) -> SpanLanes {
         f1: face_lanes(SIDE),
     };
     let side = Interval::select(parallel, Interval::everything(SIDE), roots);
-    let side_exists = parallel.bitselect(!qc.simd_gt(f64x4::ZERO), real);
+    let side_exists = parallel.bitselect(!qc.simd_gt(V::ZERO), real);
     let (caps, caps_exist) = cap_slab(wa, da, h, BASE_CAP, TOP_CAP);
     let (cut, overlaps) = side.overlap(caps);
     let odd = is_nan(qa) | is_nan(qc) | is_nan(wa) | is_nan(da) | (!parallel & roots_odd);
@@ -255,30 +284,30 @@ pub fn cylinder(shape: &Cylinder, rays: &RayLanes) -> SpanLanes {
 /// `Cone::span`: where f(t) = ((x − apex)·a)² − cos²θ·|x − apex|² ≥ 0 (one interval or two
 /// half-lines), within the slab between apex and base; the hull of the pieces that survive.
 #[inline(always)]
-pub fn cone(shape: &Cone, rays: &RayLanes) -> SpanLanes {
-    let zero = f64x4::ZERO;
+pub fn cone<V: F64x4>(shape: &Cone, rays: &RayLanes<V>) -> SpanLanes<V> {
+    let zero = V::ZERO;
     let axis = shape.base - shape.apex;
     let h = axis.length();
     let a = splat3(axis / h);
-    let k = f64x4::splat(shape.cos2());
+    let k = V::splat(shape.cos2());
     let apex = splat3(shape.apex);
-    let w: [f64x4; 3] = std::array::from_fn(|i| rays.origin[i] - apex[i]);
+    let w: [V; 3] = axes(|i| rays.origin[i] - apex[i]);
     let (wa, da) = (dot(w, a), dot(rays.dir, a));
     let qa = da * da - k * dot(rays.dir, rays.dir);
     let qb = da * wa - k * dot(rays.dir, w);
     let qc = wa * wa - k * dot(w, w);
     let (slab, slab_exists) = cap_slab(wa, da, h, SIDE, BASE_CAP);
 
-    let side = |t0: f64x4, t1: f64x4| Interval {
+    let side = |t0: V, t1: V| Interval {
         t0,
         f0: face_lanes(SIDE),
         t1,
         f1: face_lanes(SIDE),
     };
-    let (infinity, minus_infinity) = (f64x4::splat(f64::INFINITY), f64x4::splat(f64::NEG_INFINITY));
+    let (infinity, minus_infinity) = (V::splat(f64::INFINITY), V::splat(f64::NEG_INFINITY));
     // qa = 0: f is linear (or constant).
     let constant = qb.simd_eq(zero);
-    let t = -qc / (f64x4::splat(2.0) * qb);
+    let t = -qc / (V::splat(2.0) * qb);
     let rising = qb.simd_gt(zero);
     let linear = side(
         rising.bitselect(t, minus_infinity),
@@ -330,23 +359,24 @@ pub fn cone(shape: &Cone, rays: &RayLanes) -> SpanLanes {
 /// `Transform::ray_to_local` for four rays: the same products and sums as glam's
 /// `transform_point3` and `transform_vector3`, in the same order.
 #[inline(always)]
-pub fn to_local(rays: &RayLanes, m: &DAffine3) -> RayLanes {
+pub fn to_local<V: F64x4>(rays: &RayLanes<V>, m: &DAffine3) -> RayLanes<V> {
     let (x, y, z) = (
-        splat3(m.matrix3.x_axis),
-        splat3(m.matrix3.y_axis),
-        splat3(m.matrix3.z_axis),
+        splat3::<V>(m.matrix3.x_axis),
+        splat3::<V>(m.matrix3.y_axis),
+        splat3::<V>(m.matrix3.z_axis),
     );
-    let t = splat3(m.translation);
+    let t = splat3::<V>(m.translation);
     let [ox, oy, oz] = rays.origin;
     let [dx, dy, dz] = rays.dir;
-    let origin: [f64x4; 3] = std::array::from_fn(|c| x[c] * ox + y[c] * oy + z[c] * oz + t[c]);
-    let dir: [f64x4; 3] = std::array::from_fn(|c| x[c] * dx + y[c] * dy + z[c] * dz);
+    let origin: [V; 3] = axes(|c| x[c] * ox + y[c] * oy + z[c] * oz + t[c]);
+    let dir: [V; 3] = axes(|c| x[c] * dx + y[c] * dy + z[c] * dz);
     RayLanes::from_lanes(origin, dir)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fast::simd::Wide;
     use crate::geometry::{Ray, Shape, Span};
     use proptest::prelude::*;
 
@@ -354,7 +384,7 @@ mod tests {
     type Bits = Option<(u64, u8, u64, u8)>;
 
     /// Each lane's span where the lanes vouch for it, and nothing for an odd lane.
-    fn lane_spans(s: &SpanLanes) -> [Option<Bits>; 4] {
+    fn lane_spans(s: &SpanLanes<Wide>) -> [Option<Bits>; 4] {
         let (t_in, t_out) = (s.t_in.to_array(), s.t_out.to_array());
         let (f_in, f_out) = (s.face_in.to_array(), s.face_out.to_array());
         let (exists, odd) = (s.exists().to_bitmask(), s.odd.to_bitmask());
@@ -443,7 +473,7 @@ mod tests {
                     Ray::raw(origin, if d == DVec3::ZERO { DVec3::Z } else { d })
                 })
                 .collect();
-            let lanes = RayLanes::new(&rays);
+            let lanes = RayLanes::<Wide>::new(&rays);
             let spans = match &shape {
                 Shape::Cone(c) => cone(c, &lanes),
                 Shape::Cylinder(c) => cylinder(c, &lanes),
@@ -476,7 +506,7 @@ mod tests {
             Ray::raw(DVec3::new(0.0, 1.0, 0.0), DVec3::new(0.0, -1.0, 0.0)),
             Ray::raw(DVec3::new(-1.0, 3.0, 0.0), DVec3::new(1.0, -2.0, 0.0)),
         ];
-        let spans = cone(&cone_45, &RayLanes::new(&rays));
+        let spans = cone(&cone_45, &RayLanes::<Wide>::new(&rays));
         let lanes = lane_spans(&spans);
         assert_eq!(spans.odd.to_bitmask(), 0b0100);
         for (ray, lane) in rays.iter().zip(lanes) {

@@ -2,27 +2,28 @@
 //!
 //! `probe::sphere_hit` leaves most misses early, through branches that the processor guesses
 //! wrong whenever a ray's fate differs from the last one's. Here the same arithmetic runs for
-//! four spheres at once in `wide`'s `f64x4` vectors (the compiler does not vectorise the
+//! four spheres at once in four-lane vectors (`F64x4`) (the compiler does not vectorise the
 //! scalar version by itself), and each test's early exits become masks, with one branch left:
 //! none of the four can be hit. Every lane's t is the one `sphere_hit` gives to the last bit,
 //! so a group answers exactly what testing its spheres one after another does.
 
 use glam::DVec3;
-use wide::f64x4;
 
 use super::lanes::{RayLanes, LANES};
+use super::simd::F64x4;
 use crate::geometry::sphere::{MISS_MARGIN, MISS_TEST_FLOOR, TANGENT_TOLERANCE};
 use crate::geometry::{Ray, Span, Sphere};
 
-/// The spheres' centres and squared radii in structure-of-arrays form, one lane per sphere.
+/// The spheres' centres and squared radii in structure-of-arrays form, one lane per sphere
+/// (loaded into vectors where they are tested, as the processor's lanes are known there).
 #[derive(Clone, Debug)]
 pub struct SphereGroup {
-    cx: f64x4,
-    cy: f64x4,
-    cz: f64x4,
-    r2: f64x4,
+    cx: [f64; LANES],
+    cy: [f64; LANES],
+    cz: [f64; LANES],
+    r2: [f64; LANES],
     /// All ones in the lanes that hold a sphere.
-    used: f64x4,
+    used: [f64; LANES],
     len: usize,
 }
 
@@ -35,7 +36,7 @@ impl SphereGroup {
             for (k, s) in spheres.iter().enumerate() {
                 v[k] = f(s);
             }
-            f64x4::new(v)
+            v
         };
         SphereGroup {
             cx: lane(&|s| s.center.x, 0.0),
@@ -60,8 +61,8 @@ impl SphereGroup {
     /// The nearest crossing with t_min < t < t_max and the sphere it belongs to: the first of
     /// the nearest, as testing the spheres in order with a shrinking limit finds it.
     #[inline(always)]
-    pub fn nearest(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
-        let t = self.candidates(ray, t_min)?;
+    pub fn nearest<V: F64x4>(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
+        let t = self.candidates::<V>(ray, t_min)?;
         let mut best = None;
         let mut limit = t_max;
         for (k, &t) in t.iter().enumerate().take(self.len) {
@@ -76,8 +77,8 @@ impl SphereGroup {
     /// The first sphere, in order, with a crossing at t_min < t < t_max (a shadow ray's first
     /// blocker), and its t.
     #[inline(always)]
-    pub fn first(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
-        let t = self.candidates(ray, t_min)?;
+    pub fn first<V: F64x4>(&self, ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
+        let t = self.candidates::<V>(ray, t_min)?;
         (0..self.len)
             .find(|&k| t[k] > t_min && t[k] < t_max)
             .map(|k| (t[k], k))
@@ -86,24 +87,19 @@ impl SphereGroup {
     /// Each lane's candidate t, NaN where `Sphere::hit` returns early; None when every lane
     /// does so before the divisions and the square root (most rays, for most groups).
     #[inline(always)]
-    fn candidates(&self, ray: &Ray, t_min: f64) -> Option<[f64; LANES]> {
-        let spheres = [self.cx, self.cy, self.cz];
-        Some(crossings(&RayLanes::splat(ray), spheres, self.r2, self.used, t_min)?.to_array())
+    fn candidates<V: F64x4>(&self, ray: &Ray, t_min: f64) -> Option<[f64; LANES]> {
+        let (spheres, r2, used) = self.lanes::<V>();
+        Some(crossings(&RayLanes::splat(ray), spheres, r2, used, t_min)?.to_array())
     }
 
     /// Each sphere's span along the whole line of the ray: bit for bit what `Sphere::span`
     /// gives, one sphere after another.
     #[inline(always)]
-    pub fn spans(&self, ray: &Ray) -> [Option<Span>; LANES] {
-        let spheres = [self.cx, self.cy, self.cz];
-        let Ok((t_in, t_out, crossed)) = lane_spans(
-            &RayLanes::splat(ray),
-            spheres,
-            self.r2,
-            self.used,
-            false,
-            false,
-        ) else {
+    pub fn spans<V: F64x4>(&self, ray: &Ray) -> [Option<Span>; LANES] {
+        let (spheres, r2, used) = self.lanes::<V>();
+        let Ok((t_in, t_out, crossed)) =
+            lane_spans(&RayLanes::splat(ray), spheres, r2, used, false, false)
+        else {
             return [None; LANES];
         };
         let (t_in, t_out, crossed) = (t_in.to_array(), t_out.to_array(), crossed.to_bitmask());
@@ -116,16 +112,10 @@ impl SphereGroup {
     /// missed there (a sphere passed by, without a root, or met only behind the origin),
     /// found before the square roots, with bit k set where sphere k has no span.
     #[inline(always)]
-    pub fn common_spans(&self, ray: &Ray) -> Result<[Option<Span>; LANES], u32> {
-        let spheres = [self.cx, self.cy, self.cz];
-        let (t_in, t_out, crossed) = lane_spans(
-            &RayLanes::splat(ray),
-            spheres,
-            self.r2,
-            self.used,
-            true,
-            true,
-        )?;
+    pub fn common_spans<V: F64x4>(&self, ray: &Ray) -> Result<[Option<Span>; LANES], u32> {
+        let (spheres, r2, used) = self.lanes::<V>();
+        let (t_in, t_out, crossed) =
+            lane_spans(&RayLanes::splat(ray), spheres, r2, used, true, true)?;
         let (t_in, t_out, crossed) = (t_in.to_array(), t_out.to_array(), crossed.to_bitmask());
         Ok(std::array::from_fn(|k| {
             (crossed & (1 << k) != 0).then(|| Span::new(t_in[k], 0, t_out[k], 0))
@@ -135,16 +125,22 @@ impl SphereGroup {
     /// Sphere k of the group against every ray of `rays` (the lanes in `open`): each lane's
     /// candidate t, bit for bit what `candidates` gives that ray for sphere k.
     #[inline(always)]
-    pub fn sphere_against(
+    pub fn sphere_against<V: F64x4>(
         &self,
         k: usize,
-        rays: &RayLanes,
-        open: f64x4,
+        rays: &RayLanes<V>,
+        open: V,
         t_min: f64,
-    ) -> Option<f64x4> {
-        let lane = |v: f64x4| v.to_array()[k];
-        let centre = DVec3::new(lane(self.cx), lane(self.cy), lane(self.cz));
-        sphere_against_lanes(centre, lane(self.r2), rays, open, t_min)
+    ) -> Option<V> {
+        let centre = DVec3::new(self.cx[k], self.cy[k], self.cz[k]);
+        sphere_against_lanes(centre, self.r2[k], rays, open, t_min)
+    }
+
+    /// The centres, r² and the used lanes, in vectors.
+    #[inline(always)]
+    fn lanes<V: F64x4>(&self) -> ([V; 3], V, V) {
+        let centre = [V::new(self.cx), V::new(self.cy), V::new(self.cz)];
+        (centre, V::new(self.r2), V::new(self.used))
     }
 }
 
@@ -152,15 +148,15 @@ impl SphereGroup {
 /// candidate t, bit for bit what `Sphere::hit` computes for that ray (NaN where it returns
 /// early); None when every open lane returns early.
 #[inline(always)]
-pub fn sphere_against_lanes(
+pub fn sphere_against_lanes<V: F64x4>(
     centre: DVec3,
     r2: f64,
-    rays: &RayLanes,
-    open: f64x4,
+    rays: &RayLanes<V>,
+    open: V,
     t_min: f64,
-) -> Option<f64x4> {
-    let centre = centre.to_array().map(f64x4::splat);
-    crossings(rays, centre, f64x4::splat(r2), open, t_min)
+) -> Option<V> {
+    let centre = centre.to_array().map(V::splat);
+    crossings(rays, centre, V::splat(r2), open, t_min)
 }
 
 /// The steps of `Sphere::hit` (`Quadratic::new`, the two early exits, `Quadratic::roots` and
@@ -169,44 +165,44 @@ pub fn sphere_against_lanes(
 /// `Sphere::hit` returns early; None when every lane of `open` does so before the divisions
 /// and the square root.
 #[inline(always)]
-fn crossings(
-    rays: &RayLanes,
-    centre: [f64x4; 3],
-    r2: f64x4,
-    open: f64x4,
+fn crossings<V: F64x4>(
+    rays: &RayLanes<V>,
+    centre: [V; 3],
+    r2: V,
+    open: V,
     t_min: f64,
-) -> Option<f64x4> {
+) -> Option<V> {
     let (t_in, t_out, crossed) = lane_spans(rays, centre, r2, open, t_min >= 0.0, false).ok()?;
-    let t = t_in.simd_gt(f64x4::splat(t_min)).bitselect(t_in, t_out);
-    Some(crossed.bitselect(t, f64x4::splat(f64::NAN)))
+    let t = t_in.simd_gt(V::splat(t_min)).bitselect(t_in, t_out);
+    Some(crossed.bitselect(t, V::splat(f64::NAN)))
 }
 
 /// The quadratic a·t² + 2b·t + c = 0 of four (ray, sphere) pairs (lane i pairs ray lane i
 /// with sphere lane i), and the tests `Sphere::span` and `Sphere::hit` make before any
 /// division: the steps of `Quadratic::new` and `clearly_misses`, in the same order.
 #[derive(Clone, Copy)]
-pub(crate) struct LaneQuadratic {
-    a: f64x4,
-    b: f64x4,
-    c: f64x4,
+pub(crate) struct LaneQuadratic<V> {
+    a: V,
+    b: V,
+    c: V,
     /// o − centre.
-    oc: [f64x4; 3],
-    dir: [f64x4; 3],
-    r2: f64x4,
+    oc: [V; 3],
+    dir: [V; 3],
+    r2: V,
     /// All ones where the line clearly passes the sphere by.
-    pub passes: f64x4,
+    pub passes: V,
     /// All ones where the ray starts outside and moves away.
-    pub away: f64x4,
+    pub away: V,
     /// All ones where a, b and c are finite (then a span's ends are finite and in order).
-    pub finite: f64x4,
+    pub finite: V,
 }
 
-impl LaneQuadratic {
+impl<V: F64x4> LaneQuadratic<V> {
     #[inline(always)]
-    pub(crate) fn new(rays: &RayLanes, centre: [f64x4; 3], r2: f64x4) -> LaneQuadratic {
+    pub(crate) fn new(rays: &RayLanes<V>, centre: [V; 3], r2: V) -> LaneQuadratic<V> {
         let [dx, dy, dz] = rays.dir;
         let a = rays.a;
-        let zero = f64x4::ZERO;
+        let zero = V::ZERO;
         let ox = rays.origin[0] - centre[0];
         let oy = rays.origin[1] - centre[1];
         let oz = rays.origin[2] - centre[2];
@@ -215,7 +211,7 @@ impl LaneQuadratic {
         let c = oc2 - r2;
         let scale = b * b + a * (oc2 + r2);
         let d = b * b - a * c;
-        let infinity = f64x4::splat(f64::INFINITY);
+        let infinity = V::splat(f64::INFINITY);
         LaneQuadratic {
             a,
             b,
@@ -223,8 +219,8 @@ impl LaneQuadratic {
             oc: [ox, oy, oz],
             dir: rays.dir,
             r2,
-            passes: scale.simd_gt(f64x4::splat(MISS_TEST_FLOOR))
-                & d.simd_lt(f64x4::splat(-MISS_MARGIN) * scale),
+            passes: scale.simd_gt(V::splat(MISS_TEST_FLOOR))
+                & d.simd_lt(V::splat(-MISS_MARGIN) * scale),
             away: c.simd_gt(zero) & b.simd_gt(zero),
             finite: a.abs().simd_lt(infinity)
                 & b.abs().simd_lt(infinity)
@@ -235,25 +231,25 @@ impl LaneQuadratic {
     /// disc = r² − ℓ² (ℓ the distance from the centre to the line), and all ones where it
     /// says the line has no root: the first division.
     #[inline(always)]
-    pub(crate) fn disc(&self) -> (f64x4, f64x4) {
+    pub(crate) fn disc(&self) -> (V, V) {
         let [ox, oy, oz] = self.oc;
         let [dx, dy, dz] = self.dir;
         let s = self.b / self.a;
         let (lx, ly, lz) = (ox - s * dx, oy - s * dy, oz - s * dz);
         let disc = self.r2 - (lx * lx + ly * ly + lz * lz);
-        let no_root = disc.simd_lt(f64x4::splat(-TANGENT_TOLERANCE) * self.r2);
+        let no_root = disc.simd_lt(V::splat(-TANGENT_TOLERANCE) * self.r2);
         (disc, no_root)
     }
 
     /// The entry and exit t from `disc`: the square root and the last divisions.
     #[inline(always)]
-    pub(crate) fn roots(&self, disc: f64x4) -> (f64x4, f64x4) {
-        let (a, b, c, zero) = (self.a, self.b, self.c, f64x4::ZERO);
+    pub(crate) fn roots(&self, disc: V) -> (V, V) {
+        let (a, b, c, zero) = (self.a, self.b, self.c, V::ZERO);
         let disc = disc.simd_lt(zero).bitselect(zero, disc);
         // q = −(b + sign(b)·√disc), t = q/a and c/q. (sign(b) for a NaN b does not matter:
         // q is NaN either way.)
         let root = (a * disc).sqrt();
-        let sign = (b & f64x4::splat(-0.0)) | f64x4::ONE;
+        let sign = (b & V::splat(-0.0)) | V::ONE;
         let q = -(b + sign * root);
         let (x, y) = (q / a, c / q);
         let (q0, tangent) = (q.simd_eq(zero), disc.simd_eq(zero));
@@ -273,16 +269,16 @@ impl LaneQuadratic {
 /// lane's line passes its sphere by, has no root, or meets it only behind the origin, before
 /// the square root and the last divisions, with bit k set where lane k has no span.
 #[inline(always)]
-fn lane_spans(
-    rays: &RayLanes,
-    centre: [f64x4; 3],
-    r2: f64x4,
-    open: f64x4,
+fn lane_spans<V: F64x4>(
+    rays: &RayLanes<V>,
+    centre: [V; 3],
+    r2: V,
+    open: V,
     away: bool,
     common: bool,
-) -> Result<(f64x4, f64x4, f64x4), u32> {
+) -> Result<(V, V, V), u32> {
     let q = LaneQuadratic::new(rays, centre, r2);
-    let away = if away { q.away } else { f64x4::ZERO };
+    let away = if away { q.away } else { V::ZERO };
     // (The common part stops at the first lane behind the origin, below; a span behind the
     // origin is still a span.)
     let crossing = open & !(if common { q.passes } else { away | q.passes });
@@ -308,6 +304,7 @@ mod tests {
     use super::*;
     use crate::fast::lanes::lane_mask;
     use crate::fast::probe::sphere_hit;
+    use crate::fast::simd::Wide;
     use proptest::prelude::*;
 
     fn one_by_one(spheres: &[Sphere], ray: &Ray, t_min: f64, t_max: f64) -> Option<(f64, usize)> {
@@ -371,11 +368,11 @@ mod tests {
             let group = SphereGroup::new(&spheres);
             let bits = |h: Option<(f64, usize)>| h.map(|(t, k)| (t.to_bits(), k));
             prop_assert_eq!(
-                bits(group.nearest(&ray, t_min, t_max)),
+                bits(group.nearest::<Wide>(&ray, t_min, t_max)),
                 bits(one_by_one(&spheres, &ray, t_min, t_max))
             );
             prop_assert_eq!(
-                bits(group.first(&ray, t_min, t_max)),
+                bits(group.first::<Wide>(&ray, t_min, t_max)),
                 bits(first_one_by_one(&spheres, &ray, t_min, t_max))
             );
         }
@@ -400,12 +397,12 @@ mod tests {
                     dir: DVec3::new(d.0 + 0.25, d.1, d.2 - 0.125).normalize(),
                 })
                 .collect();
-            let lanes = RayLanes::new(&rays);
-            let open = lane_mask((1 << rays.len()) - 1);
+            let lanes = RayLanes::<Wide>::new(&rays);
+            let open = lane_mask::<Wide>((1 << rays.len()) - 1);
             for k in 0..spheres.len() {
                 let t = group.sphere_against(k, &lanes, open, t_min).map(|t| t.to_array());
                 for (i, ray) in rays.iter().enumerate() {
-                    let alone = group.candidates(ray, t_min).map_or(f64::NAN, |t| t[k]);
+                    let alone = group.candidates::<Wide>(ray, t_min).map_or(f64::NAN, |t| t[k]);
                     let in_lanes = t.map_or(f64::NAN, |t| t[i]);
                     prop_assert_eq!(in_lanes.to_bits(), alone.to_bits(), "sphere {} ray {}", k, i);
                 }
@@ -426,11 +423,14 @@ mod tests {
         };
         let group = SphereGroup::new(&[far.clone(), unit.clone()]);
         let tangent = Ray::new(DVec3::new(-3.0, 1.0, 0.0), DVec3::new(0.8, -0.6, 0.0));
-        let (t, k) = group.nearest(&tangent, 0.0, f64::INFINITY).unwrap();
+        let (t, k) = group.nearest::<Wide>(&tangent, 0.0, f64::INFINITY).unwrap();
         assert_eq!(k, 1);
         assert!((t - 3.0).abs() < 1e-12);
         let inside = Ray::new(DVec3::ZERO, DVec3::X);
-        assert_eq!(group.nearest(&inside, 0.0, f64::INFINITY), Some((1.0, 1)));
-        assert_eq!(group.first(&inside, 0.0, 0.5), None);
+        assert_eq!(
+            group.nearest::<Wide>(&inside, 0.0, f64::INFINITY),
+            Some((1.0, 1))
+        );
+        assert_eq!(group.first::<Wide>(&inside, 0.0, 0.5), None);
     }
 }

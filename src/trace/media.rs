@@ -12,17 +12,21 @@ use crate::geometry::Ray;
 use crate::scene::Interaction;
 use crate::shading::{Fresnel, Material};
 
-/// The refractive media a ray is inside, innermost last.
+/// The refractive media a ray is inside, innermost last: up to eight transparent objects and
+/// their indices of refraction. (Two arrays rather than one of pairs: a pair of u32 and f64
+/// takes 16 bytes, and the stack is copied with every refraction ray.)
 #[derive(Clone, Copy, Debug)]
 pub struct Media {
-    entries: [(u32, f64); 8],
+    objects: [u32; 8],
+    iors: [f64; 8],
     len: usize,
 }
 
 impl Default for Media {
     fn default() -> Media {
         Media {
-            entries: [(u32::MAX, 1.0); 8],
+            objects: [u32::MAX; 8],
+            iors: [1.0; 8],
             len: 0,
         }
     }
@@ -34,25 +38,29 @@ impl Media {
         if self.len == 0 {
             1.0
         } else {
-            self.entries[self.len - 1].1
+            self.iors[self.len - 1]
         }
     }
 
     fn entering(&self, object: u32, ior: f64) -> Media {
         let mut m = *self;
-        if m.len < m.entries.len() {
-            m.entries[m.len] = (object, ior);
+        if m.len < m.objects.len() {
+            (m.objects[m.len], m.iors[m.len]) = (object, ior);
             m.len += 1;
         }
         m
     }
 
     fn contains(&self, object: u32) -> bool {
-        self.entries[..self.len].iter().any(|e| e.0 == object)
+        self.objects[..self.len].contains(&object)
     }
 
-    fn iter(&self) -> impl Iterator<Item = &(u32, f64)> {
-        self.entries[..self.len].iter()
+    /// (object, index of refraction), outermost first.
+    fn iter(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
+        self.objects[..self.len]
+            .iter()
+            .copied()
+            .zip(self.iors[..self.len].iter().copied())
     }
 }
 
@@ -90,7 +98,7 @@ impl<R: Recorder> Tracer<'_, R> {
         } else if self.scene.features.transparent_objects.len() <= 1 {
             if si.inside {
                 let mut outside = Media::default();
-                for &(o, ior) in task.media.iter() {
+                for (o, ior) in task.media.iter() {
                     if o != si.object {
                         outside = outside.entering(o, ior);
                     }
@@ -126,7 +134,7 @@ impl<R: Recorder> Tracer<'_, R> {
         let scene = self.scene;
         let probe = Ray { origin: q, dir: d };
         let mut out = Media::default();
-        for &(o, ior) in stack.iter() {
+        for (o, ior) in stack.iter() {
             if scene.contains(o, &probe, &mut self.stats) {
                 out = out.entering(o, ior);
             }

@@ -1,0 +1,630 @@
+//! Four f64 lanes, in whichever instructions the processor running raytree has.
+//!
+//! The wing's lane code is written once, over the trait `F64x4`, and compiled twice: with
+//! `wide::f64x4` for any x86-64 (two SSE2 halves) and other processors, and with `Avx` (one
+//! 256-bit AVX register) for processors of the x86-64-v3 level (AVX2 and FMA: Intel since
+//! 2013, AMD since 2015). `level()` asks the processor once; the wing's entry points
+//! (`with_lanes`) pick their copy by it. Both types give every lane the same bits: the same
+//! IEEE operations, and comparisons, minimum and maximum with `wide`'s rules for NaN.
+//!
+//! The default build (`.cargo/config.toml`) compiles all of raytree for x86-64-v3, and then
+//! `wide::f64x4` is one AVX register too; a build without that file is the portable one.
+
+use std::fmt::Debug;
+use std::ops::{Add, BitAnd, BitOr, BitOrAssign, BitXor, Div, Mul, Neg, Not, Sub};
+
+/// Four f64 lanes and the operations the wing's lane code uses. A comparison gives a mask:
+/// all ones in the lanes where it holds, zero elsewhere.
+pub trait F64x4:
+    Copy
+    + Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + BitAnd<Output = Self>
+    + BitOr<Output = Self>
+    + BitOrAssign
+    + BitXor<Output = Self>
+    + Not<Output = Self>
+{
+    /// 0.0 in every lane.
+    const ZERO: Self;
+    /// 1.0 in every lane.
+    const ONE: Self;
+    /// `x` in every lane.
+    fn splat(x: f64) -> Self;
+    /// Lanes 0 to 3.
+    fn new(lanes: [f64; 4]) -> Self;
+    /// Lanes 0 to 3 from four numbers in registers: `new` goes through memory, where one
+    /// wide load of four narrow stores stalls on store forwarding.
+    fn setr(a: f64, b: f64, c: f64, d: f64) -> Self;
+    /// The lanes as an array.
+    fn to_array(self) -> [f64; 4];
+    /// A mask: `if_one` where it is all ones, `if_zero` where it is zero.
+    fn bitselect(self, if_one: Self, if_zero: Self) -> Self;
+    /// Bit i set when lane i's sign bit is (for a mask: when lane i is on).
+    fn to_bitmask(self) -> u32;
+    /// Some lane's sign bit is set.
+    fn any(self) -> bool {
+        self.to_bitmask() != 0
+    }
+    /// Every lane's sign bit is set.
+    fn all(self) -> bool {
+        self.to_bitmask() == 0b1111
+    }
+    /// ==, false where either lane is NaN.
+    fn simd_eq(self, rhs: Self) -> Self;
+    /// !=, true where either lane is NaN.
+    fn simd_ne(self, rhs: Self) -> Self;
+    /// <, false where either lane is NaN.
+    fn simd_lt(self, rhs: Self) -> Self;
+    /// >, false where either lane is NaN.
+    fn simd_gt(self, rhs: Self) -> Self;
+    /// <=, false where either lane is NaN.
+    fn simd_le(self, rhs: Self) -> Self;
+    /// >=, false where either lane is NaN.
+    fn simd_ge(self, rhs: Self) -> Self;
+    /// All ones where the lane is NaN.
+    fn is_nan(self) -> Self;
+    /// All ones where the lane is neither infinite nor NaN.
+    fn is_finite(self) -> Self;
+    /// All ones where the lane's sign bit is set (−0.0 included).
+    fn is_sign_negative(self) -> Self;
+    /// |x|.
+    fn abs(self) -> Self;
+    /// √x, correctly rounded.
+    fn sqrt(self) -> Self;
+    /// 1/x, correctly rounded (a division).
+    fn recip(self) -> Self {
+        Self::ONE / self
+    }
+    /// The smaller; `self` where `rhs` is NaN.
+    fn min(self, rhs: Self) -> Self;
+    /// The larger; `self` where `rhs` is NaN.
+    fn max(self, rhs: Self) -> Self;
+    /// The processor's minimum: `rhs` where either is NaN (or both are zeros).
+    fn fast_min(self, rhs: Self) -> Self;
+    /// The processor's maximum: `rhs` where either is NaN (or both are zeros).
+    fn fast_max(self, rhs: Self) -> Self;
+
+    /// `f()` run as a function of its own, not inlined into its caller, and compiled for the
+    /// instructions of these lanes. Give it an `#[inline(always)]` closure: its body is then
+    /// compiled there, with everything it inlines.
+    fn outlined<R>(f: impl FnOnce() -> R) -> R;
+}
+
+/// `$body`, an expression using the lane type `$v`, compiled for each instruction set and
+/// run in the copy for this processor's `level()`. The wing's entry points are written so:
+/// everything `$body` calls with `$v` is `#[inline(always)]` (or `F64x4::outlined`), so that
+/// it is compiled inside the copy, with the copy's instructions. Without a lane type
+/// (`with_lanes!(=> body)`), scalar code compiled for the processor: its copies of the
+/// functions the compiler inlines, and its block copies, use the wider instructions too.
+macro_rules! with_lanes {
+    (=> $body:expr) => {
+        match $crate::fast::simd::level() {
+            #[cfg(target_arch = "x86_64")]
+            $crate::fast::simd::Level::V3 => {
+                <$crate::fast::simd::Avx as $crate::fast::simd::F64x4>::outlined(
+                    #[inline(always)]
+                    || $body,
+                )
+            }
+            _ => $body,
+        }
+    };
+    ($v:ident => $body:expr) => {
+        match $crate::fast::simd::level() {
+            #[cfg(target_arch = "x86_64")]
+            $crate::fast::simd::Level::V3 => {
+                type $v = $crate::fast::simd::Avx;
+                <$v as $crate::fast::simd::F64x4>::outlined(
+                    #[inline(always)]
+                    || $body,
+                )
+            }
+            _ => {
+                type $v = $crate::fast::simd::Wide;
+                $body
+            }
+        }
+    };
+}
+pub(crate) use with_lanes;
+
+/// `wide`'s four lanes: one AVX register when raytree is compiled for AVX, two SSE2 halves
+/// otherwise (or the processor's own vectors elsewhere).
+pub type Wide = wide::f64x4;
+
+impl F64x4 for Wide {
+    const ZERO: Self = wide::f64x4::ZERO;
+    const ONE: Self = wide::f64x4::ONE;
+
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        wide::f64x4::splat(x)
+    }
+    #[inline(always)]
+    fn new(lanes: [f64; 4]) -> Self {
+        wide::f64x4::new(lanes)
+    }
+    #[inline(always)]
+    fn setr(a: f64, b: f64, c: f64, d: f64) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+        {
+            // SAFETY: compiled for AVX, where an f64x4 is one __m256d (the transmute checks
+            // the sizes).
+            unsafe { std::mem::transmute::<Avx, Wide>(Avx::setr(a, b, c, d)) }
+        }
+        #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+        {
+            wide::f64x4::new([a, b, c, d])
+        }
+    }
+    #[inline(always)]
+    fn to_array(self) -> [f64; 4] {
+        wide::f64x4::to_array(self)
+    }
+    #[inline(always)]
+    fn bitselect(self, if_one: Self, if_zero: Self) -> Self {
+        wide::f64x4::bitselect(self, if_one, if_zero)
+    }
+    #[inline(always)]
+    fn to_bitmask(self) -> u32 {
+        wide::f64x4::to_bitmask(self)
+    }
+    #[inline(always)]
+    fn simd_eq(self, rhs: Self) -> Self {
+        wide::f64x4::simd_eq(self, rhs)
+    }
+    #[inline(always)]
+    fn simd_ne(self, rhs: Self) -> Self {
+        wide::f64x4::simd_ne(self, rhs)
+    }
+    #[inline(always)]
+    fn simd_lt(self, rhs: Self) -> Self {
+        wide::f64x4::simd_lt(self, rhs)
+    }
+    #[inline(always)]
+    fn simd_gt(self, rhs: Self) -> Self {
+        wide::f64x4::simd_gt(self, rhs)
+    }
+    #[inline(always)]
+    fn simd_le(self, rhs: Self) -> Self {
+        wide::f64x4::simd_le(self, rhs)
+    }
+    #[inline(always)]
+    fn simd_ge(self, rhs: Self) -> Self {
+        wide::f64x4::simd_ge(self, rhs)
+    }
+    #[inline(always)]
+    fn is_nan(self) -> Self {
+        wide::f64x4::is_nan(self)
+    }
+    #[inline(always)]
+    fn is_finite(self) -> Self {
+        wide::f64x4::is_finite(self)
+    }
+    #[inline(always)]
+    fn is_sign_negative(self) -> Self {
+        wide::f64x4::is_sign_negative(self)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        wide::f64x4::abs(self)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        wide::f64x4::sqrt(self)
+    }
+    #[inline(always)]
+    fn min(self, rhs: Self) -> Self {
+        wide::f64x4::min(self, rhs)
+    }
+    #[inline(always)]
+    fn max(self, rhs: Self) -> Self {
+        wide::f64x4::max(self, rhs)
+    }
+    #[inline(always)]
+    fn fast_min(self, rhs: Self) -> Self {
+        wide::f64x4::fast_min(self, rhs)
+    }
+    #[inline(always)]
+    fn fast_max(self, rhs: Self) -> Self {
+        wide::f64x4::fast_max(self, rhs)
+    }
+    #[inline(always)]
+    fn outlined<R>(f: impl FnOnce() -> R) -> R {
+        #[inline(never)]
+        fn run<R>(f: impl FnOnce() -> R) -> R {
+            f()
+        }
+        run(f)
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+pub(crate) use avx::Avx;
+
+#[cfg(target_arch = "x86_64")]
+mod avx {
+    use std::arch::x86_64::*;
+    use std::ops::{Add, BitAnd, BitOr, BitOrAssign, BitXor, Div, Mul, Neg, Not, Sub};
+
+    use super::F64x4;
+
+    /// Four lanes in one AVX register.
+    ///
+    /// Only code that runs where `level()` is `Level::V3` touches one: the wing's entry points
+    /// create them inside their x86-64-v3 copies (`with_lanes`), where every method below is
+    /// inlined and becomes one or two AVX instructions. That is the safety argument of each
+    /// `unsafe` block here: the processor has AVX and AVX2.
+    #[derive(Clone, Copy, Debug)]
+    #[repr(transparent)]
+    pub struct Avx(__m256d);
+
+    /// All 64 bits of a lane set.
+    const ONES: u64 = u64::MAX;
+
+    impl Avx {
+        /// The lanes as they sit in memory (a transmute: no instruction at all).
+        #[inline(always)]
+        const fn from_array(lanes: [f64; 4]) -> Avx {
+            // SAFETY: __m256d is four f64 (the transmute checks the sizes).
+            Avx(unsafe { std::mem::transmute::<[f64; 4], __m256d>(lanes) })
+        }
+
+        #[inline(always)]
+        fn cmp<const IMM: i32>(self, rhs: Avx) -> Avx {
+            // SAFETY: see the type's comment.
+            Avx(unsafe { _mm256_cmp_pd::<IMM>(self.0, rhs.0) })
+        }
+    }
+
+    macro_rules! binary {
+        ($trait:ident, $method:ident, $intrinsic:ident) => {
+            impl $trait for Avx {
+                type Output = Avx;
+                #[inline(always)]
+                fn $method(self, rhs: Avx) -> Avx {
+                    // SAFETY: see the type's comment.
+                    Avx(unsafe { $intrinsic(self.0, rhs.0) })
+                }
+            }
+        };
+    }
+
+    binary!(Add, add, _mm256_add_pd);
+    binary!(Sub, sub, _mm256_sub_pd);
+    binary!(Mul, mul, _mm256_mul_pd);
+    binary!(Div, div, _mm256_div_pd);
+    binary!(BitAnd, bitand, _mm256_and_pd);
+    binary!(BitOr, bitor, _mm256_or_pd);
+    binary!(BitXor, bitxor, _mm256_xor_pd);
+
+    impl BitOrAssign for Avx {
+        #[inline(always)]
+        fn bitor_assign(&mut self, rhs: Avx) {
+            *self = *self | rhs;
+        }
+    }
+
+    impl Neg for Avx {
+        type Output = Avx;
+        /// The sign bit flipped, as `wide` negates.
+        #[inline(always)]
+        fn neg(self) -> Avx {
+            self ^ Avx::splat(-0.0)
+        }
+    }
+
+    impl Not for Avx {
+        type Output = Avx;
+        #[inline(always)]
+        fn not(self) -> Avx {
+            self ^ Avx::splat(f64::from_bits(ONES))
+        }
+    }
+
+    impl F64x4 for Avx {
+        const ZERO: Self = Avx::from_array([0.0; 4]);
+        const ONE: Self = Avx::from_array([1.0; 4]);
+
+        #[inline(always)]
+        fn splat(x: f64) -> Self {
+            // SAFETY: see the type's comment.
+            Avx(unsafe { _mm256_set1_pd(x) })
+        }
+        #[inline(always)]
+        fn new(lanes: [f64; 4]) -> Self {
+            Avx::from_array(lanes)
+        }
+        #[inline(always)]
+        fn setr(a: f64, b: f64, c: f64, d: f64) -> Self {
+            // SAFETY: see the type's comment.
+            Avx(unsafe { _mm256_setr_pd(a, b, c, d) })
+        }
+        #[inline(always)]
+        fn to_array(self) -> [f64; 4] {
+            // SAFETY: __m256d is four f64 (the transmute checks the sizes).
+            unsafe { std::mem::transmute::<__m256d, [f64; 4]>(self.0) }
+        }
+        #[inline(always)]
+        fn bitselect(self, if_one: Self, if_zero: Self) -> Self {
+            // SAFETY: see the type's comment.
+            Avx(unsafe {
+                _mm256_or_pd(
+                    _mm256_and_pd(if_one.0, self.0),
+                    _mm256_andnot_pd(self.0, if_zero.0),
+                )
+            })
+        }
+        #[inline(always)]
+        fn to_bitmask(self) -> u32 {
+            // SAFETY: see the type's comment.
+            unsafe { _mm256_movemask_pd(self.0) as u32 }
+        }
+        #[inline(always)]
+        fn simd_eq(self, rhs: Self) -> Self {
+            self.cmp::<_CMP_EQ_OQ>(rhs)
+        }
+        #[inline(always)]
+        fn simd_ne(self, rhs: Self) -> Self {
+            self.cmp::<_CMP_NEQ_UQ>(rhs)
+        }
+        #[inline(always)]
+        fn simd_lt(self, rhs: Self) -> Self {
+            self.cmp::<_CMP_LT_OQ>(rhs)
+        }
+        #[inline(always)]
+        fn simd_gt(self, rhs: Self) -> Self {
+            self.cmp::<_CMP_GT_OQ>(rhs)
+        }
+        #[inline(always)]
+        fn simd_le(self, rhs: Self) -> Self {
+            self.cmp::<_CMP_LE_OQ>(rhs)
+        }
+        #[inline(always)]
+        fn simd_ge(self, rhs: Self) -> Self {
+            self.cmp::<_CMP_GE_OQ>(rhs)
+        }
+        #[inline(always)]
+        fn is_nan(self) -> Self {
+            self.cmp::<_CMP_UNORD_Q>(self)
+        }
+        #[inline(always)]
+        fn is_finite(self) -> Self {
+            // |x| < ∞ fails for ∞ and for NaN (an ordered comparison).
+            self.abs().simd_lt(Avx::splat(f64::INFINITY))
+        }
+        #[inline(always)]
+        fn is_sign_negative(self) -> Self {
+            // SAFETY: see the type's comment. A lane read as a signed integer is negative
+            // exactly when its sign bit is set.
+            Avx(unsafe {
+                let bits = _mm256_castpd_si256(self.0);
+                _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_setzero_si256(), bits))
+            })
+        }
+        #[inline(always)]
+        fn abs(self) -> Self {
+            self & Avx::splat(f64::from_bits(ONES >> 1))
+        }
+        #[inline(always)]
+        fn sqrt(self) -> Self {
+            // SAFETY: see the type's comment.
+            Avx(unsafe { _mm256_sqrt_pd(self.0) })
+        }
+        #[inline(always)]
+        fn min(self, rhs: Self) -> Self {
+            // MINPD gives its second operand where either is NaN: `self` must win there.
+            rhs.is_nan().blend(self, self.fast_min(rhs))
+        }
+        #[inline(always)]
+        fn max(self, rhs: Self) -> Self {
+            rhs.is_nan().blend(self, self.fast_max(rhs))
+        }
+        #[inline(always)]
+        fn fast_min(self, rhs: Self) -> Self {
+            // SAFETY: see the type's comment.
+            Avx(unsafe { _mm256_min_pd(self.0, rhs.0) })
+        }
+        #[inline(always)]
+        fn fast_max(self, rhs: Self) -> Self {
+            // SAFETY: see the type's comment.
+            Avx(unsafe { _mm256_max_pd(self.0, rhs.0) })
+        }
+        #[inline(always)]
+        fn outlined<R>(f: impl FnOnce() -> R) -> R {
+            // The features of x86-64-v3, which `processor_is_v3` checks.
+            #[inline(never)]
+            #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt")]
+            fn run<R>(f: impl FnOnce() -> R) -> R {
+                f()
+            }
+            // SAFETY: see the type's comment: the processor has these features.
+            unsafe { run(f) }
+        }
+    }
+
+    impl Avx {
+        /// A mask picks by its lanes' sign bits: `if_set` where set (one BLENDVPD).
+        #[inline(always)]
+        fn blend(self, if_set: Avx, if_clear: Avx) -> Avx {
+            // SAFETY: see the type's comment.
+            Avx(unsafe { _mm256_blendv_pd(if_clear.0, if_set.0, self.0) })
+        }
+    }
+}
+
+/// The instruction sets the wing has copies for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Level {
+    /// Any x86-64 (SSE2), or a processor of another architecture.
+    Baseline,
+    /// x86-64-v3: AVX, AVX2, FMA, BMI1, BMI2, LZCNT, MOVBE.
+    V3,
+}
+
+impl Level {
+    /// The name `--stats` prints and `RAYTREE_CPU_LEVEL` takes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::Baseline => "x86-64",
+            Level::V3 => "x86-64-v3",
+        }
+    }
+}
+
+/// The best level this processor runs, or a lower one that `RAYTREE_CPU_LEVEL=x86-64` asks
+/// for (to measure or test the baseline copies on a newer processor). Asked once.
+pub fn level() -> Level {
+    use std::sync::atomic::{AtomicU8, Ordering};
+    // 0: not asked yet, else 1 + the level.
+    static LEVEL: AtomicU8 = AtomicU8::new(0);
+    match LEVEL.load(Ordering::Relaxed) {
+        1 => Level::Baseline,
+        2 => Level::V3,
+        _ => {
+            let forced_down = std::env::var("RAYTREE_CPU_LEVEL").is_ok_and(|l| l == "x86-64");
+            let found = if processor_is_v3() && !forced_down {
+                Level::V3
+            } else {
+                Level::Baseline
+            };
+            LEVEL.store(1 + found as u8, Ordering::Relaxed);
+            found
+        }
+    }
+}
+
+/// Whether the processor has every feature the wing's x86-64-v3 copies are compiled with.
+fn processor_is_v3() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::is_x86_feature_detected as has;
+        has!("avx")
+            && has!("avx2")
+            && has!("fma")
+            && has!("bmi1")
+            && has!("bmi2")
+            && has!("lzcnt")
+            && has!("movbe")
+            && has!("popcnt")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Numbers where lanes' rules differ if they differ at all: both zeros, both infinities,
+    /// NaN, the extremes, and ordinary numbers that often repeat (ties).
+    fn number() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            Just(0.0),
+            Just(-0.0),
+            Just(f64::INFINITY),
+            Just(f64::NEG_INFINITY),
+            Just(f64::NAN),
+            Just(f64::MAX),
+            Just(f64::MIN_POSITIVE),
+            Just(1.0),
+            -4.0..4.0f64,
+            any::<f64>(),
+        ]
+    }
+
+    fn bits<V: F64x4>(v: V) -> [u64; 4] {
+        v.to_array().map(f64::to_bits)
+    }
+
+    /// Every operation, on both types, to the last bit of every lane.
+    fn same(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> Result<(), TestCaseError> {
+        let (wa, wb, wc) = (Wide::new(a), Wide::new(b), Wide::new(c));
+        let (xa, xb, xc) = (Avx::new(a), Avx::new(b), Avx::new(c));
+        type Op<V> = fn(V, V, V) -> V;
+        fn ops<V: F64x4>() -> Vec<(&'static str, Op<V>)> {
+            vec![
+                ("add", |a, b, _| a + b),
+                ("sub", |a, b, _| a - b),
+                ("mul", |a, b, _| a * b),
+                ("div", |a, b, _| a / b),
+                ("neg", |a, _, _| -a),
+                ("and", |a, b, _| a & b),
+                ("or", |a, b, _| a | b),
+                ("xor", |a, b, _| a ^ b),
+                ("not", |a, _, _| !a),
+                ("bitselect", |a, b, c| a.simd_lt(b).bitselect(b, c)),
+                ("eq", |a, b, _| a.simd_eq(b)),
+                ("ne", |a, b, _| a.simd_ne(b)),
+                ("lt", |a, b, _| a.simd_lt(b)),
+                ("gt", |a, b, _| a.simd_gt(b)),
+                ("le", |a, b, _| a.simd_le(b)),
+                ("ge", |a, b, _| a.simd_ge(b)),
+                ("is_nan", |a, _, _| a.is_nan()),
+                ("is_finite", |a, _, _| a.is_finite()),
+                ("is_sign_negative", |a, _, _| a.is_sign_negative()),
+                ("abs", |a, _, _| a.abs()),
+                ("sqrt", |a, _, _| a.sqrt()),
+                ("recip", |a, _, _| a.recip()),
+                ("min", |a, b, _| a.min(b)),
+                ("max", |a, b, _| a.max(b)),
+                ("fast_min", |a, b, _| a.fast_min(b)),
+                ("fast_max", |a, b, _| a.fast_max(b)),
+                ("setr", |a, _, _| {
+                    let [w, x, y, z] = a.to_array();
+                    V::setr(w, x, y, z)
+                }),
+            ]
+        }
+        for ((name, wide_op), (_, avx_op)) in ops::<Wide>().into_iter().zip(ops::<Avx>()) {
+            prop_assert_eq!(
+                bits(wide_op(wa, wb, wc)),
+                bits(avx_op(xa, xb, xc)),
+                "{}",
+                name
+            );
+        }
+        for (x, y) in [(wa, xa), (wb, xb), (wa.simd_lt(wb), xa.simd_lt(xb))] {
+            prop_assert_eq!(x.to_bitmask(), y.to_bitmask());
+            prop_assert_eq!(x.any(), y.any());
+            prop_assert_eq!(x.all(), y.all());
+        }
+        prop_assert_eq!(bits(Wide::ZERO), bits(Avx::ZERO));
+        prop_assert_eq!(bits(Wide::ONE), bits(Avx::ONE));
+        prop_assert_eq!(bits(Wide::splat(a[0])), bits(Avx::splat(a[0])));
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3000))]
+
+        /// The AVX lanes compute what `wide`'s lanes compute, bit for bit, NaN and signed
+        /// zeros included (on a processor without AVX2 there is nothing to compare).
+        #[test]
+        fn avx_lanes_are_wides_lanes(
+            a in [number(), number(), number(), number()],
+            b in [number(), number(), number(), number()],
+            c in [number(), number(), number(), number()],
+        ) {
+            if level_of_processor() == Level::V3 {
+                same(a, b, c)?;
+            }
+        }
+    }
+
+    fn level_of_processor() -> Level {
+        if processor_is_v3() {
+            Level::V3
+        } else {
+            Level::Baseline
+        }
+    }
+}
