@@ -99,8 +99,8 @@ pub trait F64x4:
 /// run in the copy for this processor's `level()`. The wing's entry points are written so:
 /// everything `$body` calls with `$v` is `#[inline(always)]` (or `F64x4::outlined`), so that
 /// it is compiled inside the copy, with the copy's instructions. Without a lane type
-/// (`with_lanes!(=> body)`), scalar code compiled for the processor: its copies of the
-/// functions the compiler inlines, and its block copies, use the wider instructions too.
+/// (`with_lanes!(=> body)`), scalar code compiled for the processor: the functions the
+/// compiler inlines into it, and its copies of structs, use the wider instructions too.
 macro_rules! with_lanes {
     (=> $body:expr) => {
         match $crate::fast::simd::level() {
