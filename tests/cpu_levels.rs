@@ -46,7 +46,15 @@ fn processor_is_v3() -> bool {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::is_x86_feature_detected as has;
-        has!("avx2") && has!("fma") && has!("bmi1") && has!("bmi2") && has!("lzcnt")
+        // Every feature `raytree::fast::simd` asks for its x86-64-v3 copy.
+        has!("avx")
+            && has!("avx2")
+            && has!("fma")
+            && has!("bmi1")
+            && has!("bmi2")
+            && has!("lzcnt")
+            && has!("movbe")
+            && has!("popcnt")
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
