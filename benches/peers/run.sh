@@ -4,7 +4,8 @@
 # of the runs' ratios (each raytree run against the POV-Ray run just before it, so that a change
 # in the shared machine's load between runs cancels out), with their range.
 # Usage: benches/peers/run.sh [runs] [scene...]   (default: 5 runs each, after one warm-up, of
-# the whitted, csg and many scenes)
+# the whitted, csg and many scenes). RAYTREE=path/to/raytree measures that binary (another
+# build of raytree) instead of building target/release/raytree.
 set -euo pipefail
 cd "$(dirname "$0")"
 runs=${1:-5}
@@ -15,8 +16,12 @@ if ! command -v povray >/dev/null 2>&1; then
     echo "povray not found: install it with 'apt-get install -y povray' to compare (skipping)"
     exit 0
 fi
-cargo build --release --quiet --manifest-path ../../Cargo.toml
-raytree=../../target/release/raytree
+if [ -n "${RAYTREE:-}" ]; then
+    raytree=$(realpath "$RAYTREE")
+else
+    cargo build --release --quiet --manifest-path ../../Cargo.toml
+    raytree=../../target/release/raytree
+fi
 [ -f many.yaml ] || python3 make_many.py many.yaml
 out=$(mktemp -d)
 wall() { /usr/bin/time -f %e "$@" 2>&1 >/dev/null | tail -1; }

@@ -1,9 +1,9 @@
 //! The instructions this build was compiled to use, checked against the CPU it runs on.
 //!
-//! `.cargo/config.toml` builds for x86-64-v3 (AVX2 and FMA among others): the whole program
-//! then uses them. A CPU without them would stop the program with an illegal instruction
-//! somewhere in a render; this check runs first and says what is missing and how to build the
-//! portable program instead (whose fast wing picks its instructions when it runs).
+//! The default build runs on any x86-64: its fast wing picks AVX2 or SSE2 when it runs. A build
+//! made with `-C target-cpu=...` (in RUSTFLAGS, say) uses that CPU's instructions everywhere,
+//! and on a CPU without them would stop with an illegal instruction somewhere in a render;
+//! this check runs first and says what is missing and how to build the portable program.
 
 /// An x86 feature the compiler may use: its name (as `target_feature` spells it) and where
 /// CPUID reports it.
@@ -75,9 +75,13 @@ const FEATURES: [Feature; 14] = [
 /// The features compiled into this build that a CPU with these CPUID registers lacks.
 #[cfg(target_arch = "x86_64")]
 fn missing(cpu: Cpuid) -> Vec<&'static str> {
-    FEATURES
-        .iter()
-        .filter(|f| f.required)
+    lacking(cpu, FEATURES.iter().filter(|f| f.required))
+}
+
+/// Which of `features` a CPU with these CPUID registers lacks.
+#[cfg(target_arch = "x86_64")]
+fn lacking<'a>(cpu: Cpuid, features: impl Iterator<Item = &'a Feature>) -> Vec<&'static str> {
+    features
         .filter(|f| {
             let register = match f.register {
                 Register::Leaf1Ecx => cpu.leaf1_ecx,
@@ -129,9 +133,9 @@ pub fn check() -> Result<(), String> {
         if !missing.is_empty() {
             return Err(format!(
                 "this build of raytree uses instructions this CPU does not have ({}).\n\
-                 Build the portable program, which picks its instructions when it runs, from \
-                 the project's folder:\n  \
-                 RUSTFLAGS=\"\" cargo build --release",
+                 Build the portable program, which picks its instructions when it runs, \
+                 without `-C target-cpu` in RUSTFLAGS:\n  \
+                 cargo build --release",
                 missing.join(", ")
             ));
         }
@@ -165,6 +169,7 @@ mod tests {
 
     #[test]
     fn a_v3_cpu_lacks_nothing() {
+        assert_eq!(lacking(v3(), FEATURES.iter()), Vec::<&str>::new());
         assert_eq!(missing(v3()), Vec::<&str>::new());
     }
 
@@ -174,6 +179,8 @@ mod tests {
             leaf7_ebx: v3().leaf7_ebx & !(1 << 5),
             ..v3()
         };
+        // A build for x86-64-v3 uses every feature in the table.
+        assert_eq!(lacking(cpu, FEATURES.iter()), vec!["avx2"]);
         let expected: Vec<&str> = if cfg!(target_feature = "avx2") {
             vec!["avx2"]
         } else {
@@ -188,6 +195,10 @@ mod tests {
             os_saves_avx: false,
             ..v3()
         };
+        assert_eq!(
+            lacking(cpu, FEATURES.iter()),
+            vec!["fma", "avx", "f16c", "avx2"]
+        );
         let expected: Vec<&str> = ["fma", "avx", "f16c", "avx2"]
             .into_iter()
             .filter(|name| FEATURES.iter().any(|f| f.name == *name && f.required))

@@ -7,8 +7,8 @@
 //! (`with_lanes`) pick their copy by it. Both types give every lane the same bits: the same
 //! IEEE operations, and comparisons, minimum and maximum with `wide`'s rules for NaN.
 //!
-//! The default build (`.cargo/config.toml`) compiles all of raytree for x86-64-v3, and then
-//! `wide::f64x4` is one AVX register too; a build without that file is the portable one.
+//! The rest of raytree is compiled for any x86-64. A build for x86-64-v3 or later
+//! (`-C target-cpu=...`) makes `wide::f64x4` one AVX register too; both copies are then alike.
 
 use std::fmt::Debug;
 use std::ops::{Add, BitAnd, BitOr, BitOrAssign, BitXor, Div, Mul, Neg, Not, Sub};
@@ -438,13 +438,21 @@ mod avx {
         #[inline(always)]
         fn outlined<R>(f: impl FnOnce() -> R) -> R {
             // The features of x86-64-v3, which `processor_is_v3` checks.
-            #[inline(never)]
             #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt")]
-            fn run<R>(f: impl FnOnce() -> R) -> R {
+            fn copy<R>(f: impl FnOnce() -> R) -> R {
                 f()
             }
-            // SAFETY: see the type's comment: the processor has these features.
-            unsafe { run(f) }
+            // rustc drops `#[inline(never)]` from a function with `#[target_feature]`, and
+            // LLVM would then inline a copy into another that calls it (the CSG pieces into
+            // a search, whose loop then spills its registers). `run` keeps the attribute and
+            // `copy` stays behind it: a build for any x86-64 cannot inline `copy` into `run`,
+            // and in a build for x86-64-v3 `run` becomes the copy.
+            #[inline(never)]
+            fn run<R>(f: impl FnOnce() -> R) -> R {
+                // SAFETY: see the type's comment: the processor has these features.
+                unsafe { copy(f) }
+            }
+            run(f)
         }
     }
 
