@@ -273,9 +273,34 @@ fn csg(c: &mut Criterion) {
     g.finish();
 }
 
+/// A turned box (the Cornell box's blocks): nearest hits of 1024 rays through the core's
+/// search and through the fast wing's, which tests box leaves in its own copy.
+fn boxes(c: &mut Criterion) {
+    let rs = rays(1024);
+    let yaml = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 40, width: 8, height: 8 }\nmaterials: { m: { kd: 1 } }\nobjects:\n  - { box: { min: [-0.5, -0.5, -0.5], max: [0.5, 0.5, 0.5] }, transform: [ { rotate_y: -17 } ], material: m }\n";
+    let scene = parse(yaml, "box", None, &Limits::default()).unwrap();
+    let fast = FastScene::new(&scene);
+    let mut g = c.benchmark_group("nearest hit of a turned box, 1024 rays");
+    for (name, search) in [("core", &scene as &dyn Search), ("fast wing", &fast)] {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let mut stats = Stats::default();
+                rs.iter()
+                    .filter(|r| {
+                        search
+                            .nearest(black_box(r), 0.0, f64::INFINITY, &mut stats)
+                            .is_some()
+                    })
+                    .count()
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, lanes, csg, render
+    targets = shapes, sphere_group, bvh, lanes, csg, boxes, render
 }
 criterion_main!(benches);

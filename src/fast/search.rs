@@ -182,9 +182,10 @@ impl<'s> FastScene<'s> {
     }
 
     /// Nearest crossing of one object's surface with t_min < t < t_max: the core's
-    /// `Scene::object_crossing`, but for a flat CSG object, whose nearest crossing is read off
-    /// its primitives' spans where the answer is clear. Kept out of line: its segment lists
-    /// would otherwise give the probes' tight loops a large stack frame.
+    /// `Scene::object_crossing`, but for a box, tested right here (`box_crossing`), and for a
+    /// flat CSG object, whose nearest crossing is read off its primitives' spans where the
+    /// answer is clear. All but the box kept out of line: CSG's segment lists would otherwise
+    /// give the probes' tight loops a large stack frame.
     #[inline(always)]
     pub(super) fn object_hit<V: F64x4>(
         &self,
@@ -195,14 +196,18 @@ impl<'s> FastScene<'s> {
         t_max: f64,
         stats: &mut Stats,
     ) -> Option<Hit> {
+        let scene = self.scene;
+        let geometry = &scene.objects[o as usize].geometry;
+        if let Geometry::Leaf(leaf) = geometry {
+            if let Some(hit) = box_crossing(scene, o, *leaf, ray, t_min, t_max, stats) {
+                return hit;
+            }
+        }
         V::outlined(
             #[inline(always)]
             || {
-                let scene = self.scene;
-                let (Geometry::Csg(root), Some(flat)) = (
-                    &scene.objects[o as usize].geometry,
-                    &self.flat_csg[o as usize],
-                ) else {
+                let (Geometry::Csg(root), Some(flat)) = (geometry, &self.flat_csg[o as usize])
+                else {
                     return scene.object_crossing(o, ray, inv_dir, t_min, t_max, stats);
                 };
                 stats.primitives_tested += 1;
@@ -398,4 +403,39 @@ impl FastScene<'_> {
         }
         blocker
     }
+}
+
+/// The core's crossing of a box leaf (`Scene::object_crossing`: the leaf's span, then its
+/// first end past t_min), compiled into the wing's copy with the box's slab test, instead of
+/// through the dispatch over every kind of shape. `None` when the leaf is not a box; else
+/// the answer, a hit or none.
+#[inline(always)]
+fn box_crossing(
+    scene: &Scene,
+    o: u32,
+    leaf: u32,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    stats: &mut Stats,
+) -> Option<Option<Hit>> {
+    let l = &scene.leaves[leaf as usize];
+    let Shape::Box(aabox) = &l.shape else {
+        return None;
+    };
+    stats.primitives_tested += 1;
+    let local = l.transform.as_ref().map_or(*ray, |tf| tf.ray_to_local(ray));
+    let Some(s) = aabox.span(&local) else {
+        return Some(None);
+    };
+    let (t, face) = if s.t_in > t_min {
+        (s.t_in, s.face_in)
+    } else {
+        (s.t_out, s.face_out)
+    };
+    Some((t > t_min && t < t_max && t.is_finite()).then_some(Hit {
+        t,
+        object: o,
+        surface: Surface::new(leaf, face as u32),
+    }))
 }
