@@ -243,57 +243,50 @@ fn render(c: &mut Criterion) {
     });
 }
 
+/// A scene of one object (given as YAML) in front of the eye.
+fn one_object(object: &str) -> Scene {
+    let yaml = format!(
+        "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], fov: 40, width: 8, height: 8 }}\nmaterials: {{ m: {{ kd: 1 }} }}\nobjects:\n  - {{ {object}, material: m }}\n"
+    );
+    parse(&yaml, "one object", None, &Limits::default()).unwrap()
+}
+
+/// How many of the rays hit something, through `search`.
+fn nearest_hits<S: Search + ?Sized>(search: &S, rays: &[Ray]) -> usize {
+    let mut stats = Stats::default();
+    rays.iter()
+        .filter(|r| {
+            search
+                .nearest(black_box(r), 0.0, f64::INFINITY, &mut stats)
+                .is_some()
+        })
+        .count()
+}
+
 /// The CSG peer scene's lens (∩ of two spheres) against a sphere of its size: nearest hits of
 /// rays that all meet its box, through `Scene::intersect`.
 fn csg(c: &mut Criterion) {
     let rs = rays(1024);
-    let scene = |object: &str| {
-        let yaml = format!(
-            "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], fov: 40, width: 8, height: 8 }}\nmaterials: {{ m: {{ kd: 1 }} }}\nobjects:\n  - {{ {object}, material: m }}\n"
-        );
-        parse(&yaml, "csg", None, &Limits::default()).unwrap()
-    };
-    let lens = scene("intersection: [ { sphere: { center: [0, 0, -0.4], radius: 0.6 } }, { sphere: { center: [0, 0, 0.4], radius: 0.6 } } ]");
-    let sphere = scene("sphere: { center: [0, 0, 0], radius: 0.5 }");
+    let lens = one_object("intersection: [ { sphere: { center: [0, 0, -0.4], radius: 0.6 } }, { sphere: { center: [0, 0, 0.4], radius: 0.6 } } ]");
+    let sphere = one_object("sphere: { center: [0, 0, 0], radius: 0.5 }");
     let mut g = c.benchmark_group("nearest hit, 1024 rays");
     for (name, scene) in [("sphere", &sphere), ("lens", &lens)] {
-        g.bench_function(name, |b| {
-            b.iter(|| {
-                let mut stats = Stats::default();
-                rs.iter()
-                    .filter(|r| {
-                        scene
-                            .nearest(black_box(r), 0.0, f64::INFINITY, &mut stats)
-                            .is_some()
-                    })
-                    .count()
-            })
-        });
+        g.bench_function(name, |b| b.iter(|| nearest_hits(scene, &rs)));
     }
     g.finish();
 }
 
 /// A turned box (the Cornell box's blocks): nearest hits of 1024 rays through the core's
-/// search and through the fast wing's, which tests box leaves in its own copy.
+/// search and through the fast wing's, which tests box leaves where it tests the object.
 fn boxes(c: &mut Criterion) {
     let rs = rays(1024);
-    let yaml = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 40, width: 8, height: 8 }\nmaterials: { m: { kd: 1 } }\nobjects:\n  - { box: { min: [-0.5, -0.5, -0.5], max: [0.5, 0.5, 0.5] }, transform: [ { rotate_y: -17 } ], material: m }\n";
-    let scene = parse(yaml, "box", None, &Limits::default()).unwrap();
+    let scene = one_object(
+        "box: { min: [-0.5, -0.5, -0.5], max: [0.5, 0.5, 0.5] }, transform: [ { rotate_y: -17 } ]",
+    );
     let fast = FastScene::new(&scene);
     let mut g = c.benchmark_group("nearest hit of a turned box, 1024 rays");
     for (name, search) in [("core", &scene as &dyn Search), ("fast wing", &fast)] {
-        g.bench_function(name, |b| {
-            b.iter(|| {
-                let mut stats = Stats::default();
-                rs.iter()
-                    .filter(|r| {
-                        search
-                            .nearest(black_box(r), 0.0, f64::INFINITY, &mut stats)
-                            .is_some()
-                    })
-                    .count()
-            })
-        });
+        g.bench_function(name, |b| b.iter(|| nearest_hits(search, &rs)));
     }
     g.finish();
 }

@@ -425,14 +425,10 @@ fn box_crossing(
     };
     stats.primitives_tested += 1;
     let local = l.transform.as_ref().map_or(*ray, |tf| tf.ray_to_local(ray));
-    let Some(s) = aabox.span(&local) else {
+    let Some(span) = aabox.span(&local) else {
         return Some(None);
     };
-    let (t, face) = if s.t_in > t_min {
-        (s.t_in, s.face_in)
-    } else {
-        (s.t_out, s.face_out)
-    };
+    let (t, face) = span.first_end_past(t_min);
     Some((t > t_min && t < t_max && t.is_finite()).then_some(Hit {
         t,
         object: o,

@@ -32,6 +32,16 @@ impl Span {
             face_out,
         }
     }
+
+    /// The first end of the span past t_min, with its face: where the ray enters, or, from
+    /// inside, where it leaves.
+    pub fn first_end_past(&self, t_min: f64) -> (f64, u8) {
+        if self.t_in > t_min {
+            (self.t_in, self.face_in)
+        } else {
+            (self.t_out, self.face_out)
+        }
+    }
 }
 
 /// A primitive shape in its object space, as the scene file names it.

@@ -280,14 +280,8 @@ impl Scene {
                         surface,
                     });
                 }
-                // The first end of the shape's span past t_min: where the ray enters it, or,
-                // from inside, where it leaves.
-                let s = l.span(ray)?;
-                if s.t_in > t_min {
-                    (s.t_in, Surface::new(*leaf, s.face_in as u32))
-                } else {
-                    (s.t_out, Surface::new(*leaf, s.face_out as u32))
-                }
+                let (t, face) = l.span(ray)?.first_end_past(t_min);
+                (t, Surface::new(*leaf, face as u32))
             }
             Geometry::Csg(root) => {
                 let r = self.csg_ray(ray, inv_dir, t_min, t_max);
