@@ -291,9 +291,48 @@ fn boxes(c: &mut Criterion) {
     g.finish();
 }
 
+/// The Cornell box (seven boxes, no BVH): nearest hits and blockers of 1024 rays from points in
+/// the room, as its paths' bounces and shadow rays meet them, through the core's search and the
+/// fast wing's.
+fn room(c: &mut Criterion) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/lessons/examples/cornell.yaml");
+    let scene = raytree::scene::load(std::path::Path::new(path), &Limits::default()).unwrap();
+    let fast = FastScene::new(&scene);
+    let rs: Vec<Ray> = (0..1024)
+        .map(|i| {
+            let a = i as f64 * 0.618_033_988_75;
+            let b = i as f64 * 0.414_213_562_37;
+            let c = i as f64 * 0.302_775_637_73;
+            Ray::new(
+                DVec3::new(
+                    1.8 * a.fract() - 0.9,
+                    1.8 * b.fract() - 0.9,
+                    1.8 * c.fract() - 0.9,
+                ),
+                DVec3::new((7.0 * a).sin(), (5.0 * b).cos(), (3.0 * c).sin()),
+            )
+        })
+        .collect();
+    let mut g = c.benchmark_group("the Cornell box's seven boxes, 1024 rays");
+    for (name, search) in [("core", &scene as &dyn Search), ("fast wing", &fast)] {
+        g.bench_function(format!("nearest, {name}"), |b| {
+            b.iter(|| nearest_hits(search, &rs))
+        });
+        g.bench_function(format!("blocker, {name}"), |b| {
+            b.iter(|| {
+                let mut stats = Stats::default();
+                rs.iter()
+                    .filter(|r| search.blocker(black_box(r), 0.0, 1.0, &mut stats).is_some())
+                    .count()
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, lanes, csg, boxes, render
+    targets = shapes, sphere_group, bvh, lanes, csg, boxes, room, render
 }
 criterion_main!(benches);

@@ -60,6 +60,28 @@ pub fn gaussian_weight(x: f64) -> f64 {
     (-x * x / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA)).exp() - GAUSS_AT_RADIUS
 }
 
+/// exp(−2a) for a = 1/2σ²: the ratio of successive steps of `gaussian_weights`.
+const GAUSS_STEP_RATIO: f64 = 0.018_315_638_888_734_18;
+
+/// f(x₀), f(x₀ + 1), …, f(x₀ + N − 1): the weights of a row of pixel centres one apart, as a
+/// sample splats them. Two exponentials instead of N: with a = 1/2σ²,
+/// g(x + 1) = g(x) · exp(−a(2x + 1)), and each step's factor is the last one's times exp(−2a).
+/// Equal to `gaussian_weight` but for rounding (a few ulps).
+pub fn gaussian_weights<const N: usize>(x0: f64) -> [f64; N] {
+    let a = 1.0 / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA);
+    let mut g = (-a * x0 * x0).exp();
+    let mut step = (-a * (2.0 * x0 + 1.0)).exp();
+    let mut weights = [0.0; N];
+    for (k, w) in weights.iter_mut().enumerate() {
+        if (x0 + k as f64).abs() < GAUSS_RADIUS {
+            *w = (g - GAUSS_AT_RADIUS).max(0.0);
+        }
+        g *= step;
+        step *= GAUSS_STEP_RATIO;
+    }
+    weights
+}
+
 /// How many times a pixel may be halved: the finest squares are 2^levels to a side, the
 /// power of two at or above √spp (16 samples → 4 × 4 → 2 levels).
 pub fn adaptive_levels(spp: u32) -> u32 {
@@ -279,6 +301,27 @@ mod tests {
         // e^0 − e^(−8) at the centre; e^(−0.5) − e^(−8) one σ out.
         assert!((gaussian_weight(0.0) - (1.0 - (-8f64).exp())).abs() < 1e-15);
         assert!((gaussian_weight(0.5) - ((-0.5f64).exp() - (-8f64).exp())).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_row_of_weights_is_the_filter_at_each_centre() {
+        let a = 1.0 / (2.0 * GAUSS_SIGMA * GAUSS_SIGMA);
+        assert_eq!(GAUSS_STEP_RATIO, (-2.0 * a).exp());
+        let mut rng = Rng::for_pixel(4, 5, 6);
+        for _ in 0..100_000 {
+            let x0 = -2.5 + 3.0 * rng.uniform();
+            let row: [f64; 5] = gaussian_weights(x0);
+            for (k, w) in row.iter().enumerate() {
+                let exact = gaussian_weight(x0 + k as f64);
+                assert!(
+                    (w - exact).abs() <= 16.0 * f64::EPSILON,
+                    "x0 {x0}, k {k}: {w} {exact}"
+                );
+            }
+        }
+        // Beyond the radius on either side, nothing.
+        assert_eq!(gaussian_weights::<5>(-4.0)[..2], [0.0, 0.0]);
+        assert_eq!(gaussian_weights::<5>(0.0)[2..], [0.0, 0.0, 0.0]);
     }
 
     #[test]

@@ -9,7 +9,7 @@ use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
 use super::antialias::{
-    adaptive_levels, adaptive_pixel_observed, cell, gaussian_weight, grid_offsets, jitter, Step,
+    adaptive_levels, adaptive_pixel_observed, cell, gaussian_weights, grid_offsets, jitter, Step,
     GAUSS_RADIUS,
 };
 use super::Image;
@@ -298,16 +298,15 @@ impl<'s> Film<'s> {
         value
     }
 
-    /// Every splat of the samples of row `sy`, columns `columns`: `visit(dy, tx, w, value)`
-    /// for each target pixel (tx, sy + dy) a sample reaches with weight w > 0, in a fixed order
-    /// (source pixel, sample, target row, target column). The image and a lone pixel both
-    /// accumulate through this, so they add the same numbers in the same order.
+    /// The footprint of every sample of row `sy`, columns `columns`, in a fixed order (source
+    /// pixel, then sample). The image and a lone pixel both accumulate through this, so they
+    /// add the same numbers in the same order.
     fn splats_of_row(
         &self,
         t: &mut Tracer,
         sy: u32,
         columns: std::ops::RangeInclusive<i64>,
-        visit: &mut dyn FnMut(i64, i64, f64, DVec3),
+        visit: &mut dyn FnMut(&Footprint),
     ) {
         let w = self.camera.width as i64;
         for sx in columns {
@@ -315,26 +314,7 @@ impl<'s> Film<'s> {
                 continue;
             }
             self.for_each_own_sample(t, sx as u32, sy, &mut |s| {
-                let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
-                // The filter is separable, f(x)·f(y): the columns' factors once per sample.
-                let first = (sx - SPLAT_REACH).max(0);
-                let targets = first..=(sx + SPLAT_REACH).min(w - 1);
-                let mut wx = [0.0; 2 * SPLAT_REACH as usize + 1];
-                for (f, tx) in wx.iter_mut().zip(targets.clone()) {
-                    *f = gaussian_weight(tx as f64 + 0.5 - px);
-                }
-                for dy in -SPLAT_REACH..=SPLAT_REACH {
-                    let wy = gaussian_weight((sy as i64 + dy) as f64 + 0.5 - py);
-                    if wy == 0.0 {
-                        continue;
-                    }
-                    for (tx, f) in targets.clone().zip(wx) {
-                        let weight = wy * f;
-                        if weight > 0.0 {
-                            visit(dy, tx, weight, s.value);
-                        }
-                    }
-                }
+                visit(&Footprint::new(sx, sy as i64, w, s))
             });
         }
     }
@@ -343,8 +323,10 @@ impl<'s> Film<'s> {
     fn splat_row(&self, t: &mut Tracer, sy: u32) -> Band {
         let w = self.camera.width;
         let mut band = Band::new(w);
-        self.splats_of_row(t, sy, 0..=w as i64 - 1, &mut |dy, tx, weight, value| {
-            band.add((dy + SPLAT_REACH) as usize, tx as usize, weight, value)
+        self.splats_of_row(t, sy, 0..=w as i64 - 1, &mut |f| {
+            f.for_each(|dy, tx, weight| {
+                band.add((dy + SPLAT_REACH) as usize, tx as usize, weight, f.value)
+            })
         });
         band
     }
@@ -362,14 +344,62 @@ impl<'s> Film<'s> {
         for sy in (y - SPLAT_REACH).max(0)..=(y + SPLAT_REACH).min(h - 1) {
             let mut row = Splat::default();
             let columns = (x - SPLAT_REACH)..=(x + SPLAT_REACH);
-            self.splats_of_row(t, sy as u32, columns, &mut |dy, tx, weight, value| {
-                if sy + dy == y && tx == x {
-                    row.add(weight, weight * value);
-                }
+            self.splats_of_row(t, sy as u32, columns, &mut |f| {
+                f.for_each(|dy, tx, weight| {
+                    if sy + dy == y && tx == x {
+                        row.add(weight, weight * f.value);
+                    }
+                })
             });
             total.add(row.weight, row.sum);
         }
         total.value()
+    }
+}
+
+/// Where one sample lands through the Gaussian filter: the weights of the columns and of the
+/// rows it reaches (the filter is separable, f(x)·f(y)), and its value.
+struct Footprint {
+    /// The first column reached, and the columns' weights from it on.
+    first: i64,
+    columns: usize,
+    wx: [f64; 2 * SPLAT_REACH as usize + 1],
+    /// The weights of rows sy − 2 … sy + 2.
+    wy: [f64; 2 * SPLAT_REACH as usize + 1],
+    value: DVec3,
+}
+
+impl Footprint {
+    /// The footprint of sample `s` of pixel (sx, sy) in an image `width` pixels wide.
+    #[inline(always)]
+    fn new(sx: i64, sy: i64, width: i64, s: Sample) -> Footprint {
+        let (px, py) = (sx as f64 + s.uv.x, sy as f64 + s.uv.y);
+        let first = (sx - SPLAT_REACH).max(0);
+        let last = (sx + SPLAT_REACH).min(width - 1);
+        Footprint {
+            first,
+            columns: (last - first + 1) as usize,
+            wx: gaussian_weights(first as f64 + 0.5 - px),
+            wy: gaussian_weights((sy - SPLAT_REACH) as f64 + 0.5 - py),
+            value: s.value,
+        }
+    }
+
+    /// `visit(dy, tx, w)` for each pixel (tx, sy + dy) the sample reaches with weight w > 0,
+    /// row by row.
+    #[inline(always)]
+    fn for_each(&self, mut visit: impl FnMut(i64, i64, f64)) {
+        for (dy, wy) in (-SPLAT_REACH..).zip(self.wy) {
+            if wy == 0.0 {
+                continue;
+            }
+            for (tx, f) in (self.first..).zip(&self.wx[..self.columns]) {
+                let weight = wy * f;
+                if weight > 0.0 {
+                    visit(dy, tx, weight);
+                }
+            }
+        }
     }
 }
 
