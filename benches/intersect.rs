@@ -263,6 +263,18 @@ fn nearest_hits<S: Search + ?Sized>(search: &S, rays: &[Ray]) -> usize {
         .count()
 }
 
+/// How many of the rays something blocks before t_max, through `search`.
+fn blocked_rays<S: Search + ?Sized>(search: &S, rays: &[Ray], t_max: f64) -> usize {
+    let mut stats = Stats::default();
+    rays.iter()
+        .filter(|r| {
+            search
+                .blocker(black_box(r), 0.0, t_max, &mut stats)
+                .is_some()
+        })
+        .count()
+}
+
 /// The CSG peer scene's lens (∩ of two spheres) against a sphere of its size: nearest hits of
 /// rays that all meet its box, through `Scene::intersect`.
 fn csg(c: &mut Criterion) {
@@ -319,12 +331,7 @@ fn room(c: &mut Criterion) {
             b.iter(|| nearest_hits(search, &rs))
         });
         g.bench_function(format!("blocker, {name}"), |b| {
-            b.iter(|| {
-                let mut stats = Stats::default();
-                rs.iter()
-                    .filter(|r| search.blocker(black_box(r), 0.0, 1.0, &mut stats).is_some())
-                    .count()
-            })
+            b.iter(|| blocked_rays(search, &rs, 1.0))
         });
     }
     g.finish();

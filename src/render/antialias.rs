@@ -319,9 +319,13 @@ mod tests {
                 );
             }
         }
-        // Beyond the radius on either side, nothing.
-        assert_eq!(gaussian_weights::<5>(-4.0)[..2], [0.0, 0.0]);
-        assert_eq!(gaussian_weights::<5>(0.0)[2..], [0.0, 0.0, 0.0]);
+        // At and beyond the radius on either side nothing, and something inside it.
+        let left: [f64; 5] = gaussian_weights(-4.0);
+        assert_eq!(left[..3], [0.0, 0.0, 0.0]);
+        assert!(left[3] > 0.0 && left[4] > 0.0);
+        let right: [f64; 5] = gaussian_weights(0.0);
+        assert!(right[0] > 0.0 && right[1] > 0.0);
+        assert_eq!(right[2..], [0.0, 0.0, 0.0]);
     }
 
     #[test]
