@@ -164,7 +164,7 @@ fn shade_packet<L: Lanes + ?Sized>(
         for i in 0..n {
             let Some(si) = &shaded[i] else { continue };
             let m = scene.material(si.material);
-            let (sample, lit, skipped) = light_share(t, m, si, &tasks.task(i), k);
+            let (sample, lit, skipped) = light_share(t, m, si, tasks.ray(i), || tasks.task(i), k);
             terms[i] = lit;
             if skipped {
                 // As `color += s · terms` with s = 0, to the bit.
