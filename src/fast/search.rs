@@ -434,11 +434,11 @@ fn box_crossing(
     }))
 }
 
-/// `Aabox::span`, then the span's first end past t_min (`Span::first_end_past`), with the
-/// same arithmetic but selects where the core branches: whether a ray meets a box, and
-/// through which faces, is as random as the ray, and a mispredicted jump costs more than the
-/// slabs. A ray parallel to a slab divides by zero here, but the quotient is never taken.
-/// Also whether the ray meets the box at all (the core's span exists).
+/// `Aabox::span`, then the span's first end past t_min (`Span::first_end_past`): its t and
+/// face, and whether the ray meets the box at all (whether the core's span exists). The same
+/// arithmetic, but selects where the core branches: whether a ray meets a box, and through
+/// which faces, is as random as the ray, and a mispredicted jump costs more than the slabs.
+/// A ray parallel to a slab divides by zero here, but the quotient is never taken.
 #[inline(always)]
 fn first_crossing_past(aabox: &Aabox, ray: &Ray, t_min: f64) -> (f64, u8, bool) {
     let (mut t_in, mut t_out) = (f64::NEG_INFINITY, f64::INFINITY);
