@@ -13,12 +13,13 @@ mod common;
 
 use glam::DVec3;
 use proptest::prelude::*;
-use raytree::fast::{plane_hit, sphere_hit, FastScene};
+use raytree::fast::{plane_hit, sphere_hit, DiffusePaths, FastScene};
 use raytree::geometry::{Plane, Ray, Sphere};
 use raytree::render::film::Film;
 use raytree::render::{render_simple, render_through, Engine, RenderOptions};
 use raytree::scene::{parse, Accel, Hit, Limits, Scene, Search};
 use raytree::stats::Stats;
+use raytree::trace::path::PathTracer;
 use raytree::trace::Tracer;
 
 // --- Whole images ---
@@ -81,6 +82,96 @@ fn every_peer_scene_renders_the_same_with_both_engines() {
     assert!(many.bvh_nodes() > 0);
     for spp in [1, 4] {
         assert_engines_agree("many", &many, spp);
+    }
+}
+
+/// A room of diffuse boxes lit by `lights`, path traced to `depth` with `rules`.
+fn diffuse_room(lights: &str, depth: u32, rules: &str) -> Scene {
+    common::scene(&format!(
+        r#"
+integrator: path
+camera: {{ eye: [0, 0, 3.9], look_at: [0, 0, 0], up: [0, 1, 0], fov: 40, width: 24, height: 20 }}
+background: 0.05
+max_depth: {depth}
+stop_rules: [{rules}]
+spp: 4
+lights:
+{lights}
+materials:
+  white: {{ color: [0.8, 0.7, 0.6], kd: 1 }}
+  red: {{ color: [0.6, 0.05, 0.05], kd: 0.9 }}
+  black: {{ color: 0, kd: 0 }}
+  glow: {{ color: 0.5, kd: 0.5, emission: [0.3, 0.2, 0.1] }}
+objects:
+  - {{ name: floor, box: {{ min: [-1, -1.1, -1], max: [1, -1, 1] }}, material: white }}
+  - {{ name: ceiling, box: {{ min: [-1, 1, -1], max: [1, 1.1, 1] }}, material: white }}
+  - {{ name: back, box: {{ min: [-1, -1, -1.1], max: [1, 1, -1] }}, material: glow }}
+  - {{ name: left, box: {{ min: [-1.1, -1, -1], max: [-1, 1, 1] }}, material: red }}
+  - {{ name: soot, sphere: {{ center: [0.5, -0.7, 0.2], radius: 0.3 }}, material: black }}
+  - name: block
+    box: {{ min: [-1, -1, -1], max: [1, 1, 1] }}
+    transform: [ {{ scale: 0.3 }}, {{ rotate_y: -17.0 }}, {{ translate: [-0.3, -0.7, 0.1] }} ]
+    material: white
+"#
+    ))
+}
+
+/// Path-traced scenes of diffuse surfaces only, which the wing traces with its own path tracer
+/// (`DiffusePaths`): rectangle lights (one facing away, one that reflects), a sphere light, a
+/// point light (which a path tracer ignores), emitting and black surfaces, a short and a long
+/// maximum depth (roulette from the fourth bounce), and seed 002's local light at the maximum
+/// depth: the same pixels and counters as the core's path tracer.
+#[test]
+fn diffuse_scenes_path_traced_by_the_wing_are_the_cores() {
+    let ceiling = "  - { name: lamp, rect: { corner: [-0.23, 0.99, -0.18], u: [0.46, 0, 0], v: [0, 0, 0.38] }, intensity: [18, 14, 7], surface: white }";
+    let floor = "  - { name: up, rect: { corner: [-0.5, -0.98, 0.5], u: [0.3, 0, 0], v: [0, 0, 0.2] }, intensity: 3 }";
+    let ball =
+        "  - { name: ball, sphere: { center: [0.6, 0.6, -0.5], radius: 0.15 }, intensity: 6 }";
+    let point = "  - { name: bulb, point: [0, 0.5, 0.5], intensity: 1 }";
+    let cases = [
+        (vec![ceiling], 8, ""),
+        (vec![ceiling, floor, ball, point], 8, ""),
+        (vec![point, ball, ceiling], 2, ""),
+        (vec![ceiling, ball], 3, "local_at_max_depth"),
+        (vec![ceiling], 1, "local_at_max_depth"),
+    ];
+    for (lights, depth, rules) in cases {
+        let scene = diffuse_room(&lights.join("\n"), depth, rules);
+        let name = format!("{} lights, depth {depth}, rules [{rules}]", lights.len());
+        assert!(
+            DiffusePaths::new(PathTracer::new(&scene, depth)).is_some(),
+            "{name}: the wing's diffuse path tracer should take this scene"
+        );
+        for spp in [1, 16] {
+            assert_engines_agree(&name, &scene, spp);
+        }
+    }
+}
+
+/// A surface that reflects or transmits (kr, kt, or a pattern) keeps the scene with the core's
+/// path tracer, whose mirror and glass lobes the wing's diffuse one does not have.
+#[test]
+fn scenes_with_mirrors_glass_or_patterns_keep_the_cores_path_tracer() {
+    let lamp = "  - { name: lamp, rect: { corner: [-0.23, 0.99, -0.18], u: [0.46, 0, 0], v: [0, 0, 0.38] }, intensity: 10 }";
+    let plain = diffuse_room(lamp, 8, "");
+    assert!(DiffusePaths::new(PathTracer::new(&plain, 8)).is_some());
+    for (what, material) in [
+        ("a mirror", "{ color: 1, kd: 0.2, kr: 0.5 }"),
+        ("glass", "{ color: 1, kt: 0.9, ior: 1.5 }"),
+        (
+            "a checker",
+            "{ color: { pattern: checker, colors: [0.9, 0.1] }, kd: 1 }",
+        ),
+    ] {
+        let yaml = format!(
+            "integrator: path\ncamera: {{ eye: [0, 0, 3], look_at: [0, 0, 0], up: [0, 1, 0], fov: 40, width: 8, height: 8 }}\nlights:\n{lamp}\nmaterials:\n  m: {material}\nobjects:\n  - {{ name: s, sphere: {{ center: [0, 0, 0], radius: 0.5 }}, material: m }}\n"
+        );
+        let scene = common::scene(&yaml);
+        assert!(
+            DiffusePaths::new(PathTracer::new(&scene, 8)).is_none(),
+            "{what}: the wing's diffuse path tracer must not take it"
+        );
+        assert_engines_agree(what, &scene, 4);
     }
 }
 

@@ -6,7 +6,8 @@
 //! (`bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
 //! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
 //! flat CSG objects read off their primitives' spans (`csg_crossing`) or in lanes
-//! (`csg_lanes`, `span_lanes`).
+//! (`csg_lanes`, `span_lanes`), and the path tracer for scenes of diffuse surfaces
+//! (`diffuse_paths`).
 //!
 //! The contract: every image the wing renders equals, bit for bit, the image of the core's
 //! recursion with the core's search, and so do the counters of work. `tests/fast_paths.rs`
@@ -16,6 +17,7 @@
 mod bvh_packet;
 mod csg_crossing;
 mod csg_lanes;
+mod diffuse_paths;
 mod hull;
 mod lanes;
 mod light_share;
@@ -29,6 +31,7 @@ mod span_lanes;
 mod sphere_group;
 
 pub use bvh_packet::PACKET;
+pub use diffuse_paths::DiffusePaths;
 pub use packet_trace::trace_packet;
 pub use probe::{plane_hit, sphere_hit};
 pub use search::FastScene;

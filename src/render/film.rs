@@ -13,7 +13,7 @@ use super::antialias::{
     GAUSS_RADIUS,
 };
 use super::Image;
-use crate::fast::{trace_packet, FastScene, PACKET};
+use crate::fast::{trace_packet, DiffusePaths, FastScene, PACKET};
 use crate::geometry::Ray;
 use crate::sampling::{pixel_key, Rng, SamplePoint};
 use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
@@ -85,6 +85,8 @@ pub struct Film<'s> {
     fast: Option<FastScene<'s>>,
     options: RenderOptions,
     path: Option<PathTracer<'s>>,
+    /// The fast wing's form of the path tracer, for a scene of diffuse surfaces only.
+    diffuse_paths: Option<DiffusePaths<'s>>,
     offsets: Vec<DVec2>,
 }
 
@@ -97,13 +99,16 @@ impl<'s> Film<'s> {
 
     /// The film of `scene` seen through `camera` instead of the scene's own.
     pub fn through(scene: &'s Scene, camera: Camera, options: RenderOptions) -> Film<'s> {
+        let fast = options.engine == Engine::Fast;
+        let path = (scene.integrator == Integrator::Path)
+            .then(|| PathTracer::new(scene, options.max_depth));
         Film {
             scene,
             camera,
-            fast: (options.engine == Engine::Fast).then(|| FastScene::new(scene)),
+            fast: fast.then(|| FastScene::new(scene)),
             options,
-            path: (scene.integrator == Integrator::Path)
-                .then(|| PathTracer::new(scene, options.max_depth)),
+            path,
+            diffuse_paths: path.filter(|_| fast).and_then(DiffusePaths::new),
             offsets: grid_offsets(options.spp.max(1)),
         }
     }
@@ -143,9 +148,10 @@ impl<'s> Film<'s> {
     /// A path draws its random numbers from `point`; the Whitted tracer from `t.rng`.
     pub fn sample(&self, t: &mut Tracer, px: f64, py: f64, point: SamplePoint) -> DVec3 {
         let ray = self.camera.ray(px, py);
-        match &self.path {
-            None => t.radiance(&ray),
-            Some(pt) => pt
+        match (&self.path, &self.diffuse_paths, &self.fast) {
+            (None, _, _) => t.radiance(&ray),
+            (Some(_), Some(paths), Some(fast)) => paths.radiance(fast, &ray, &point, &mut t.stats),
+            (Some(pt), _, _) => pt
                 .with_search(t.search)
                 .radiance(&ray, &point, &mut t.stats),
         }

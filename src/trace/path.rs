@@ -70,7 +70,7 @@ struct LightHit<'a> {
 
 /// What a bounce draws random numbers for, each from its own pair of the sample point.
 #[derive(Clone, Copy)]
-enum Draw {
+pub(crate) enum Draw {
     /// Which lobe scatters the path, and whether Russian roulette stops it.
     Lobe,
     /// The direction the lobe scatters to (cosine, glossy or frosted).
@@ -84,13 +84,13 @@ enum Draw {
 /// Where one bounce of a path takes its random numbers: the path's sample point, at the
 /// bounce's depth.
 #[derive(Clone, Copy)]
-struct Bounce<'p> {
-    point: &'p SamplePoint,
-    depth: u32,
+pub(crate) struct Bounce<'p> {
+    pub(crate) point: &'p SamplePoint,
+    pub(crate) depth: u32,
 }
 
 /// The power heuristic for two strategies (β = 2).
-fn power_heuristic(a: f64, b: f64) -> f64 {
+pub(crate) fn power_heuristic(a: f64, b: f64) -> f64 {
     let (a2, b2) = (a * a, b * b);
     if a2 + b2 == 0.0 {
         0.0
@@ -138,7 +138,7 @@ impl<'s> PathTracer<'s> {
 
     /// The pair of random numbers the bounce `at` draws for `draw`: each bounce has pairs of
     /// its own, after pair 0, the film's point in the pixel.
-    fn draw(&self, at: Bounce, draw: Draw) -> [f64; 2] {
+    pub(crate) fn draw(&self, at: Bounce, draw: Draw) -> [f64; 2] {
         let slot = match draw {
             Draw::Lobe => 0,
             Draw::Direction => 1,
