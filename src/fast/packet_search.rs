@@ -267,7 +267,7 @@ impl FastScene<'_> {
                         }
                     }
                 }
-                Probe::Object(o) => {
+                Probe::Object(o) | Probe::Box { object: o, .. } => {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
                     let mut t_max = limit.to_array();
                     self.object_in_lanes(*o, rays, slabs, &mut t_max, hits, stats);
@@ -326,7 +326,7 @@ impl FastScene<'_> {
                         }
                     }
                 }
-                Probe::Object(o) => {
+                Probe::Object(o) | Probe::Box { object: o, .. } => {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
                     open &= !self.object_blocks_lanes(*o, rays, slabs, reach, open, stats);
                 }

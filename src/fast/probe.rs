@@ -6,6 +6,7 @@
 
 use super::lanes::LANES;
 use super::sphere_group::SphereGroup;
+use crate::accel::Aabb;
 use crate::geometry::sphere::Quadratic;
 use crate::geometry::{Plane, Ray, Sphere};
 
@@ -30,7 +31,25 @@ pub enum Probe {
         objects: [u32; LANES],
         leaves: [u32; LANES],
     },
+    /// A box (turned and moved or not), tested behind its bounding box, which the probe
+    /// holds: most rays miss the bounding box, and are done without looking up the object.
+    Box {
+        bounds: Aabb,
+        object: u32,
+        leaf: u32,
+    },
     Object(u32),
+}
+
+impl Probe {
+    /// The object this probe tests behind its bounding box, if it is one (not a plain sphere
+    /// or plane, nor a group of spheres).
+    pub fn boxed_object(&self) -> Option<u32> {
+        match self {
+            Probe::Object(o) | Probe::Box { object: o, .. } => Some(*o),
+            _ => None,
+        }
+    }
 }
 
 /// The probes with each run of plain spheres gathered into groups of up to `LANES`, in order:

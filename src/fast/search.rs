@@ -14,7 +14,7 @@ use super::probe::{grouped, plane_hit, sphere_hit, Probe};
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::csg::CsgWork;
 use crate::geometry::{first_crossing, Aabox, Ray, Shape, Span, Surface};
-use crate::scene::{Geometry, Hit, Scene, Search};
+use crate::scene::{Geometry, Hit, Leaf, Scene, Search};
 use crate::stats::Stats;
 
 /// A compiled scene with what the fast search needs beside it.
@@ -79,7 +79,7 @@ impl<'s> FastScene<'s> {
             .iter()
             .map(|f| fast.lanes_form(f.as_ref()?))
             .collect();
-        let boxed = |probes: &[Probe]| probes.iter().any(|p| matches!(p, Probe::Object(_)));
+        let boxed = |probes: &[Probe]| probes.iter().any(|p| p.boxed_object().is_some());
         fast.boxes_outside_bvh = boxed(&fast.unbounded);
         fast.boxed_objects = fast.boxes_outside_bvh || boxed(&fast.bounded);
         fast.in_lanes = fast.bounded.is_empty();
@@ -127,6 +127,11 @@ impl<'s> FastScene<'s> {
             },
             (Shape::Plane(plane), None) => Probe::Plane {
                 plane: plane.clone(),
+                object,
+                leaf,
+            },
+            (Shape::Box(_), _) => Probe::Box {
+                bounds: self.scene.objects[object as usize].bounds,
                 object,
                 leaf,
             },
@@ -274,6 +279,23 @@ impl<'s> FastScene<'s> {
                 stats.primitives_tested += group.len() as u64;
                 let (t, k) = group.nearest::<V>(ray, t_min, t_max)?;
                 (t, objects[k], Surface::new(leaves[k], 0))
+            }
+            Probe::Box {
+                bounds,
+                object,
+                leaf,
+            } => {
+                // `boxed_object_hit`'s test and count, then `object_hit`'s box crossing.
+                if !bounds.hit(ray.origin, inv_dir, t_min, t_max) {
+                    stats.bounds_skipped += 1;
+                    return None;
+                }
+                let l = &self.scene.leaves[*leaf as usize];
+                let Shape::Box(aabox) = &l.shape else {
+                    unreachable!("a box probe holds a box leaf")
+                };
+                let h = leaf_box_crossing(l, aabox, *object, *leaf, ray, t_min, t_max, stats)?;
+                (h.t, h.object, h.surface)
             }
             Probe::Object(o) => {
                 let h = self.boxed_object_hit::<V>(*o, ray, inv_dir, t_min, t_max, stats)?;
@@ -423,15 +445,33 @@ fn box_crossing(
     let Shape::Box(aabox) = &l.shape else {
         return None;
     };
+    Some(leaf_box_crossing(
+        l, aabox, o, leaf, ray, t_min, t_max, stats,
+    ))
+}
+
+/// The crossing of leaf `l`, the box `aabox`, with t_min < t < t_max, in its own space.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn leaf_box_crossing(
+    l: &Leaf,
+    aabox: &Aabox,
+    o: u32,
+    leaf: u32,
+    ray: &Ray,
+    t_min: f64,
+    t_max: f64,
+    stats: &mut Stats,
+) -> Option<Hit> {
     stats.primitives_tested += 1;
     let local = l.transform.as_ref().map_or(*ray, |tf| tf.ray_to_local(ray));
     let (t, face, crosses) = first_crossing_past(aabox, &local, t_min);
     let hit = crosses & (t > t_min) & (t < t_max) & t.is_finite();
-    Some(hit.then_some(Hit {
+    hit.then_some(Hit {
         t,
         object: o,
         surface: Surface::new(leaf, face as u32),
-    }))
+    })
 }
 
 /// `Aabox::span`, then the span's first end past t_min (`Span::first_end_past`): its t and
