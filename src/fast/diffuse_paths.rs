@@ -33,6 +33,7 @@ pub struct DiffusePaths<'s> {
 enum Emitter<'s> {
     /// A rectangle, with what the core derives from its corner and sides.
     Rect {
+        light: &'s Light,
         corner: DVec3,
         u: DVec3,
         v: DVec3,
@@ -80,6 +81,7 @@ impl<'s> DiffusePaths<'s> {
                     let normal = u.cross(*v);
                     let area = normal.length();
                     Emitter::Rect {
+                        light,
                         corner: *corner,
                         u: *u,
                         v: *v,
@@ -193,10 +195,11 @@ impl<'s> DiffusePaths<'s> {
     #[inline(always)]
     fn light_hit(&self, ray: &Ray, t_max: f64) -> Option<LightHit<'s>> {
         let mut best: Option<LightHit> = None;
-        for (emitter, light) in self.lights.iter().zip(&self.tracer.scene.lights) {
+        for emitter in &self.lights {
             let limit = best.as_ref().map_or(t_max, |b| b.t);
             let hit = match emitter {
                 Emitter::Rect {
+                    light,
                     corner,
                     u,
                     v,
@@ -221,7 +224,7 @@ impl<'s> DiffusePaths<'s> {
                     }
                     LightHit {
                         t,
-                        light,
+                        light: *light,
                         pdf: t * t / (-facing * area),
                         normal: *normal,
                     }
@@ -232,7 +235,7 @@ impl<'s> DiffusePaths<'s> {
                     };
                     LightHit {
                         t: h.t,
-                        light,
+                        light: *light,
                         pdf: h.pdf,
                         normal: h.normal,
                     }
@@ -256,16 +259,12 @@ impl<'s> DiffusePaths<'s> {
         mis: bool,
     ) -> DVec3 {
         let mut sum = DVec3::ZERO;
-        for (i, (emitter, light)) in self
-            .lights
-            .iter()
-            .zip(&self.tracer.scene.lights)
-            .enumerate()
-        {
+        for (i, emitter) in self.lights.iter().enumerate() {
             let [u1, u2] = self.tracer.draw(at, Draw::Light(i));
             // `Light::sample_emitter`: a direction, the distance, the density per solid angle.
-            let (wi, distance, pdf) = match emitter {
+            let (light, wi, distance, pdf) = match emitter {
                 Emitter::Rect {
+                    light,
                     corner,
                     u,
                     v,
@@ -280,13 +279,13 @@ impl<'s> DiffusePaths<'s> {
                     if cos_l <= 0.0 || cos_l.is_nan() {
                         continue;
                     }
-                    (wi, distance, distance * distance / (cos_l * area))
+                    (*light, wi, distance, distance * distance / (cos_l * area))
                 }
                 Emitter::Other(light) => {
                     let Some(e) = light.sample_emitter(p, u1, u2) else {
                         continue;
                     };
-                    (e.wi, e.distance, e.pdf)
+                    (*light, e.wi, e.distance, e.pdf)
                 }
             };
             let cos_s = n.dot(wi);
