@@ -224,7 +224,7 @@ impl<'s> DiffusePaths<'s> {
                     }
                     LightHit {
                         t,
-                        light: *light,
+                        light,
                         pdf: t * t / (-facing * area),
                         normal: *normal,
                     }
@@ -235,7 +235,7 @@ impl<'s> DiffusePaths<'s> {
                     };
                     LightHit {
                         t: h.t,
-                        light: *light,
+                        light,
                         pdf: h.pdf,
                         normal: h.normal,
                     }
