@@ -1,13 +1,16 @@
-//! Hot paths: shape intersections, BVH traversal against brute force, and a small render.
+//! Hot paths: shape intersections, BVH traversal against brute force, whole paths of the path
+//! tracer, and a small render.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;
 use raytree::fast::simd::Wide;
-use raytree::fast::{sphere_hit, FastScene, SphereGroup};
+use raytree::fast::{sphere_hit, DiffusePaths, FastScene, SphereGroup};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
 use raytree::render::{render_simple, RenderOptions};
+use raytree::sampling::{pixel_key, SamplePoint};
 use raytree::scene::{parse, Accel, Limits, Scene, Search};
 use raytree::stats::Stats;
+use raytree::trace::path::PathTracer;
 use std::hint::black_box;
 
 fn rays(n: usize) -> Vec<Ray> {
@@ -337,9 +340,49 @@ fn room(c: &mut Criterion) {
     g.finish();
 }
 
+/// The Cornell box's paths, 1024 of them (16 samples in each of 64 pixels at the image's
+/// centre), each traced whole: by the core's path tracer with the fast wing's search, and by
+/// the wing's path tracer for scenes of diffuse surfaces (`DiffusePaths`), which gives the same
+/// values to the last bit.
+fn paths(c: &mut Criterion) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/lessons/examples/cornell.yaml");
+    let scene = raytree::scene::load(std::path::Path::new(path), &Limits::default()).unwrap();
+    let fast = FastScene::new(&scene);
+    let core = PathTracer::new(&scene, scene.max_depth).with_search(&fast);
+    let wing = DiffusePaths::new(PathTracer::new(&scene, scene.max_depth)).unwrap();
+    let samples: Vec<(Ray, SamplePoint)> = (0..1024u32)
+        .map(|k| {
+            let (x, y) = (124 + (k / 16) % 8, 124 + k / 128);
+            let point = SamplePoint::new(pixel_key(0, x, y), k % 16);
+            let [u, v] = point.pair(0);
+            (scene.camera.ray(x as f64 + u, y as f64 + v), point)
+        })
+        .collect();
+    let mut g = c.benchmark_group("the Cornell box's paths, 1024 samples");
+    g.bench_function("core path tracer, fast search", |b| {
+        b.iter(|| {
+            let mut stats = Stats::default();
+            samples
+                .iter()
+                .map(|(r, p)| core.radiance(black_box(r), p, &mut stats))
+                .sum::<DVec3>()
+        })
+    });
+    g.bench_function("fast wing (diffuse paths)", |b| {
+        b.iter(|| {
+            let mut stats = Stats::default();
+            samples
+                .iter()
+                .map(|(r, p)| wing.radiance(&fast, black_box(r), p, &mut stats))
+                .sum::<DVec3>()
+        })
+    });
+    g.finish();
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, lanes, csg, boxes, room, render
+    targets = shapes, sphere_group, bvh, lanes, csg, boxes, room, paths, render
 }
 criterion_main!(benches);
