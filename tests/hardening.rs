@@ -1045,6 +1045,58 @@ fn bench_sweep_refuses_what_render_refuses() {
     }
 }
 
+/// `--runs 3` times three renders (after an untimed one) and reports their median: the error
+/// and the rays counted are those of a single render, since every render is the same image;
+/// `--runs 0` is refused with a usage message.
+#[test]
+fn bench_sweep_takes_the_median_of_its_runs() {
+    let small = write("runs-sweep.yaml", SMALL);
+    let small = small.to_str().unwrap();
+    let reference = scratch("runs-reference.exr");
+    let reference = reference.to_str().unwrap();
+    let r = run(&["render", small, "-o", reference, "--spp", "64"]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let sweep = |runs: &str| {
+        let r = run(&[
+            "bench",
+            "sweep",
+            small,
+            "--knob",
+            "spp",
+            "--values",
+            "1,4",
+            "--reference",
+            reference,
+            "--runs",
+            runs,
+            "--format",
+            "json",
+        ]);
+        assert_eq!(r.code(), Some(0), "--runs {runs}: {}", r.stderr);
+        let doc: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+        doc["rows"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|row| {
+                (
+                    row["value"].clone(),
+                    row["rays"].clone(),
+                    row["rmse"].clone(),
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let once = sweep("1");
+    assert_eq!(once.len(), 2);
+    assert_eq!(sweep("3"), once);
+    let refused = run(&[
+        "bench", "sweep", small, "--knob", "spp", "--values", "1", "--runs", "0",
+    ]);
+    assert_eq!(refused.code(), Some(2), "{}", refused.stderr);
+    assert!(refused.stderr.contains("--runs"), "{}", refused.stderr);
+}
+
 /// On a terminal both streams show: each row of the scaling table must be printed once.
 #[test]
 fn bench_scaling_prints_each_row_once() {

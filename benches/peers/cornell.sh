@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Path tracing against Mitsuba 3 on its Cornell box, both sides in one run, 2 threads each:
 # raytree's render time and error at each sample count (`raytree bench sweep`), Mitsuba
-# `llvm_ad_rgb`'s (cornell_mitsuba.py, median of 3 renders), and the ratio of their
+# `llvm_ad_rgb`'s (cornell_mitsuba.py), each side the median of 3 renders after one untimed
+# render (Mitsuba's compiles its kernels, raytree's warms caches and threads), and the ratio of their
 # efficiencies 1/(seconds·MSE), RMSE over every pixel and channel of linear radiance.
 # Usage: benches/peers/cornell.sh [REFERENCE.exr] [SPP,SPP,...]
 #   (default: the shipped 4096-spp reference of ../shared/peers, at 16 and 64 spp;
@@ -22,7 +23,7 @@ cargo build --release --quiet --manifest-path ../../Cargo.toml
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 ../../target/release/raytree bench sweep ../../lessons/examples/cornell.yaml --knob spp \
-    --values "$spps" --reference "$reference" --threads 2 --csv "$out/raytree.csv" >/dev/null
+    --values "$spps" --reference "$reference" --threads 2 --runs 3 --csv "$out/raytree.csv" >/dev/null
 python3 cornell_mitsuba.py --reference="$reference" llvm_ad_rgb ${spps//,/ } >"$out/mitsuba.txt"
 python3 - "$out/raytree.csv" "$out/mitsuba.txt" <<'PY'
 import csv, sys

@@ -3,9 +3,10 @@
 use std::time::Instant;
 
 use super::error::BenchError;
-use crate::render::{render_simple, RenderOptions};
+use crate::render::{render_simple, Image, RenderOptions};
 use crate::scene::Antialias;
 use crate::scene::Scene;
+use crate::stats::Stats;
 
 /// The knob a run-time-against-error sweep turns.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -140,6 +141,7 @@ pub fn sweep(
     reference: &crate::render::Image,
     seed: u64,
     clamp: bool,
+    runs: usize,
 ) -> Vec<SweepRow> {
     let display = |img: &crate::render::Image| {
         let mut out = img.clone();
@@ -155,9 +157,7 @@ pub fn sweep(
         .iter()
         .map(|&value| {
             let (s, o) = options_for(scene, knob, value, seed);
-            let start = Instant::now();
-            let (image, stats) = render_simple(&s, o);
-            let seconds = start.elapsed().as_secs_f64();
+            let (image, stats, seconds) = timed_renders(&s, o, runs);
             let (rmse, rel_mse, max_abs) = errors(&display(&image), reference);
             SweepRow {
                 value,
@@ -170,6 +170,25 @@ pub fn sweep(
             }
         })
         .collect()
+}
+
+/// The scene rendered `runs` times (after one untimed render when more than one is asked
+/// for, which warms the caches and the thread pool), and the median of the renders' times.
+/// The renders are the same image, bit for bit: the last one is returned.
+fn timed_renders(scene: &Scene, options: RenderOptions, runs: usize) -> (Image, Stats, f64) {
+    if runs > 1 {
+        render_simple(scene, options);
+    }
+    let mut times = vec![];
+    let mut last = None;
+    for _ in 0..runs.max(1) {
+        let start = Instant::now();
+        last = Some(render_simple(scene, options));
+        times.push(start.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    let (image, stats) = last.expect("at least one render");
+    (image, stats, times[times.len() / 2])
 }
 
 /// The reference when none is given: the same scene at a much higher setting (16× the largest

@@ -62,6 +62,10 @@ enum Measure {
         /// pixels of a bright emitter do not dominate the error.
         #[arg(long)]
         clamp: bool,
+        /// Time this many renders at each value, after one untimed render when more than
+        /// one, and report the median time (the image is the same each time).
+        #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=99))]
+        runs: u32,
         /// Output: the table to read, or JSON for programs.
         #[arg(long, value_enum, default_value_t = Format::Text)]
         format: Format,
@@ -256,6 +260,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             csv,
             plot,
             clamp,
+            runs,
             format,
         } => {
             for &v in &values {
@@ -298,8 +303,17 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                     }
                 }
             };
-            let rows = pool
-                .install(|| crate::bench::sweep(&scene, knob, &values, &reference, seed, clamp));
+            let rows = pool.install(|| {
+                crate::bench::sweep(
+                    &scene,
+                    knob,
+                    &values,
+                    &reference,
+                    seed,
+                    clamp,
+                    runs as usize,
+                )
+            });
             match format {
                 Format::Text => print(&crate::bench::sweep_table(knob, &rows))?,
                 Format::Json => print_json(serde_json::json!({
