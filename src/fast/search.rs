@@ -12,9 +12,10 @@ use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
 use super::simd::{with_lanes, F64x4};
+use crate::accel::Aabb;
 use crate::geometry::csg::CsgWork;
 use crate::geometry::{first_crossing, Aabox, Ray, Shape, Span, Surface};
-use crate::scene::{Geometry, Hit, Leaf, Scene, Search};
+use crate::scene::{Geometry, Hit, Scene, Search};
 use crate::stats::Stats;
 
 /// A compiled scene with what the fast search needs beside it.
@@ -167,12 +168,8 @@ impl<'s> FastScene<'s> {
         t_max: f64,
         stats: &mut Stats,
     ) -> Option<Hit> {
-        if self.tested_behind_box(o)
-            && !self.scene.objects[o as usize]
-                .bounds
-                .hit(ray.origin, inv_dir, t_min, t_max)
-        {
-            stats.bounds_skipped += 1;
+        let bounds = &self.scene.objects[o as usize].bounds;
+        if self.tested_behind_box(o) && misses(bounds, ray, inv_dir, t_min, t_max, stats) {
             return None;
         }
         self.object_hit::<V>(o, ray, inv_dir, t_min, t_max, stats)
@@ -286,15 +283,11 @@ impl<'s> FastScene<'s> {
                 leaf,
             } => {
                 // `boxed_object_hit`'s test and count, then `object_hit`'s box crossing.
-                if !bounds.hit(ray.origin, inv_dir, t_min, t_max) {
-                    stats.bounds_skipped += 1;
+                if misses(bounds, ray, inv_dir, t_min, t_max, stats) {
                     return None;
                 }
-                let l = &self.scene.leaves[*leaf as usize];
-                let Shape::Box(aabox) = &l.shape else {
-                    unreachable!("a box probe holds a box leaf")
-                };
-                let h = leaf_box_crossing(l, aabox, *object, *leaf, ray, t_min, t_max, stats)?;
+                let crossing = box_crossing(self.scene, *object, *leaf, ray, t_min, t_max, stats);
+                let h = crossing.expect("a box probe holds a box leaf")?;
                 (h.t, h.object, h.surface)
             }
             Probe::Object(o) => {
@@ -445,33 +438,33 @@ fn box_crossing(
     let Shape::Box(aabox) = &l.shape else {
         return None;
     };
-    Some(leaf_box_crossing(
-        l, aabox, o, leaf, ray, t_min, t_max, stats,
-    ))
-}
-
-/// The crossing of leaf `l`, the box `aabox`, with t_min < t < t_max, in its own space.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn leaf_box_crossing(
-    l: &Leaf,
-    aabox: &Aabox,
-    o: u32,
-    leaf: u32,
-    ray: &Ray,
-    t_min: f64,
-    t_max: f64,
-    stats: &mut Stats,
-) -> Option<Hit> {
     stats.primitives_tested += 1;
     let local = l.transform.as_ref().map_or(*ray, |tf| tf.ray_to_local(ray));
     let (t, face, crosses) = first_crossing_past(aabox, &local, t_min);
     let hit = crosses & (t > t_min) & (t < t_max) & t.is_finite();
-    hit.then_some(Hit {
+    Some(hit.then_some(Hit {
         t,
         object: o,
         surface: Surface::new(leaf, face as u32),
-    })
+    }))
+}
+
+/// Whether the ray misses `bounds` for t in [t_min, t_max] (`Aabb::hit`), counting the object
+/// skipped when it does.
+#[inline(always)]
+fn misses(
+    bounds: &Aabb,
+    ray: &Ray,
+    inv_dir: DVec3,
+    t_min: f64,
+    t_max: f64,
+    stats: &mut Stats,
+) -> bool {
+    let missed = !bounds.hit(ray.origin, inv_dir, t_min, t_max);
+    if missed {
+        stats.bounds_skipped += 1;
+    }
+    missed
 }
 
 /// `Aabox::span`, then the span's first end past t_min (`Span::first_end_past`): its t and
