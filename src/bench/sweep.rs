@@ -172,23 +172,33 @@ pub fn sweep(
         .collect()
 }
 
-/// The scene rendered `runs` times (after one untimed render when more than one is asked
-/// for, which warms the caches and the thread pool), and the median of the renders' times.
-/// The renders are the same image, bit for bit: the last one is returned.
+/// The scene rendered `runs` times (`timed`), and the median of the renders' times.
 fn timed_renders(scene: &Scene, options: RenderOptions, runs: usize) -> (Image, Stats, f64) {
+    let ((image, stats), seconds) = timed(runs, || render_simple(scene, options));
+    (image, stats, seconds)
+}
+
+/// `work` done `runs` times, after once untimed when more than once is asked for (which
+/// warms the caches and the thread pool), and the median of the timed runs' seconds. The
+/// work gives the same result each time: the last is returned.
+fn timed<T>(runs: usize, mut work: impl FnMut() -> T) -> (T, f64) {
     if runs > 1 {
-        render_simple(scene, options);
+        work();
     }
     let mut times = vec![];
     let mut last = None;
     for _ in 0..runs.max(1) {
         let start = Instant::now();
-        last = Some(render_simple(scene, options));
+        last = Some(work());
         times.push(start.elapsed().as_secs_f64());
     }
-    times.sort_by(f64::total_cmp);
-    let (image, stats) = last.expect("at least one render");
-    (image, stats, times[times.len() / 2])
+    (last.expect("at least one run"), median(times))
+}
+
+/// The middle of the values (the upper middle of an even count).
+fn median(mut values: Vec<f64>) -> f64 {
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
 }
 
 /// The reference when none is given: the same scene at a much higher setting (16× the largest
@@ -261,4 +271,30 @@ pub fn sweep_csv(knob: Knob, rows: &[SweepRow]) -> String {
         ));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// One run is timed as it is; three are timed after a fourth, untimed.
+    #[test]
+    fn timed_runs_once_or_warms_up_first() {
+        for (runs, calls) in [(1, 1), (3, 4), (5, 6)] {
+            let mut n = 0;
+            let (last, _) = timed(runs, || {
+                n += 1;
+                n
+            });
+            assert_eq!((n, last), (calls, calls), "{runs} runs");
+        }
+    }
+
+    /// The median of hand-picked times: the middle one, whatever the order.
+    #[test]
+    fn the_median_is_the_middle_time() {
+        assert_eq!(median(vec![0.9, 0.2, 0.4]), 0.4);
+        assert_eq!(median(vec![3.0]), 3.0);
+        assert_eq!(median(vec![5.0, 1.0, 2.0, 4.0, 3.0]), 3.0);
+    }
 }
