@@ -12,6 +12,12 @@
         the edge, beside the value a Gaussian-filtered step predicts there (Mitsuba's filter:
         σ = 0.5 px, radius 2 px; the edges' rows from the camera: eye (0, 0, 3.9), vertical
         field of view 39.3077°, the light at y = 0.99 from z = −0.18 to 0.20).
+
+    python3 benches/peers/cornell_reference.py errors REFERENCE.exr IMAGE.exr [IMAGE.exr ...]
+        Where each image's squared error against the reference lies: its RMSE, the shares of
+        the squared error in the light (pixels the reference shows brighter than 2), in the
+        light and the 4 pixels around it, and in the worst 0.1 % and 1 % of pixels, and the
+        mean signed error of each channel (a bias shows there; noise averages out).
 """
 import math
 import sys
@@ -69,10 +75,36 @@ def edges(paths):
         print(f"{row:3d}  {step:13.3f}  {values}")
 
 
+def errors(reference_path, paths):
+    mi.set_variant("scalar_rgb")
+    reference = np.array(mi.Bitmap(reference_path), dtype=np.float64)[..., :3]
+    light = reference.mean(-1) > 2
+    # The light and every pixel within 4 of it (a 9 × 9 neighbourhood touches the light).
+    padded = np.pad(light, 4)
+    around = np.zeros_like(light)
+    for dy in range(9):
+        for dx in range(9):
+            around |= padded[dy:dy + SIZE, dx:dx + SIZE]
+    print(f"light: {light.sum()} pixels; light and 4 around: {around.sum()} pixels")
+    print(f"{'image':>18} {'RMSE':>8} {'light':>6} {'+4 px':>6} {'0.1 %':>6} {'1 %':>6}  mean error r, g, b")
+    for path in paths:
+        image = np.array(mi.Bitmap(path), dtype=np.float64)[..., :3]
+        squared = ((image - reference) ** 2).mean(-1)
+        total = squared.sum()
+        worst = np.sort(squared.ravel())[::-1]
+        share = lambda k: worst[:k].sum() / total
+        bias = ", ".join(f"{b:+.1e}" for b in (image - reference).mean((0, 1)))
+        print(f"{path.rsplit('/', 1)[-1][:18]:>18} {math.sqrt(squared.mean()):8.5f} "
+              f"{squared[light].sum() / total:6.2f} {squared[around].sum() / total:6.2f} "
+              f"{share(squared.size // 1000):6.2f} {share(squared.size // 100):6.2f}  {bias}")
+
+
 if __name__ == "__main__":
     if len(sys.argv) >= 3 and sys.argv[1] == "render":
         render(sys.argv[2], int(sys.argv[3]) if len(sys.argv) > 3 else 4)
     elif len(sys.argv) >= 3 and sys.argv[1] == "edges":
         edges(sys.argv[2:])
+    elif len(sys.argv) >= 4 and sys.argv[1] == "errors":
+        errors(sys.argv[2], sys.argv[3:])
     else:
         sys.exit(__doc__)
