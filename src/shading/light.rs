@@ -2,6 +2,8 @@
 
 use glam::DVec3;
 
+use crate::sampling::sin_cos;
+
 /// What kind of emitter a light is, with where it sits and how it falls off.
 #[derive(Clone, Debug, PartialEq)]
 pub enum LightKind {
@@ -277,10 +279,10 @@ impl Light {
                 }
                 let cos_theta = 1.0 - u1 * spread;
                 let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-                let phi = 2.0 * std::f64::consts::PI * u2;
+                let (sin_phi, cos_phi) = sin_cos(2.0 * std::f64::consts::PI * u2);
                 let axis = to / d;
                 let (t, b) = crate::sampling::basis(axis);
-                let wi = (sin_theta * phi.cos() * t + sin_theta * phi.sin() * b + cos_theta * axis)
+                let wi = (sin_theta * cos_phi * t + sin_theta * sin_phi * b + cos_theta * axis)
                     .normalize();
                 // Where that direction meets the sphere (the near root).
                 let bq = -to.dot(wi);
@@ -327,7 +329,8 @@ fn concentric_disc(a: f64, b: f64) -> (f64, f64) {
     } else {
         (y, 2.0 * quarter - quarter * (x / y))
     };
-    (r * theta.cos(), r * theta.sin())
+    let (sin, cos) = sin_cos(theta);
+    (r * cos, r * sin)
 }
 
 #[cfg(test)]

@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 
 use glam::DVec3;
 
-use crate::sampling::basis;
+use crate::sampling::{basis, sin_cos};
 
 /// The distribution of sampled directions about the principal one.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -58,9 +58,9 @@ pub fn sample(shape: LobeShape, axis: DVec3, u1: f64, u2: f64) -> DVec3 {
         LobeShape::Phong { exponent } => u1.powf(1.0 / (exponent + 1.0)),
     };
     let sin_theta = (1.0 - cos_theta * cos_theta).max(0.0).sqrt();
-    let phi = 2.0 * PI * u2;
+    let (sin_phi, cos_phi) = sin_cos(2.0 * PI * u2);
     let (t, b) = basis(axis);
-    (sin_theta * phi.cos() * t + sin_theta * phi.sin() * b + cos_theta * axis).normalize()
+    (sin_theta * cos_phi * t + sin_theta * sin_phi * b + cos_theta * axis).normalize()
 }
 
 /// A ray drawn from the lobe about `principal`, kept on the side of the surface (normal n) that
