@@ -50,7 +50,9 @@ impl SamplePoint {
         // Owen's scramble of each coordinate, on the mirrored fractions `mirrored_sobol_pair`
         // gives (see `owen_scramble`).
         let [x, y] = mirrored_sobol_pair(i);
-        [laine_karras(x, sx), laine_karras(y, sy)].map(|m| unit(m.reverse_bits()))
+        // Both mirrored back at once: mirroring 64 bits mirrors each half and swaps them.
+        let both = ((laine_karras(y, sy) as u64) << 32 | laine_karras(x, sx) as u64).reverse_bits();
+        [unit((both >> 32) as u32), unit(both as u32)]
     }
 }
 
@@ -239,6 +241,26 @@ mod tests {
         }
         let chi2 = chi_square_uniform(&counts);
         assert!(chi2 < 330.0, "χ² = {chi2}");
+    }
+
+    /// `pair` mirrors its two scrambled coordinates back as one 64-bit word: the same as
+    /// mirroring each 32-bit fraction on its own.
+    #[test]
+    fn one_64_bit_mirror_is_two_32_bit_mirrors() {
+        for (k, dim, index) in [
+            (0, 0, 0),
+            (1, 2, 3),
+            (u64::MAX, 31, 1 << 20),
+            (0x5EED, 7, 12345),
+        ] {
+            let point = SamplePoint::new(pixel_key(k, 3, 4), index);
+            let seeds = mix(point.key ^ (dim as u64 + 1).wrapping_mul(GOLDEN));
+            let (shuffle, sx) = (seeds as u32, (seeds >> 32) as u32);
+            let sy = (seeds.wrapping_mul(GOLDEN) >> 32) as u32;
+            let [x, y] = mirrored_sobol_pair(owen_scramble(index, shuffle));
+            let each = [laine_karras(x, sx), laine_karras(y, sy)].map(|m| unit(m.reverse_bits()));
+            assert_eq!(point.pair(dim), each, "key {k}, pair {dim}, sample {index}");
+        }
     }
 
     /// Owen's scramble is a permutation of the fractions that keeps a fraction's first k
