@@ -83,9 +83,9 @@ pub(crate) fn chi_square_uniform(counts: &[f64]) -> f64 {
 mod tests {
     use super::*;
 
-    /// `sin_cos` is (sin x, cos x) in that order, to within two units in the last place of
-    /// the C library's, over the angles the samplers draw: the quadrant boundaries, where one
-    /// of the two is zero, and anywhere in between.
+    /// `sin_cos` is (sin x, cos x) in that order, within a relative 2ε of the C library's,
+    /// over the angles the samplers draw: the quadrant boundaries, where one of the two is
+    /// zero, and anywhere in between.
     #[test]
     fn sin_cos_is_the_sine_and_the_cosine() {
         let quarter = std::f64::consts::FRAC_PI_2;
