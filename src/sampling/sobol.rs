@@ -46,10 +46,11 @@ impl SamplePoint {
         let seeds = mix(self.key ^ (dim as u64 + 1).wrapping_mul(GOLDEN));
         let (shuffle, sx) = (seeds as u32, (seeds >> 32) as u32);
         let sy = (seeds.wrapping_mul(GOLDEN) >> 32) as u32;
-        let i = owen_scramble(self.index, shuffle);
+        // The shuffled index, `owen_scramble(index, shuffle)` before its last mirror.
+        let shuffled = laine_karras(self.index.reverse_bits(), shuffle);
         // Owen's scramble of each coordinate, on the mirrored fractions `mirrored_sobol_pair`
         // gives (see `owen_scramble`).
-        let [x, y] = mirrored_sobol_pair(i);
+        let [x, y] = mirrored_sobol_pair_of_mirrored(shuffled);
         // Both mirrored back at once: mirroring 64 bits mirrors each half and swaps them.
         let both = ((laine_karras(y, sy) as u64) << 32 | laine_karras(x, sx) as u64).reverse_bits();
         [unit((both >> 32) as u32), unit(both as u32)]
@@ -75,10 +76,25 @@ fn mirrored_sobol_pair(i: u32) -> [u32; 2] {
     [i, y]
 }
 
-/// For each byte of an index, the mirrored second-dimension value of each of its 256 values.
-const SECOND_BY_BYTE: [[u32; 256]; 4] = second_by_byte();
+/// `mirrored_sobol_pair(j.reverse_bits())`. The second coordinate is linear in the index's
+/// bits (xor), so it is read off j's bytes directly, each bit standing for the column of its
+/// mirror image: the second coordinate need not wait for the index to be mirrored back.
+fn mirrored_sobol_pair_of_mirrored(j: u32) -> [u32; 2] {
+    let y = j
+        .to_le_bytes()
+        .iter()
+        .zip(&SECOND_BY_MIRRORED_BYTE)
+        .fold(0, |y, (&byte, table)| y ^ table[byte as usize]);
+    [j.reverse_bits(), y]
+}
 
-const fn second_by_byte() -> [[u32; 256]; 4] {
+/// For each byte of an index, the mirrored second-dimension value of each of its 256 values.
+const SECOND_BY_BYTE: [[u32; 256]; 4] = second_by_byte(false);
+
+/// The same for each byte of a mirrored index: bit p of it is bit 31 − p of the index.
+const SECOND_BY_MIRRORED_BYTE: [[u32; 256]; 4] = second_by_byte(true);
+
+const fn second_by_byte(mirrored: bool) -> [[u32; 256]; 4] {
     // The columns mirrored: c₁ = 1 (the ½ digit), c_k = c_{k−1} xor 2·c_{k−1}.
     let mut columns = [0u32; 32];
     let (mut c, mut k) = (1u32, 0);
@@ -95,7 +111,8 @@ const fn second_by_byte() -> [[u32; 256]; 4] {
             let (mut y, mut bit) = (0u32, 0);
             while bit < 8 {
                 if (value >> bit) & 1 == 1 {
-                    y ^= columns[byte * 8 + bit];
+                    let place = byte * 8 + bit;
+                    y ^= columns[if mirrored { 31 - place } else { place }];
                 }
                 bit += 1;
             }
@@ -260,6 +277,23 @@ mod tests {
             let [x, y] = mirrored_sobol_pair(owen_scramble(index, shuffle));
             let each = [laine_karras(x, sx), laine_karras(y, sy)].map(|m| unit(m.reverse_bits()));
             assert_eq!(point.pair(dim), each, "key {k}, pair {dim}, sample {index}");
+        }
+    }
+
+    /// Reading the second coordinate off a mirrored index gives what reading it off the index
+    /// gives.
+    #[test]
+    fn the_second_coordinate_reads_alike_off_a_mirrored_index() {
+        let mut rng = crate::sampling::Rng::for_pixel(5, 6, 7);
+        let indices = [0, 1, 2, 0x8000_0000, u32::MAX, 0x1234_5678]
+            .into_iter()
+            .chain((0..10_000).map(|_| (rng.uniform() * 4_294_967_296.0) as u32));
+        for i in indices {
+            assert_eq!(
+                mirrored_sobol_pair_of_mirrored(i.reverse_bits()),
+                mirrored_sobol_pair(i),
+                "index {i}"
+            );
         }
     }
 
