@@ -7,7 +7,8 @@
 //! sides at every ray and every light sample (its normal u × v, that normal's length, the
 //! area, and its unit normal; the sides' squared lengths) is worked out once, with the same
 //! operations, so to the same bits. Sphere, point and directional lights are asked as the core
-//! asks them (`Light::emitter_hit`, `Light::sample_emitter`).
+//! asks them (`Light::emitter_hit`, `Light::sample_emitter`). A bounce draws its numbers for its
+//! first light and its direction before its search, not after: the same numbers, ready sooner.
 
 use std::f64::consts::PI;
 
@@ -55,6 +56,24 @@ struct LightHit<'s> {
     light: &'s Light,
     pdf: f64,
     normal: DVec3,
+}
+
+/// A bounce's random numbers, its first light's drawn ahead (see `DiffusePaths::radiance`).
+#[derive(Clone, Copy)]
+struct Ahead<'p> {
+    bounce: Bounce<'p>,
+    first_light: Option<[f64; 2]>,
+}
+
+impl Ahead<'_> {
+    /// The pair light i's sample takes, as `PathTracer::draw` gives it.
+    #[inline(always)]
+    fn light(&self, pt: &PathTracer, i: usize) -> [f64; 2] {
+        match self.first_light {
+            Some(pair) if i == 0 => pair,
+            _ => pt.draw(self.bounce, Draw::Light(i)),
+        }
+    }
 }
 
 impl<'s> DiffusePaths<'s> {
@@ -115,6 +134,14 @@ impl<'s> DiffusePaths<'s> {
         stats.primary_rays += 1;
         for depth in 0..pt.max_depth {
             let bounce = Bounce { point, depth };
+            // The bounce's numbers for its first light and its direction, drawn before its
+            // search: they depend on nothing the search finds, and the processor works out
+            // their chains of hashes while the search runs.
+            let numbers = Ahead {
+                bounce,
+                first_light: (!self.lights.is_empty()).then(|| pt.draw(bounce, Draw::Light(0))),
+            };
+            let direction = pt.draw(bounce, Draw::Direction);
             let hit = fast.nearest(&ray, 0.0, f64::INFINITY, stats);
             let t_hit = hit.map_or(f64::INFINITY, |h| h.t);
             let si = if let Some(lh) = self.light_hit(&ray, t_hit) {
@@ -155,7 +182,7 @@ impl<'s> DiffusePaths<'s> {
                     let p = si.point + scene.bias(ray.origin, si.point) * si.normal;
                     sum += throughput
                         * diffuse
-                        * self.lights_at(fast, p, si.normal, bounce, stats, false);
+                        * self.lights_at(fast, p, si.normal, numbers, stats, false);
                 }
                 break;
             }
@@ -169,9 +196,9 @@ impl<'s> DiffusePaths<'s> {
             let lobe = throughput * diffuse;
             if pt.next_event {
                 let p = si.point + offset * n;
-                sum += lobe * self.lights_at(fast, p, n, bounce, stats, true);
+                sum += lobe * self.lights_at(fast, p, n, numbers, stats, true);
             }
-            let [u1, u2] = pt.draw(bounce, Draw::Direction);
+            let [u1, u2] = direction;
             let dir = cosine_hemisphere(n, u1, u2);
             bsdf_pdf = Some(cosine_pdf(n, dir));
             throughput = lobe;
@@ -254,13 +281,13 @@ impl<'s> DiffusePaths<'s> {
         fast: &FastScene,
         p: DVec3,
         n: DVec3,
-        at: Bounce,
+        numbers: Ahead,
         stats: &mut Stats,
         mis: bool,
     ) -> DVec3 {
         let mut sum = DVec3::ZERO;
         for (i, emitter) in self.lights.iter().enumerate() {
-            let [u1, u2] = self.tracer.draw(at, Draw::Light(i));
+            let [u1, u2] = numbers.light(&self.tracer, i);
             // `Light::sample_emitter`: a direction, the distance, the density per solid angle.
             let (light, wi, distance, pdf) = match emitter {
                 Emitter::Rect {
