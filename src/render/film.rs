@@ -206,17 +206,30 @@ impl<'s> Film<'s> {
             self.grid_in_packets(t, fast, fx, fy, visit);
             return;
         }
+        if self.path.is_some() {
+            // Each sample's place in the pixel is worked out before the sample before it is
+            // traced: it depends on nothing that sample finds, and the processor works out its
+            // chain of hashes while the path runs.
+            let place = |i: usize| DVec2::from(self.sample_point(x, y, i as u32).pair(0));
+            let mut next = place(0);
+            for i in 0..self.offsets.len() {
+                let uv = next;
+                if i + 1 < self.offsets.len() {
+                    next = place(i + 1);
+                }
+                let value = self.sample(t, fx + uv.x, fy + uv.y, self.sample_point(x, y, i as u32));
+                visit(Sample { uv, value });
+            }
+            return;
+        }
         let cell = cell(self.offsets.len());
         for (i, o) in self.offsets.iter().enumerate() {
-            let point = self.sample_point(x, y, i as u32);
-            let uv = if self.path.is_some() {
-                DVec2::from(point.pair(0))
-            } else if jittered {
+            let uv = if jittered {
                 jitter(*o, cell, &mut t.rng)
             } else {
                 *o
             };
-            let value = self.sample(t, fx + uv.x, fy + uv.y, point);
+            let value = self.sample(t, fx + uv.x, fy + uv.y, self.sample_point(x, y, i as u32));
             visit(Sample { uv, value });
         }
     }
