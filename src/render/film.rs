@@ -210,14 +210,15 @@ impl<'s> Film<'s> {
             // Each sample's place in the pixel is worked out before the sample before it is
             // traced: it depends on nothing that sample finds, and the processor works out its
             // chain of hashes while the path runs.
-            let place = |i: usize| DVec2::from(self.sample_point(x, y, i as u32).pair(0));
-            let mut next = place(0);
+            let key = pixel_key(self.options.seed, x, y);
+            let point = |i: usize| SamplePoint::new(key, i as u32);
+            let mut next = DVec2::from(point(0).pair(0));
             for i in 0..self.offsets.len() {
                 let uv = next;
                 if i + 1 < self.offsets.len() {
-                    next = place(i + 1);
+                    next = DVec2::from(point(i + 1).pair(0));
                 }
-                let value = self.sample(t, fx + uv.x, fy + uv.y, self.sample_point(x, y, i as u32));
+                let value = self.sample(t, fx + uv.x, fy + uv.y, point(i));
                 visit(Sample { uv, value });
             }
             return;

@@ -68,24 +68,24 @@ pub fn sobol_pair(i: u32) -> [u32; 2] {
 /// `sobol_pair(i)` with each fraction's bits mirrored (bit 0 is the ½ digit): the first is i
 /// itself, the second the xor of the mirrored columns of i's set bits, a byte at a time.
 fn mirrored_sobol_pair(i: u32) -> [u32; 2] {
-    let y = i
-        .to_le_bytes()
-        .iter()
-        .zip(&SECOND_BY_BYTE)
-        .fold(0, |y, (&byte, table)| y ^ table[byte as usize]);
-    [i, y]
+    [i, xor_by_byte(i, &SECOND_BY_BYTE)]
 }
 
 /// `mirrored_sobol_pair(j.reverse_bits())`. The second coordinate is linear in the index's
 /// bits (xor), so it is read off j's bytes directly, each bit standing for the column of its
 /// mirror image: the second coordinate need not wait for the index to be mirrored back.
 fn mirrored_sobol_pair_of_mirrored(j: u32) -> [u32; 2] {
-    let y = j
-        .to_le_bytes()
+    [j.reverse_bits(), xor_by_byte(j, &SECOND_BY_MIRRORED_BYTE)]
+}
+
+/// The xor of each byte's entry in its table: a GF(2)-linear function of the bits, a byte at
+/// a time.
+#[inline(always)]
+fn xor_by_byte(bits: u32, tables: &[[u32; 256]; 4]) -> u32 {
+    bits.to_le_bytes()
         .iter()
-        .zip(&SECOND_BY_MIRRORED_BYTE)
-        .fold(0, |y, (&byte, table)| y ^ table[byte as usize]);
-    [j.reverse_bits(), y]
+        .zip(tables)
+        .fold(0, |y, (&byte, table)| y ^ table[byte as usize])
 }
 
 /// For each byte of an index, the mirrored second-dimension value of each of its 256 values.
@@ -260,16 +260,22 @@ mod tests {
         assert!(chi2 < 330.0, "χ² = {chi2}");
     }
 
-    /// `pair` mirrors its two scrambled coordinates back as one 64-bit word: the same as
-    /// mirroring each 32-bit fraction on its own.
+    /// `pair`'s two shortcuts (the second coordinate read off the shuffled index while it is
+    /// still mirrored, and both coordinates mirrored back as one 64-bit word) give the points
+    /// of the plain steps: `owen_scramble`, `mirrored_sobol_pair`, each fraction mirrored on
+    /// its own.
     #[test]
-    fn one_64_bit_mirror_is_two_32_bit_mirrors() {
-        for (k, dim, index) in [
+    fn pair_is_the_plain_steps() {
+        let mut rng = crate::sampling::Rng::for_pixel(8, 9, 10);
+        let mut draw = |n: f64| (rng.uniform() * n) as u64;
+        let named = [
             (0, 0, 0),
             (1, 2, 3),
             (u64::MAX, 31, 1 << 20),
             (0x5EED, 7, 12345),
-        ] {
+        ];
+        let drawn = (0..2_000).map(|_| (draw(1e18), draw(40.0) as u32, draw(4e9) as u32));
+        for (k, dim, index) in named.into_iter().chain(drawn.collect::<Vec<_>>()) {
             let point = SamplePoint::new(pixel_key(k, 3, 4), index);
             let seeds = mix(point.key ^ (dim as u64 + 1).wrapping_mul(GOLDEN));
             let (shuffle, sx) = (seeds as u32, (seeds >> 32) as u32);
