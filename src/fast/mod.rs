@@ -2,8 +2,8 @@
 //!
 //! The textbook core (`crate::trace::whitted`, the scene's own `Search`, one routine per shape)
 //! is the definition of what raytree computes. This wing is an optimisation of it and nothing
-//! else: packets of rays traced together (`packet_trace`), searched together through the BVH
-//! (`bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
+//! else: a pixel's primary rays made four at a time (`camera_rays`), packets of rays traced
+//! together (`packet_trace`), searched together through the BVH (`bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
 //! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
 //! flat CSG objects read off their primitives' spans (`csg_crossing`) or in lanes
 //! (`csg_lanes`, `span_lanes`), and the path tracer for scenes of diffuse surfaces
@@ -15,6 +15,7 @@
 //! the wing (`tests/architecture.rs`); only the renderer calls it.
 
 mod bvh_packet;
+mod camera_rays;
 mod csg_crossing;
 mod csg_lanes;
 mod diffuse_paths;
@@ -31,6 +32,7 @@ mod span_lanes;
 mod sphere_group;
 
 pub use bvh_packet::PACKET;
+pub use camera_rays::primary_rays;
 pub use diffuse_paths::DiffusePaths;
 pub use packet_trace::trace_packet;
 pub use probe::{plane_hit, sphere_hit};

@@ -4,7 +4,6 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -13,8 +12,7 @@ use super::antialias::{
     GAUSS_RADIUS,
 };
 use super::Image;
-use crate::fast::{trace_packet, DiffusePaths, FastScene, PACKET};
-use crate::geometry::Ray;
+use crate::fast::{primary_rays, trace_packet, DiffusePaths, FastScene, PACKET};
 use crate::sampling::{pixel_key, Rng, SamplePoint};
 use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
 use crate::stats::Stats;
@@ -246,10 +244,7 @@ impl<'s> Film<'s> {
         visit: &mut dyn FnMut(Sample),
     ) {
         for chunk in self.offsets.chunks(PACKET) {
-            let rays: ArrayVec<Ray, PACKET> = chunk
-                .iter()
-                .map(|o| self.camera.ray(fx + o.x, fy + o.y))
-                .collect();
+            let rays = primary_rays(&self.camera, fx, fy, chunk);
             let mut values = [DVec3::ZERO; PACKET];
             trace_packet(t, fast, &rays, &mut values[..rays.len()]);
             for (o, value) in chunk.iter().zip(values) {
