@@ -70,12 +70,30 @@ impl<V: F64x4> RayLanes<V> {
     }
 }
 
-/// All ones in lane i when bit i of `bits` is set.
+/// All ones in lane i when bit i of `bits` is set (bits 0–3; the others are ignored). One
+/// load from a table: built lane by lane, the mask was four narrow stores read back as one
+/// wide load, which waits for the stores to drain.
 #[inline(always)]
 pub fn lane_mask<V: F64x4>(bits: u32) -> V {
-    let on = f64::from_bits(u64::MAX);
-    V::new([0, 1, 2, 3].map(|i| if bits & (1 << i) != 0 { on } else { 0.0 }))
+    V::new(LANE_MASKS[(bits & 0b1111) as usize])
 }
+
+/// `lane_mask` for each of the 16 sets of lanes.
+static LANE_MASKS: [[f64; LANES]; 16] = {
+    let mut masks = [[0.0; LANES]; 16];
+    let mut bits = 0;
+    while bits < 16 {
+        let mut lane = 0;
+        while lane < LANES {
+            if bits >> lane & 1 == 1 {
+                masks[bits][lane] = f64::from_bits(u64::MAX);
+            }
+            lane += 1;
+        }
+        bits += 1;
+    }
+    masks
+};
 
 /// Four rays in lanes prepared for slab tests against many boxes: the core's `SlabRay` four at
 /// a time.
@@ -214,6 +232,24 @@ mod tests {
                 let alone = b.hit(r.origin, inv, 0.0, t_max[i]);
                 prop_assert_eq!(bits & (1 << i) != 0, alone, "lane {} of {:?}", i, r);
             }
+        }
+    }
+
+    /// Each of the table's masks has all 64 bits set in exactly the lanes its bits name, and
+    /// bits above the fourth change nothing.
+    #[test]
+    fn a_lane_mask_sets_the_lanes_its_bits_name() {
+        for bits in 0..64u32 {
+            let lanes = lane_mask::<Wide>(bits).to_array().map(f64::to_bits);
+            for (lane, value) in lanes.into_iter().enumerate() {
+                let on = bits >> lane & 1 == 1;
+                assert_eq!(
+                    value,
+                    if on { u64::MAX } else { 0 },
+                    "{bits:06b} lane {lane}"
+                );
+            }
+            assert_eq!(lane_mask::<Wide>(bits).to_bitmask(), bits & 0b1111);
         }
     }
 
