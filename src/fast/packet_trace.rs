@@ -148,9 +148,8 @@ fn shade_packet<L: Lanes + ?Sized>(
         match &hits[i] {
             None => out[i] = scene.background,
             Some(hit) => {
-                let si = scene.interaction(tasks.ray(i), hit);
+                let si = shaded[i].insert(scene.interaction(tasks.ray(i), hit));
                 out[i] = ambient(scene.material(si.material), &si.paint, scene.ambient);
-                shaded[i] = Some(si);
             }
         }
     }
