@@ -4,6 +4,7 @@
 //! `Bvh::any` would, in the same order, with the same arithmetic.
 
 use super::hull::{Hull, Verdict};
+use super::lanes::lane_mask;
 use super::simd::F64x4;
 use crate::accel::aabb::slab;
 use crate::accel::{Aabb, Bvh, Visits};
@@ -116,6 +117,42 @@ fn overlaps4<V: F64x4>(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
     enter.simd_le(exit + slack).to_bitmask() as u8
 }
 
+/// For each group of four lanes, the mask of the lanes that hold one of the first `len` rays.
+#[inline(always)]
+fn lane_masks<V: F64x4>(len: usize) -> [V; PACKET / 4] {
+    let bits = (u32::MAX >> (32 - len)) as u16;
+    let mut masks = [V::ZERO; PACKET / 4];
+    for (q, mask) in masks.iter_mut().enumerate() {
+        *mask = lane_mask(u32::from(bits >> (4 * q)));
+    }
+    masks
+}
+
+/// The lowest and highest t_max of the rays the masks name (∞ and −∞ without any; a NaN is
+/// passed over): a tree of four-lane minima and maxima, two steps deep before the last four
+/// lanes, where a fold over the sixteen rays is a chain of sixteen, and the next box test waits
+/// on it.
+#[inline(always)]
+fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f64) {
+    let (inf, neg_inf) = (V::splat(f64::INFINITY), V::splat(f64::NEG_INFINITY));
+    let mut lo = [inf; PACKET / 4];
+    let mut hi = [neg_inf; PACKET / 4];
+    for q in 0..PACKET / 4 {
+        let t = V::new(t_max[4 * q..4 * q + 4].try_into().unwrap());
+        // `min` and `max` keep their first operand where the second is NaN.
+        lo[q] = inf.min(used[q].bitselect(t, inf));
+        hi[q] = neg_inf.max(used[q].bitselect(t, neg_inf));
+    }
+    let lo = lo[0].min(lo[1]).min(lo[2].min(lo[3])).to_array();
+    let hi = hi[0].max(hi[1]).max(hi[2].max(hi[3])).to_array();
+    let least = |a: f64, b: f64| if b < a { b } else { a };
+    let most = |a: f64, b: f64| if b > a { b } else { a };
+    (
+        least(least(lo[0], lo[1]), least(lo[2], lo[3])),
+        most(most(hi[0], hi[1]), most(hi[2], hi[3])),
+    )
+}
+
 /// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
 /// path through the tree). A node is fetched once for the packet and its box tested for
 /// all its rays together, in a loop the compiler turns into vector instructions;
@@ -186,14 +223,8 @@ fn walk_packet<V: F64x4>(
     let all = (u32::MAX >> (32 - rays.len())) as u16;
     let mut done = 0u16;
     // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
-    let reach_of = |t_max: &[f64; PACKET]| {
-        t_max[..rays.len()]
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
-                (if t < lo { t } else { lo }, if t > hi { t } else { hi })
-            })
-    };
-    let mut reach = reach_of(t_max);
+    let used = lane_masks::<V>(rays.len());
+    let mut reach = reach_of::<V>(t_max, &used);
     let mut stack = [(0u32, 0u16); 64];
     stack[0] = (0, all);
     let mut top = 1;
@@ -223,7 +254,7 @@ fn walk_packet<V: F64x4>(
                     }
                 }
             }
-            reach = reach_of(t_max);
+            reach = reach_of::<V>(t_max, &used);
         } else {
             let left = index + 1;
             let (near, far) = match signs {
@@ -273,6 +304,44 @@ mod tests {
                     "{x} {y}"
                 );
             }
+        }
+    }
+
+    /// The tree of minima and maxima finds the fold's range over the first `len` rays, with
+    /// infinities, signed zeros and NaN among them and anything in the lanes beyond `len`.
+    #[test]
+    fn reach_is_the_range_of_the_rays_t_max() {
+        let mut rng = crate::sampling::Rng::for_pixel(5, 0, 0);
+        let special = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            0.0,
+            -0.0,
+            f64::NAN,
+            1e-300,
+            7.5,
+        ];
+        for case in 0..5000 {
+            let len = 1 + case % PACKET;
+            let t_max: [f64; PACKET] = std::array::from_fn(|_| {
+                let u = rng.uniform();
+                if u < 0.3 {
+                    special[(u * 100.0) as usize % special.len()]
+                } else {
+                    100.0 * rng.uniform()
+                }
+            });
+            let fold = t_max[..len]
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+                    (if t < lo { t } else { lo }, if t > hi { t } else { hi })
+                });
+            let (lo, hi) = reach_of::<Wide>(&t_max, &lane_masks::<Wide>(len));
+            // Equal as numbers (a zero's sign may differ, which no comparison sees).
+            assert!(
+                lo == fold.0 && hi == fold.1,
+                "{t_max:?}[..{len}]: {lo} {hi} {fold:?}"
+            );
         }
     }
 
