@@ -155,8 +155,9 @@ fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f6
 
 /// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
 /// path through the tree). A node is fetched once for the packet and its box tested for
-/// all its rays together, in a loop the compiler turns into vector instructions;
-/// `visit(ray, item, t_max)` is as in `closest`, per ray.
+/// all its rays together, in a loop the compiler turns into vector instructions. At a leaf,
+/// `visit(item, rays, t_max)` runs for each item with the set of rays that reached it (bit i
+/// for ray i): it is `closest`'s visit for each of them, lowering `t_max[i]` to a nearer hit.
 ///
 /// The rays' directions must have the signs of the first one's (see `signs`): then
 /// every ray visits the same nodes and items in the same order as `closest` would take it,
@@ -167,45 +168,60 @@ pub fn closest_packet<V: F64x4>(
     rays: &[Ray],
     t_min: f64,
     t_max: &mut [f64; PACKET],
-    mut visit: impl FnMut(usize, u32, f64) -> Option<f64>,
+    mut visit: impl FnMut(u32, u16, &mut [f64; PACKET]),
 ) -> Visits {
     let Some(first) = rays.first() else {
         return Visits::default();
     };
     let negative = signs(first);
     debug_assert!(rays.iter().all(|r| signs(r) == negative));
-    let (_, work) = walk_packet::<V>(bvh, rays, t_min, t_max, Some(negative), |i, item, t_max| {
-        if let Some(t) = visit(i, item, t_max[i]) {
-            t_max[i] = t_max[i].min(t);
-        }
-        false
-    });
+    let (_, work) = walk_packet::<V>(
+        bvh,
+        rays,
+        t_min,
+        t_max,
+        Some(negative),
+        // Inlined into the walk, so that the visits are compiled in the lanes' copy.
+        #[inline(always)]
+        |item, rays, t_max| {
+            visit(item, rays, t_max);
+            0
+        },
+    );
     work
 }
 
 /// `any` for a packet of up to 16 rays, ray i searching [t_min, t_max[i]]: bit i of the
-/// answer is set when `visit(i, item)` returned true for some item. Each ray visits the
-/// nodes and items `any` would, in the same order, and leaves the packet at its first
-/// blocker; the directions may point anywhere (the order does not depend on them).
+/// answer is set when ray i met a blocker. At a leaf, `visit(item, rays)` runs for each item
+/// with the set of rays still searching that reached it and answers those it blocks. Each
+/// ray visits the nodes and items `any` would, in the same order, and leaves the packet at
+/// its first blocker; the directions may point anywhere (the order does not depend on them).
 #[inline(always)]
 pub fn any_packet<V: F64x4>(
     bvh: &Bvh,
     rays: &[Ray],
     t_min: f64,
     t_max: &[f64; PACKET],
-    mut visit: impl FnMut(usize, u32) -> bool,
+    mut visit: impl FnMut(u32, u16) -> u16,
 ) -> (u32, Visits) {
     let mut t_max = *t_max;
-    walk_packet::<V>(bvh, rays, t_min, &mut t_max, None, |i, item, _| {
-        visit(i, item)
-    })
+    walk_packet::<V>(
+        bvh,
+        rays,
+        t_min,
+        &mut t_max,
+        None,
+        #[inline(always)]
+        |item, rays, _| visit(item, rays),
+    )
 }
 
 /// The depth-first walk of both packet searches. Each node's box is tested for the rays
-/// still searching below it; at a leaf, `step(ray, item, t_max)` runs for every item and
-/// every ray that met the leaf's box, in order, and returns true when that ray is done
-/// (it leaves the packet). Children are visited nearer side first by the rays' common
-/// `signs`, or left first without them (as `any` does). Answers the rays that are done.
+/// still searching below it; at a leaf, `step(item, rays, t_max)` runs for every item, in
+/// order, with the rays that met the leaf's box and are not done, and answers those that
+/// are done now (they leave the packet). Children are visited nearer side first by the
+/// rays' common `signs`, or left first without them (as `any` does). Answers the rays that
+/// are done.
 #[inline(always)]
 fn walk_packet<V: F64x4>(
     bvh: &Bvh,
@@ -213,7 +229,7 @@ fn walk_packet<V: F64x4>(
     t_min: f64,
     t_max: &mut [f64; PACKET],
     signs: Option<[bool; 3]>,
-    mut step: impl FnMut(usize, u32, &mut [f64; PACKET]) -> bool,
+    mut step: impl FnMut(u32, u16, &mut [f64; PACKET]) -> u16,
 ) -> (u32, Visits) {
     let mut work = Visits::default();
     if bvh.nodes().is_empty() || rays.is_empty() {
@@ -244,14 +260,10 @@ fn walk_packet<V: F64x4>(
         if node.count > 0 {
             let first = node.offset as usize;
             for &item in &bvh.items()[first..first + node.count as usize] {
-                let mut m = hit & !done;
-                while m != 0 {
-                    let i = m.trailing_zeros() as usize;
-                    m &= m - 1;
-                    work.items += 1;
-                    if step(i, item, t_max) {
-                        done |= 1 << i;
-                    }
+                let reached = hit & !done;
+                if reached != 0 {
+                    work.items += u64::from(reached.count_ones());
+                    done |= step(item, reached, t_max) & reached;
                 }
             }
             reach = reach_of::<V>(t_max, &used);

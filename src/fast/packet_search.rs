@@ -15,13 +15,66 @@ use super::probe::Probe;
 use super::search::FastScene;
 use super::simd::{with_lanes, F64x4};
 use super::sphere_group::sphere_against_lanes;
-use crate::geometry::{Ray, Surface};
+use crate::geometry::{Ray, Sphere, Surface};
 use crate::scene::{Hit, Search};
 use crate::stats::Stats;
 
 /// Fewer rays than this search the BVH faster one by one than as a packet: the packet's
 /// bookkeeping pays only when a node's box is tested for several rays.
 const PACKET_MIN: usize = 4;
+
+/// The rays of a packet in lanes, four to a group (the last group filled with `UNUSED`).
+#[inline(always)]
+fn ray_quads<V: F64x4>(rays: &[Ray]) -> [RayLanes<V>; PACKET / LANES] {
+    let mut quads = [RayLanes::new(&[]); PACKET / LANES];
+    for (quad, rays) in quads.iter_mut().zip(rays.chunks(LANES)) {
+        *quad = RayLanes::new(rays);
+    }
+    quads
+}
+
+/// A plain sphere against the rays `reached` (bit i for ray i) of a packet in lanes, four at
+/// a time: for each group of four, the rays whose t lies in 0 < t < `limits[i]` (bit k for
+/// the group's ray k) and the t of each, as `probe_hit` tests one ray (`sphere_against_lanes`
+/// is `sphere_hit` lane by lane); counts a test per ray. Loops written out: a closure here
+/// would be compiled outside the lanes' copy.
+#[inline(always)]
+fn spheres_in_quads<V: F64x4>(
+    sphere: &Sphere,
+    quads: &[RayLanes<V>; PACKET / LANES],
+    reached: u16,
+    limits: &[f64; PACKET],
+    stats: &mut Stats,
+) -> [(u32, [f64; LANES]); PACKET / LANES] {
+    let r2 = sphere.radius * sphere.radius;
+    let mut found = [(0, [f64::NAN; LANES]); PACKET / LANES];
+    for (q, quad) in quads.iter().enumerate() {
+        let bits = u32::from(reached >> (LANES * q)) & 0b1111;
+        if bits == 0 {
+            continue;
+        }
+        stats.primitives_tested += u64::from(bits.count_ones());
+        let Some(t) = sphere_against_lanes(sphere.center, r2, quad, lane_mask(bits), 0.0) else {
+            continue;
+        };
+        let limit = V::new(limits[LANES * q..LANES * (q + 1)].try_into().unwrap());
+        let within = (t.simd_gt(V::ZERO) & t.simd_lt(limit)).to_bitmask() & bits;
+        found[q] = (within, t.to_array());
+    }
+    found
+}
+
+/// The positions of the set bits, lowest first.
+#[inline(always)]
+fn ones(mut bits: u32) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (bits != 0).then(|| {
+            let i = bits.trailing_zeros() as usize;
+            bits &= bits - 1;
+            i
+        })
+    })
+}
 
 impl FastScene<'_> {
     /// `intersect` (t_min = 0, t_max = ∞) for up to 16 rays at once: `hits[i]` is exactly what
@@ -75,17 +128,44 @@ impl FastScene<'_> {
             let (hit, limit) = self.nearest_unbounded::<V>(ray, inv, 0.0, f64::INFINITY, stats);
             (hits[lanes[lane]], limits[lane]) = (hit, limit);
         }
+        let quads = ray_quads::<V>(&packet[..n]);
         let visits = closest_packet::<V>(
             &self.scene.index.bvh,
             &packet[..n],
             0.0,
             &mut limits,
-            |lane, item, limit| {
+            // Inlined, so that it is compiled in the lanes' copy with the walk.
+            #[inline(always)]
+            |item, reached, limits| {
                 let probe = &self.bounded[item as usize];
-                let h =
-                    self.probe_hit::<V>(probe, &packet[lane], packet_inv[lane], 0.0, limit, stats)?;
-                hits[lanes[lane]] = Some(h);
-                Some(h.t)
+                if let Probe::Sphere {
+                    sphere,
+                    object,
+                    leaf,
+                } = probe
+                {
+                    let found = spheres_in_quads(sphere, &quads, reached, limits, stats);
+                    for (q, (within, t)) in found.into_iter().enumerate() {
+                        for lane in ones(within) {
+                            let i = 4 * q + lane;
+                            limits[i] = t[lane];
+                            hits[lanes[i]] = Some(Hit {
+                                t: t[lane],
+                                object: *object,
+                                surface: Surface::new(*leaf, 0),
+                            });
+                        }
+                    }
+                    return;
+                }
+                for lane in ones(u32::from(reached)) {
+                    let (ray, inv) = (&packet[lane], packet_inv[lane]);
+                    if let Some(h) = self.probe_hit::<V>(probe, ray, inv, 0.0, limits[lane], stats)
+                    {
+                        hits[lanes[lane]] = Some(h);
+                        limits[lane] = limits[lane].min(h.t);
+                    }
+                }
             },
         );
         stats.bvh_nodes_visited += visits.nodes;
@@ -167,22 +247,33 @@ impl FastScene<'_> {
             }
             return blocked;
         }
+        let quads = ray_quads::<V>(&packet[..n]);
         let (hit, visits) = any_packet::<V>(
             &self.scene.index.bvh,
             &packet[..n],
             0.0,
             &reach,
-            |lane, item| {
+            #[inline(always)]
+            |item, reached| {
                 let probe = &self.bounded[item as usize];
-                self.probe_blocker::<V>(
-                    probe,
-                    &packet[lane],
-                    packet_inv[lane],
-                    0.0,
-                    reach[lane],
-                    stats,
-                )
-                .is_some()
+                let mut blocked = 0u16;
+                if let Probe::Sphere { sphere, .. } = probe {
+                    let found = spheres_in_quads(sphere, &quads, reached, &reach, stats);
+                    for (q, (within, _)) in found.into_iter().enumerate() {
+                        blocked |= (within as u16) << (4 * q);
+                    }
+                    return blocked;
+                }
+                for lane in ones(u32::from(reached)) {
+                    let (ray, inv) = (&packet[lane], packet_inv[lane]);
+                    if self
+                        .probe_blocker::<V>(probe, ray, inv, 0.0, reach[lane], stats)
+                        .is_some()
+                    {
+                        blocked |= 1 << lane;
+                    }
+                }
+                blocked
             },
         );
         stats.bvh_nodes_visited += visits.nodes;
