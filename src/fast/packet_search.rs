@@ -122,11 +122,17 @@ impl FastScene<'_> {
         if n == 0 {
             return;
         }
+        // The objects outside the BVH first, four rays at a time (`nearest_unbounded` lane by
+        // lane): each ray's nearest hit among them limits its walk.
         let mut limits = [f64::INFINITY; PACKET];
-        for lane in 0..n {
-            let (ray, inv) = (&packet[lane], packet_inv[lane]);
-            let (hit, limit) = self.nearest_unbounded::<V>(ray, inv, 0.0, f64::INFINITY, stats);
-            (hits[lanes[lane]], limits[lane]) = (hit, limit);
+        for (q, rays) in packet[..n].chunks(LANES).enumerate() {
+            let mut found = [None; LANES];
+            self.intersect_in_lanes::<V>(rays, &mut found[..rays.len()], stats);
+            for (k, hit) in found[..rays.len()].iter().enumerate() {
+                let lane = LANES * q + k;
+                hits[lanes[lane]] = *hit;
+                limits[lane] = hit.map_or(f64::INFINITY, |h| h.t);
+            }
         }
         let quads = ray_quads::<V>(&packet[..n]);
         let visits = closest_packet::<V>(
