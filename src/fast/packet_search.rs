@@ -152,10 +152,16 @@ impl FastScene<'_> {
                 {
                     let found = spheres_in_quads(sphere, &quads, reached, limits, stats);
                     for (q, (within, t)) in found.into_iter().enumerate() {
+                        if within == 0 {
+                            continue;
+                        }
+                        // The group's four limits stored at once: the walk reads them back
+                        // as one vector, which four single stores would stall.
+                        let old = V::new(limits[4 * q..4 * q + 4].try_into().unwrap());
+                        let new = lane_mask::<V>(within).bitselect(V::new(t), old);
+                        limits[4 * q..4 * q + 4].copy_from_slice(&new.to_array());
                         for lane in ones(within) {
-                            let i = 4 * q + lane;
-                            limits[i] = t[lane];
-                            hits[lanes[i]] = Some(Hit {
+                            hits[lanes[4 * q + lane]] = Some(Hit {
                                 t: t[lane],
                                 object: *object,
                                 surface: Surface::new(*leaf, 0),
