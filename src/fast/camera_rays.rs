@@ -15,28 +15,13 @@ use crate::scene::{Camera, Projection};
 /// `camera.ray` for each.
 pub fn primary_rays(camera: &Camera, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, PACKET> {
     assert!(offsets.len() <= PACKET, "at most {PACKET} rays at once");
-    let Projection::LookAt {
-        eye,
-        forward,
-        right,
-        up,
-        tan_half_fov,
-    } = camera.projection
-    else {
-        return offsets
+    match Frame::of(camera) {
+        Some(frame) => with_lanes!(V => frame.rays::<V>(fx, fy, offsets)),
+        None => offsets
             .iter()
             .map(|o| camera.ray(fx + o.x, fy + o.y))
-            .collect();
-    };
-    let frame = Frame {
-        eye,
-        forward,
-        right,
-        up,
-        tan_half_fov,
-        size: (camera.width as f64, camera.height as f64),
-    };
-    with_lanes!(V => frame.rays::<V>(fx, fy, offsets))
+            .collect(),
+    }
 }
 
 /// The look-at camera's frame, as `Camera::image_point` reads it.
@@ -50,6 +35,28 @@ struct Frame {
 }
 
 impl Frame {
+    /// The frame of a look-at camera; None for the window model.
+    fn of(camera: &Camera) -> Option<Frame> {
+        let Projection::LookAt {
+            eye,
+            forward,
+            right,
+            up,
+            tan_half_fov,
+        } = camera.projection
+        else {
+            return None;
+        };
+        Some(Frame {
+            eye,
+            forward,
+            right,
+            up,
+            tan_half_fov,
+            size: (camera.width as f64, camera.height as f64),
+        })
+    }
+
     #[inline(always)]
     fn rays<V: F64x4>(&self, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, PACKET> {
         let mut rays = ArrayVec::new();
@@ -99,8 +106,8 @@ mod tests {
     use crate::fast::simd::Wide;
     use crate::sampling::Rng;
 
-    /// Every ray is `Camera::ray`'s to the bit: cameras looking every way, with fields of view
-    /// from narrow to wide, odd image sizes, offsets anywhere in the pixel, and packets of every
+    /// Every ray is `Camera::ray`'s to the bit: cameras looking every way, in both handed
+    /// frames, with fields of view from narrow to wide, odd image sizes, offsets anywhere in the pixel, and packets of every
     /// length up to 16 (the lanes' own copy and the processor's).
     #[test]
     fn the_rays_are_the_cameras_own() {
@@ -111,7 +118,11 @@ mod tests {
             let target = eye + DVec3::new(u() - 0.5, u() - 0.5, u() - 0.5);
             let fov = 1.0 + 170.0 * u();
             let (width, height) = (1 + (u() * 1000.0) as u32, 1 + (u() * 700.0) as u32);
-            let camera = Camera::look_at(eye, target, DVec3::Y, fov, width, height);
+            let camera = if case % 2 == 0 {
+                Camera::look_at(eye, target, DVec3::Y, fov, width, height)
+            } else {
+                Camera::look_at_right_handed(eye, target, DVec3::Y, fov, width, height)
+            };
             let n = 1 + case % PACKET;
             let offsets: Vec<DVec2> = (0..n).map(|_| DVec2::new(u(), u())).collect();
             let (fx, fy) = ((u() * width as f64).floor(), (u() * height as f64).floor());
@@ -133,24 +144,7 @@ mod tests {
                 bits(&expected),
                 "case {case}"
             );
-            let Projection::LookAt {
-                eye,
-                forward,
-                right,
-                up,
-                tan_half_fov,
-            } = camera.projection
-            else {
-                unreachable!("look_at makes a look-at camera")
-            };
-            let frame = Frame {
-                eye,
-                forward,
-                right,
-                up,
-                tan_half_fov,
-                size: (width as f64, height as f64),
-            };
+            let frame = Frame::of(&camera).expect("look_at makes a look-at camera");
             assert_eq!(bits(&frame.rays::<Wide>(fx, fy, &offsets)), bits(&expected));
         }
     }

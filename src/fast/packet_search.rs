@@ -33,11 +33,19 @@ fn ray_quads<V: F64x4>(rays: &[Ray]) -> [RayLanes<V>; PACKET / LANES] {
     quads
 }
 
+/// What a sphere did to one group of four rays: the rays whose t lies in 0 < t < limit (bit
+/// k for the group's ray k), each lane's t, and the group's limits it was tested within.
+#[derive(Clone, Copy)]
+struct QuadHits<V> {
+    within: u32,
+    t: V,
+    limit: V,
+}
+
 /// A plain sphere against the rays `reached` (bit i for ray i) of a packet in lanes, four at
-/// a time: for each group of four, the rays whose t lies in 0 < t < `limits[i]` (bit k for
-/// the group's ray k) and the t of each, as `probe_hit` tests one ray (`sphere_against_lanes`
-/// is `sphere_hit` lane by lane); counts a test per ray. Loops written out: a closure here
-/// would be compiled outside the lanes' copy.
+/// a time, each ray within its `limits[i]`, as `probe_hit` tests one ray
+/// (`sphere_against_lanes` is `sphere_hit` lane by lane); counts a test per ray. Loops
+/// written out: a closure here would be compiled outside the lanes' copy.
 #[inline(always)]
 fn spheres_in_quads<V: F64x4>(
     sphere: &Sphere,
@@ -45,9 +53,14 @@ fn spheres_in_quads<V: F64x4>(
     reached: u16,
     limits: &[f64; PACKET],
     stats: &mut Stats,
-) -> [(u32, [f64; LANES]); PACKET / LANES] {
+) -> [QuadHits<V>; PACKET / LANES] {
     let r2 = sphere.radius * sphere.radius;
-    let mut found = [(0, [f64::NAN; LANES]); PACKET / LANES];
+    let none = QuadHits {
+        within: 0,
+        t: V::ZERO,
+        limit: V::ZERO,
+    };
+    let mut found = [none; PACKET / LANES];
     for (q, quad) in quads.iter().enumerate() {
         let bits = u32::from(reached >> (LANES * q)) & 0b1111;
         if bits == 0 {
@@ -59,7 +72,7 @@ fn spheres_in_quads<V: F64x4>(
         };
         let limit = V::new(limits[LANES * q..LANES * (q + 1)].try_into().unwrap());
         let within = (t.simd_gt(V::ZERO) & t.simd_lt(limit)).to_bitmask() & bits;
-        found[q] = (within, t.to_array());
+        found[q] = QuadHits { within, t, limit };
     }
     found
 }
@@ -95,7 +108,7 @@ impl FastScene<'_> {
     ) {
         if self.in_lanes {
             for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
-                self.intersect_in_lanes::<V>(rays, hits, stats);
+                self.intersect_in_lanes::<V>(rays, &RayLanes::new(rays), hits, stats);
             }
             return;
         }
@@ -124,17 +137,17 @@ impl FastScene<'_> {
         }
         // The objects outside the BVH first, four rays at a time (`nearest_unbounded` lane by
         // lane): each ray's nearest hit among them limits its walk.
+        let quads = ray_quads::<V>(&packet[..n]);
         let mut limits = [f64::INFINITY; PACKET];
         for (q, rays) in packet[..n].chunks(LANES).enumerate() {
             let mut found = [None; LANES];
-            self.intersect_in_lanes::<V>(rays, &mut found[..rays.len()], stats);
+            self.intersect_in_lanes::<V>(rays, &quads[q], &mut found[..rays.len()], stats);
             for (k, hit) in found[..rays.len()].iter().enumerate() {
                 let lane = LANES * q + k;
                 hits[lanes[lane]] = *hit;
                 limits[lane] = hit.map_or(f64::INFINITY, |h| h.t);
             }
         }
-        let quads = ray_quads::<V>(&packet[..n]);
         let visits = closest_packet::<V>(
             &self.scene.index.bvh,
             &packet[..n],
@@ -151,15 +164,15 @@ impl FastScene<'_> {
                 } = probe
                 {
                     let found = spheres_in_quads(sphere, &quads, reached, limits, stats);
-                    for (q, (within, t)) in found.into_iter().enumerate() {
+                    for (q, QuadHits { within, t, limit }) in found.into_iter().enumerate() {
                         if within == 0 {
                             continue;
                         }
                         // The group's four limits stored at once: the walk reads them back
                         // as one vector, which four single stores would stall.
-                        let old = V::new(limits[4 * q..4 * q + 4].try_into().unwrap());
-                        let new = lane_mask::<V>(within).bitselect(V::new(t), old);
-                        limits[4 * q..4 * q + 4].copy_from_slice(&new.to_array());
+                        let lowered = lane_mask::<V>(within).bitselect(t, limit);
+                        limits[4 * q..4 * q + 4].copy_from_slice(&lowered.to_array());
+                        let t = t.to_array();
                         for lane in ones(within) {
                             hits[lanes[4 * q + lane]] = Some(Hit {
                                 t: t[lane],
@@ -271,8 +284,8 @@ impl FastScene<'_> {
                 let mut blocked = 0u16;
                 if let Probe::Sphere { sphere, .. } = probe {
                     let found = spheres_in_quads(sphere, &quads, reached, &reach, stats);
-                    for (q, (within, _)) in found.into_iter().enumerate() {
-                        blocked |= (within as u16) << (4 * q);
+                    for (q, quad) in found.into_iter().enumerate() {
+                        blocked |= (quad.within as u16) << (4 * q);
                     }
                     return blocked;
                 }
@@ -301,15 +314,17 @@ impl FastScene<'_> {
     /// plain sphere or plane is tested against all the rays at once, in `RayLanes`, and any
     /// other object ray by ray, behind its box (tested against all the rays at once). Each
     /// ray meets the objects in the same order as in `intersect`, with the same arithmetic and
-    /// the same shrinking limit, so it finds the same hit and counts the same tests.
+    /// the same shrinking limit, so it finds the same hit and counts the same tests. `lanes`
+    /// holds `rays` (`RayLanes::new`).
     #[inline(always)]
     fn intersect_in_lanes<V: F64x4>(
         &self,
         rays: &[Ray],
+        lanes: &RayLanes<V>,
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
-        let lanes = RayLanes::<V>::new(rays);
+        let lanes = *lanes;
         let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
         let used = (1u32 << rays.len()) - 1;
         let all = lane_mask::<V>(used);
