@@ -17,7 +17,7 @@ use super::lanes::UNUSED;
 use super::light_share::light_share;
 use super::outgoing::{outgoing, Transmission};
 use super::search::FastScene;
-use super::simd::with_lanes;
+use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
 use crate::shading::local::ambient;
@@ -108,11 +108,16 @@ impl Children {
 /// what `Tracer::radiance` gives ray i, and the stats and the random numbers drawn are those of
 /// tracing the rays one after another.
 pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
-    with_lanes!(=> trace_packet_inline(t, fast, rays, out))
+    with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, out))
 }
 
 #[inline(always)]
-fn trace_packet_inline(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
+fn trace_packet_inline<V: F64x4>(
+    t: &mut Tracer,
+    fast: &FastScene,
+    rays: &[Ray],
+    out: &mut [DVec3],
+) {
     let n = rays.len();
     assert!(n <= PACKET && out.len() == n);
     if t.options.stop_at_lights {
@@ -125,7 +130,7 @@ fn trace_packet_inline(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut
     }
     let mut hits = [None; PACKET];
     fast.intersect_packet(rays, &mut hits[..n], &mut t.stats);
-    shade_packet(t, fast, rays, &hits[..n], out);
+    shade_packet::<V, _>(t, fast, rays, &hits[..n], out);
 }
 
 /// A packet of rays from their nearest hits: `out[i]` is exactly what `Tracer::shade` gives
@@ -133,7 +138,7 @@ fn trace_packet_inline(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut
 /// (`FastScene::occluded_packet`); the secondary rays go in waves (`secondary_packet`) where
 /// the objects are tested in lanes and nothing draws random numbers, else one after another.
 #[inline(always)]
-fn shade_packet<L: Lanes + ?Sized>(
+fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
     t: &mut Tracer,
     fast: &FastScene,
     tasks: &L,
@@ -164,7 +169,8 @@ fn shade_packet<L: Lanes + ?Sized>(
         for i in 0..n {
             let Some(si) = &shaded[i] else { continue };
             let m = scene.material(si.material);
-            let (sample, lit, skipped) = light_share(t, m, si, tasks.ray(i), || tasks.task(i), k);
+            let (sample, lit, skipped) =
+                light_share::<V>(t, m, si, tasks.ray(i), || tasks.task(i), k);
             terms[i] = lit;
             if skipped {
                 // As `color += s · terms` with s = 0, to the bit.
@@ -195,7 +201,7 @@ fn shade_packet<L: Lanes + ?Sized>(
             }
         }
     } else {
-        secondary_packet(t, fast, tasks, &shaded[..n], out);
+        secondary_packet::<V, _>(t, fast, tasks, &shaded[..n], out);
     }
 }
 
@@ -204,7 +210,7 @@ fn shade_packet<L: Lanes + ?Sized>(
 /// together as one packet, then all their refraction rays (or, past the limiting angle, the
 /// mirror rays that stay inside) as another, and each surface sums kr·I_r + kt·I_t.
 #[inline(always)]
-fn secondary_packet<L: Lanes + ?Sized>(
+fn secondary_packet<V: F64x4, L: Lanes + ?Sized>(
     t: &mut Tracer,
     fast: &FastScene,
     tasks: &L,
@@ -259,11 +265,11 @@ fn secondary_packet<L: Lanes + ?Sized>(
 
 /// Traces the children that are not stopped as one packet, and settles their parents' colours.
 fn trace_children(t: &mut Tracer, fast: &FastScene, children: &mut Children) {
-    with_lanes!(=> trace_children_inline(t, fast, children))
+    with_lanes!(V => trace_children_inline::<V>(t, fast, children))
 }
 
 #[inline(always)]
-fn trace_children_inline(t: &mut Tracer, fast: &FastScene, children: &mut Children) {
+fn trace_children_inline<V: F64x4>(t: &mut Tracer, fast: &FastScene, children: &mut Children) {
     let n = children.tasks.len();
     if n == 0 {
         return;
@@ -272,7 +278,7 @@ fn trace_children_inline(t: &mut Tracer, fast: &FastScene, children: &mut Childr
     let mut hits = [None; PACKET];
     fast.intersect_packet(&rays, &mut hits[..n], &mut t.stats);
     let mut colors = [DVec3::ZERO; PACKET];
-    shade_packet(t, fast, &children.tasks[..], &hits[..n], &mut colors[..n]);
+    shade_packet::<V, _>(t, fast, &children.tasks[..], &hits[..n], &mut colors[..n]);
     for k in 0..n {
         let distance = hits[k].map_or(f64::INFINITY, |h| h.t);
         let color = t.attenuated(colors[k], distance);
