@@ -65,9 +65,8 @@ fn sample<V: F64x4>(light: &Light, p: DVec3) -> LightSample {
     }
 }
 
-/// v / d: the three quotients as one division of four lanes, each rounded as alone (the
-/// compiler makes two or three divisions of `DVec3 / f64`, and the divider is the busiest
-/// unit of the shading).
+/// v / d: the three quotients as one division of four lanes, each rounded as alone, where the
+/// compiler makes `DVec3 / f64` two divisions (of two lanes and of one) on the shading's path.
 #[inline(always)]
 fn quotient<V: F64x4>(v: DVec3, d: f64) -> DVec3 {
     let [x, y, z, _] = (V::setr(v.x, v.y, v.z, 0.0) / V::splat(d)).to_array();
@@ -77,11 +76,12 @@ fn quotient<V: F64x4>(v: DVec3, d: f64) -> DVec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fast::simd::Wide;
+    use crate::fast::simd::{with_lanes, Wide};
     use crate::sampling::Rng;
 
     /// The shortcut gives `Light::sample`'s answer to the bit, for lights that fade and lights
-    /// that do not, at points near, far, on the light and beyond f64's range of distances.
+    /// that do not, at points near, far, on the light and beyond f64's range of distances (the
+    /// processor's copy and the portable lanes').
     #[test]
     fn a_point_lights_sample_is_the_cores() {
         let mut rng = Rng::for_pixel(31, 0, 0);
@@ -109,7 +109,11 @@ mod tests {
                 points.push(position + scale * r);
             }
             for p in points {
-                let (fast, core) = (sample::<Wide>(&light, p), light.sample(p));
+                let core = light.sample(p);
+                let (own, wide) = (
+                    with_lanes!(V => sample::<V>(&light, p)),
+                    sample::<Wide>(&light, p),
+                );
                 let bits = |s: &LightSample| {
                     (
                         s.l.to_array().map(f64::to_bits),
@@ -117,7 +121,8 @@ mod tests {
                         s.attenuation.to_bits(),
                     )
                 };
-                assert_eq!(bits(&fast), bits(&core), "{attenuation:?} at {p}");
+                assert_eq!(bits(&own), bits(&core), "{attenuation:?} at {p}");
+                assert_eq!(bits(&wide), bits(&core), "{attenuation:?} at {p}");
             }
         }
     }

@@ -201,7 +201,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
             }
         }
     } else {
-        secondary_packet::<V, _>(t, fast, tasks, &shaded[..n], out);
+        secondary_packet(t, fast, tasks, &shaded[..n], out);
     }
 }
 
@@ -210,7 +210,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
 /// together as one packet, then all their refraction rays (or, past the limiting angle, the
 /// mirror rays that stay inside) as another, and each surface sums kr·I_r + kt·I_t.
 #[inline(always)]
-fn secondary_packet<V: F64x4, L: Lanes + ?Sized>(
+fn secondary_packet<L: Lanes + ?Sized>(
     t: &mut Tracer,
     fast: &FastScene,
     tasks: &L,
