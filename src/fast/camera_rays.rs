@@ -107,8 +107,9 @@ mod tests {
     use crate::sampling::Rng;
 
     /// Every ray is `Camera::ray`'s to the bit: cameras looking every way, in both handed
-    /// frames, with fields of view from narrow to wide, odd image sizes, offsets anywhere in the pixel, and packets of every
-    /// length up to 16 (the lanes' own copy and the processor's).
+    /// frames, with fields of view from narrow to wide, odd image sizes, offsets anywhere in
+    /// the pixel, and packets of every length up to 16 (the lanes' own copy and the
+    /// processor's).
     #[test]
     fn the_rays_are_the_cameras_own() {
         let mut rng = Rng::for_pixel(31, 0, 0);

@@ -158,13 +158,12 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
             }
         }
     }
-    // Made once for all the lights: each light writes the places it reads.
-    let mut terms = [DVec3::ZERO; PACKET];
-    let mut shadow_rays = [UNUSED; PACKET];
-    let mut reach = [0.0; PACKET];
-    let mut lanes = [0usize; PACKET];
     for (k, light) in scene.lights.iter().enumerate() {
         let single = light.shadow_rays() == 1 && t.options.shadows;
+        let mut terms = [DVec3::ZERO; PACKET];
+        let mut shadow_rays = [UNUSED; PACKET];
+        let mut reach = [0.0; PACKET];
+        let mut lanes = [0usize; PACKET];
         let mut cast = 0;
         for i in 0..n {
             let Some(si) = &shaded[i] else { continue };
