@@ -226,7 +226,11 @@ fn lanes(c: &mut Criterion) {
             let mut stats = Stats::default();
             rs.chunks(16)
                 .zip(reach.chunks(16))
-                .map(|(p, t)| scene.occluded_packet(p, t, &mut stats).count_ones() as usize)
+                .map(|(p, t)| {
+                    scene
+                        .occluded_packet(p, t, &mut None, &mut stats)
+                        .count_ones() as usize
+                })
                 .sum::<usize>()
         })
     });

@@ -1,5 +1,7 @@
 //! The fast wing's contract: everything it computes equals, bit for bit, what the textbook
-//! core computes, and so do the counters of work.
+//! core computes, and so do the counters of rays and of skipped shading. The counters of the
+//! searches' work may differ: a packet of shadow rays tries the last blocker toward its light
+//! first, and is spared walks of the BVH.
 //!
 //! - Whole images: every lesson scene and peer scene rendered by both engines.
 //! - Pixels traced as packets against the core tracing their samples one by one, on scenes
@@ -24,8 +26,9 @@ use raytree::trace::Tracer;
 
 // --- Whole images ---
 
-/// Renders the scene with both engines: the same pixels to the last bit, the same counters.
-fn assert_engines_agree(name: &str, scene: &Scene, spp: u32) {
+/// Renders the scene with both engines: the same pixels to the last bit, the same counters
+/// of rays and shading, and no more BVH nodes visited. Answers both engines' counters.
+fn assert_engines_agree(name: &str, scene: &Scene, spp: u32) -> (Stats, Stats) {
     let fast = RenderOptions {
         spp,
         ..RenderOptions::of(scene)
@@ -44,7 +47,30 @@ fn assert_engines_agree(name: &str, scene: &Scene, spp: u32) {
             i
         );
     }
-    assert_eq!(sa, sb, "{name} at {spp} spp: counters differ");
+    assert_eq!(
+        rays_and_shading(sa),
+        rays_and_shading(sb),
+        "{name} at {spp} spp: counters differ"
+    );
+    assert!(
+        sa.bvh_nodes_visited <= sb.bvh_nodes_visited,
+        "{name} at {spp} spp: {} BVH nodes against the core's {}",
+        sa.bvh_nodes_visited,
+        sb.bvh_nodes_visited
+    );
+    (sa, sb)
+}
+
+/// The counters of rays and of skipped shading; the counters of the searches' own work (BVH
+/// nodes, objects tested, boxes missed, CSG subtrees pruned) set to zero.
+fn rays_and_shading(stats: Stats) -> Stats {
+    Stats {
+        bvh_nodes_visited: 0,
+        primitives_tested: 0,
+        bounds_skipped: 0,
+        csg_pruned: 0,
+        ..stats
+    }
 }
 
 /// Every scene of every lesson, small, at 1 and 16 samples per pixel (and the scene's own).
@@ -83,6 +109,45 @@ fn every_peer_scene_renders_the_same_with_both_engines() {
     for spp in [1, 4] {
         assert_engines_agree("many", &many, spp);
     }
+}
+
+/// Under a canopy of spheres, the shadow rays of neighbouring pixels toward a light are
+/// blocked by the same sphere: a packet of them tries the last blocker toward that light
+/// first, and is spared most of its walks of the BVH, with the same image.
+#[test]
+fn shadow_packets_try_the_last_blocker_first() {
+    let mut yaml = String::from(
+        "camera: { eye: [0, 6, -10], look_at: [0, 0, 0], fov: 40, width: 48, height: 36 }
+lights:
+  - { name: sun, point: [1, 30, -2] }
+  - { name: lamp, point: [-20, 12, -5], intensity: 0.5 }
+materials:
+  m: { color: 0.7, ka: 0.1, kd: 0.8 }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: m }
+",
+    );
+    // Sixteen spheres in a row: a BVH; and three wide ones high above, the canopy.
+    for k in 0..16 {
+        let x = k as f64 * 0.5 - 4.0;
+        yaml.push_str(&format!(
+            "  - {{ sphere: {{ center: [{x}, 0.2, 3], radius: 0.2 }}, material: m }}\n"
+        ));
+    }
+    for x in [-3.0, 0.0, 3.0] {
+        yaml.push_str(&format!(
+            "  - {{ sphere: {{ center: [{x}, 5, 0], radius: 1.5 }}, material: m }}\n"
+        ));
+    }
+    let scene = common::scene(&yaml);
+    assert!(scene.bvh_nodes() > 0);
+    let (fast, core) = assert_engines_agree("canopy", &scene, 16);
+    assert!(
+        (fast.bvh_nodes_visited as f64) < 0.9 * core.bvh_nodes_visited as f64,
+        "{} BVH nodes against the core's {}",
+        fast.bvh_nodes_visited,
+        core.bvh_nodes_visited
+    );
 }
 
 /// A room of diffuse boxes lit by `lights`, path traced to `depth` with `rules`.
@@ -203,7 +268,17 @@ fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) ->
             expected.to_array().map(f64::to_bits),
             "pixel ({x}, {y})"
         );
-        assert_eq!(packed.stats, one_by_one.stats, "pixel ({x}, {y})");
+        assert_eq!(
+            rays_and_shading(packed.stats),
+            rays_and_shading(one_by_one.stats),
+            "pixel ({x}, {y})"
+        );
+        // A packet of shadow rays tries the last blocker toward the light first, which spares
+        // it walks of the BVH (and its few tests can make the objects tested more or fewer).
+        assert!(
+            packed.stats.bvh_nodes_visited <= one_by_one.stats.bvh_nodes_visited,
+            "pixel ({x}, {y})"
+        );
         total.add(&one_by_one.stats);
     }
     total
@@ -462,7 +537,9 @@ fn assert_packet_is_one_by_one(scene: &Scene, rays: &[Ray]) -> Result<(), TestCa
 }
 
 /// The packet's shadow rays are blocked exactly as the core's `blocker` says ray by ray, and
-/// the counters are those of asking ray by ray.
+/// without a last blocker to try first, the counters are those of asking ray by ray. With
+/// one (the blocker the packet noted, then each BVH item in turn, whether it blocks or not),
+/// the answers stay the same.
 fn assert_shadow_packet_is_one_by_one(
     scene: &Scene,
     rays: &[Ray],
@@ -470,7 +547,8 @@ fn assert_shadow_packet_is_one_by_one(
 ) -> Result<(), TestCaseError> {
     let fast = FastScene::new(scene);
     let mut packet_stats = Stats::default();
-    let blocked = fast.occluded_packet(rays, reach, &mut packet_stats);
+    let mut noted = None;
+    let blocked = fast.occluded_packet(rays, reach, &mut noted, &mut packet_stats);
     let mut single_stats = Stats::default();
     for (i, (ray, t)) in rays.iter().zip(reach).enumerate() {
         let single = scene.blocker(ray, 0.0, *t, &mut single_stats).is_some();
@@ -478,6 +556,12 @@ fn assert_shadow_packet_is_one_by_one(
     }
     prop_assert_eq!(blocked >> rays.len(), 0);
     prop_assert_eq!(packet_stats, single_stats);
+    let items = scene.index.bvh.items().len() as u32;
+    for hint in noted.into_iter().chain(0..items) {
+        let mut last = Some(hint);
+        let again = fast.occluded_packet(rays, reach, &mut last, &mut Stats::default());
+        prop_assert_eq!(again, blocked, "trying item {} first", hint);
+    }
     Ok(())
 }
 

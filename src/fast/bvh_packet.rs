@@ -181,6 +181,7 @@ pub fn closest_packet<V: F64x4>(
         t_min,
         t_max,
         Some(negative),
+        0,
         // Inlined into the walk, so that the visits are compiled in the lanes' copy.
         #[inline(always)]
         |item, rays, t_max| {
@@ -192,16 +193,19 @@ pub fn closest_packet<V: F64x4>(
 }
 
 /// `any` for a packet of up to 16 rays, ray i searching [t_min, t_max[i]]: bit i of the
-/// answer is set when ray i met a blocker. At a leaf, `visit(item, rays)` runs for each item
-/// with the set of rays still searching that reached it and answers those it blocks. Each
-/// ray visits the nodes and items `any` would, in the same order, and leaves the packet at
-/// its first blocker; the directions may point anywhere (the order does not depend on them).
+/// answer is set when ray i met a blocker. The rays of `blocked` are answered already (a
+/// blocker found before the walk): they take no part. At a leaf, `visit(item, rays)` runs
+/// for each item with the set of rays still searching that reached it and answers those it
+/// blocks. Each other ray visits the nodes and items `any` would, in the same order, and
+/// leaves the packet at its first blocker; the directions may point anywhere (the order
+/// does not depend on them).
 #[inline(always)]
 pub fn any_packet<V: F64x4>(
     bvh: &Bvh,
     rays: &[Ray],
     t_min: f64,
     t_max: &[f64; PACKET],
+    blocked: u16,
     mut visit: impl FnMut(u32, u16) -> u16,
 ) -> (u32, Visits) {
     let mut t_max = *t_max;
@@ -211,17 +215,18 @@ pub fn any_packet<V: F64x4>(
         t_min,
         &mut t_max,
         None,
+        blocked,
         #[inline(always)]
         |item, rays, _| visit(item, rays),
     )
 }
 
-/// The depth-first walk of both packet searches. Each node's box is tested for the rays
-/// still searching below it; at a leaf, `step(item, rays, t_max)` runs for every item, in
-/// order, with the rays that met the leaf's box and are not done, and answers those that
-/// are done now (they leave the packet). Children are visited nearer side first by the
-/// rays' common `signs`, or left first without them (as `any` does). Answers the rays that
-/// are done.
+/// The depth-first walk of both packet searches, for the rays not `done` at its start. Each
+/// node's box is tested for the rays still searching below it; at a leaf,
+/// `step(item, rays, t_max)` runs for every item, in order, with the rays that met the leaf's
+/// box and are not done, and answers those that are done now (they leave the packet).
+/// Children are visited nearer side first by the rays' common `signs`, or left first without
+/// them (as `any` does). Answers the rays that are done.
 #[inline(always)]
 fn walk_packet<V: F64x4>(
     bvh: &Bvh,
@@ -229,6 +234,7 @@ fn walk_packet<V: F64x4>(
     t_min: f64,
     t_max: &mut [f64; PACKET],
     signs: Option<[bool; 3]>,
+    mut done: u16,
     mut step: impl FnMut(u32, u16, &mut [f64; PACKET]) -> u16,
 ) -> (u32, Visits) {
     let mut work = Visits::default();
@@ -237,7 +243,6 @@ fn walk_packet<V: F64x4>(
     }
     let packet = Packet::<V>::new(rays);
     let all = (u32::MAX >> (32 - rays.len())) as u16;
-    let mut done = 0u16;
     // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
     let used = lane_masks::<V>(rays.len());
     let mut reach = reach_of::<V>(t_max, &used);

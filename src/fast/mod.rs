@@ -10,7 +10,9 @@
 //! (`diffuse_paths`).
 //!
 //! The contract: every image the wing renders equals, bit for bit, the image of the core's
-//! recursion with the core's search, and so do the counters of work. `tests/fast_paths.rs`
+//! recursion with the core's search, and so do the counters of rays and of skipped shading
+//! (not those of the searches' work: packets of shadow rays try the last blocker toward
+//! their light first, and walk the BVH less). `tests/fast_paths.rs`
 //! checks it on every lesson and peer scene and with property tests. The core never imports
 //! the wing (`tests/architecture.rs`); only the renderer calls it.
 

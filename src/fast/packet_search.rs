@@ -225,16 +225,32 @@ impl FastScene<'_> {
     }
 
     /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < `t_max[i]`:
-    /// bit i of the answer is set when ray i is blocked, and the stats are those of asking
-    /// `occluded` ray by ray. Without a BVH the rays go four at a time (`occluded_in_lanes`).
-    /// Otherwise rays that get past the objects outside the BVH search it as a packet (any
-    /// directions will do: an any-hit search visits the nodes in a fixed order).
-    pub fn occluded_packet(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
-        with_lanes!(V => self.occluded_packet_in::<V>(rays, t_max, stats))
+    /// bit i of the answer is set when ray i is blocked. Without a BVH the rays go four at a
+    /// time (`occluded_in_lanes`), and the stats are those of asking `occluded` ray by ray.
+    /// Otherwise rays that get past the objects outside the BVH are first tried against
+    /// `last_blocker` (a BVH item that blocked earlier rays toward the same light, if any),
+    /// and those it does not block search the BVH as a packet (any directions will do: an
+    /// any-hit search visits the nodes in a fixed order). The BVH item that blocks a ray is
+    /// noted in `last_blocker`. The rays and their answers are those of asking ray by ray;
+    /// the nodes visited and the objects tested are this search's own.
+    pub fn occluded_packet(
+        &self,
+        rays: &[Ray],
+        t_max: &[f64],
+        last_blocker: &mut Option<u32>,
+        stats: &mut Stats,
+    ) -> u32 {
+        with_lanes!(V => self.occluded_packet_in::<V>(rays, t_max, last_blocker, stats))
     }
 
     #[inline(always)]
-    fn occluded_packet_in<V: F64x4>(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
+    fn occluded_packet_in<V: F64x4>(
+        &self,
+        rays: &[Ray],
+        t_max: &[f64],
+        last_blocker: &mut Option<u32>,
+        stats: &mut Stats,
+    ) -> u32 {
         if self.in_lanes {
             let mut blocked = 0;
             for (k, (rays, t_max)) in rays.chunks(LANES).zip(t_max.chunks(LANES)).enumerate() {
@@ -273,26 +289,71 @@ impl FastScene<'_> {
             return blocked;
         }
         let quads = ray_quads::<V>(&packet[..n]);
-        let (hit, visits) = any_packet::<V>(
-            &self.scene.index.bvh,
-            &packet[..n],
-            0.0,
-            &reach,
-            #[inline(always)]
-            |item, reached| {
-                let probe = &self.bounded[item as usize];
-                let mut blocked = 0u16;
-                if let Probe::Sphere { sphere, .. } = probe {
-                    let found = spheres_in_quads(sphere, &quads, reached, &reach, stats);
-                    for (q, quad) in found.into_iter().enumerate() {
-                        blocked |= (quad.within as u16) << (4 * q);
+        let packet = (&packet, &packet_inv, &quads);
+        // The last blocker first: where it blocks every ray, the BVH is not walked at all.
+        let all = (u32::MAX >> (32 - n)) as u16;
+        let first = match *last_blocker {
+            Some(item) => self.blocked_by::<V>(item, all, packet, &reach, stats),
+            None => 0,
+        };
+        let hit = if first == all {
+            u32::from(all)
+        } else {
+            let (hit, visits) = any_packet::<V>(
+                &self.scene.index.bvh,
+                &packet.0[..n],
+                0.0,
+                &reach,
+                first,
+                #[inline(always)]
+                |item, reached| {
+                    let blocked = self.blocked_by::<V>(item, reached, packet, &reach, stats);
+                    if blocked != 0 {
+                        *last_blocker = Some(item);
                     }
-                    return blocked;
-                }
+                    blocked
+                },
+            );
+            stats.bvh_nodes_visited += visits.nodes;
+            hit
+        };
+        for (k, &i) in lanes[..n].iter().enumerate() {
+            if hit & (1 << k) != 0 {
+                blocked |= 1 << i;
+            }
+        }
+        blocked
+    }
+
+    /// The rays of a packet (bits) that BVH item `item` blocks, of those in `reached`: its
+    /// rays, their 1/d and their groups of four, each ray looking for blockers with
+    /// 0 < t < `t_max[i]`.
+    #[inline(always)]
+    fn blocked_by<V: F64x4>(
+        &self,
+        item: u32,
+        reached: u16,
+        (rays, inv_dirs, quads): (&[Ray; PACKET], &[DVec3; PACKET], &[RayLanes<V>; PACKET / 4]),
+        t_max: &[f64; PACKET],
+        stats: &mut Stats,
+    ) -> u16 {
+        let probe = &self.bounded[item as usize];
+        let mut blocked = 0u16;
+        if let Probe::Sphere { sphere, .. } = probe {
+            let found = spheres_in_quads(sphere, quads, reached, t_max, stats);
+            for (q, quad) in found.into_iter().enumerate() {
+                blocked |= (quad.within as u16) << (4 * q);
+            }
+            return blocked;
+        }
+        // Any other object ray by ray, out of line: the walk's loop stays small.
+        V::outlined(
+            #[inline(always)]
+            || {
                 for lane in ones(u32::from(reached)) {
-                    let (ray, inv) = (&packet[lane], packet_inv[lane]);
+                    let (ray, inv) = (&rays[lane], inv_dirs[lane]);
                     if self
-                        .probe_blocker::<V>(probe, ray, inv, 0.0, reach[lane], stats)
+                        .probe_blocker::<V>(probe, ray, inv, 0.0, t_max[lane], stats)
                         .is_some()
                     {
                         blocked |= 1 << lane;
@@ -300,14 +361,7 @@ impl FastScene<'_> {
                 }
                 blocked
             },
-        );
-        stats.bvh_nodes_visited += visits.nodes;
-        for (k, &i) in lanes[..n].iter().enumerate() {
-            if hit & (1 << k) != 0 {
-                blocked |= 1 << i;
-            }
-        }
-        blocked
+        )
     }
 
     /// `intersect` (t_min = 0, t_max = ∞) for up to four rays in a scene without a BVH: each

@@ -2,10 +2,11 @@
 //! of their surfaces, wave after wave. The core's steps (`light_share` for
 //! `Tracer::light_share`, `Tracer::shadow_factor`, `Tracer::finish`, …, and `outgoing` for
 //! `Tracer::secondary`) in another order: every ray's local terms of a light first, then all
-//! their shadow rays toward it together, then the secondary rays as packets of their own. Each
-//! ray's intensity, the counters and the random numbers drawn are those of tracing the rays
-//! one after another with `Tracer::radiance`. The tracer must find its hits through the same
-//! `FastScene` the packets are searched with.
+//! their shadow rays toward it together (trying first the object that blocked the last shadow
+//! ray toward that light, `Tracer::last_blockers`), then the secondary rays as packets of
+//! their own. Each ray's intensity, the counters of rays and of skipped shading and the random
+//! numbers drawn are those of tracing the rays one after another with `Tracer::radiance`. The
+//! tracer must find its hits through the same `FastScene` the packets are searched with.
 
 use std::borrow::Cow;
 
@@ -105,8 +106,8 @@ impl Children {
 }
 
 /// The primary rays of one pixel (a regular grid's samples, up to 16): `out[i]` is exactly
-/// what `Tracer::radiance` gives ray i, and the stats and the random numbers drawn are those of
-/// tracing the rays one after another.
+/// what `Tracer::radiance` gives ray i, and the counters of rays and the random numbers drawn
+/// are those of tracing the rays one after another.
 pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
     with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, out))
 }
@@ -184,7 +185,12 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
                 out[i] += s * terms[i];
             }
         }
-        let blocked = fast.occluded_packet(&shadow_rays[..cast], &reach[..cast], &mut t.stats);
+        let blocked = fast.occluded_packet(
+            &shadow_rays[..cast],
+            &reach[..cast],
+            &mut t.last_blockers[k],
+            &mut t.stats,
+        );
         for (k, &i) in lanes[..cast].iter().enumerate() {
             let s = if blocked & (1 << k) == 0 { 1.0 } else { 0.0 };
             out[i] += s * terms[i];

@@ -59,6 +59,11 @@ pub struct Tracer<'s, R: Recorder = NoRecorder> {
     pub rng: Rng,
     /// Counters of rays traced and work done or skipped.
     pub stats: Stats,
+    /// Per light, the BVH item that last blocked a shadow ray toward it, where a search noted
+    /// one. Whether a shadow ray is blocked does not depend on which blocker is found, and
+    /// neighbouring rays are mostly blocked by the same object, so a search may try that one
+    /// first. The core's search keeps no notes; the fast wing's packets do.
+    pub last_blockers: Vec<Option<u32>>,
 }
 
 impl<'s> Tracer<'s> {
@@ -71,6 +76,7 @@ impl<'s> Tracer<'s> {
             rec: NoRecorder,
             rng: Rng::for_pixel(0, 0, 0),
             stats: Stats::default(),
+            last_blockers: vec![None; scene.lights.len()],
         }
     }
 }
@@ -114,6 +120,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
             rec: TreeRecorder::new(),
             rng: self.rng.clone(),
             stats: Stats::default(),
+            last_blockers: self.last_blockers.clone(),
         };
         recording.radiance(ray);
         self.rng = recording.rng;
