@@ -6,6 +6,7 @@ use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use super::error::{ImageError, WriteError};
 
@@ -53,10 +54,19 @@ impl Image {
 
     /// The pixels as 8-bit r, g, b bytes, row by row from the top, in `encoding`.
     pub fn to_rgb8(&self, encoding: Encoding) -> Vec<u8> {
-        self.pixels
-            .iter()
-            .flat_map(|p| p.to_array().map(|c| encode(c, encoding)))
-            .collect()
+        let mut bytes = vec![0; 3 * self.pixels.len()];
+        // On every thread: the render's threads are idle while the image is written.
+        bytes
+            .par_chunks_mut(3 * 4096)
+            .zip(self.pixels.par_chunks(4096))
+            .for_each(|(bytes, pixels)| {
+                for (rgb, p) in bytes.chunks_exact_mut(3).zip(pixels) {
+                    for (b, c) in rgb.iter_mut().zip(p.to_array()) {
+                        *b = encode(c, encoding);
+                    }
+                }
+            });
+        bytes
     }
 
     /// Writes PNG, PPM or EXR (by extension), whole or not at all (see `write_atomically`).
