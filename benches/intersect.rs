@@ -237,6 +237,70 @@ fn lanes(c: &mut Criterion) {
     g.finish();
 }
 
+/// Shadow rays toward the light from the surfaces 1000 spheres show a 64×48 camera at 16
+/// samples a pixel (a 4×4 grid), each pixel's as a packet, pixel after pixel along the rows:
+/// one by one (the core's search), as packets, and as packets that try the last blocker
+/// first (`occluded_packet`), as the renderer traces them.
+fn shadow_packets(c: &mut Criterion) {
+    let scene = spheres(1000);
+    let fast = FastScene::new(&scene);
+    assert!(scene.bvh_nodes() > 0);
+    let light = DVec3::new(10.0, 20.0, -20.0);
+    let cam = scene.camera.clone();
+    let mut stats = Stats::default();
+    // Each pixel's shadow rays (from the samples that hit), with their lengths.
+    let packets: Vec<(Vec<Ray>, Vec<f64>)> = (0..48)
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            (0..16)
+                .filter_map(|k| {
+                    let (u, v) = ((k % 4) as f64 + 0.5, (k / 4) as f64 + 0.5);
+                    let ray = cam.ray(x as f64 + u / 4.0, y as f64 + v / 4.0);
+                    let hit = scene.nearest(&ray, 0.0, f64::INFINITY, &mut stats)?;
+                    // Just short of the surface, on the side the camera sees.
+                    let p = ray.at(hit.t * (1.0 - 1e-9));
+                    let to_light = light - p;
+                    Some((Ray::new(p, to_light.normalize()), to_light.length()))
+                })
+                .unzip()
+        })
+        .filter(|(rays, _): &(Vec<Ray>, Vec<f64>)| !rays.is_empty())
+        .collect();
+    let count: usize = packets.iter().map(|(rays, _)| rays.len()).sum();
+    let one_by_one = || {
+        let mut stats = Stats::default();
+        packets
+            .iter()
+            .flat_map(|(rays, reach)| rays.iter().zip(reach))
+            .filter(|(r, t)| scene.blocker(r, 0.0, **t, &mut stats).is_some())
+            .count()
+    };
+    let in_packets = |keep: bool| {
+        let mut stats = Stats::default();
+        let mut last = None;
+        packets
+            .iter()
+            .map(|(rays, reach)| {
+                if !keep {
+                    last = None;
+                }
+                fast.occluded_packet(rays, reach, &mut last, &mut stats)
+                    .count_ones() as usize
+            })
+            .sum::<usize>()
+    };
+    let blocked = one_by_one();
+    assert!(blocked > count / 10, "only {blocked} of {count} blocked");
+    assert_eq!((in_packets(false), in_packets(true)), (blocked, blocked));
+    let mut g = c.benchmark_group(format!("1000 spheres, {count} shadow rays"));
+    g.bench_function("one by one", |b| b.iter(one_by_one));
+    g.bench_function("packets", |b| b.iter(|| in_packets(false)));
+    g.bench_function("packets, last blocker first", |b| {
+        b.iter(|| in_packets(true))
+    });
+    g.finish();
+}
+
 fn render(c: &mut Criterion) {
     let scene = raytree::scene::load(
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/06-refraction/scene.yaml"),
@@ -387,6 +451,6 @@ fn paths(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, lanes, csg, boxes, room, paths, render
+    targets = shapes, sphere_group, bvh, lanes, shadow_packets, csg, boxes, room, paths, render
 }
 criterion_main!(benches);

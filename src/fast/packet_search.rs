@@ -227,7 +227,8 @@ impl FastScene<'_> {
     /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < `t_max[i]`:
     /// bit i of the answer is set when ray i is blocked. Without a BVH the rays go four at a
     /// time (`occluded_in_lanes`), and the stats are those of asking `occluded` ray by ray.
-    /// Otherwise rays that get past the objects outside the BVH are first tried against
+    /// Otherwise rays that get past the objects outside the BVH, if there are at least
+    /// `PACKET_MIN` of them (fewer search it one by one), are first tried against
     /// `last_blocker` (a BVH item that blocked earlier rays toward the same light, if any),
     /// and those it does not block search the BVH as a packet (any directions will do: an
     /// any-hit search visits the nodes in a fixed order). The BVH item that blocks a ray is
