@@ -4,7 +4,7 @@
 //! `Bvh::any` would, in the same order, with the same arithmetic.
 
 use super::hull::{Hull, Verdict};
-use super::lanes::lane_mask;
+use super::lanes::{lane_mask, RayLanes};
 use super::simd::F64x4;
 use crate::accel::aabb::slab;
 use crate::accel::{Aabb, Bvh, Visits};
@@ -19,7 +19,7 @@ pub fn signs(r: &Ray) -> [bool; 3] {
 
 /// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
 /// all of them: each group is one set of 4-wide vector instructions. The unused lanes of the
-/// last group repeat its first ray (their answers are masked off).
+/// last group hold `UNUSED` (their answers are masked off).
 struct Packet<V> {
     quads: [Quad; PACKET / 4],
     len: usize,
@@ -37,28 +37,24 @@ struct Quad {
 pub const PACKET: usize = 16;
 
 impl<V: F64x4> Packet<V> {
+    /// The packet of `len` rays from the groups of four the searches lay them out in for the
+    /// objects' tests (`RayLanes`): 1/d four lanes at a time, the same division as
+    /// `DVec3::recip` in each lane.
     #[inline(always)]
-    fn new(rays: &[Ray]) -> Packet<V> {
-        assert!(
-            !rays.is_empty() && rays.len() <= PACKET,
-            "1 to 16 rays per packet"
-        );
+    fn new(quads: &[RayLanes<V>; PACKET / 4], len: usize) -> Packet<V> {
+        assert!((1..=PACKET).contains(&len), "1 to 16 rays per packet");
         let mut p = Packet {
             quads: [Quad::default(); PACKET / 4],
-            len: rays.len(),
+            len,
             hull: None,
         };
-        for (q, quad) in p.quads.iter_mut().enumerate().take(rays.len().div_ceil(4)) {
-            for lane in 0..4 {
-                let r = rays.get(4 * q + lane).unwrap_or(&rays[4 * q]);
-                let inv = r.dir.recip();
-                for axis in 0..3 {
-                    quad.origin[axis][lane] = r.origin[axis];
-                    quad.inv_dir[axis][lane] = inv[axis];
-                }
+        for (quad, lanes) in p.quads.iter_mut().zip(quads).take(len.div_ceil(4)) {
+            for axis in 0..3 {
+                quad.origin[axis] = lanes.origin[axis].to_array();
+                quad.inv_dir[axis] = (V::splat(1.0) / lanes.dir[axis]).to_array();
             }
         }
-        p.hull = Hull::new((0..rays.len()).map(|i| {
+        p.hull = Hull::new((0..len).map(|i| {
             let quad = &p.quads[i / 4];
             let lane = |v: &[[f64; 4]; 3]| [v[0][i % 4], v[1][i % 4], v[2][i % 4]];
             (lane(&quad.origin), lane(&quad.inv_dir))
@@ -154,7 +150,8 @@ fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f6
 }
 
 /// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
-/// path through the tree). A node is fetched once for the packet and its box tested for
+/// path through the tree), also given in groups of four (`quads`, `RayLanes::new` of each
+/// four in order). A node is fetched once for the packet and its box tested for
 /// all its rays together, in a loop the compiler turns into vector instructions. At a leaf,
 /// `visit(item, rays, t_max)` runs for each item with the set of rays that reached it (bit i
 /// for ray i): it is `closest`'s visit for each of them, lowering `t_max[i]` to a nearer hit.
@@ -166,6 +163,7 @@ fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f6
 pub fn closest_packet<V: F64x4>(
     bvh: &Bvh,
     rays: &[Ray],
+    quads: &[RayLanes<V>; PACKET / 4],
     t_min: f64,
     t_max: &mut [f64; PACKET],
     mut visit: impl FnMut(u32, u16, &mut [f64; PACKET]),
@@ -177,7 +175,7 @@ pub fn closest_packet<V: F64x4>(
     debug_assert!(rays.iter().all(|r| signs(r) == negative));
     let (_, work) = walk_packet::<V>(
         bvh,
-        rays,
+        (quads, rays.len()),
         t_min,
         t_max,
         Some(negative),
@@ -192,7 +190,8 @@ pub fn closest_packet<V: F64x4>(
     work
 }
 
-/// `any` for a packet of up to 16 rays, ray i searching [t_min, t_max[i]]: bit i of the
+/// `any` for a packet of up to 16 rays (also in groups of four, `quads`, as for
+/// `closest_packet`), ray i searching [t_min, t_max[i]]: bit i of the
 /// answer is set when ray i met a blocker. The rays of `blocked` are answered already (a
 /// blocker found before the walk): they take no part. At a leaf, `visit(item, rays)` runs
 /// for each item with the set of rays still searching that reached it and answers those it
@@ -203,6 +202,7 @@ pub fn closest_packet<V: F64x4>(
 pub fn any_packet<V: F64x4>(
     bvh: &Bvh,
     rays: &[Ray],
+    quads: &[RayLanes<V>; PACKET / 4],
     t_min: f64,
     t_max: &[f64; PACKET],
     blocked: u16,
@@ -211,7 +211,7 @@ pub fn any_packet<V: F64x4>(
     let mut t_max = *t_max;
     walk_packet::<V>(
         bvh,
-        rays,
+        (quads, rays.len()),
         t_min,
         &mut t_max,
         None,
@@ -221,7 +221,8 @@ pub fn any_packet<V: F64x4>(
     )
 }
 
-/// The depth-first walk of both packet searches, for the rays not `done` at its start. Each
+/// The depth-first walk of both packet searches, for the packet's `len` rays given in groups
+/// of four (`quads`) that are not `done` at its start. Each
 /// node's box is tested for the rays still searching below it; at a leaf,
 /// `step(item, rays, t_max)` runs for every item, in order, with the rays that met the leaf's
 /// box and are not done, and answers those that are done now (they leave the packet).
@@ -230,7 +231,7 @@ pub fn any_packet<V: F64x4>(
 #[inline(always)]
 fn walk_packet<V: F64x4>(
     bvh: &Bvh,
-    rays: &[Ray],
+    (quads, len): (&[RayLanes<V>; PACKET / 4], usize),
     t_min: f64,
     t_max: &mut [f64; PACKET],
     signs: Option<[bool; 3]>,
@@ -238,13 +239,13 @@ fn walk_packet<V: F64x4>(
     mut step: impl FnMut(u32, u16, &mut [f64; PACKET]) -> u16,
 ) -> (u32, Visits) {
     let mut work = Visits::default();
-    if bvh.nodes().is_empty() || rays.is_empty() {
+    if bvh.nodes().is_empty() || len == 0 {
         return (0, work);
     }
-    let packet = Packet::<V>::new(rays);
-    let all = (u32::MAX >> (32 - rays.len())) as u16;
+    let packet = Packet::<V>::new(quads, len);
+    let all = (u32::MAX >> (32 - len)) as u16;
     // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
-    let used = lane_masks::<V>(rays.len());
+    let used = lane_masks::<V>(len);
     let mut reach = reach_of::<V>(t_max, &used);
     let mut stack = [(0u32, 0u16); 64];
     stack[0] = (0, all);

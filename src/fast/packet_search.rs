@@ -151,6 +151,7 @@ impl FastScene<'_> {
         let visits = closest_packet::<V>(
             &self.scene.index.bvh,
             &packet[..n],
+            &quads,
             0.0,
             &mut limits,
             // Inlined, so that it is compiled in the lanes' copy with the walk.
@@ -303,6 +304,7 @@ impl FastScene<'_> {
             let (hit, visits) = any_packet::<V>(
                 &self.scene.index.bvh,
                 &packet.0[..n],
+                packet.2,
                 0.0,
                 &reach,
                 first,
