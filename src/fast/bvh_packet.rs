@@ -190,8 +190,8 @@ pub fn closest_packet<V: F64x4>(
     work
 }
 
-/// `any` for a packet of up to 16 rays (also in groups of four, `quads`, as for
-/// `closest_packet`), ray i searching [t_min, t_max[i]]: bit i of the
+/// `any` for a packet of up to 16 rays, given as their groups of four (`RayLanes::new` of
+/// each four in order) and their count, ray i searching [t_min, t_max[i]]: bit i of the
 /// answer is set when ray i met a blocker. The rays of `blocked` are answered already (a
 /// blocker found before the walk): they take no part. At a leaf, `visit(item, rays)` runs
 /// for each item with the set of rays still searching that reached it and answers those it
@@ -201,8 +201,7 @@ pub fn closest_packet<V: F64x4>(
 #[inline(always)]
 pub fn any_packet<V: F64x4>(
     bvh: &Bvh,
-    rays: &[Ray],
-    quads: &[RayLanes<V>; PACKET / 4],
+    rays: (&[RayLanes<V>; PACKET / 4], usize),
     t_min: f64,
     t_max: &[f64; PACKET],
     blocked: u16,
@@ -211,7 +210,7 @@ pub fn any_packet<V: F64x4>(
     let mut t_max = *t_max;
     walk_packet::<V>(
         bvh,
-        (quads, rays.len()),
+        rays,
         t_min,
         &mut t_max,
         None,

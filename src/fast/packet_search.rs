@@ -303,8 +303,7 @@ impl FastScene<'_> {
         } else {
             let (hit, visits) = any_packet::<V>(
                 &self.scene.index.bvh,
-                &packet.0[..n],
-                packet.2,
+                (packet.2, n),
                 0.0,
                 &reach,
                 first,
