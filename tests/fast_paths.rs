@@ -20,6 +20,7 @@ use raytree::geometry::{Plane, Ray, Sphere};
 use raytree::render::film::Film;
 use raytree::render::{render_simple, render_through, Engine, RenderOptions};
 use raytree::scene::{parse, Accel, Hit, Limits, Scene, Search};
+use raytree::shading::LightKind;
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
 use raytree::trace::Tracer;
@@ -408,6 +409,65 @@ fn every_pixel_of_the_csg_scene_traced_in_lanes_is_traced_sample_by_sample() {
         total.total_internal_reflections > 0 && total.csg_pruned > 0 && total.bounds_skipped > 0,
         "{total:?}"
     );
+}
+
+/// The usual point lights lit four surfaces at a time, beside everything the lanes leave to the
+/// core's own step: surfaces whose highlight exponents differ within a group of four (a whole
+/// exponent of 0, 1024, 2000 and a fractional one), no highlight, Hall's transmitted highlight,
+/// a light at no finite distance, surfaces inside a glass sphere (whose shadow rays the solid
+/// hides), a box tested ray by ray, and a fixed shadow bias as well as the automatic one. Every
+/// pixel is exactly its samples traced one by one.
+#[test]
+fn every_pixel_lit_in_lanes_is_lit_as_its_samples_one_by_one() {
+    for bias in ["", "shadow_bias: 0.25\n"] {
+        let yaml = [
+            "camera: { eye: [0, 3, -8], look_at: [0, 0.6, 0], width: 32, height: 24 }
+spp: 16
+ambient: 0.2
+max_depth: 3
+",
+            bias,
+            "lights:
+  - { name: key, point: [-4, 6, -5], intensity: 0.8 }
+  - { name: fill, point: [5, 4, -3], intensity: [0.2, 0.3, 0.4] }
+  - { name: far, point: [0, 50, 0], intensity: 0.3 }
+materials:
+  floor: { color: [0.6, 0.5, 0.4], ka: 0.2, kd: 0.8, ks: 0.3, shininess: 10, kr: 0.3 }
+  odd: { color: [0.9, 0.4, 0.4], ks: 0.5, shininess: 7.5 }
+  flat: { color: 0.7, ks: 0.5, shininess: 0 }
+  tight: { color: [0.2, 0.9, 0.3], kd: 0.6, ks: 0.8, shininess: 1024, highlight: phong }
+  tighter: { color: [0.9, 0.9, 0.2], kd: 0.6, ks: 0.8, shininess: 2000 }
+  matte: { color: [0.3, 0.3, 0.9], kd: 0.9, ks: 0.4, shininess: 3, highlight: phong }
+  hall: { color: 1, kd: 0.05, ks: 0.5, shininess: 20, kr: 0.1, kt: 0.85, ior: 1.5, transmitted_highlight: true }
+  glass: { color: 1, kd: 0.05, ks: 0.6, shininess: 200, kr: 0.1, kt: 0.9, ior: 1.5 }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { name: odd, sphere: { center: [-2.6, 0.4, -1.5], radius: 0.4 }, material: odd }
+  - { name: flat, sphere: { center: [-2.4, 0.6, 0.5], radius: 0.6 }, material: flat }
+  - { name: tight, sphere: { center: [-1.2, 0.6, 1.2], radius: 0.6 }, material: tight }
+  - { name: tighter, sphere: { center: [0, 0.6, 1.6], radius: 0.6 }, material: tighter }
+  - { name: crate, box: { min: [0.2, 0, -0.6], max: [1.1, 0.9, 0.3] }, material: matte }
+  - { name: hall, sphere: { center: [2.2, 0.8, -0.6], radius: 0.8 }, material: hall }
+  - { name: glass, sphere: { center: [1.2, 0.9, -2.4], radius: 0.9 }, material: glass }
+",
+        ]
+        .concat();
+        let mut scene = parse(&yaml, "lanes.yaml", None, &Limits::default()).unwrap();
+        // Beyond the range of a scene file: the distance to the light overflows to ∞.
+        scene.lights[2].kind = LightKind::Point {
+            position: DVec3::new(1e300, 1e300, -1e300),
+            attenuation: [1.0, 0.0, 0.0],
+        };
+        assert!(FastScene::new(&scene).tests_in_lanes());
+        let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+        assert!(
+            total.shadow_rays > 0
+                && total.shadow_skipped_backfacing > 0
+                && total.shadow_skipped_inside > 0
+                && total.refraction_rays > 0,
+            "{bias}: {total:?}"
+        );
+    }
 }
 
 /// Every kind of light: point (attenuated), directional, an area light (its grid of shadow rays

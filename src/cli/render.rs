@@ -352,10 +352,12 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
     } else {
         Encoding::Srgb
     };
+    // The image is converted and encoded on the render's threads, which are idle by now (and
+    // no second pool is started for it).
     match destination {
-        Destination::File => image.save_unless(&a.output, encoding, stop)?,
+        Destination::File => pool.install(|| image.save_unless(&a.output, encoding, stop))?,
         Destination::Stdout(format) => {
-            let bytes = image.encoded(format, encoding)?;
+            let bytes = pool.install(|| image.encoded(format, encoding))?;
             if stop.load(std::sync::atomic::Ordering::SeqCst) {
                 return Err(interrupted());
             }

@@ -23,6 +23,7 @@ mod csg_lanes;
 mod diffuse_paths;
 mod hull;
 mod lanes;
+mod light_lanes;
 mod light_share;
 mod outgoing;
 mod packet_search;

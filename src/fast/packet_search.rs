@@ -459,12 +459,27 @@ impl FastScene<'_> {
     #[inline(always)]
     fn occluded_in_lanes<V: F64x4>(&self, rays: &[Ray], t_max: &[f64], stats: &mut Stats) -> u32 {
         let lanes = RayLanes::<V>::new(rays);
-        let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
         // Lane by lane, not `copy_from_slice`: a call to memcpy here would spill every vector
         // register around it.
         let reach = |i: usize| t_max.get(i).copied().unwrap_or(0.0);
         let reach = V::setr(reach(0), reach(1), reach(2), reach(3));
         let all = (1u32 << rays.len()) - 1;
+        self.occluded_lanes(&lanes, rays, reach, all, stats)
+    }
+
+    /// The lanes of `open` whose ray is blocked before `reach`, for rays already in lanes
+    /// (`rays` are the same rays one by one, for the objects tested ray by ray: they are read
+    /// only where `needs_rays`).
+    #[inline(always)]
+    pub(super) fn occluded_lanes<V: F64x4>(
+        &self,
+        lanes: &RayLanes<V>,
+        rays: &[Ray],
+        reach: V,
+        all: u32,
+        stats: &mut Stats,
+    ) -> u32 {
+        let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(lanes));
         let mut open = all;
         // The lanes whose t (NaN for none) lies in 0 < t < t_max.
         let within = |t: V| (t.simd_gt(V::ZERO) & t.simd_lt(reach)).to_bitmask();
@@ -475,14 +490,13 @@ impl FastScene<'_> {
             match p {
                 Probe::Plane { plane, .. } => {
                     stats.primitives_tested += open.count_ones() as u64;
-                    open &= !plane_hits_of_lanes(plane, &lanes, 0.0, reach).1;
+                    open &= !plane_hits_of_lanes(plane, lanes, 0.0, reach).1;
                 }
                 Probe::Sphere { sphere, .. } => {
                     stats.primitives_tested += open.count_ones() as u64;
                     let r2 = sphere.radius * sphere.radius;
                     let open_lanes = lane_mask::<V>(open);
-                    if let Some(t) =
-                        sphere_against_lanes(sphere.center, r2, &lanes, open_lanes, 0.0)
+                    if let Some(t) = sphere_against_lanes(sphere.center, r2, lanes, open_lanes, 0.0)
                     {
                         open &= !within(t);
                     }
@@ -495,7 +509,7 @@ impl FastScene<'_> {
                             break;
                         }
                         stats.primitives_tested += open.count_ones() as u64;
-                        if let Some(t) = group.sphere_against(k, &lanes, lane_mask(open), 0.0) {
+                        if let Some(t) = group.sphere_against(k, lanes, lane_mask(open), 0.0) {
                             open &= !within(t);
                         }
                     }

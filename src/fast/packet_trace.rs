@@ -15,6 +15,7 @@ use glam::DVec3;
 
 use super::bvh_packet::PACKET;
 use super::lanes::UNUSED;
+use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
 use super::outgoing::{outgoing, Transmission};
 use super::search::FastScene;
@@ -159,8 +160,24 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
             }
         }
     }
+    // Where the objects are tested four rays at a time, the usual lights and surfaces are lit
+    // in lanes too, shadow rays and all (`light_lanes`).
+    let surfaces = fast
+        .tests_in_lanes()
+        .then(|| SurfaceLanes::new(scene, &shaded[..n]));
+    let mut view = [DVec3::ZERO; PACKET];
+    if surfaces.is_some() {
+        for (i, v) in view[..n].iter_mut().enumerate() {
+            *v = -tasks.ray(i).dir;
+        }
+    }
     for (k, light) in scene.lights.iter().enumerate() {
         let single = light.shadow_rays() == 1 && t.options.shadows;
+        let mut alone = u32::MAX;
+        if let (true, Some(surfaces), Some(light)) = (single, &surfaces, lanes_light(light)) {
+            let far = surfaces.light::<V>(t, fast, &shaded, &view, k, light, out);
+            alone = surfaces.alone | far;
+        }
         let mut terms = [DVec3::ZERO; PACKET];
         let mut shadow_rays = [UNUSED; PACKET];
         let mut reach = [0.0; PACKET];
@@ -168,6 +185,9 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
         let mut cast = 0;
         for i in 0..n {
             let Some(si) = &shaded[i] else { continue };
+            if alone & 1 << i == 0 {
+                continue;
+            }
             let m = scene.material(si.material);
             let (sample, lit, skipped) =
                 light_share::<V>(t, m, si, tasks.ray(i), || tasks.task(i), k);
@@ -184,6 +204,9 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
                 let s = t.shadow_factor(si, tasks.depth(i), &sample, light);
                 out[i] += s * terms[i];
             }
+        }
+        if cast == 0 {
+            continue;
         }
         let blocked = fast.occluded_packet(
             &shadow_rays[..cast],
