@@ -6,7 +6,7 @@ use glam::DVec3;
 use raytree::fast::simd::Wide;
 use raytree::fast::{sphere_hit, DiffusePaths, FastScene, SphereGroup};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
-use raytree::render::{render_simple, RenderOptions};
+use raytree::render::{render_simple, Engine, RenderOptions};
 use raytree::sampling::{pixel_key, SamplePoint};
 use raytree::scene::{parse, Accel, Limits, Scene, Search};
 use raytree::stats::Stats;
@@ -312,6 +312,23 @@ fn render(c: &mut Criterion) {
     c.bench_function("render refraction lesson 80×60", |b| {
         b.iter(|| render_simple(&small, RenderOptions::of(&small)))
     });
+    // The Whitted peer scene at 16 samples per pixel: the core's recursion ray by ray, and the
+    // wing's packets (the lights' terms and shadow rays of four surfaces at a time among them).
+    let yaml = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/peers/whitted.yaml"),
+    )
+    .unwrap()
+    .replace("width: 800, height: 600", "width: 160, height: 120");
+    let whitted = parse(&yaml, "whitted.yaml", None, &Limits::default()).unwrap();
+    let mut g = c.benchmark_group("render the Whitted peer scene 160×120, 16 spp");
+    for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
+        let options = RenderOptions {
+            engine,
+            ..RenderOptions::of(&whitted)
+        };
+        g.bench_function(name, |b| b.iter(|| render_simple(&whitted, options)));
+    }
+    g.finish();
 }
 
 /// A scene of one object (given as YAML) in front of the eye.

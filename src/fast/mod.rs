@@ -5,6 +5,7 @@
 //! else: a pixel's primary rays made four at a time (`camera_rays`), packets of rays traced
 //! together (`packet_trace`), searched together through the BVH (`bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
 //! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
+//! the usual point lights' terms and shadow rays four surfaces at a time (`light_lanes`),
 //! flat CSG objects read off their primitives' spans (`csg_crossing`) or in lanes
 //! (`csg_lanes`, `span_lanes`), and the path tracer for scenes of diffuse surfaces
 //! (`diffuse_paths`).

@@ -3,8 +3,9 @@
 //! `Tracer::light_share`, `Tracer::shadow_factor`, `Tracer::finish`, …, and `outgoing` for
 //! `Tracer::secondary`) in another order: every ray's local terms of a light first, then all
 //! their shadow rays toward it together (trying first the object that blocked the last shadow
-//! ray toward that light, `Tracer::last_blockers`), then the secondary rays as packets of
-//! their own. Each ray's intensity, the counters of rays and of skipped shading and the random
+//! ray toward that light, `Tracer::last_blockers`; without a BVH, the usual point lights take
+//! four surfaces at once, shadow rays and all, `light_lanes`), then the secondary rays as
+//! packets of their own. Each ray's intensity, the counters of rays and of skipped shading and the random
 //! numbers drawn are those of tracing the rays one after another with `Tracer::radiance`. The
 //! tracer must find its hits through the same `FastScene` the packets are searched with.
 
