@@ -175,9 +175,11 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
     for (k, light) in scene.lights.iter().enumerate() {
         let single = light.shadow_rays() == 1 && t.options.shadows;
         let mut alone = u32::MAX;
-        if let (true, Some(surfaces), Some(light)) = (single, &surfaces, lanes_light(light)) {
-            let far = surfaces.light::<V>(t, fast, &shaded, &view, k, light, out);
-            alone = surfaces.alone | far;
+        if let (true, Some(surfaces)) = (single, &surfaces) {
+            if let Some(light) = lanes_light(light) {
+                let far = surfaces.light::<V>(t, fast, &shaded, &view, k, light, out);
+                alone = surfaces.alone | far;
+            }
         }
         let mut terms = [DVec3::ZERO; PACKET];
         let mut shadow_rays = [UNUSED; PACKET];
