@@ -16,6 +16,7 @@ use super::search::FastScene;
 use super::simd::F64x4;
 use crate::geometry::Ray;
 use crate::scene::{Interaction, Scene};
+use crate::shading::local::whole_exponent;
 use crate::shading::{Highlight, Light, LightKind};
 use crate::trace::Tracer;
 
@@ -34,7 +35,11 @@ pub(super) fn lanes_light(light: &Light) -> Option<(DVec3, DVec3)> {
 }
 
 /// Which surfaces of a packet the lanes light, and what they need to know of their materials.
-pub(super) struct SurfaceLanes {
+pub(super) struct SurfaceLanes<'a> {
+    /// The packet's surfaces, and by packet lane v = −d, toward the viewer (lane i < PACKET:
+    /// indexing them `% PACKET` only spares the bounds checks).
+    shaded: &'a [Option<Interaction>; PACKET],
+    view: &'a [DVec3; PACKET],
     /// The packet lanes of those surfaces, in order, and their number.
     chosen: [usize; PACKET],
     count: usize,
@@ -47,26 +52,31 @@ pub(super) struct SurfaceLanes {
     pub alone: u32,
 }
 
-impl SurfaceLanes {
+impl<'a> SurfaceLanes<'a> {
+    /// The first `n` surfaces of a packet, found by rays whose v = −d is `view`.
     #[inline(always)]
-    pub fn new(scene: &Scene, shaded: &[Option<Interaction>]) -> SurfaceLanes {
+    pub fn new(
+        scene: &Scene,
+        shaded: &'a [Option<Interaction>; PACKET],
+        view: &'a [DVec3; PACKET],
+        n: usize,
+    ) -> SurfaceLanes<'a> {
         let mut lanes = SurfaceLanes {
+            shaded,
+            view,
             chosen: [0; PACKET],
             count: 0,
             exponent: [0; PACKET],
             blinn: 0,
             alone: 0,
         };
-        for (i, si) in shaded.iter().enumerate() {
+        for (i, si) in shaded[..n].iter().enumerate() {
             let Some(si) = si else { continue };
             let m = scene.material(si.material);
             let exponent = if m.transmitted_highlight {
                 None
             } else if si.paint.ks > 0.0 {
-                // A whole exponent from 0 to 1024, as `highlight_power` squares (a saturated
-                // or NaN conversion does not come back equal).
-                let e = m.shininess as u32;
-                (e as f64 == m.shininess && e <= 1024).then_some(e)
+                whole_exponent(m.shininess)
             } else {
                 // No highlight (ks ≤ 0 or NaN): nothing to raise.
                 Some(0)
@@ -90,45 +100,38 @@ impl SurfaceLanes {
     /// shadow ray, or s = 0 where it casts none. Returns the packet lanes whose point is at the
     /// light or at no finite distance from it: those take `light_share`.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
     pub fn light<V: F64x4>(
         &self,
         t: &mut Tracer,
         fast: &FastScene,
-        shaded: &[Option<Interaction>; PACKET],
-        view: &[DVec3; PACKET],
         k: usize,
         light: (DVec3, DVec3),
         out: &mut [DVec3],
     ) -> u32 {
         let mut far = 0;
         for group in self.chosen[..self.count].chunks(LANES) {
-            let mut at = [group[0]; LANES];
-            at[..group.len()].copy_from_slice(group);
-            far |= self.group::<V>(t, fast, shaded, view, k, light, at, group.len(), out);
+            far |= self.group::<V>(t, fast, k, light, group, out);
         }
         far
     }
 
-    /// `light` for the surfaces in packet lanes `at` (`len` of them; spare lanes repeat the
-    /// first, and their results are dropped).
+    /// `light` for the surfaces in the packet lanes `group` (one to four; spare lanes repeat
+    /// the first, and their results are dropped).
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
     fn group<V: F64x4>(
         &self,
         t: &mut Tracer,
         fast: &FastScene,
-        shaded: &[Option<Interaction>; PACKET],
-        view: &[DVec3; PACKET],
         k: usize,
         (position, intensity): (DVec3, DVec3),
-        at: [usize; LANES],
-        len: usize,
+        group: &[usize],
         out: &mut [DVec3],
     ) -> u32 {
+        let (mut at, len) = ([group[0]; LANES], group.len());
+        at[..len].copy_from_slice(group);
         let used = (1u32 << len) - 1;
-        let si = at.map(|i| shaded[i % PACKET].as_ref().expect("a shaded surface"));
-        let v = at.map(|i| view[i % PACKET]);
+        let si = at.map(|i| self.shaded[i % PACKET].as_ref().expect("a shaded surface"));
+        let v = at.map(|i| self.view[i % PACKET]);
         let surfaces: Surfaces<V> = Surfaces {
             point: axes(si.map(|s| s.point)),
             normal: axes(si.map(|s| s.normal)),

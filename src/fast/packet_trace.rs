@@ -163,21 +163,20 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
     }
     // Where the objects are tested four rays at a time, the usual lights and surfaces are lit
     // in lanes too, shadow rays and all (`light_lanes`).
-    let surfaces = fast
-        .tests_in_lanes()
-        .then(|| SurfaceLanes::new(scene, &shaded[..n]));
+    let in_lanes = fast.tests_in_lanes();
     let mut view = [DVec3::ZERO; PACKET];
-    if surfaces.is_some() {
+    if in_lanes {
         for (i, v) in view[..n].iter_mut().enumerate() {
             *v = -tasks.ray(i).dir;
         }
     }
+    let surfaces = in_lanes.then(|| SurfaceLanes::new(scene, &shaded, &view, n));
     for (k, light) in scene.lights.iter().enumerate() {
         let single = light.shadow_rays() == 1 && t.options.shadows;
         let mut alone = u32::MAX;
         if let (true, Some(surfaces)) = (single, &surfaces) {
             if let Some(light) = lanes_light(light) {
-                let far = surfaces.light::<V>(t, fast, &shaded, &view, k, light, out);
+                let far = surfaces.light::<V>(t, fast, k, light, out);
                 alone = surfaces.alone | far;
             }
         }

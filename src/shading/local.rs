@@ -128,11 +128,17 @@ fn highlight_cos(m: &Material, n: DVec3, v: DVec3, l: DVec3, n_dot_l: f64) -> f6
 fn highlight_power(cos: f64, m: f64) -> f64 {
     if cos == 0.0 && m > 0.0 {
         0.0
-    } else if m.fract() == 0.0 && (0.0..=1024.0).contains(&m) {
-        powi_by_squaring(cos, m as u32)
+    } else if let Some(e) = whole_exponent(m) {
+        powi_by_squaring(cos, e)
     } else {
         cos.powf(m)
     }
+}
+
+/// The exponent m as a whole number, if it is one from 0 to 1024: the exponents
+/// `highlight_power` raises by repeated squaring.
+pub fn whole_exponent(m: f64) -> Option<u32> {
+    (m.fract() == 0.0 && (0.0..=1024.0).contains(&m)).then_some(m as u32)
 }
 
 /// aᵉ by repeated squaring: a, a², a⁴, … multiplied in where e has a one bit. The same
