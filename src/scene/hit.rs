@@ -63,13 +63,11 @@ impl Scene {
         // The one place a surface's colour is looked up: a material without patterns (most)
         // only copies its constants.
         let m = &self.materials[leaf.material as usize];
-        let paint = match &m.patterns {
-            None => m.paint(),
-            Some(patterns) => {
-                let at = self.pattern_point(leaf, point, hit.surface.face, patterns.need_uv());
-                patterns.paint(&m.paint(), &at)
-            }
-        };
+        let mut paint = m.paint();
+        if let Some(patterns) = &m.patterns {
+            let at = self.pattern_point(leaf, point, hit.surface.face, patterns.need_uv());
+            paint = patterns.paint(&paint, &at);
+        }
         Interaction {
             point,
             normal,
