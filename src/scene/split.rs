@@ -71,9 +71,8 @@ fn cut(text: &str, pieces: usize) -> Option<Split> {
 
 /// Every character but line breaks replaced by a space (byte for byte, so offsets hold).
 fn blank(text: &str) -> String {
-    text.bytes()
-        .map(|b| if b == b'\n' { '\n' } else { ' ' })
-        .collect()
+    let bytes = text.bytes().map(|b| if b == b'\n' { b } else { b' ' }).collect();
+    String::from_utf8(bytes).expect("spaces and line breaks are UTF-8")
 }
 
 /// Where the top-level `objects:` block list's items start, and where the list ends.
