@@ -71,7 +71,10 @@ fn cut(text: &str, pieces: usize) -> Option<Split> {
 
 /// Every character but line breaks replaced by a space (byte for byte, so offsets hold).
 fn blank(text: &str) -> String {
-    let bytes = text.bytes().map(|b| if b == b'\n' { b } else { b' ' }).collect();
+    let bytes = text
+        .bytes()
+        .map(|b| if b == b'\n' { b } else { b' ' })
+        .collect();
     String::from_utf8(bytes).expect("spaces and line breaks are UTF-8")
 }
 
