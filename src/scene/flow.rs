@@ -32,7 +32,7 @@ pub struct Scan {
 pub fn scan(text: &str) -> Scan {
     let mut scan = Scan::default();
     let mut open: Vec<Bracket> = Vec::new();
-    let mut quote: Option<char> = None;
+    let mut quote: Option<u8> = None;
     // The indentation of the line holding a block scalar's `|` or `>`: its content is every
     // following line indented more (or blank).
     let mut block_scalar: Option<usize> = None;
@@ -50,90 +50,86 @@ pub fn scan(text: &str) -> Scan {
             block_scalar = None;
         }
         // A node can start at the start of a line in block context, and anywhere a
-        // collection's entry begins.
+        // collection's entry begins. Byte by byte: every character that matters is ASCII, and
+        // a byte of a longer UTF-8 character is never one of them.
         let mut node_start = quote.is_none();
-        let mut prev = ' ';
-        let mut chars = body.char_indices().peekable();
-        while let Some((i, c)) = chars.next() {
-            let next = chars.peek().map_or(' ', |&(_, n)| n);
+        let mut prev = b' ';
+        let bytes = body.as_bytes();
+        let bracket = |i: usize, c: u8| Bracket {
+            at: start + i,
+            line: index as u64 + 1,
+            column: body[..i].chars().count() as u64 + 1,
+            open: c as char,
+        };
+        let mut i = 0;
+        while i < bytes.len() {
+            let c = bytes[i];
+            let next = bytes.get(i + 1).copied().unwrap_or(b' ');
+            i += 1;
             if let Some(q) = quote {
                 match (q, c) {
-                    ('"', '\\') => {
-                        chars.next();
-                    }
-                    ('\'', '\'') if next == '\'' => {
-                        chars.next();
-                    }
+                    (b'"', b'\\') => i += 1,
+                    (b'\'', b'\'') if next == b'\'' => i += 1,
                     (q, c) if q == c => quote = None,
                     _ => {}
                 }
                 prev = c;
                 continue;
             }
-            if c == '#' && prev.is_whitespace() {
+            if c == b'#' && prev.is_ascii_whitespace() {
                 break; // a comment: the rest of the line
             }
             let in_flow = !open.is_empty();
-            let spaced = next.is_whitespace();
-            if c.is_whitespace() {
+            let spaced = next.is_ascii_whitespace();
+            if c.is_ascii_whitespace() {
                 prev = c;
                 continue;
             }
             if node_start {
                 match c {
-                    '"' | '\'' => {
+                    b'"' | b'\'' => {
                         quote = Some(c);
                         node_start = false;
                     }
-                    '[' | '{' => open.push(Bracket {
-                        at: start + i,
-                        line: index as u64 + 1,
-                        column: body[..i].chars().count() as u64 + 1,
-                        open: c,
-                    }),
-                    '|' | '>' if !in_flow => {
+                    b'[' | b'{' => open.push(bracket(i - 1, c)),
+                    b'|' | b'>' if !in_flow => {
                         block_scalar = Some(indent);
                         break;
                     }
-                    '-' if spaced && !in_flow => {}
-                    '?' if spaced => {}
-                    '&' | '!' => {
+                    b'-' if spaced && !in_flow => {}
+                    b'?' if spaced => {}
+                    b'&' | b'!' => {
                         // An anchor or a tag: the node itself follows it.
-                        while chars.peek().is_some_and(|&(_, n)| !n.is_whitespace()) {
-                            chars.next();
+                        while bytes.get(i).is_some_and(|n| !n.is_ascii_whitespace()) {
+                            i += 1;
                         }
                     }
-                    ']' | '}' if in_flow => {
+                    b']' | b'}' if in_flow => {
                         open.pop();
                         node_start = false;
                     }
-                    ',' if in_flow => {}
+                    b',' if in_flow => {}
                     _ => node_start = false,
                 }
             } else if in_flow {
                 match c {
-                    '[' | '{' => {
-                        open.push(Bracket {
-                            at: start + i,
-                            line: index as u64 + 1,
-                            column: body[..i].chars().count() as u64 + 1,
-                            open: c,
-                        });
+                    b'[' | b'{' => {
+                        open.push(bracket(i - 1, c));
                         node_start = true;
                     }
-                    ']' | '}' => {
+                    b']' | b'}' => {
                         open.pop();
                     }
-                    ',' => node_start = true,
-                    ':' if spaced
-                        || matches!(next, ',' | ']' | '}')
-                        || matches!(prev, '"' | '\'') =>
+                    b',' => node_start = true,
+                    b':' if spaced
+                        || matches!(next, b',' | b']' | b'}')
+                        || matches!(prev, b'"' | b'\'') =>
                     {
                         node_start = true
                     }
                     _ => {}
                 }
-            } else if c == ':' && spaced {
+            } else if c == b':' && spaced {
                 node_start = true;
             }
             prev = c;
