@@ -8,6 +8,7 @@ use glam::DVec3;
 
 use super::bvh_packet::{any_packet, closest_packet, signs, PACKET};
 use super::csg_lanes::{CsgLanes, LanesHits};
+use super::hull::{Hull, Verdict};
 use super::lanes::{
     box_hit_lanes, lane_mask, plane_hits_of_lanes, RayLanes, SlabLanes, LANES, UNUSED,
 };
@@ -107,8 +108,9 @@ impl FastScene<'_> {
         stats: &mut Stats,
     ) {
         if self.in_lanes {
+            let missed = self.boxes_missed_by_all::<V>(rays);
             for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
-                self.intersect_in_lanes::<V>(rays, &RayLanes::new(rays), hits, stats);
+                self.intersect_in_lanes::<V>(rays, &RayLanes::new(rays), hits, missed, stats);
             }
             return;
         }
@@ -141,7 +143,7 @@ impl FastScene<'_> {
         let mut limits = [f64::INFINITY; PACKET];
         for (q, rays) in packet[..n].chunks(LANES).enumerate() {
             let mut found = [None; LANES];
-            self.intersect_in_lanes::<V>(rays, &quads[q], &mut found[..rays.len()], stats);
+            self.intersect_in_lanes::<V>(rays, &quads[q], &mut found[..rays.len()], 0, stats);
             for (k, hit) in found[..rays.len()].iter().enumerate() {
                 let lane = LANES * q + k;
                 hits[lanes[lane]] = *hit;
@@ -371,13 +373,15 @@ impl FastScene<'_> {
     /// other object ray by ray, behind its box (tested against all the rays at once). Each
     /// ray meets the objects in the same order as in `intersect`, with the same arithmetic and
     /// the same shrinking limit, so it finds the same hit and counts the same tests. `lanes`
-    /// holds `rays` (`RayLanes::new`).
+    /// holds `rays` (`RayLanes::new`); the objects whose bits are set in `missed`
+    /// (`boxes_missed_by_all`) are missed by every ray, box and all.
     #[inline(always)]
     fn intersect_in_lanes<V: F64x4>(
         &self,
         rays: &[Ray],
         lanes: &RayLanes<V>,
         hits: &mut [Option<Hit>],
+        missed: u64,
         stats: &mut Stats,
     ) {
         let lanes = *lanes;
@@ -407,7 +411,7 @@ impl FastScene<'_> {
             };
         let within = |t: V, limit: V| (t.simd_gt(V::ZERO) & t.simd_lt(limit)).to_bitmask();
         let n = rays.len() as u64;
-        for p in &self.unbounded {
+        for (k, p) in self.unbounded.iter().enumerate() {
             match p {
                 Probe::Plane {
                     plane,
@@ -441,6 +445,10 @@ impl FastScene<'_> {
                         }
                     }
                 }
+                Probe::Object(_) | Probe::Box { .. } if missed >> k & 1 != 0 => {
+                    // Counted as each ray's own test of the box counts its miss.
+                    stats.bounds_skipped += n;
+                }
                 Probe::Object(o) | Probe::Box { object: o, .. } => {
                     let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
                     let mut t_max = limit.to_array();
@@ -449,6 +457,37 @@ impl FastScene<'_> {
                 }
             }
         }
+    }
+
+    /// The objects tested behind their box (bit k: `unbounded[k]`, the first 64) whose box
+    /// every one of `rays` misses, as the rays' hull proves (`Hull`): one test for a packet of
+    /// up to 16 rays, where the rays' own tests take one per group of four. A ray that misses
+    /// a box searching [0, ∞) misses it searching less, so the rays' limits need not be known.
+    #[inline(always)]
+    fn boxes_missed_by_all<V: F64x4>(&self, rays: &[Ray]) -> u64 {
+        if !self.boxes_outside_bvh || rays.len() <= LANES {
+            return 0;
+        }
+        // 1/d as `SlabLanes` finds it: the hull bounds what the rays' own tests use.
+        let hull = Hull::<V>::new(
+            rays.iter()
+                .map(|r| (r.origin.to_array(), r.dir.recip().to_array())),
+        );
+        let Some(hull) = hull else {
+            return 0;
+        };
+        let mut missed = 0;
+        for (k, p) in self.unbounded.iter().enumerate().take(64) {
+            if let Some(o) = p.boxed_object() {
+                let bounds = &self.scene.objects[o as usize].bounds;
+                if self.tested_behind_box(o)
+                    && hull.classify(bounds, 0.0, (0.0, f64::INFINITY)) == Verdict::AllMiss
+                {
+                    missed |= 1 << k;
+                }
+            }
+        }
+        missed
     }
 
     /// `occluded` (t_min = 0) for up to four shadow rays in a scene without a BVH: each plain
@@ -647,5 +686,58 @@ impl FastScene<'_> {
         stats.primitives_tested += (open & !found.undecided).count_ones() as u64;
         stats.csg_pruned += found.pruned;
         Some((csg, found))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fast::simd::Wide;
+    use crate::scene::{parse, Limits};
+
+    /// A pixel's samples that pass beside a boxed object rule its box out for all of them at
+    /// once; samples aimed at it, or spread over its edge, do not, and neither do four rays or
+    /// fewer (their own tests are as cheap).
+    #[test]
+    fn a_packet_rules_out_the_boxes_all_its_rays_miss() {
+        let yaml = "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\n\
+            materials: { m: { kd: 0.5 } }\nobjects:\n\
+            - { sphere: { center: [0, 0, 0], radius: 1 }, material: m }\n\
+            - { box: { min: [2, -1, -1], max: [4, 1, 1] }, material: m }\n\
+            - { difference: [ { box: { min: [-4, -1, -1], max: [-2, 1, 1] } },\
+                { sphere: { center: [-3, 0, -1], radius: 1.2 } } ], material: m }\n";
+        let scene = parse(yaml, "boxes.yaml", None, &Limits::default()).unwrap();
+        let fast = FastScene::new(&scene);
+        let bit = |object: u32| {
+            let k = fast
+                .unbounded
+                .iter()
+                .position(|p| p.boxed_object() == Some(object));
+            1u64 << k.expect("a boxed object")
+        };
+        let (boxed, hollow) = (bit(1), bit(2));
+        let packet = |aim: [f64; 3], spread: f64| -> Vec<Ray> {
+            let eye = DVec3::new(0.0, 0.0, -10.0);
+            (0..16)
+                .map(|k| {
+                    let (u, v) = ((k % 4) as f64 - 1.5, (k / 4) as f64 - 1.5);
+                    let at = DVec3::from_array(aim) + spread * DVec3::new(u, v, 0.0);
+                    Ray::new(eye, (at - eye).normalize())
+                })
+                .collect()
+        };
+        let missed = |rays: &[Ray]| fast.boxes_missed_by_all::<Wide>(rays);
+        assert_eq!(missed(&packet([0.5, 0.5, 0.0], 0.01)), boxed | hollow);
+        assert_eq!(missed(&packet([3.0, 0.5, 0.0], 0.01)), hollow);
+        assert_eq!(missed(&packet([-3.0, 0.5, 0.0], 0.01)), boxed);
+        assert_eq!(missed(&packet([0.5, 3.0, 0.0], 0.01)), boxed | hollow);
+        assert_eq!(
+            missed(&packet([2.0, 0.5, 0.0], 0.3)),
+            hollow,
+            "some rays meet the box"
+        );
+        // Directions of both signs on an axis (the pixels at the image's centre): no hull.
+        assert_eq!(missed(&packet([0.0, 0.5, 0.0], 0.01)), 0);
+        assert_eq!(missed(&packet([0.5, 0.5, 0.0], 0.01)[..4]), 0, "four rays");
     }
 }
