@@ -225,8 +225,10 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
         // Glossy and frosted surfaces draw random numbers: the rays go on one by one, in
         // order, so each draws the numbers it draws when traced alone. And gathering the
         // secondary rays into packets pays only where packets are tested four rays at a time.
+        // A surface that sends no rays on is finished as it is (the tracer records nothing
+        // here), without building its task.
         for i in 0..n {
-            if let Some(si) = &shaded[i] {
+            if let Some(si) = shaded[i].as_ref().filter(|si| sends_rays(si)) {
                 out[i] = t.finish(&tasks.task(i), si, out[i]);
             }
         }
@@ -252,7 +254,7 @@ fn secondary_packet<L: Lanes + ?Sized>(
     let mut transmitted = Children::new();
     for (i, si) in shaded.iter().enumerate() {
         let Some(si) = si else { continue };
-        if !(si.paint.kr > 0.0 || si.paint.kt > 0.0) || t.stops_at(&si.paint) {
+        if !sends_rays(si) || t.stops_at(&si.paint) {
             continue;
         }
         let c = outgoing(t, &tasks.task(i), si);
@@ -291,6 +293,11 @@ fn secondary_packet<L: Lanes + ?Sized>(
         }
         out[i] += sum;
     }
+}
+
+/// Whether a surface sends rays on (kr > 0 or kt > 0), as `Tracer::finish` asks.
+fn sends_rays(si: &Interaction) -> bool {
+    si.paint.kr > 0.0 || si.paint.kt > 0.0
 }
 
 /// Traces the children that are not stopped as one packet, and settles their parents' colours.
