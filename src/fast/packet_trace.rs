@@ -228,7 +228,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
         // A surface that sends no rays on is finished as it is (the tracer records nothing
         // here), without building its task.
         for i in 0..n {
-            if let Some(si) = shaded[i].as_ref().filter(|si| sends_rays(si)) {
+            if let Some(si) = shaded[i].as_ref().filter(|si| si.paint.sends_rays()) {
                 out[i] = t.finish(&tasks.task(i), si, out[i]);
             }
         }
@@ -254,7 +254,7 @@ fn secondary_packet<L: Lanes + ?Sized>(
     let mut transmitted = Children::new();
     for (i, si) in shaded.iter().enumerate() {
         let Some(si) = si else { continue };
-        if !sends_rays(si) || t.stops_at(&si.paint) {
+        if !si.paint.sends_rays() || t.stops_at(&si.paint) {
             continue;
         }
         let c = outgoing(t, &tasks.task(i), si);
@@ -293,11 +293,6 @@ fn secondary_packet<L: Lanes + ?Sized>(
         }
         out[i] += sum;
     }
-}
-
-/// Whether a surface sends rays on (kr > 0 or kt > 0), as `Tracer::finish` asks.
-fn sends_rays(si: &Interaction) -> bool {
-    si.paint.kr > 0.0 || si.paint.kt > 0.0
 }
 
 /// Traces the children that are not stopped as one packet, and settles their parents' colours.

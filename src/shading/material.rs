@@ -88,6 +88,14 @@ pub struct Paint {
     pub kt: f64,
 }
 
+impl Paint {
+    /// Whether a surface painted so sends rays on: a reflection ray where kr > 0, a refraction
+    /// ray where kt > 0.
+    pub fn sends_rays(&self) -> bool {
+        self.kr > 0.0 || self.kt > 0.0
+    }
+}
+
 /// A material's patterns, one for each value that varies. A coefficient's pattern has grey
 /// values: its first channel is the coefficient.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -95,7 +95,7 @@ impl<R: Recorder> Tracer<'_, R> {
     /// The node's total from its local intensity: the secondary rays' kr·I_r + kt·I_t added.
     pub(crate) fn finish(&mut self, task: &Task, si: &Interaction, mut color: DVec3) -> DVec3 {
         let mut stopped = None;
-        if si.paint.kr > 0.0 || si.paint.kt > 0.0 {
+        if si.paint.sends_rays() {
             if self.stops_at(&si.paint) {
                 stopped = Some(Termination::Diffuse);
             } else {
