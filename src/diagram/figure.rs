@@ -132,6 +132,30 @@ fn overlap(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
     a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
 }
 
+/// Where the image plane's label goes, and its anchor: beyond the end of the plane (as drawn,
+/// the points of `hull`) that lies across the primary ray from the eye to the pixel, to the
+/// right where the plane runs sideways and below where it runs up and down; the eye sits
+/// behind the plane's middle, so the label stays clear of it and of the ray.
+fn image_plane_label(hull: &[DVec2], eye: DVec2, pix: DVec2) -> (DVec2, &'static str) {
+    let across = (pix - eye).normalize_or(DVec2::NEG_Y).perp();
+    let sideways = across.x.abs() >= 0.5;
+    let across = if (sideways && across.x < 0.0) || (!sideways && across.y < 0.0) {
+        -across
+    } else {
+        across
+    };
+    let end = hull
+        .iter()
+        .copied()
+        .max_by(|a, b| a.dot(across).total_cmp(&b.dot(across)))
+        .unwrap_or(pix);
+    if sideways {
+        (end + across * 8.0 + DVec2::new(0.0, 4.0), "start")
+    } else {
+        (end + across * 8.0 + DVec2::new(0.0, 12.0), "middle")
+    }
+}
+
 /// Two decimals are plenty for pixel coordinates.
 fn r(x: f64) -> f64 {
     (x * 100.0).round() / 100.0
@@ -291,21 +315,14 @@ impl Figure<'_> {
             } else if hull.len() == 2 {
                 g = g.add(line(hull[0], hull[1], "#888888", 2.0).set("stroke-dasharray", "5 3"));
             }
-            let low = hull
-                .iter()
-                .copied()
-                .max_by(|a, b| a.y.total_cmp(&b.y))
-                .unwrap_or(DVec2::ZERO);
-            g = g.add(text(
-                low + DVec2::new(6.0, 14.0),
-                "image plane",
-                12.0,
-                "#666666",
-            ));
             let eye = p.px(d.at(e.at));
             let pix = p.px(d.at(e.pixel));
-            // The label on the side away from the image plane.
-            let away = (eye - pix).normalize_or(DVec2::NEG_Y) * 16.0;
+            let (at, anchor) = image_plane_label(&hull, eye, pix);
+            g = g.add(text(at, "image plane", 12.0, "#666666").set("text-anchor", anchor));
+            // The label on the side away from the image plane, clear of the dot also when it
+            // sits beside it.
+            let back = (eye - pix).normalize_or(DVec2::NEG_Y);
+            let away = back * (16.0 + 8.0 * back.x.abs());
             g = g
                 .add(
                     Circle::new()
@@ -638,4 +655,71 @@ fn node_lines(n: &GraphNode) -> [String; 3] {
 
 fn node_color(root: &RayNode, n: &GraphNode) -> String {
     ray_color(super::node_at(root, &n.path).map_or(SegKind::Missed, SegKind::of))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The box "image plane" covers at 12 px, from where `image_plane_label` puts it.
+    fn covered(at: DVec2, anchor: &str) -> (DVec2, DVec2) {
+        let width = 0.6 * 12.0 * "image plane".len() as f64;
+        let x0 = if anchor == "middle" {
+            at.x - width / 2.0
+        } else {
+            at.x
+        };
+        (
+            DVec2::new(x0, at.y - 12.0),
+            DVec2::new(x0 + width, at.y + 2.0),
+        )
+    }
+
+    fn distance_to_box(q: DVec2, (lo, hi): (DVec2, DVec2)) -> f64 {
+        (q.clamp(lo, hi) - q).length()
+    }
+
+    /// Eye, pixel and image plane as the top view of a lesson draws them (the eye a few pixels
+    /// behind a plane that runs sideways), as a side view does (the plane upright, the ray
+    /// level), and tilted: the label keeps clear of the eye's dot (radius 5) and of the primary
+    /// ray, from the eye through the pixel and on.
+    #[test]
+    fn the_image_plane_label_stays_clear_of_the_eye_and_the_ray() {
+        let cases = [
+            // Plane sideways, the ray going up the page, the eye 13 px behind the plane.
+            (
+                [DVec2::new(405.0, 545.0), DVec2::new(425.0, 545.0)],
+                DVec2::new(415.0, 558.0),
+                DVec2::new(414.0, 545.0),
+            ),
+            // Plane upright, the ray level and to the right.
+            (
+                [DVec2::new(118.0, 398.0), DVec2::new(118.0, 444.0)],
+                DVec2::new(58.0, 410.0),
+                DVec2::new(118.0, 421.0),
+            ),
+            // Tilted by 40°, the ray going down to the left.
+            (
+                [DVec2::new(300.0, 300.0), DVec2::new(330.0, 275.0)],
+                DVec2::new(330.0, 305.0),
+                DVec2::new(315.0, 287.5),
+            ),
+        ];
+        for (k, (plane, eye, pix)) in cases.into_iter().enumerate() {
+            let (at, anchor) = image_plane_label(&plane, eye, pix);
+            let bx = covered(at, anchor);
+            assert!(
+                distance_to_box(eye, bx) > 5.0,
+                "case {k}: label at {at} ({anchor}) covers the eye at {eye}"
+            );
+            let dir = (pix - eye).normalize();
+            for step in 0..200 {
+                let q = eye + dir * step as f64;
+                assert!(
+                    distance_to_box(q, bx) > 1.0,
+                    "case {k}: label at {at} ({anchor}) lies on the ray at {q}"
+                );
+            }
+        }
+    }
 }
