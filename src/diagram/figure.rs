@@ -251,7 +251,12 @@ impl Figure<'_> {
         let d = self.drawing;
         let mut g = Group::new().set("clip-path", "url(#section)");
         let diag = p.frame.size().length();
-        // Objects: silhouettes filled light grey, planes as lines, each named.
+        // Objects: silhouettes filled light grey, planes as lines, each named where its name
+        // does not cover an earlier one (objects that coincide, as a lesson's CSG variants of
+        // the same spheres do, are named by the first of them). The names go on top of all
+        // the silhouettes.
+        let mut named: Vec<(DVec2, DVec2)> = vec![];
+        let mut names = vec![];
         for o in &d.outlines {
             let name = if o.leaf == o.object {
                 o.object.clone()
@@ -297,7 +302,16 @@ impl Figure<'_> {
                 o => o.anchor(),
             };
             let at = p.px(anchor) + DVec2::new(4.0, -6.0);
-            g = g.add(text(at, &name, 14.0, OUTLINE).set("font-style", "italic"));
+            let width = 0.6 * 14.0 * name.chars().count() as f64;
+            let covers = (at - DVec2::new(0.0, 14.0), at + DVec2::new(width, 2.0));
+            if named.iter().any(|b| overlap(b, &covers)) {
+                continue;
+            }
+            named.push(covers);
+            names.push(text(at, &name, 14.0, OUTLINE).set("font-style", "italic"));
+        }
+        for name in names {
+            g = g.add(name);
         }
         // The eye, the image plane and the pixel on it.
         if let Some(e) = &d.eye {
