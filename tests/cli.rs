@@ -456,3 +456,26 @@ fn bench_explorer_times_depth_keys_picks_and_reloads_per_scene() {
         stderr(&small)
     );
 }
+
+/// A lesson's folder stands for its scene.yaml wherever a command takes a scene, as `explore`
+/// takes it; a folder without one is still refused with a clear error.
+#[test]
+fn a_lessons_folder_stands_for_its_scene() {
+    let folder = raytree(&["inspect", "lessons/05-reflection", "--pixel", "20,15"]);
+    let file = raytree(&["inspect", LESSON_SCENE, "--pixel", "20,15"]);
+    assert!(folder.status.success(), "{}", stderr(&folder));
+    assert!(stdout(&folder).contains("primary"), "{}", stdout(&folder));
+    assert_eq!(stdout(&folder), stdout(&file));
+    let none = raytree(&[
+        "render",
+        "lessons",
+        "-o",
+        temp("none.png").to_str().unwrap(),
+    ]);
+    assert_eq!(none.status.code(), Some(2));
+    assert!(
+        stderr(&none).contains("lessons:1:1: is a directory, not a scene file"),
+        "{}",
+        stderr(&none)
+    );
+}

@@ -370,39 +370,54 @@ fn a_depth_strip_labels_each_frame_with_its_depth() {
     }
 }
 
-/// The objects' names in an SVG figure (its italic labels in the outlines' grey; the normals'
-/// `n` are green): each with the box it covers, at about 0.6 em a character.
-fn object_labels(svg: &str) -> Vec<(String, (DVec2, DVec2))> {
+/// The names of objects (italic, in the outlines' grey; the normals' `n` are green) and of
+/// lights (bold) in an SVG figure, each with the box it covers at about 0.6 em a character.
+fn names_drawn(svg: &str) -> Vec<(String, (DVec2, DVec2))> {
     let attr = |tag: &str, name: &str| -> f64 {
         let from = tag.find(&format!(" {name}=\"")).expect("attribute") + name.len() + 3;
         let to = from + tag[from..].find('"').unwrap();
         tag[from..to].parse().unwrap()
     };
+    let object = |t: &str| t.contains("font-style=\"italic\"") && t.contains("fill=\"#555555\"");
+    let light = |t: &str| t.contains("font-weight=\"bold\"") && t.contains("font-size=\"14\"");
     svg.split("<text ")
         .skip(1)
-        .filter(|t| t.contains("font-style=\"italic\"") && t.contains("fill=\"#555555\""))
+        .filter(|t| object(t) || light(t))
+        // The graph's heading is bold too.
+        .filter(|t| !t.contains(">\nray tree\n<") && !t.contains(">ray tree<"))
         .map(|t| {
             let (tag, rest) = t.split_once('>').unwrap();
             let name = rest.split("</text>").next().unwrap().trim().to_string();
             let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
             let width = 0.6 * size * name.chars().count() as f64;
-            let bx = (DVec2::new(x, y - size), DVec2::new(x + width, y + 2.0));
+            let x0 = if tag.contains("text-anchor=\"end\"") {
+                x - width
+            } else {
+                x
+            };
+            let bx = (DVec2::new(x0, y - size), DVec2::new(x0 + width, y + 2.0));
             (name, bx)
         })
         .collect()
 }
 
-/// Lesson 10 holds its CSG exercises as objects made of the same three spheres A, B and C, all
-/// in one place: the figure names each sphere once (by the first object, the plain sphere),
-/// on top of the silhouettes, and no two names are drawn over each other.
-#[test]
-fn coinciding_objects_are_named_once_and_names_never_overlap() {
-    let out = temp("l10.svg");
+fn assert_apart(labels: &[(String, (DVec2, DVec2))]) {
+    for (i, (a, ba)) in labels.iter().enumerate() {
+        for (b, bb) in &labels[i + 1..] {
+            let apart =
+                ba.1.x <= bb.0.x || bb.1.x <= ba.0.x || ba.1.y <= bb.0.y || bb.1.y <= ba.0.y;
+            assert!(apart, "{a} at {ba:?} covers {b} at {bb:?}");
+        }
+    }
+}
+
+fn figure_svg(scene: &str, pixel: &str, name: &str) -> String {
+    let out = temp(name);
     let run = raytree(&[
         "diagram",
-        "lessons/10-csg/scene.yaml",
+        scene,
         "--pixel",
-        "80,60",
+        pixel,
         "-o",
         out.to_str().unwrap(),
     ]);
@@ -411,18 +426,33 @@ fn coinciding_objects_are_named_once_and_names_never_overlap() {
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    let svg = std::fs::read_to_string(&out).unwrap();
-    let labels = object_labels(&svg);
+    std::fs::read_to_string(&out).unwrap()
+}
+
+/// Lesson 10 holds its CSG exercises as objects made of the same three spheres A, B and C, all
+/// in one place: the figure names each sphere once (by the first object, the plain sphere),
+/// on top of the silhouettes, and no two names are drawn over each other.
+#[test]
+fn coinciding_objects_are_named_once_and_names_never_overlap() {
+    let svg = figure_svg("lessons/10-csg/scene.yaml", "80,60", "l10.svg");
     // Drawn after every silhouette, so that none is painted over a name.
     let first_name = svg.find("font-size=\"14\" font-style=\"italic\"").unwrap();
     assert!(svg.rfind("<polygon fill=\"#e4e4e4\"").unwrap() < first_name);
+    let labels = names_drawn(&svg);
     let names: Vec<&str> = labels.iter().map(|(n, _)| n.as_str()).collect();
-    assert_eq!(names, ["A", "B", "C"], "{labels:?}");
-    for (i, (a, ba)) in labels.iter().enumerate() {
-        for (b, bb) in &labels[i + 1..] {
-            let apart =
-                ba.1.x <= bb.0.x || bb.1.x <= ba.0.x || ba.1.y <= bb.0.y || bb.1.y <= ba.0.y;
-            assert!(apart, "{a} at {ba:?} covers {b} at {bb:?}");
-        }
-    }
+    assert_eq!(names, ["A", "B", "C", "L"], "{labels:?}");
+    assert_apart(&labels);
+}
+
+/// Seen from above, lesson 4's bulb hangs over the ball: the ball's name moves up a line rather
+/// than lie under the light's.
+#[test]
+fn an_objects_name_makes_way_for_a_lights() {
+    let labels = names_drawn(&figure_svg("lessons/04-shadows", "40,30", "l04.svg"));
+    let names: Vec<&str> = labels.iter().map(|(n, _)| n.as_str()).collect();
+    assert!(
+        names.contains(&"ball") && names.contains(&"bulb"),
+        "{labels:?}"
+    );
+    assert_apart(&labels);
 }

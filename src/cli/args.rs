@@ -92,7 +92,8 @@ pub enum Format {
 /// How a scene is loaded.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SceneArgs {
-    /// The scene file (YAML).
+    /// The scene file (YAML), or a lesson's folder for its scene.yaml.
+    #[arg(value_parser = scene_path)]
     pub scene: PathBuf,
     /// Go beyond the budgets that keep a mistake from exhausting memory: 64 million pixels,
     /// 16 MiB scene files, 256 MiB mesh files, 200 000 objects, 4 million triangles.
@@ -107,6 +108,18 @@ impl SceneArgs {
     pub fn load(&self) -> Result<Scene, Failure> {
         load_scene(&self.scene, self.allow_huge, self.accel)
     }
+}
+
+/// A scene given on the command line: a folder that holds a `scene.yaml` (a lesson's) stands
+/// for that file, as `raytree explore` takes it.
+pub fn scene_path(arg: &str) -> Result<PathBuf, String> {
+    let path = PathBuf::from(arg);
+    let lesson_scene = path.join("scene.yaml");
+    Ok(if path.is_dir() && lesson_scene.is_file() {
+        lesson_scene
+    } else {
+        path
+    })
 }
 
 /// The budgets a command works within: the defaults, or `--allow-huge`'s.

@@ -38,6 +38,8 @@ const INK: &str = "#222222";
 const OUTLINE: &str = "#555555";
 const FILL: &str = "#e4e4e4";
 const NORMAL: &str = "#2e7d32";
+/// Where a light's name goes from its centre.
+const LIGHT_LABEL: DVec2 = DVec2::new(14.0, -10.0);
 const FONT: &str = "DejaVu Sans, Helvetica, Arial, sans-serif";
 
 fn hex([r, g, b]: [u8; 3]) -> String {
@@ -255,6 +257,11 @@ impl Figure<'_> {
         // does not cover an earlier one (objects that coincide, as a lesson's CSG variants of
         // the same spheres do, are named by the first of them). The names go on top of all
         // the silhouettes.
+        // An object's name makes way for a light's, moving up a line.
+        let lights: Vec<(DVec2, DVec2)> = (d.lights.iter())
+            .filter_map(|l| self.light_spot(p, l))
+            .map(|(c, name)| label_box(p, c + LIGHT_LABEL, &name, 14.0))
+            .collect();
         let mut named: Vec<(DVec2, DVec2)> = vec![];
         let mut names = vec![];
         for o in &d.outlines {
@@ -301,14 +308,17 @@ impl Figure<'_> {
                 }
                 o => o.anchor(),
             };
-            let at = p.px(anchor) + DVec2::new(4.0, -6.0);
             let width = 0.6 * 14.0 * name.chars().count() as f64;
-            let covers = (at - DVec2::new(0.0, 14.0), at + DVec2::new(width, 2.0));
-            if named.iter().any(|b| overlap(b, &covers)) {
-                continue;
+            let covers = |at: DVec2| (at - DVec2::new(0.0, 14.0), at + DVec2::new(width, 2.0));
+            let mut at = p.px(anchor) + DVec2::new(4.0, -6.0);
+            if lights.iter().any(|b| overlap(b, &covers(at))) {
+                at.y -= 16.0;
             }
-            named.push(covers);
-            names.push(text(at, &name, 14.0, OUTLINE).set("font-style", "italic"));
+            let taken = lights.iter().chain(&named).any(|b| overlap(b, &covers(at)));
+            if !taken {
+                named.push(covers(at));
+                names.push(text(at, &name, 14.0, OUTLINE).set("font-style", "italic"));
+            }
         }
         for name in names {
             g = g.add(name);
@@ -466,31 +476,29 @@ impl Figure<'_> {
         g
     }
 
+    /// Where a light at a point is drawn, and its name there (one off the figure is drawn at
+    /// the edge, towards it, and says so).
+    fn light_spot(&self, p: &Panel, l: &super::drawing::LightMark) -> Option<(DVec2, String)> {
+        let q = self.drawing.at(l.at?);
+        if p.frame.contains(q) {
+            return Some((p.px(q), l.name.clone()));
+        }
+        let centre = p.frame.center();
+        let edge = p.frame.exit(centre, q - centre);
+        let inward = (centre - edge).normalize_or_zero() * 0.03 * p.frame.size().length();
+        Some((p.px(edge + inward), format!("{} (off the figure)", l.name)))
+    }
+
     fn light(&self, g: Group, p: &Panel, l: &super::drawing::LightMark) -> Group {
         let d = self.drawing;
         let sun = "#f2b705";
-        if let Some(at) = l.at {
-            let q = d.at(at);
-            let (c, off) = if p.frame.contains(q) {
-                (p.px(q), false)
-            } else {
-                // Off the figure: drawn at the edge, towards it.
-                let centre = p.frame.center();
-                let edge = p.frame.exit(centre, q - centre);
-                let inward = (centre - edge).normalize_or_zero() * 0.03 * p.frame.size().length();
-                (p.px(edge + inward), true)
-            };
+        if let Some((c, name)) = self.light_spot(p, l) {
             let mut g = g;
             for k in 0..8 {
                 let a = k as f64 * std::f64::consts::TAU / 8.0;
                 let u = DVec2::new(a.cos(), a.sin());
                 g = g.add(line(c + u * 9.0, c + u * 14.0, sun, 2.0));
             }
-            let name = if off {
-                format!("{} (off the figure)", l.name)
-            } else {
-                l.name.clone()
-            };
             return g
                 .add(
                     Circle::new()
@@ -500,10 +508,7 @@ impl Figure<'_> {
                         .set("fill", sun)
                         .set("stroke", "#b07d00"),
                 )
-                .add(
-                    label_in(p, c + DVec2::new(14.0, -10.0), &name, 14.0, INK)
-                        .set("font-weight", "bold"),
-                );
+                .add(label_in(p, c + LIGHT_LABEL, &name, 14.0, INK).set("font-weight", "bold"));
         }
         let Some(dir) = l.direction else {
             return g;
