@@ -130,6 +130,56 @@ fn label_box(p: &Panel, at: DVec2, s: &str, size: f64) -> (DVec2, DVec2) {
     )
 }
 
+/// A ray's label near `at`: the box it covers, reading on from `at` or, where that would lay
+/// it across one of the rays `paths` (each from one end to the other), up to `at` (its end
+/// anchored there), whichever keeps it off those rays and inside the panel; None where neither
+/// does.
+fn beside_rays(
+    p: &Panel,
+    at: DVec2,
+    s: &str,
+    size: f64,
+    paths: &[(DVec2, DVec2)],
+) -> Option<((DVec2, DVec2), bool)> {
+    let width = 0.6 * size * s.chars().count() as f64;
+    let (left, right) = (p.origin.x + 4.0, p.origin.x + p.size.x - 4.0);
+    [false, true].into_iter().find_map(|end| {
+        let x0 = if end { at.x - width } else { at.x };
+        let bx = (
+            DVec2::new(x0, at.y - size),
+            DVec2::new(x0 + width, at.y + 2.0),
+        );
+        let clear = !paths.iter().any(|&(a, b)| crosses(&bx, a, b));
+        (x0 >= left && x0 + width <= right && clear).then_some((bx, end))
+    })
+}
+
+/// Whether the segment from `a` to `b` passes through the box (Liang–Barsky clipping).
+fn crosses((lo, hi): &(DVec2, DVec2), a: DVec2, b: DVec2) -> bool {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d.x, a.x - lo.x),
+        (d.x, hi.x - a.x),
+        (-d.y, a.y - lo.y),
+        (d.y, hi.y - a.y),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+        }
+    }
+    t0 <= t1
+}
+
 fn overlap(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
     a.0.x < b.1.x && b.0.x < a.1.x && a.0.y < b.1.y && b.0.y < a.1.y
 }
@@ -383,6 +433,12 @@ impl Figure<'_> {
         let labelled = d.segments.len() <= 40;
         let mut labels = vec![];
         let mut taken: Vec<(DVec2, DVec2)> = vec![];
+        let paths: Vec<(DVec2, DVec2)> = (d.segments.iter())
+            .map(|s| {
+                let (a, b) = d.ends(s, &p.frame);
+                (p.px(a), p.px(b))
+            })
+            .collect();
         for s in order {
             let (a, b) = d.ends(s, &p.frame);
             let (pa, pb) = (p.px(a), p.px(b));
@@ -458,15 +514,27 @@ impl Figure<'_> {
                 if s.kind == SegKind::Missed {
                     label = format!("{label} (background)");
                 }
-                // Above the ray, else below it; left out where both would cover another label.
+                // Above the ray, else below it: off every ray where it can be, else off its
+                // own; left out where both spots would cover another label.
                 let above = if off.y > 0.0 { -off } else { off };
-                for at in [mid + above, mid - above + DVec2::new(0.0, 10.0)] {
-                    let bx = label_box(p, at, &label, 12.0);
-                    if !taken.iter().any(|b| overlap(b, &bx)) {
-                        taken.push(bx);
-                        labels.push(label_in(p, at, &label, 12.0, &color));
-                        break;
-                    }
+                let spots = [mid + above, mid - above + DVec2::new(0.0, 10.0)];
+                let free = |paths: &[(DVec2, DVec2)]| {
+                    spots.iter().find_map(|&at| {
+                        let (bx, end) = beside_rays(p, at, &label, 12.0, paths)?;
+                        (!taken.iter().any(|b| overlap(b, &bx))).then_some((at, bx, end))
+                    })
+                };
+                let anywhere = || {
+                    spots.iter().find_map(|&at| {
+                        let bx = label_box(p, at, &label, 12.0);
+                        (!taken.iter().any(|b| overlap(b, &bx))).then_some((at, bx, false))
+                    })
+                };
+                let place = free(&paths).or_else(|| free(&[(pa, pb)])).or_else(anywhere);
+                if let Some((at, bx, end)) = place {
+                    taken.push(bx);
+                    let t = label_in(p, at, &label, 12.0, &color);
+                    labels.push(if end { t.set("text-anchor", "end") } else { t });
                 }
             }
         }
@@ -696,6 +764,49 @@ mod tests {
 
     fn distance_to_box(q: DVec2, (lo, hi): (DVec2, DVec2)) -> f64 {
         (q.clamp(lo, hi) - q).length()
+    }
+
+    fn panel() -> Panel {
+        Panel::new(
+            Frame {
+                min: DVec2::ZERO,
+                max: DVec2::new(10.0, 10.0),
+            },
+            DVec2::ZERO,
+            DVec2::new(600.0, 600.0),
+        )
+    }
+
+    /// A label above a ray that rises to the right reads up to its spot, one above a ray that
+    /// falls reads on from it: either way the ray does not run through the label.
+    #[test]
+    fn a_rays_label_keeps_off_the_ray() {
+        let p = panel();
+        let label = "primary I = 0.282";
+        for (a, b) in [
+            (DVec2::new(130.0, 510.0), DVec2::new(560.0, 385.0)),
+            (DVec2::new(130.0, 385.0), DVec2::new(560.0, 510.0)),
+            (DVec2::new(300.0, 580.0), DVec2::new(310.0, 20.0)),
+        ] {
+            let mid = (a + b) / 2.0;
+            let off = (b - a).perp().normalize() * 10.0;
+            let above = if off.y > 0.0 { -off } else { off };
+            let naive = label_box(&p, mid + above, label, 12.0);
+            let (bx, end) = beside_rays(&p, mid + above, label, 12.0, &[(a, b)]).expect("room");
+            assert!(!crosses(&bx, a, b), "{a} → {b}: {bx:?}");
+            // Only a rising ray needs the label turned round.
+            assert_eq!(end, crosses(&naive, a, b), "{a} → {b}");
+        }
+        assert!(crosses(
+            &(DVec2::new(0.0, 0.0), DVec2::new(10.0, 10.0)),
+            DVec2::new(-5.0, 5.0),
+            DVec2::new(15.0, 5.0)
+        ));
+        assert!(!crosses(
+            &(DVec2::new(0.0, 0.0), DVec2::new(10.0, 10.0)),
+            DVec2::new(-5.0, 15.0),
+            DVec2::new(15.0, 11.0)
+        ));
     }
 
     /// Eye, pixel and image plane as the top view of a lesson draws them (the eye a few pixels
