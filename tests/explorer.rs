@@ -1544,3 +1544,23 @@ fn right_answers_are_marked_and_kept_between_sessions() {
     assert!(text.contains(" 1/11"), "{text}");
     assert!(text.contains("✓ mirror-local"), "{text}");
 }
+
+/// Lesson 10's CSG exercises are objects made of the same spheres A, B and C in one place:
+/// the diagram names each sphere once, by the plain sphere that comes first in the file, not by
+/// whichever object was drawn last over it.
+#[test]
+fn the_diagram_names_coinciding_objects_by_the_first() {
+    let mut app = open("lessons/10-csg", ColorMode::TrueColor, (160, 48));
+    press(&mut app, KeyCode::Char('d'));
+    let r = app.panes().diagram.expect("the diagram pane");
+    let inside = pane_text(&app, r);
+    let words: Vec<&str> = inside
+        .split(|c: char| !c.is_alphanumeric() && c != '_')
+        .collect();
+    for name in ["A", "B", "C"] {
+        assert!(words.contains(&name), "{name} in\n{inside}");
+    }
+    for name in ["AplusBplusC", "AminusB", "BminusA_cap_C", "Aplus_BcapC"] {
+        assert!(!words.contains(&name), "{name} in\n{inside}");
+    }
+}

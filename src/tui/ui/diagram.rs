@@ -100,6 +100,8 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let canvas_area = Rect::new(body.x, body.y, body.width, body.height - 1);
     let legend_area = Rect::new(body.x, body.bottom() - 1, body.width, 1);
     let frame = app.diagram.frame(&d, canvas_area.width, canvas_area.height);
+    // One character's width and height, in the drawing's units.
+    let cell = frame.size() / DVec2::new(canvas_area.width as f64, canvas_area.height as f64);
     let selected = app.tree.selected().to_vec();
     let color = |c: Color| {
         if app.color == crate::render::preview::ColorMode::Ascii {
@@ -113,7 +115,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         .x_bounds([frame.min.x, frame.max.x])
         .y_bounds([frame.min.y, frame.max.y])
         .paint(|ctx| {
-            paint(ctx, &d, &frame, &selected, boxes.as_ref(), &color);
+            paint(ctx, &d, &frame, cell, &selected, boxes.as_ref(), &color);
         });
     f.render_widget(canvas, canvas_area);
     f.render_widget(Paragraph::new(legend(app, legend_area.width)), legend_area);
@@ -142,6 +144,7 @@ fn paint(
     ctx: &mut Context,
     d: &Drawing,
     frame: &View2,
+    cell: DVec2,
     selected: &[usize],
     boxes: Option<&crate::scene::Visited>,
     color: &dyn Fn(Color) -> Color,
@@ -234,6 +237,20 @@ fn paint(
     let dim = Style::new()
         .fg(color(OUTLINE))
         .add_modifier(Modifier::ITALIC);
+    // The cells a name printed at `at` covers: its row and its first and last column.
+    let cells = |at: DVec2, name: &str| {
+        let col = ((at.x - frame.min.x) / cell.x).floor() as i64;
+        let row = ((frame.max.y - at.y) / cell.y).floor() as i64;
+        (row, col, col + name.chars().count() as i64 - 1)
+    };
+    let clash = |a: (i64, i64, i64), b: &(i64, i64, i64)| a.0 == b.0 && a.1 <= b.2 && b.1 <= a.2;
+    // Lights' names are printed last, on top; an object's name does not go under one, nor over
+    // an earlier object's (objects that coincide are named by the first of them).
+    let mut printed: Vec<(i64, i64, i64)> = (d.lights.iter())
+        .filter_map(|l| Some((d.at(l.at?), l)))
+        .filter(|(q, _)| frame.contains(*q))
+        .map(|(q, l)| cells(q, &format!("☀{}", l.name)))
+        .collect();
     let mut named: Vec<&str> = vec![];
     // Hundreds of names would hide the drawing.
     let few = d.outlines.len() <= 24;
@@ -241,7 +258,6 @@ fn paint(
         if named.contains(&o.object.as_str()) {
             continue;
         }
-        named.push(&o.object);
         let at = match &o.outline {
             Outline::Line { point, dir } => {
                 match frame.clip(*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag) {
@@ -257,7 +273,10 @@ fn paint(
             }
             other => other.anchor(),
         };
-        if frame.contains(at) {
+        let covers = cells(at, &o.object);
+        if frame.contains(at) && !printed.iter().any(|p| clash(covers, p)) {
+            printed.push(covers);
+            named.push(&o.object);
             ctx.print(at.x, at.y, Span::styled(o.object.clone(), dim));
         }
     }
