@@ -102,10 +102,15 @@ fn text(at: DVec2, s: &str, size: f64, color: &str) -> Text {
         .set("paint-order", "stroke")
 }
 
+/// About how wide a label is drawn: 0.6 em a character (DejaVu Sans and its kin).
+fn text_width(s: &str, size: f64) -> f64 {
+    0.6 * size * s.chars().count() as f64
+}
+
 /// A label at `at` that stays inside the panel: anchored at its end when it would run off
 /// the right edge.
 fn label_in(p: &Panel, at: DVec2, s: &str, size: f64, color: &str) -> Text {
-    let width = 0.6 * size * s.chars().count() as f64;
+    let width = text_width(s, size);
     let right = p.origin.x + p.size.x - 4.0;
     let t = text(at, s, size, color);
     if at.x + width > right {
@@ -117,7 +122,7 @@ fn label_in(p: &Panel, at: DVec2, s: &str, size: f64, color: &str) -> Text {
 
 /// The rectangle (top-left, bottom-right) a label drawn by `label_in` covers, roughly.
 fn label_box(p: &Panel, at: DVec2, s: &str, size: f64) -> (DVec2, DVec2) {
-    let width = 0.6 * size * s.chars().count() as f64;
+    let width = text_width(s, size);
     let right = p.origin.x + p.size.x - 4.0;
     let x0 = if at.x + width > right {
         at.x.min(right) - width
@@ -141,7 +146,7 @@ fn beside_rays(
     size: f64,
     paths: &[(DVec2, DVec2)],
 ) -> Option<((DVec2, DVec2), bool)> {
-    let width = 0.6 * size * s.chars().count() as f64;
+    let width = text_width(s, size);
     let (left, right) = (p.origin.x + 4.0, p.origin.x + p.size.x - 4.0);
     [false, true].into_iter().find_map(|end| {
         let x0 = if end { at.x - width } else { at.x };
@@ -358,7 +363,7 @@ impl Figure<'_> {
                 }
                 o => o.anchor(),
             };
-            let width = 0.6 * 14.0 * name.chars().count() as f64;
+            let width = text_width(&name, 14.0);
             let covers = |at: DVec2| (at - DVec2::new(0.0, 14.0), at + DVec2::new(width, 2.0));
             let mut at = p.px(anchor) + DVec2::new(4.0, -6.0);
             if lights.iter().any(|b| overlap(b, &covers(at))) {
@@ -750,7 +755,7 @@ mod tests {
 
     /// The box "image plane" covers at 12 px, from where `image_plane_label` puts it.
     fn covered(at: DVec2, anchor: &str) -> (DVec2, DVec2) {
-        let width = 0.6 * 12.0 * "image plane".len() as f64;
+        let width = text_width("image plane", 12.0);
         let x0 = if anchor == "middle" {
             at.x - width / 2.0
         } else {
