@@ -14,7 +14,7 @@ use super::drawing::Drawing;
 use super::frame::Frame;
 use super::graph::{layout, GraphNode};
 use super::outline::Outline;
-use super::rays::{SegKind, Segment};
+use super::rays::SegKind;
 use crate::scene::Scene;
 use crate::trace::{RayKind, RayNode};
 
@@ -159,30 +159,9 @@ fn beside_rays(
     })
 }
 
-/// Whether the segment from `a` to `b` passes through the box (Liang–Barsky clipping).
-fn crosses((lo, hi): &(DVec2, DVec2), a: DVec2, b: DVec2) -> bool {
-    let d = b - a;
-    let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [
-        (-d.x, a.x - lo.x),
-        (d.x, hi.x - a.x),
-        (-d.y, a.y - lo.y),
-        (d.y, hi.y - a.y),
-    ] {
-        if p == 0.0 {
-            if q < 0.0 {
-                return false;
-            }
-        } else {
-            let t = q / p;
-            if p < 0.0 {
-                t0 = t0.max(t);
-            } else {
-                t1 = t1.min(t);
-            }
-        }
-    }
-    t0 <= t1
+/// Whether the segment from `a` to `b` passes through the box.
+fn crosses(&(min, max): &(DVec2, DVec2), a: DVec2, b: DVec2) -> bool {
+    Frame { min, max }.clip(a, b).is_some()
 }
 
 fn overlap(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
@@ -310,9 +289,8 @@ impl Figure<'_> {
         let diag = p.frame.size().length();
         // Objects: silhouettes filled light grey, planes as lines, each named where its name
         // does not cover an earlier one (objects that coincide, as a lesson's CSG variants of
-        // the same spheres do, are named by the first of them). The names go on top of all
-        // the silhouettes.
-        // An object's name makes way for a light's, moving up a line.
+        // the same spheres do, are named by the first of them) and, a line higher if need be,
+        // makes way for a light's. The names go on top of all the silhouettes.
         let lights: Vec<(DVec2, DVec2)> = (d.lights.iter())
             .filter_map(|l| self.light_spot(p, l))
             .map(|(c, name)| label_box(p, c + LIGHT_LABEL, &name, 14.0))
@@ -428,8 +406,9 @@ impl Figure<'_> {
             g = self.light(g, p, l);
         }
         // Rays: shadow rays first, then by depth, so the ray a label belongs to is on top.
-        let mut order: Vec<&Segment> = d.segments.iter().collect();
-        order.sort_by_key(|s| {
+        let mut order: Vec<usize> = (0..d.segments.len()).collect();
+        order.sort_by_key(|&i| {
+            let s = &d.segments[i];
             (
                 !matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked),
                 s.depth,
@@ -438,15 +417,16 @@ impl Figure<'_> {
         let labelled = d.segments.len() <= 40;
         let mut labels = vec![];
         let mut taken: Vec<(DVec2, DVec2)> = vec![];
+        // Every ray's ends on the page: a label keeps off all of them where it can.
         let paths: Vec<(DVec2, DVec2)> = (d.segments.iter())
             .map(|s| {
                 let (a, b) = d.ends(s, &p.frame);
                 (p.px(a), p.px(b))
             })
             .collect();
-        for s in order {
-            let (a, b) = d.ends(s, &p.frame);
-            let (pa, pb) = (p.px(a), p.px(b));
+        for i in order {
+            let s = &d.segments[i];
+            let (pa, pb) = paths[i];
             let color = ray_color(s.kind);
             let shadow = matches!(s.kind, SegKind::ShadowClear | SegKind::ShadowBlocked);
             let width = match s.kind {
@@ -782,33 +762,45 @@ mod tests {
         )
     }
 
-    /// A label above a ray that rises to the right reads up to its spot, one above a ray that
-    /// falls reads on from it: either way the ray does not run through the label.
+    /// Whether a point of the segment a–b, at every half pixel along it, lies in the box.
+    fn sampled_through((lo, hi): (DVec2, DVec2), a: DVec2, b: DVec2) -> bool {
+        let steps = (2.0 * (b - a).length()).ceil() as usize;
+        (0..=steps).any(|k| {
+            let q = a + (b - a) * (k as f64 / steps as f64);
+            q.cmpge(lo).all() && q.cmple(hi).all()
+        })
+    }
+
+    /// A label above a ray that rises to the right reads up to its spot (anchored at its end),
+    /// one above a ray that falls reads on from it, one left of an upright ray reads up to it:
+    /// either way the ray does not run through the label, and where the label read on from
+    /// its spot the rising and upright rays would.
     #[test]
     fn a_rays_label_keeps_off_the_ray() {
         let p = panel();
         let label = "primary I = 0.282";
-        for (a, b) in [
-            (DVec2::new(130.0, 510.0), DVec2::new(560.0, 385.0)),
-            (DVec2::new(130.0, 385.0), DVec2::new(560.0, 510.0)),
-            (DVec2::new(300.0, 580.0), DVec2::new(310.0, 20.0)),
+        for (a, b, turned) in [
+            (DVec2::new(130.0, 510.0), DVec2::new(560.0, 385.0), true),
+            (DVec2::new(130.0, 385.0), DVec2::new(560.0, 510.0), false),
+            (DVec2::new(300.0, 580.0), DVec2::new(310.0, 20.0), true),
         ] {
             let mid = (a + b) / 2.0;
             let off = (b - a).perp().normalize() * 10.0;
             let above = if off.y > 0.0 { -off } else { off };
             let naive = label_box(&p, mid + above, label, 12.0);
+            assert_eq!(sampled_through(naive, a, b), turned, "{a} → {b}");
             let (bx, end) = beside_rays(&p, mid + above, label, 12.0, &[(a, b)]).expect("room");
-            assert!(!crosses(&bx, a, b), "{a} → {b}: {bx:?}");
-            // Only a rising ray needs the label turned round.
-            assert_eq!(end, crosses(&naive, a, b), "{a} → {b}");
+            assert_eq!(end, turned, "{a} → {b}");
+            assert!(!sampled_through(bx, a, b), "{a} → {b}: {bx:?}");
         }
+        let square = (DVec2::new(0.0, 0.0), DVec2::new(10.0, 10.0));
         assert!(crosses(
-            &(DVec2::new(0.0, 0.0), DVec2::new(10.0, 10.0)),
+            &square,
             DVec2::new(-5.0, 5.0),
             DVec2::new(15.0, 5.0)
         ));
         assert!(!crosses(
-            &(DVec2::new(0.0, 0.0), DVec2::new(10.0, 10.0)),
+            &square,
             DVec2::new(-5.0, 15.0),
             DVec2::new(15.0, 11.0)
         ));
@@ -821,9 +813,10 @@ mod tests {
     #[test]
     fn the_image_plane_label_stays_clear_of_the_eye_and_the_ray() {
         let cases = [
-            // Plane sideways, the ray going up the page, the eye 13 px behind the plane.
+            // Plane sideways (its left end a little lower), the ray going up the page, the eye
+            // 13 px behind the plane.
             (
-                [DVec2::new(405.0, 545.0), DVec2::new(425.0, 545.0)],
+                [DVec2::new(405.0, 546.0), DVec2::new(425.0, 544.0)],
                 DVec2::new(415.0, 558.0),
                 DVec2::new(414.0, 545.0),
             ),
