@@ -128,7 +128,9 @@ def main() -> None:
         ours = [(name(f), p) for f, p in chain if "raytree::" in f and "F64x4" not in f]
         innermost = next((f for f, p in ours if not HELPER.search(p)), "(library code)")
         by_self[innermost] += counts[address]
-        for function in {f for f, p in ours if "::simd::" not in f}:
+        # The lanes' operators (`<Avx as Mul>::mul`) are helpers, not steps.
+        steps = {name(f) for f, p in chain if "raytree::" in f and "::simd::" not in f}
+        for function in steps:
             inclusive[function] += counts[address]
     print(f"{total} samples, {own} in raytree ({100 * own / max(total, 1):.1f} %)")
     for title, table in (("self", by_self), ("inclusive", inclusive)):
