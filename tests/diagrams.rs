@@ -86,21 +86,7 @@ fn colour_near(img: &(u32, u32, Vec<u8>), at: DVec2, rgb: [u8; 3], reach: i64) -
 
 #[test]
 fn the_figure_draws_each_ray_where_the_json_tree_puts_it_in_its_colour() {
-    let svg_path = temp("l08.svg");
-    let out = raytree(&[
-        "diagram",
-        L08,
-        "--pixel",
-        "30,30",
-        "-o",
-        svg_path.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let svg = std::fs::read_to_string(&svg_path).unwrap();
+    let svg = figure_svg(L08, "30,30", "l08.svg");
     assert!(svg.starts_with("<svg"), "{}", &svg[..80.min(svg.len())]);
     let json = raytree(&["inspect", L08, "--pixel", "30,30", "--format", "json"]);
     let doc: Value = serde_json::from_slice(&json.stdout).unwrap();
