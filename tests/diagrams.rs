@@ -231,23 +231,7 @@ fn bad_arguments_exit_2_with_one_line_and_a_miss_still_draws() {
         assert!(!out_svg.exists(), "{args:?} wrote a figure");
     }
     // A ray into the sky: the ray and the background are drawn.
-    let sky = temp("sky.svg");
-    let out = raytree(&[
-        "diagram",
-        L08,
-        "--ray",
-        "0,5,0:0,1,0",
-        "--view",
-        "side",
-        "-o",
-        sky.to_str().unwrap(),
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let svg = std::fs::read_to_string(&sky).unwrap();
+    let svg = diagram_svg(&[L08, "--ray", "0,5,0:0,1,0", "--view", "side"], "sky.svg");
     assert!(svg.contains("(background)"), "the missed ray is labelled");
     assert!(svg.contains("side view"));
 }
@@ -398,15 +382,13 @@ fn assert_apart(labels: &[(String, (DVec2, DVec2))]) {
 }
 
 fn figure_svg(scene: &str, pixel: &str, name: &str) -> String {
+    diagram_svg(&[scene, "--pixel", pixel], name)
+}
+
+/// The SVG `raytree diagram ARGS -o NAME` writes (in the tests' temporary folder).
+fn diagram_svg(args: &[&str], name: &str) -> String {
     let out = temp(name);
-    let run = raytree(&[
-        "diagram",
-        scene,
-        "--pixel",
-        pixel,
-        "-o",
-        out.to_str().unwrap(),
-    ]);
+    let run = raytree(&[&["diagram"], args, &["-o", out.to_str().unwrap()]].concat());
     assert!(
         run.status.success(),
         "{}",
