@@ -1,13 +1,16 @@
 //! The BVH searched by a packet of rays at once (a pixel's grid samples, which take nearly the
-//! same path through the tree): a node is fetched once for the packet and its box tested for
-//! all its rays together. Each ray visits the nodes and items the core's `Bvh::closest` or
-//! `Bvh::any` would, in the same order, with the same arithmetic.
+//! same path through the tree): the fast wing's tree of four children a node (`bvh4.rs`),
+//! each node fetched once for the packet and its four boxes tested for all its rays together.
+//! Each ray meets the leaves in the order the core's `Bvh::closest` or `Bvh::any` meets them
+//! in the binary tree, and tests the items of exactly the leaves those visit, with the same
+//! arithmetic.
 
+use super::bvh4::{Bvh4, Node4};
 use super::hull::{Hull, Verdict};
 use super::lanes::{lane_mask, RayLanes};
 use super::simd::F64x4;
 use crate::accel::aabb::slab;
-use crate::accel::{Aabb, Bvh, Visits};
+use crate::accel::{Aabb, Visits};
 use crate::geometry::Ray;
 
 /// Which way a ray's direction points on each axis, as the traversal orders children by it
@@ -82,6 +85,48 @@ impl<V: F64x4> Packet<V> {
                 Verdict::Mixed => {}
             }
         }
+        self.ray_by_ray(b, t_min, t_max, active)
+    }
+
+    /// `hits` for the four children of a node at once (bit i of answer k: ray i meets child
+    /// k; 0 for an unused child): the hull's verdicts on the four boxes in one set of vector
+    /// instructions, and the rays one by one for a box where it cannot tell.
+    #[inline(always)]
+    fn hits_four(
+        &self,
+        node: &Node4,
+        t_min: f64,
+        t_max: &[f64; PACKET],
+        reach: (f64, f64),
+        active: u16,
+    ) -> [u16; 4] {
+        let (misses, all_hit) = match &self.hull {
+            Some(hull) => hull.classify_four(
+                #[inline(always)]
+                |axis, max| node.planes(axis, max),
+                t_min,
+                reach,
+            ),
+            None => (0, 0),
+        };
+        let mut hits = [0; 4];
+        for (k, hit) in hits.iter_mut().enumerate() {
+            let bit = 1 << k;
+            if u32::from(node.used) & bit == 0 || misses & bit != 0 {
+                continue;
+            }
+            *hit = if all_hit & bit != 0 {
+                active
+            } else {
+                self.ray_by_ray(&node.bounds(k), t_min, t_max, active)
+            };
+        }
+        hits
+    }
+
+    /// The slab test of one box, ray by ray in groups of four.
+    #[inline(always)]
+    fn ray_by_ray(&self, b: &Aabb, t_min: f64, t_max: &[f64; PACKET], active: u16) -> u16 {
         let mut mask = 0u16;
         for (q, quad) in self.quads.iter().enumerate().take(self.len.div_ceil(4)) {
             let mut enter = [t_min; 4];
@@ -151,17 +196,18 @@ fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f6
 
 /// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
 /// path through the tree), also given in groups of four (`quads`, `RayLanes::new` of each
-/// four in order). A node is fetched once for the packet and its box tested for
-/// all its rays together, in a loop the compiler turns into vector instructions. At a leaf,
-/// `visit(item, rays, t_max)` runs for each item with the set of rays that reached it (bit i
-/// for ray i): it is `closest`'s visit for each of them, lowering `t_max[i]` to a nearer hit.
+/// four in order). A node is fetched once for the packet and its four children's boxes tested
+/// for all its rays together. At a leaf, `visit(item, rays, t_max)` runs for each item with
+/// the set of rays that reached it (bit i for ray i): it is `closest`'s visit for each of
+/// them, lowering `t_max[i]` to a nearer hit.
 ///
-/// The rays' directions must have the signs of the first one's (see `signs`): then
-/// every ray visits the same nodes and items in the same order as `closest` would take it,
-/// with the same arithmetic, so its answer is `closest`'s to the last bit, ties included.
+/// The rays' directions must have the signs of the first one's (see `signs`): then every ray
+/// meets the leaves in the order `closest` takes it through the binary tree, and visits the
+/// items of exactly the leaves `closest` visits, so its answer is `closest`'s to the last
+/// bit, ties included.
 #[inline(always)]
 pub fn closest_packet<V: F64x4>(
-    bvh: &Bvh,
+    bvh: &Bvh4,
     rays: &[Ray],
     quads: &[RayLanes<V>; PACKET / 4],
     t_min: f64,
@@ -195,12 +241,12 @@ pub fn closest_packet<V: F64x4>(
 /// answer is set when ray i met a blocker. The rays of `blocked` are answered already (a
 /// blocker found before the walk): they take no part. At a leaf, `visit(item, rays)` runs
 /// for each item with the set of rays still searching that reached it and answers those it
-/// blocks. Each other ray visits the nodes and items `any` would, in the same order, and
-/// leaves the packet at its first blocker; the directions may point anywhere (the order
-/// does not depend on them).
+/// blocks. Each other ray meets the leaves in the order `any` takes it, visits the items of
+/// the leaves `any` visits, and leaves the packet at its first blocker; the directions may
+/// point anywhere (the order does not depend on them).
 #[inline(always)]
 pub fn any_packet<V: F64x4>(
-    bvh: &Bvh,
+    bvh: &Bvh4,
     rays: (&[RayLanes<V>; PACKET / 4], usize),
     t_min: f64,
     t_max: &[f64; PACKET],
@@ -220,16 +266,87 @@ pub fn any_packet<V: F64x4>(
     )
 }
 
+/// A child waiting on the walk's stack: child `slot` of node `node`, with the rays that met its
+/// box when it was tested, after `leaves` leaves had been visited.
+#[derive(Clone, Copy, Default)]
+struct Pending {
+    node: u32,
+    slot: u8,
+    rays: u16,
+    leaves: u32,
+}
+
+/// A packet's walk in progress: the children waiting, and how many leaves have been visited
+/// that may have lowered a t_max (only closest's visits lower them).
+struct Walk<'a, V> {
+    bvh: &'a Bvh4,
+    packet: &'a Packet<V>,
+    t_min: f64,
+    signs: Option<[bool; 3]>,
+    stack: &'a mut [Pending; STACK],
+    top: usize,
+    leaves: u32,
+}
+
+impl<V: F64x4> Walk<'_, V> {
+    /// Tests node `index`'s children for the rays `active` and pushes those met, so that they
+    /// come off the stack in the binary walk's order.
+    #[inline(always)]
+    fn enter(
+        &mut self,
+        index: u32,
+        active: u16,
+        t_max: &[f64; PACKET],
+        reach: (f64, f64),
+        work: &mut Visits,
+    ) {
+        let node = &self.bvh.nodes()[index as usize];
+        work.nodes += u64::from(active.count_ones());
+        let hits = self
+            .packet
+            .hits_four(node, self.t_min, t_max, reach, active);
+        for k in node.order(self.signs).into_iter().rev() {
+            if hits[k] != 0 {
+                self.stack[self.top] = Pending {
+                    node: index,
+                    slot: k as u8,
+                    rays: hits[k],
+                    leaves: self.leaves,
+                };
+                self.top += 1;
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<Pending> {
+        self.top = self.top.checked_sub(1)?;
+        Some(self.stack[self.top])
+    }
+}
+
+/// The most children waiting at once: three a level (a node's fourth child is taken at once)
+/// for the binary tree's deepest path folded in two, and the root's four.
+const STACK: usize = 128;
+
 /// The depth-first walk of both packet searches, for the packet's `len` rays given in groups
-/// of four (`quads`) that are not `done` at its start. Each
-/// node's box is tested for the rays still searching below it; at a leaf,
-/// `step(item, rays, t_max)` runs for every item, in order, with the rays that met the leaf's
-/// box and are not done, and answers those that are done now (they leave the packet).
-/// Children are visited nearer side first by the rays' common `signs`, or left first without
-/// them (as `any` does). Answers the rays that are done.
+/// of four (`quads`) that are not `done` at its start. A node's four children are tested at
+/// once for the rays that reached the node, and pushed in the order the binary tree's walk
+/// meets them (`Node4::order`): nearer side first by the rays' common `signs`, or left first
+/// without them (as `any` does). At a leaf, `step(item, rays, t_max)` runs for every item, in
+/// order, with the rays that meet the leaf's box and are not done, and answers those that are
+/// done now (they leave the packet). Answers the rays that are done.
+///
+/// Which rays visit a leaf is exactly the binary walk's: there, a ray visits a leaf when it
+/// meets the leaf's box with the t_max it has when the leaf comes off the stack (meeting it
+/// then, it met every box above, which holds it, earlier and with a t_max no smaller). Here
+/// the children are tested when their parent is taken; a leaf tested before an earlier leaf
+/// lowered some t_max (closest's visits) is tested again when it comes off the stack.
+/// Subtrees are not tested again: their rays are a superset of those that meet them, and their
+/// leaves' own tests decide.
 #[inline(always)]
 fn walk_packet<V: F64x4>(
-    bvh: &Bvh,
+    bvh: &Bvh4,
     (quads, len): (&[RayLanes<V>; PACKET / 4], usize),
     t_min: f64,
     t_max: &mut [f64; PACKET],
@@ -241,46 +358,61 @@ fn walk_packet<V: F64x4>(
     if bvh.nodes().is_empty() || len == 0 {
         return (0, work);
     }
-    let packet = Packet::<V>::new(quads, len);
     let all = (u32::MAX >> (32 - len)) as u16;
     // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
     let used = lane_masks::<V>(len);
     let mut reach = reach_of::<V>(t_max, &used);
-    let mut stack = [(0u32, 0u16); 64];
-    stack[0] = (0, all);
-    let mut top = 1;
-    while top > 0 {
-        top -= 1;
-        let (index, active) = stack[top];
-        let active = active & !done;
+    let packet = Packet::<V>::new(quads, len);
+    let mut stack = [Pending::default(); STACK];
+    let mut walk = Walk {
+        bvh,
+        packet: &packet,
+        t_min,
+        signs,
+        stack: &mut stack,
+        top: 0,
+        leaves: 0,
+    };
+    walk.enter(0, all & !done, t_max, reach, &mut work);
+    while let Some(Pending {
+        node,
+        slot,
+        rays,
+        leaves: tested_after,
+    }) = walk.pop()
+    {
+        let active = rays & !done;
         if active == 0 {
             continue;
         }
-        let node = &bvh.nodes()[index as usize];
-        work.nodes += active.count_ones() as u64;
-        let hit = packet.hits(&node.bounds(), t_min, t_max, reach, active);
+        let parent = &bvh.nodes()[node as usize];
+        let k = slot as usize;
+        let (offset, count) = (parent.offset[k], parent.count[k]);
+        if count == 0 {
+            walk.enter(offset, active, t_max, reach, &mut work);
+            continue;
+        }
+        work.nodes += u64::from(active.count_ones());
+        let hit = if tested_after == walk.leaves {
+            active
+        } else {
+            walk.packet
+                .hits(&parent.bounds(k), t_min, t_max, reach, active)
+        };
         if hit == 0 {
             continue;
         }
-        if node.count > 0 {
-            let first = node.offset as usize;
-            for &item in &bvh.items()[first..first + node.count as usize] {
-                let reached = hit & !done;
-                if reached != 0 {
-                    work.items += u64::from(reached.count_ones());
-                    done |= step(item, reached, t_max) & reached;
-                }
+        let first = offset as usize;
+        for &item in &bvh.items()[first..first + count as usize] {
+            let reached = hit & !done;
+            if reached != 0 {
+                work.items += u64::from(reached.count_ones());
+                done |= step(item, reached, t_max) & reached;
             }
+        }
+        if signs.is_some() {
+            walk.leaves += 1;
             reach = reach_of::<V>(t_max, &used);
-        } else {
-            let left = index + 1;
-            let (near, far) = match signs {
-                Some(negative) if negative[node.axis as usize] => (node.offset, left),
-                _ => (left, node.offset),
-            };
-            stack[top] = (far, hit);
-            stack[top + 1] = (near, hit);
-            top += 2;
         }
     }
     (done as u32, work)

@@ -41,6 +41,18 @@ pub struct Hull<V> {
     inv_hi: V,
     /// All ones on the axes where 1/d is negative, for every ray.
     negative: V,
+    /// The same bounds axis by axis, for testing four boxes at once (`classify_four`).
+    axes: [Axis; 3],
+}
+
+/// The hull's bounds on one axis.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Axis {
+    origin_lo: f64,
+    origin_hi: f64,
+    inv_lo: f64,
+    inv_hi: f64,
+    negative: bool,
 }
 
 impl<V: F64x4> Hull<V> {
@@ -65,7 +77,15 @@ impl<V: F64x4> Hull<V> {
             inv_lo = inv_lo.min(inv);
             inv_hi = inv_hi.max(inv);
         }
+        let axes = std::array::from_fn(|a| Axis {
+            origin_lo: origin_lo[a],
+            origin_hi: origin_hi[a],
+            inv_lo: inv_lo[a],
+            inv_hi: inv_hi[a],
+            negative: negative & (1 << a) != 0,
+        });
         sound.then_some(Hull {
+            axes,
             origin_lo: lanes(origin_lo),
             origin_hi: lanes(origin_hi),
             inv_lo: lanes(inv_lo),
@@ -105,22 +125,66 @@ impl<V: F64x4> Hull<V> {
         }
     }
 
-    /// The range of (plane − o)·(1/d) over the hull on each axis: the extremes are among the
-    /// four corners of the box of (plane − o) and 1/d.
+    /// `classify` of four boxes at once, given as their bounds axis by axis (lane k for box
+    /// k, see `Node4::planes`): bit k of the first answer is set when every ray misses box k
+    /// (`AllMiss`), of the second when every ray meets it (`AllHit`). The same operations
+    /// in the same order as `classify`, each box in its own lane instead of each axis: the
+    /// same verdicts to the last bit.
+    #[inline(always)]
+    pub fn classify_four(
+        &self,
+        planes: impl Fn(usize, bool) -> [f64; 4],
+        t_min: f64,
+        (t_max_lo, t_max_hi): (f64, f64),
+    ) -> (u32, u32) {
+        let mut near = [(V::ZERO, V::ZERO); 3];
+        let mut far = [(V::ZERO, V::ZERO); 3];
+        for (a, axis) in self.axes.iter().enumerate() {
+            let origin = (V::splat(axis.origin_lo), V::splat(axis.origin_hi));
+            let inv = (V::splat(axis.inv_lo), V::splat(axis.inv_hi));
+            near[a] = times(V::new(planes(a, axis.negative)), origin, inv);
+            far[a] = times(V::new(planes(a, !axis.negative)), origin, inv);
+        }
+        // The latest entry and earliest exit over the three slabs, in `classify`'s order.
+        let t_min = V::splat(t_min);
+        let enter_lo = t_min.fast_max(near[0].0.fast_max(near[1].0).fast_max(near[2].0));
+        let enter_hi = t_min.fast_max(near[0].1.fast_max(near[1].1).fast_max(near[2].1));
+        let exit_lo = V::splat(t_max_lo).fast_min(far[0].0.fast_min(far[1].0).fast_min(far[2].0));
+        let exit_hi = V::splat(t_max_hi).fast_min(far[0].1.fast_min(far[1].1).fast_min(far[2].1));
+        (
+            !overlaps_lanes(enter_lo, exit_hi) & 0xf,
+            overlaps_lanes(enter_hi, exit_lo),
+        )
+    }
+
+    /// The range of (plane − o)·(1/d) over the hull on each axis.
     #[inline(always)]
     fn times(&self, plane: V) -> (V, V) {
-        let (a_lo, a_hi) = (plane - self.origin_hi, plane - self.origin_lo);
-        let corners = [
-            a_lo * self.inv_lo,
-            a_lo * self.inv_hi,
-            a_hi * self.inv_lo,
-            a_hi * self.inv_hi,
-        ];
-        // Nothing here is NaN: the fast min and max, one instruction each, are exact.
-        let lo = (corners[0].fast_min(corners[1])).fast_min(corners[2].fast_min(corners[3]));
-        let hi = (corners[0].fast_max(corners[1])).fast_max(corners[2].fast_max(corners[3]));
-        (lo, hi)
+        times(
+            plane,
+            (self.origin_lo, self.origin_hi),
+            (self.inv_lo, self.inv_hi),
+        )
     }
+}
+
+/// The range of (plane − o)·(1/d) for o and 1/d within their ranges, lane by lane: the
+/// extremes are among the four corners of the box of (plane − o) and 1/d.
+#[inline(always)]
+fn times<V: F64x4>(plane: V, (origin_lo, origin_hi): (V, V), (inv_lo, inv_hi): (V, V)) -> (V, V) {
+    let (a_lo, a_hi) = (plane - origin_hi, plane - origin_lo);
+    let corners = [a_lo * inv_lo, a_lo * inv_hi, a_hi * inv_lo, a_hi * inv_hi];
+    // Nothing here is NaN: the fast min and max, one instruction each, are exact.
+    let lo = (corners[0].fast_min(corners[1])).fast_min(corners[2].fast_min(corners[3]));
+    let hi = (corners[0].fast_max(corners[1])).fast_max(corners[2].fast_max(corners[3]));
+    (lo, hi)
+}
+
+/// `overlaps` in each lane, multiplied in its order, as four bits.
+#[inline(always)]
+fn overlaps_lanes<V: F64x4>(enter: V, exit: V) -> u32 {
+    let slack = exit.abs() * V::splat(4.0) * V::splat(f64::EPSILON);
+    enter.simd_le(exit + slack).to_bitmask()
 }
 
 /// A vector's x, y, z in lanes 0–2.
@@ -224,6 +288,27 @@ mod tests {
                     assert!(each.iter().all(|&h| h), "case {case}: {each:?}");
                 }
                 Verdict::Mixed => seen[2] += 1,
+            }
+            // Four boxes at once: box 0 this one, the others moved about it.
+            let boxes: [Aabb; 4] = std::array::from_fn(|k| {
+                let step = DVec3::new(k as f64 * 0.7 * half.x, 0.0, -(k as f64) * half.z);
+                Aabb::new(b.min + step, b.max + step)
+            });
+            let planes =
+                |axis: usize, max: bool| boxes.map(|b| if max { b.max[axis] } else { b.min[axis] });
+            let (misses, hits) = hull.classify_four(planes, 0.0, reach);
+            for (k, b) in boxes.iter().enumerate() {
+                let verdict = hull.classify(b, 0.0, reach);
+                assert_eq!(
+                    misses >> k & 1 == 1,
+                    verdict == Verdict::AllMiss,
+                    "case {case}"
+                );
+                assert_eq!(
+                    hits >> k & 1 == 1,
+                    verdict == Verdict::AllHit,
+                    "case {case}"
+                );
             }
         }
         // Every verdict was given, many times.

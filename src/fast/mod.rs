@@ -3,7 +3,8 @@
 //! The textbook core (`crate::trace::whitted`, the scene's own `Search`, one routine per shape)
 //! is the definition of what raytree computes. This wing is an optimisation of it and nothing
 //! else: a pixel's primary rays made four at a time (`camera_rays`), packets of rays traced
-//! together (`packet_trace`), searched together through the BVH (`bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
+//! together (`packet_trace`), searched together through the BVH folded to four children a node
+//! (`bvh4`, `bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
 //! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
 //! the usual point lights' terms and shadow rays four surfaces at a time (`light_lanes`),
 //! flat CSG objects read off their primitives' spans (`csg_crossing`) or in lanes
@@ -17,6 +18,7 @@
 //! checks it on every lesson and peer scene and with property tests. The core never imports
 //! the wing (`tests/architecture.rs`); only the renderer calls it.
 
+mod bvh4;
 mod bvh_packet;
 mod camera_rays;
 mod csg_crossing;

@@ -151,7 +151,7 @@ impl FastScene<'_> {
             }
         }
         let visits = closest_packet::<V>(
-            &self.scene.index.bvh,
+            &self.bvh4,
             &packet[..n],
             &quads,
             0.0,
@@ -304,7 +304,7 @@ impl FastScene<'_> {
             u32::from(all)
         } else {
             let (hit, visits) = any_packet::<V>(
-                &self.scene.index.bvh,
+                &self.bvh4,
                 (packet.2, n),
                 0.0,
                 &reach,

@@ -8,6 +8,7 @@
 
 use glam::DVec3;
 
+use super::bvh4::Bvh4;
 use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
@@ -24,6 +25,8 @@ pub struct FastScene<'s> {
     pub scene: &'s Scene,
     /// The bounded objects' probes, by BVH item number.
     pub(super) bounded: Vec<Probe>,
+    /// The scene's BVH with four children a node, which packets of rays walk.
+    pub(super) bvh4: Bvh4,
     /// The probes every ray tests (the scene's `unbounded` objects, runs of spheres grouped).
     pub(super) unbounded: Vec<Probe>,
     /// Per object: its CSG tree's flat form, when it has one.
@@ -65,6 +68,7 @@ impl<'s> FastScene<'s> {
             .collect();
         let mut fast = FastScene {
             scene,
+            bvh4: Bvh4::new(&index.bvh),
             bounded: vec![],
             unbounded: vec![],
             csg_lanes: vec![],
