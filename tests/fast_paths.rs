@@ -578,6 +578,38 @@ fn a_packet_breaks_ties_as_the_one_ray_search_does() {
     assert!(ties > 100, "only {ties} rays met a shared face");
 }
 
+/// Spheres in a row along the rays: the nearest one's hit lowers every ray's t_max before the
+/// leaves behind it come off the packet's stack, which were tested when their node was entered
+/// (t_max still ∞). Tested again then, they are passed over as the core's walk passes them:
+/// the packet tests the very objects the core tests, no more.
+#[test]
+fn leaves_behind_a_nearer_hit_are_tested_again() {
+    let mut yaml = String::from(
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects:\n",
+    );
+    for i in 0..32 {
+        let (x, z) = ((i % 2) as f64 * 0.5, (i / 2) as f64 * 3.0);
+        yaml.push_str(&format!(
+            "  - {{ sphere: {{ center: [{x}, 0, {z}], radius: 1 }}, material: m }}\n"
+        ));
+    }
+    let scene = parse(&yaml, "row.yaml", None, &Limits::default()).unwrap();
+    assert!(scene.bvh_nodes() > 0);
+    let rays: Vec<Ray> = (0..16)
+        .map(|j| {
+            let d = DVec3::new(0.002 * (j % 4) as f64, 0.002 * (j / 4) as f64, 1.0);
+            Ray::new(DVec3::new(0.1, 0.0, -10.0), d.normalize())
+        })
+        .collect();
+    assert_packet_is_one_by_one(&scene, &rays).unwrap();
+    // The core's walk tests few of the 32 spheres: the row behind the first is pruned.
+    let mut stats = Stats::default();
+    for r in &rays {
+        assert!(scene.nearest(r, 0.0, f64::INFINITY, &mut stats).is_some());
+    }
+    assert!(stats.primitives_tested < 16 * 8, "{stats:?}");
+}
+
 // --- Searches: packets ---
 
 /// Every counter but the BVH nodes visited: a packet walks the fast wing's tree of four children

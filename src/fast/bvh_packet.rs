@@ -6,7 +6,7 @@
 //! arithmetic.
 
 use super::bvh4::{Bvh4, Node4};
-use super::hull::{Hull, Verdict};
+use super::hull::{overlaps_lanes, Hull, Verdict};
 use super::lanes::{lane_mask, RayLanes};
 use super::simd::F64x4;
 use crate::accel::aabb::slab;
@@ -152,10 +152,7 @@ impl<V: F64x4> Packet<V> {
 /// time and puts them back together).
 #[inline(always)]
 fn overlaps4<V: F64x4>(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
-    let (enter, exit) = (V::new(*enter), V::new(*exit));
-    // exit + |exit|·4·ε, multiplied in `overlaps`' order so every bit is the same.
-    let slack = exit.abs() * V::splat(4.0) * V::splat(f64::EPSILON);
-    enter.simd_le(exit + slack).to_bitmask() as u8
+    overlaps_lanes(V::new(*enter), V::new(*exit)) as u8
 }
 
 /// For each group of four lanes, the mask of the lanes that hold one of the first `len` rays.

@@ -180,9 +180,10 @@ fn times<V: F64x4>(plane: V, (origin_lo, origin_hi): (V, V), (inv_lo, inv_hi): (
     (lo, hi)
 }
 
-/// `overlaps` in each lane, multiplied in its order, as four bits.
+/// `overlaps` in each lane, as four bits (bit k for lane k): exit + |exit|·4·ε multiplied in
+/// `overlaps`' order, so every bit is the same.
 #[inline(always)]
-fn overlaps_lanes<V: F64x4>(enter: V, exit: V) -> u32 {
+pub fn overlaps_lanes<V: F64x4>(enter: V, exit: V) -> u32 {
     let slack = exit.abs() * V::splat(4.0) * V::splat(f64::EPSILON);
     enter.simd_le(exit + slack).to_bitmask()
 }
