@@ -237,6 +237,62 @@ fn lanes(c: &mut Criterion) {
     g.finish();
 }
 
+/// The primary rays of a 64×48 camera at 16 samples a pixel (a 4×4 grid) into 1000 spheres,
+/// pixel after pixel along the rows: one by one through the wing's one-ray search of the BVH,
+/// and as packets walking its tree of four children a node (`intersect_packet`): a pixel's 16
+/// samples (as the renderer traces them), or its rows of four or pairs of rows. The time
+/// against the packet's size splits the packet search into what each packet costs (its hull,
+/// its walk) and what each ray does (its tests at the leaves).
+fn primary_packets(c: &mut Criterion) {
+    let scene = spheres(1000);
+    let fast = FastScene::new(&scene);
+    assert!(scene.bvh_nodes() > 0 && !fast.tests_in_lanes());
+    let cam = scene.camera.clone();
+    let pixels: Vec<Vec<Ray>> = (0..48)
+        .flat_map(|y| (0..64).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            (0..16)
+                .map(|k| {
+                    let (u, v) = ((k % 4) as f64 + 0.5, (k / 4) as f64 + 0.5);
+                    cam.ray(x as f64 + u / 4.0, y as f64 + v / 4.0)
+                })
+                .collect()
+        })
+        .collect();
+    let count = pixels.len() * 16;
+    let one_by_one = || {
+        let mut stats = Stats::default();
+        pixels
+            .iter()
+            .flatten()
+            .filter(|r| fast.nearest(r, 0.0, f64::INFINITY, &mut stats).is_some())
+            .count()
+    };
+    let in_packets = |size: usize| {
+        let mut stats = Stats::default();
+        let mut hits = [None; 16];
+        pixels
+            .iter()
+            .flat_map(|p| p.chunks(size))
+            .map(|p| {
+                fast.intersect_packet(p, &mut hits[..p.len()], &mut stats);
+                hits[..p.len()].iter().filter(|h| h.is_some()).count()
+            })
+            .sum::<usize>()
+    };
+    let hit = one_by_one();
+    assert!(hit > count / 10 && hit < count, "{hit} of {count} rays hit");
+    let mut g = c.benchmark_group(format!("1000 spheres, {count} primary rays"));
+    g.bench_function("one by one", |b| b.iter(one_by_one));
+    for size in [4, 8, 16] {
+        assert_eq!(in_packets(size), hit);
+        g.bench_with_input(BenchmarkId::new("packets of", size), &size, |b, &size| {
+            b.iter(|| in_packets(size))
+        });
+    }
+    g.finish();
+}
+
 /// Shadow rays toward the light from the surfaces 1000 spheres show a 64×48 camera at 16
 /// samples a pixel (a 4×4 grid), each pixel's as a packet, pixel after pixel along the rows:
 /// one by one (the core's search), as packets, and as packets that try the last blocker
@@ -468,6 +524,6 @@ fn paths(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, lanes, shadow_packets, csg, boxes, room, paths, render
+    targets = shapes, sphere_group, bvh, lanes, primary_packets, shadow_packets, csg, boxes, room, paths, render
 }
 criterion_main!(benches);
