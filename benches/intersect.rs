@@ -4,7 +4,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;
 use raytree::fast::simd::Wide;
-use raytree::fast::{sphere_hit, DiffusePaths, FastScene, SphereGroup};
+use raytree::fast::{sphere_hit, DiffusePaths, FastScene, SphereGroup, PACKET};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
 use raytree::render::{render_simple, Engine, RenderOptions};
 use raytree::sampling::{pixel_key, SamplePoint};
@@ -239,41 +239,37 @@ fn lanes(c: &mut Criterion) {
 
 /// The primary rays of a 64×48 camera at 16 samples a pixel (a 4×4 grid) into 1000 spheres,
 /// pixel after pixel along the rows: one by one through the wing's one-ray search of the BVH,
-/// and as packets walking its tree of four children a node (`intersect_packet`): a pixel's 16
-/// samples (as the renderer traces them), or its rows of four or pairs of rows. The time
-/// against the packet's size splits the packet search into what each packet costs (its hull,
-/// its walk) and what each ray does (its tests at the leaves).
+/// and as packets walking its tree of four children a node (`intersect_packet`): two
+/// neighbouring pixels' 32 samples (as the renderer traces them), a pixel's 16, or its rows of
+/// four or pairs of rows. The time against the packet's size splits the packet search into
+/// what each packet costs (its hull, its walk) and what each ray does (its tests at the
+/// leaves).
 fn primary_packets(c: &mut Criterion) {
     let scene = spheres(1000);
     let fast = FastScene::new(&scene);
     assert!(scene.bvh_nodes() > 0 && !fast.tests_in_lanes());
     let cam = scene.camera.clone();
-    let pixels: Vec<Vec<Ray>> = (0..48)
+    let rays: Vec<Ray> = (0..48)
         .flat_map(|y| (0..64).map(move |x| (x, y)))
-        .map(|(x, y)| {
-            (0..16)
-                .map(|k| {
-                    let (u, v) = ((k % 4) as f64 + 0.5, (k / 4) as f64 + 0.5);
-                    cam.ray(x as f64 + u / 4.0, y as f64 + v / 4.0)
-                })
-                .collect()
+        .flat_map(|(x, y)| {
+            (0..16).map(move |k| {
+                let (u, v) = ((k % 4) as f64 + 0.5, (k / 4) as f64 + 0.5);
+                (x as f64 + u / 4.0, y as f64 + v / 4.0)
+            })
         })
+        .map(|(px, py)| cam.ray(px, py))
         .collect();
-    let count = pixels.len() * 16;
+    let count = rays.len();
     let one_by_one = || {
         let mut stats = Stats::default();
-        pixels
-            .iter()
-            .flatten()
+        rays.iter()
             .filter(|r| fast.nearest(r, 0.0, f64::INFINITY, &mut stats).is_some())
             .count()
     };
     let in_packets = |size: usize| {
         let mut stats = Stats::default();
-        let mut hits = [None; 16];
-        pixels
-            .iter()
-            .flat_map(|p| p.chunks(size))
+        let mut hits = [None; PACKET];
+        rays.chunks(size)
             .map(|p| {
                 fast.intersect_packet(p, &mut hits[..p.len()], &mut stats);
                 hits[..p.len()].iter().filter(|h| h.is_some()).count()
@@ -283,17 +279,17 @@ fn primary_packets(c: &mut Criterion) {
     // Before timing: every packet size finds each ray's very hit (t, object, surface) that
     // the one-ray search finds.
     let mut stats = Stats::default();
-    let expected: Vec<_> = (pixels.iter().flatten())
+    let expected: Vec<_> = (rays.iter())
         .map(|r| fast.nearest(r, 0.0, f64::INFINITY, &mut stats))
         .collect();
     let hit = expected.iter().filter(|h| h.is_some()).count();
     assert!(hit > count / 10 && hit < count, "{hit} of {count} rays hit");
     let mut g = c.benchmark_group(format!("1000 spheres, {count} primary rays"));
     g.bench_function("one by one", |b| b.iter(one_by_one));
-    for size in [4, 8, 16] {
+    for size in [4, 8, 16, 32] {
         let mut found = vec![];
-        for p in pixels.iter().flat_map(|p| p.chunks(size)) {
-            let mut hits = [None; 16];
+        for p in rays.chunks(size) {
+            let mut hits = [None; PACKET];
             fast.intersect_packet(p, &mut hits[..p.len()], &mut stats);
             found.extend_from_slice(&hits[..p.len()]);
         }

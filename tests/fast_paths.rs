@@ -102,12 +102,13 @@ fn every_peer_scene_renders_the_same_with_both_engines() {
         }
     }
     let many = common::scene(&common::many_spheres(10_000));
+    // 31 columns: the last packet of a row holds fewer pixels than the others.
     let many = Scene {
-        camera: many.camera.resized(32, 24),
+        camera: many.camera.resized(31, 24),
         ..many
     };
     assert!(many.bvh_nodes() > 0);
-    for spp in [1, 4] {
+    for spp in [1, 4, 16] {
         assert_engines_agree("many", &many, spp);
     }
 }
@@ -283,6 +284,62 @@ fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) ->
         total.add(&one_by_one.stats);
     }
     total
+}
+
+/// In a BVH scene, the grid samples of neighbouring pixels of a row go into one packet (as
+/// many pixels as fill it): each pixel gets, to the bit, the value the core gives it sample by
+/// sample, and the packet the counters of rays and shading of the core's pixels together. At
+/// 4, 9 and 16 samples a pixel, 8, 3 and 2 pixels a packet; rows of 16 pixels end in a
+/// shorter packet at 9.
+#[test]
+fn neighbouring_pixels_traced_as_one_packet_are_the_cores_pixels() {
+    let mut scene = common::scene(&common::many_spheres(400));
+    scene.camera = scene.camera.resized(16, 12);
+    assert!(scene.bvh_nodes() > 0);
+    let no_corners = |_: &mut Tracer, _: u32, _: u32| -> DVec3 { unreachable!("grid sampling") };
+    for (spp, group) in [(4, 8), (9, 3), (16, 2)] {
+        let fast = RenderOptions {
+            spp,
+            ..RenderOptions::of(&scene)
+        };
+        let core = RenderOptions {
+            engine: Engine::Core,
+            ..fast
+        };
+        let (fast, core) = (Film::new(&scene, fast), Film::new(&scene, core));
+        assert_eq!(fast.pixels_per_packet(), group, "{spp} spp");
+        assert_eq!(
+            core.pixels_per_packet(),
+            1,
+            "the core traces pixels one by one"
+        );
+        let mut reflected = 0;
+        for y in 0..12 {
+            for x0 in (0..16).step_by(group) {
+                let pixels = group.min(16 - x0 as usize);
+                let mut packed = fast.tracer();
+                let mut values = vec![DVec3::NAN; pixels];
+                fast.grid_pixels(&mut packed, x0, y, &mut values);
+                let mut one_by_one = core.tracer();
+                for (k, value) in values.iter().enumerate() {
+                    let x = x0 + k as u32;
+                    let expected = core.pixel(&mut one_by_one, x, y, &no_corners);
+                    assert_eq!(
+                        value.to_array().map(f64::to_bits),
+                        expected.to_array().map(f64::to_bits),
+                        "{spp} spp: pixel ({x}, {y}): {value} against {expected}"
+                    );
+                }
+                assert_eq!(
+                    rays_and_shading(packed.stats),
+                    rays_and_shading(one_by_one.stats),
+                    "{spp} spp: pixels {x0}.. of row {y}"
+                );
+                reflected += packed.stats.reflection_rays;
+            }
+        }
+        assert!(reflected > 0, "the mirror spheres were seen");
+    }
 }
 
 /// In a BVH scene: the primary rays and the shadow rays search it as packets.

@@ -1,8 +1,8 @@
-//! The BVH searched by a packet of rays at once (a pixel's grid samples, which take nearly the
-//! same path through the tree): the fast wing's tree of four children a node (`bvh4.rs`),
-//! each node fetched once for the packet and its four boxes tested for all its rays together.
-//! Each ray meets the leaves in the order the core's `Bvh::closest` or `Bvh::any` meets them
-//! in the binary tree, and tests the items of exactly the leaves those visit, with the same
+//! The BVH searched by a packet of rays at once (the grid samples of a pixel or two, which take
+//! nearly the same path through the tree): the fast wing's tree of four children a node
+//! (`bvh4.rs`), each node fetched once for the packet and its four boxes tested for all its rays
+//! together. Each ray meets the leaves in the order the core's `Bvh::closest` or `Bvh::any` meets
+//! them in the binary tree, and tests the items of exactly the leaves those visit, with the same
 //! arithmetic.
 
 use super::bvh4::{Bvh4, Node4};
@@ -20,7 +20,7 @@ pub fn signs(r: &Ray) -> [bool; 3] {
     r.dir.to_array().map(f64::is_sign_negative)
 }
 
-/// Up to 16 rays laid out by component in groups of four, for slab tests of one box against
+/// Up to `PACKET` rays laid out by component in groups of four, for slab tests of one box against
 /// all of them: each group is one set of 4-wide vector instructions. The unused lanes of the
 /// last group hold `UNUSED` (their answers are masked off).
 struct Packet<V> {
@@ -37,7 +37,23 @@ struct Quad {
 }
 
 /// The most rays searched together.
-pub const PACKET: usize = 16;
+pub const PACKET: usize = 32;
+
+/// A set of a packet's rays: bit i for ray i.
+pub type RaySet = u32;
+
+/// The four bits of a set of rays for its group of four number `q` (rays 4q to 4q + 3).
+#[inline(always)]
+#[allow(clippy::unnecessary_cast)] // a cast from a RaySet wider than u32 where it is one
+pub fn quad_bits(rays: RaySet, q: usize) -> u32 {
+    (rays >> (4 * q) & 0b1111) as u32
+}
+
+/// The set of the first `len` rays of a packet (1 ≤ len ≤ `PACKET`).
+#[inline(always)]
+pub fn first_rays(len: usize) -> RaySet {
+    RaySet::MAX >> (RaySet::BITS as usize - len)
+}
 
 impl<V: F64x4> Packet<V> {
     /// The packet of `len` rays from the groups of four the searches lay them out in for the
@@ -45,7 +61,7 @@ impl<V: F64x4> Packet<V> {
     /// `DVec3::recip` in each lane.
     #[inline(always)]
     fn new(quads: &[RayLanes<V>; PACKET / 4], len: usize) -> Packet<V> {
-        assert!((1..=PACKET).contains(&len), "1 to 16 rays per packet");
+        assert!((1..=PACKET).contains(&len), "1 to {PACKET} rays per packet");
         let mut p = Packet {
             quads: [Quad::default(); PACKET / 4],
             len,
@@ -76,8 +92,8 @@ impl<V: F64x4> Packet<V> {
         t_min: f64,
         t_max: &[f64; PACKET],
         reach: (f64, f64),
-        active: u16,
-    ) -> u16 {
+        active: RaySet,
+    ) -> RaySet {
         if let Some(hull) = &self.hull {
             match hull.classify(b, t_min, reach) {
                 Verdict::AllMiss => return 0,
@@ -98,8 +114,8 @@ impl<V: F64x4> Packet<V> {
         t_min: f64,
         t_max: &[f64; PACKET],
         reach: (f64, f64),
-        active: u16,
-    ) -> [u16; 4] {
+        active: RaySet,
+    ) -> [RaySet; 4] {
         let (misses, all_hit) = match &self.hull {
             Some(hull) => hull.classify_four(
                 #[inline(always)]
@@ -126,9 +142,12 @@ impl<V: F64x4> Packet<V> {
 
     /// The slab test of one box, ray by ray in groups of four.
     #[inline(always)]
-    fn ray_by_ray(&self, b: &Aabb, t_min: f64, t_max: &[f64; PACKET], active: u16) -> u16 {
-        let mut mask = 0u16;
+    fn ray_by_ray(&self, b: &Aabb, t_min: f64, t_max: &[f64; PACKET], active: RaySet) -> RaySet {
+        let mut mask: RaySet = 0;
         for (q, quad) in self.quads.iter().enumerate().take(self.len.div_ceil(4)) {
+            if quad_bits(active, q) == 0 {
+                continue;
+            }
             let mut enter = [t_min; 4];
             let mut exit: [f64; 4] = t_max[4 * q..4 * q + 4].try_into().unwrap();
             for axis in 0..3 {
@@ -141,7 +160,7 @@ impl<V: F64x4> Packet<V> {
                     );
                 }
             }
-            mask |= (overlaps4::<V>(&enter, &exit) as u16) << (4 * q);
+            mask |= RaySet::from(overlaps4::<V>(&enter, &exit)) << (4 * q);
         }
         mask & active
     }
@@ -158,18 +177,18 @@ fn overlaps4<V: F64x4>(enter: &[f64; 4], exit: &[f64; 4]) -> u8 {
 /// For each group of four lanes, the mask of the lanes that hold one of the first `len` rays.
 #[inline(always)]
 fn lane_masks<V: F64x4>(len: usize) -> [V; PACKET / 4] {
-    let bits = (u32::MAX >> (32 - len)) as u16;
+    let bits = first_rays(len);
     let mut masks = [V::ZERO; PACKET / 4];
     for (q, mask) in masks.iter_mut().enumerate() {
-        *mask = lane_mask(u32::from(bits >> (4 * q)));
+        *mask = lane_mask(quad_bits(bits, q));
     }
     masks
 }
 
 /// The lowest and highest t_max of the rays the masks name (∞ and −∞ without any; a NaN is
-/// passed over): a tree of four-lane minima and maxima, two steps deep before the last four
-/// lanes, where a fold over the sixteen rays is a chain of sixteen, and the next box test waits
-/// on it.
+/// passed over): four-lane minima and maxima folded pairwise, a tree as deep as the packet
+/// has groups of four, where a fold over the rays one by one is a chain as long as the packet,
+/// and the next box test waits on it.
 #[inline(always)]
 fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f64) {
     let (inf, neg_inf) = (V::splat(f64::INFINITY), V::splat(f64::NEG_INFINITY));
@@ -181,8 +200,15 @@ fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f6
         lo[q] = inf.min(used[q].bitselect(t, inf));
         hi[q] = neg_inf.max(used[q].bitselect(t, neg_inf));
     }
-    let lo = lo[0].min(lo[1]).min(lo[2].min(lo[3])).to_array();
-    let hi = hi[0].max(hi[1]).max(hi[2].max(hi[3])).to_array();
+    let mut width = PACKET / 4;
+    while width > 1 {
+        width /= 2;
+        for q in 0..width {
+            lo[q] = lo[q].min(lo[q + width]);
+            hi[q] = hi[q].max(hi[q + width]);
+        }
+    }
+    let (lo, hi) = (lo[0].to_array(), hi[0].to_array());
     let least = |a: f64, b: f64| if b < a { b } else { a };
     let most = |a: f64, b: f64| if b > a { b } else { a };
     (
@@ -191,12 +217,12 @@ fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f6
     )
 }
 
-/// `closest` for a packet of up to 16 rays at once (a pixel's samples: nearly the same
-/// path through the tree), also given in groups of four (`quads`, `RayLanes::new` of each
-/// four in order). A node is fetched once for the packet and its four children's boxes tested
-/// for all its rays together. At a leaf, `visit(item, rays, t_max)` runs for each item with
-/// the set of rays that reached it (bit i for ray i): it is `closest`'s visit for each of
-/// them, lowering `t_max[i]` to a nearer hit.
+/// `closest` for a packet of up to `PACKET` rays at once (the samples of a pixel or two:
+/// nearly the same path through the tree), also given in groups of four (`quads`,
+/// `RayLanes::new` of each four in order). A node is fetched once for the packet and its four
+/// children's boxes tested for all its rays together. At a leaf, `visit(item, rays, t_max)`
+/// runs for each item with the set of rays that reached it (bit i for ray i): it is
+/// `closest`'s visit for each of them, lowering `t_max[i]` to a nearer hit.
 ///
 /// The rays' directions must have the signs of the first one's (see `signs`): then every ray
 /// meets the leaves in the order `closest` takes it through the binary tree, and visits the
@@ -209,7 +235,7 @@ pub fn closest_packet<V: F64x4>(
     quads: &[RayLanes<V>; PACKET / 4],
     t_min: f64,
     t_max: &mut [f64; PACKET],
-    mut visit: impl FnMut(u32, u16, &mut [f64; PACKET]),
+    mut visit: impl FnMut(u32, RaySet, &mut [f64; PACKET]),
 ) -> Visits {
     let Some(first) = rays.first() else {
         return Visits::default();
@@ -233,7 +259,7 @@ pub fn closest_packet<V: F64x4>(
     work
 }
 
-/// `any` for a packet of up to 16 rays, given as their groups of four (`RayLanes::new` of
+/// `any` for a packet of up to `PACKET` rays, given as their groups of four (`RayLanes::new` of
 /// each four in order) and their count, ray i searching [t_min, t_max[i]]: bit i of the
 /// answer is set when ray i met a blocker. The rays of `blocked` are answered already (a
 /// blocker found before the walk): they take no part. At a leaf, `visit(item, rays)` runs
@@ -247,9 +273,9 @@ pub fn any_packet<V: F64x4>(
     rays: (&[RayLanes<V>; PACKET / 4], usize),
     t_min: f64,
     t_max: &[f64; PACKET],
-    blocked: u16,
-    mut visit: impl FnMut(u32, u16) -> u16,
-) -> (u32, Visits) {
+    blocked: RaySet,
+    mut visit: impl FnMut(u32, RaySet) -> RaySet,
+) -> (RaySet, Visits) {
     let mut t_max = *t_max;
     walk_packet::<V>(
         bvh,
@@ -269,7 +295,7 @@ pub fn any_packet<V: F64x4>(
 struct Pending {
     node: u32,
     slot: u8,
-    rays: u16,
+    rays: RaySet,
     leaves: u32,
 }
 
@@ -292,7 +318,7 @@ impl<V: F64x4> Walk<'_, V> {
     fn enter(
         &mut self,
         index: u32,
-        active: u16,
+        active: RaySet,
         t_max: &[f64; PACKET],
         reach: (f64, f64),
         work: &mut Visits,
@@ -348,14 +374,14 @@ fn walk_packet<V: F64x4>(
     t_min: f64,
     t_max: &mut [f64; PACKET],
     signs: Option<[bool; 3]>,
-    mut done: u16,
-    mut step: impl FnMut(u32, u16, &mut [f64; PACKET]) -> u16,
-) -> (u32, Visits) {
+    mut done: RaySet,
+    mut step: impl FnMut(u32, RaySet, &mut [f64; PACKET]) -> RaySet,
+) -> (RaySet, Visits) {
     let mut work = Visits::default();
     if bvh.nodes().is_empty() || len == 0 {
         return (0, work);
     }
-    let all = (u32::MAX >> (32 - len)) as u16;
+    let all = first_rays(len);
     // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
     let used = lane_masks::<V>(len);
     let mut reach = reach_of::<V>(t_max, &used);
@@ -412,7 +438,7 @@ fn walk_packet<V: F64x4>(
             reach = reach_of::<V>(t_max, &used);
         }
     }
-    (done as u32, work)
+    (done, work)
 }
 
 #[cfg(test)]

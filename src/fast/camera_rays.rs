@@ -6,15 +6,15 @@
 use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 
-use super::bvh_packet::PACKET;
+use super::packet_trace::SHADED;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
 use crate::scene::{Camera, Projection};
 
-/// The rays through (fx + o.x, fy + o.y) for each offset o (at most `PACKET`), in order:
+/// The rays through (fx + o.x, fy + o.y) for each offset o (at most `SHADED`), in order:
 /// `camera.ray` for each.
-pub fn primary_rays(camera: &Camera, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, PACKET> {
-    assert!(offsets.len() <= PACKET, "at most {PACKET} rays at once");
+pub fn primary_rays(camera: &Camera, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, SHADED> {
+    assert!(offsets.len() <= SHADED, "at most {SHADED} rays at once");
     match Frame::of(camera) {
         Some(frame) => with_lanes!(V => frame.rays::<V>(fx, fy, offsets)),
         None => offsets
@@ -58,7 +58,7 @@ impl Frame {
     }
 
     #[inline(always)]
-    fn rays<V: F64x4>(&self, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, PACKET> {
+    fn rays<V: F64x4>(&self, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, SHADED> {
         let mut rays = ArrayVec::new();
         for group in offsets.chunks(4) {
             // Unused lanes repeat the group's first offset; their rays are not kept.
@@ -124,7 +124,7 @@ mod tests {
             } else {
                 Camera::look_at_right_handed(eye, target, DVec3::Y, fov, width, height)
             };
-            let n = 1 + case % PACKET;
+            let n = 1 + case % SHADED;
             let offsets: Vec<DVec2> = (0..n).map(|_| DVec2::new(u(), u())).collect();
             let (fx, fy) = ((u() * width as f64).floor(), (u() * height as f64).floor());
             let expected: Vec<Ray> = offsets

@@ -10,8 +10,8 @@
 
 use glam::DVec3;
 
-use super::bvh_packet::PACKET;
 use super::lanes::{lane_mask, RayLanes, LANES, UNUSED};
+use super::packet_trace::SHADED;
 use super::search::FastScene;
 use super::simd::F64x4;
 use crate::geometry::Ray;
@@ -36,15 +36,15 @@ pub(super) fn lanes_light(light: &Light) -> Option<(DVec3, DVec3)> {
 
 /// Which surfaces of a packet the lanes light, and what they need to know of their materials.
 pub(super) struct SurfaceLanes<'a> {
-    /// The packet's surfaces, and by packet lane v = −d, toward the viewer (lane i < PACKET:
-    /// indexing them `% PACKET` only spares the bounds checks).
-    shaded: &'a [Option<Interaction>; PACKET],
-    view: &'a [DVec3; PACKET],
+    /// The packet's surfaces, and by packet lane v = −d, toward the viewer (lane i < SHADED:
+    /// indexing them `% SHADED` only spares the bounds checks).
+    shaded: &'a [Option<Interaction>; SHADED],
+    view: &'a [DVec3; SHADED],
     /// The packet lanes of those surfaces, in order, and their number.
-    chosen: [usize; PACKET],
+    chosen: [usize; SHADED],
     count: usize,
     /// By packet lane: the highlight's exponent m (0 where ks ≤ 0: nothing to raise).
-    exponent: [u32; PACKET],
+    exponent: [u32; SHADED],
     /// By packet lane: Blinn's highlight (bit set) or Phong's.
     blinn: u32,
     /// The shaded surfaces that take `light_share` (Hall's transmitted highlight, a
@@ -57,16 +57,16 @@ impl<'a> SurfaceLanes<'a> {
     #[inline(always)]
     pub fn new(
         scene: &Scene,
-        shaded: &'a [Option<Interaction>; PACKET],
-        view: &'a [DVec3; PACKET],
+        shaded: &'a [Option<Interaction>; SHADED],
+        view: &'a [DVec3; SHADED],
         n: usize,
     ) -> SurfaceLanes<'a> {
         let mut lanes = SurfaceLanes {
             shaded,
             view,
-            chosen: [0; PACKET],
+            chosen: [0; SHADED],
             count: 0,
-            exponent: [0; PACKET],
+            exponent: [0; SHADED],
             blinn: 0,
             alone: 0,
         };
@@ -130,8 +130,8 @@ impl<'a> SurfaceLanes<'a> {
         let (mut at, len) = ([group[0]; LANES], group.len());
         at[..len].copy_from_slice(group);
         let used = (1u32 << len) - 1;
-        let si = at.map(|i| self.shaded[i % PACKET].as_ref().expect("a shaded surface"));
-        let v = at.map(|i| self.view[i % PACKET]);
+        let si = at.map(|i| self.shaded[i % SHADED].as_ref().expect("a shaded surface"));
+        let v = at.map(|i| self.view[i % SHADED]);
         let surfaces: Surfaces<V> = Surfaces {
             point: axes(si.map(|s| s.point)),
             normal: axes(si.map(|s| s.normal)),
@@ -140,7 +140,7 @@ impl<'a> SurfaceLanes<'a> {
             kd: lanes(si.map(|s| s.paint.kd)),
             ks: lanes(si.map(|s| s.paint.ks)),
             blinn: lane_mask(lane_bits(at, |i| self.blinn >> i & 1 != 0)),
-            exponent: at.map(|i| self.exponent[i % PACKET]),
+            exponent: at.map(|i| self.exponent[i % SHADED]),
         };
         let (l, d, far) = toward(position, surfaces.point);
         let far = far & used;

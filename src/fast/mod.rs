@@ -40,7 +40,7 @@ mod sphere_group;
 pub use bvh_packet::PACKET;
 pub use camera_rays::primary_rays;
 pub use diffuse_paths::DiffusePaths;
-pub use packet_trace::trace_packet;
+pub use packet_trace::{trace_packet, SHADED};
 pub use probe::{plane_hit, sphere_hit};
 pub use search::FastScene;
 pub use simd::{level, Level};

@@ -1,12 +1,12 @@
-//! The fast search for packets of rays: up to 16 rays (a pixel's grid samples, or the shadow
-//! or secondary rays of their surfaces) searched together. With a BVH, rays whose directions
-//! share their signs walk the tree as one packet (`bvh_packet.rs`); without one, every object
-//! is tested against four rays at a time in four lanes (`F64x4`). Every ray finds the hit, and counts
-//! the work, that the one-ray search finds for it.
+//! The fast search for packets of rays: up to `PACKET` rays (the grid samples of a pixel or two, or
+//! the shadow or secondary rays of their surfaces) searched together. With a BVH, rays whose
+//! directions share their signs walk the tree as one packet (`bvh_packet.rs`); without one, every
+//! object is tested against four rays at a time in four lanes (`F64x4`). Every ray finds the hit,
+//! and counts the work, that the one-ray search finds for it.
 
 use glam::DVec3;
 
-use super::bvh_packet::{any_packet, closest_packet, signs, PACKET};
+use super::bvh_packet::{any_packet, closest_packet, first_rays, quad_bits, signs, RaySet, PACKET};
 use super::csg_lanes::{CsgLanes, LanesHits};
 use super::hull::{Hull, Verdict};
 use super::lanes::{
@@ -51,7 +51,7 @@ struct QuadHits<V> {
 fn spheres_in_quads<V: F64x4>(
     sphere: &Sphere,
     quads: &[RayLanes<V>; PACKET / LANES],
-    reached: u16,
+    reached: RaySet,
     limits: &[f64; PACKET],
     stats: &mut Stats,
 ) -> [QuadHits<V>; PACKET / LANES] {
@@ -63,7 +63,7 @@ fn spheres_in_quads<V: F64x4>(
     };
     let mut found = [none; PACKET / LANES];
     for (q, quad) in quads.iter().enumerate() {
-        let bits = u32::from(reached >> (LANES * q)) & 0b1111;
+        let bits = quad_bits(reached, q);
         if bits == 0 {
             continue;
         }
@@ -80,7 +80,7 @@ fn spheres_in_quads<V: F64x4>(
 
 /// The positions of the set bits, lowest first.
 #[inline(always)]
-fn ones(mut bits: u32) -> impl Iterator<Item = usize> {
+fn ones(mut bits: RaySet) -> impl Iterator<Item = usize> {
     std::iter::from_fn(move || {
         (bits != 0).then(|| {
             let i = bits.trailing_zeros() as usize;
@@ -91,8 +91,8 @@ fn ones(mut bits: u32) -> impl Iterator<Item = usize> {
 }
 
 impl FastScene<'_> {
-    /// `intersect` (t_min = 0, t_max = ∞) for up to 16 rays at once: `hits[i]` is exactly what
-    /// `intersect` answers for ray i, and the stats are those of tracing the rays one by one.
+    /// `intersect` (t_min = 0, t_max = ∞) for up to `PACKET` rays at once: `hits[i]` is exactly
+    /// what `intersect` answers for ray i, and the stats are those of tracing the rays one by one.
     /// Without a BVH the rays go four at a time (`intersect_in_lanes`). Otherwise the rays
     /// that share the first one's direction signs go through the BVH as a packet (if there are
     /// at least `PACKET_MIN` of them); any others, one by one.
@@ -176,7 +176,7 @@ impl FastScene<'_> {
                         let lowered = lane_mask::<V>(within).bitselect(t, limit);
                         limits[4 * q..4 * q + 4].copy_from_slice(&lowered.to_array());
                         let t = t.to_array();
-                        for lane in ones(within) {
+                        for lane in ones(RaySet::from(within)) {
                             hits[lanes[4 * q + lane]] = Some(Hit {
                                 t: t[lane],
                                 object: *object,
@@ -186,7 +186,7 @@ impl FastScene<'_> {
                     }
                     return;
                 }
-                for lane in ones(u32::from(reached)) {
+                for lane in ones(reached) {
                     let (ray, inv) = (&packet[lane], packet_inv[lane]);
                     if let Some(h) = self.probe_hit::<V>(probe, ray, inv, 0.0, limits[lane], stats)
                     {
@@ -227,16 +227,16 @@ impl FastScene<'_> {
         blocked
     }
 
-    /// `occluded` for up to 16 shadow rays, ray i looking for blockers with 0 < t < `t_max[i]`:
-    /// bit i of the answer is set when ray i is blocked. Without a BVH the rays go four at a
-    /// time (`occluded_in_lanes`), and the stats are those of asking `occluded` ray by ray.
-    /// Otherwise rays that get past the objects outside the BVH, if there are at least
-    /// `PACKET_MIN` of them (fewer search it one by one), are first tried against
-    /// `last_blocker` (a BVH item that blocked earlier rays toward the same light, if any),
-    /// and those it does not block search the BVH as a packet (any directions will do: an
-    /// any-hit search visits the nodes in a fixed order). The BVH item that blocks a ray is
-    /// noted in `last_blocker`. The rays and their answers are those of asking ray by ray;
-    /// the nodes visited and the objects tested are this search's own.
+    /// `occluded` for up to `PACKET` shadow rays, ray i looking for blockers with 0 < t <
+    /// `t_max[i]`: bit i of the answer is set when ray i is blocked. Without a BVH the rays go four
+    /// at a time (`occluded_in_lanes`), and the stats are those of asking `occluded` ray by ray.
+    /// Otherwise rays that get past the objects outside the BVH, if there are at least `PACKET_MIN`
+    /// of them (fewer search it one by one), are first tried against `last_blocker` (a BVH item
+    /// that blocked earlier rays toward the same light, if any), and those it does not block search
+    /// the BVH as a packet (any directions will do: an any-hit search visits the nodes in a fixed
+    /// order). The BVH item that blocks a ray is noted in `last_blocker`. The rays and their
+    /// answers are those of asking ray by ray; the nodes visited and the objects tested are this
+    /// search's own.
     pub fn occluded_packet(
         &self,
         rays: &[Ray],
@@ -295,13 +295,13 @@ impl FastScene<'_> {
         let quads = ray_quads::<V>(&packet[..n]);
         let packet = (&packet, &packet_inv, &quads);
         // The last blocker first: where it blocks every ray, the BVH is not walked at all.
-        let all = (u32::MAX >> (32 - n)) as u16;
+        let all = first_rays(n);
         let first = match *last_blocker {
             Some(item) => self.blocked_by::<V>(item, all, packet, &reach, stats),
             None => 0,
         };
         let hit = if first == all {
-            u32::from(all)
+            all
         } else {
             let (hit, visits) = any_packet::<V>(
                 &self.bvh4,
@@ -336,17 +336,17 @@ impl FastScene<'_> {
     fn blocked_by<V: F64x4>(
         &self,
         item: u32,
-        reached: u16,
+        reached: RaySet,
         (rays, inv_dirs, quads): (&[Ray; PACKET], &[DVec3; PACKET], &[RayLanes<V>; PACKET / 4]),
         t_max: &[f64; PACKET],
         stats: &mut Stats,
-    ) -> u16 {
+    ) -> RaySet {
         let probe = &self.bounded[item as usize];
-        let mut blocked = 0u16;
+        let mut blocked: RaySet = 0;
         if let Probe::Sphere { sphere, .. } = probe {
             let found = spheres_in_quads(sphere, quads, reached, t_max, stats);
             for (q, quad) in found.into_iter().enumerate() {
-                blocked |= (quad.within as u16) << (4 * q);
+                blocked |= RaySet::from(quad.within) << (4 * q);
             }
             return blocked;
         }
@@ -354,7 +354,7 @@ impl FastScene<'_> {
         V::outlined(
             #[inline(always)]
             || {
-                for lane in ones(u32::from(reached)) {
+                for lane in ones(reached) {
                     let (ray, inv) = (&rays[lane], inv_dirs[lane]);
                     if self
                         .probe_blocker::<V>(probe, ray, inv, 0.0, t_max[lane], stats)
@@ -461,7 +461,7 @@ impl FastScene<'_> {
 
     /// The objects tested behind their box (bit k: `unbounded[k]`, the first 64) whose box
     /// every one of `rays` misses, as the rays' hull proves (`Hull`): one test for a packet of
-    /// up to 16 rays, where the rays' own tests take one per group of four. A ray that misses
+    /// up to `PACKET` rays, where the rays' own tests take one per group of four. A ray that misses
     /// a box searching [0, ∞) misses it searching less, so the rays' limits need not be known.
     #[inline(always)]
     fn boxes_missed_by_all<V: F64x4>(&self, rays: &[Ray]) -> u64 {

@@ -26,6 +26,10 @@ use crate::scene::{Hit, Interaction};
 use crate::shading::local::ambient;
 use crate::trace::{RayKind, Task, Tracer};
 
+/// The most rays shaded together: a pixel's grid samples (a packet of several pixels' rays is
+/// searched at once, then shaded a pixel at a time), or the secondary rays of their surfaces.
+pub const SHADED: usize = 16;
+
 /// The rays of a packet, each with its place in the tree: a pixel's primary rays, or the tasks
 /// of a packet of secondary rays.
 trait Lanes {
@@ -76,20 +80,20 @@ impl Lanes for [Task] {
 /// The reflection (or refraction) rays of a packet's surfaces, gathered to be traced as a
 /// packet of their own, and the colour each surface receives through them.
 struct Children {
-    tasks: ArrayVec<Task, PACKET>,
+    tasks: ArrayVec<Task, SHADED>,
     /// The surface (its lane in the parent packet) each task leaves from.
-    lanes: [usize; PACKET],
+    lanes: [usize; SHADED],
     /// Per parent lane: the intensity arriving through its child (zero for a child the depth
     /// limit or the adaptive threshold stopped); None for a surface without such a child.
-    colors: [Option<DVec3>; PACKET],
+    colors: [Option<DVec3>; SHADED],
 }
 
 impl Children {
     fn new() -> Children {
         Children {
             tasks: ArrayVec::new(),
-            lanes: [0; PACKET],
-            colors: [None; PACKET],
+            lanes: [0; SHADED],
+            colors: [None; SHADED],
         }
     }
 
@@ -107,9 +111,10 @@ impl Children {
     }
 }
 
-/// The primary rays of one pixel (a regular grid's samples, up to 16): `out[i]` is exactly
-/// what `Tracer::radiance` gives ray i, and the counters of rays and the random numbers drawn
-/// are those of tracing the rays one after another.
+/// Primary rays, up to `PACKET` (the grid samples of a pixel or of neighbouring pixels), each
+/// pixel's in `SHADED`s: `out[i]` is exactly what `Tracer::radiance` gives ray i, and the
+/// counters of rays and the random numbers drawn are those of tracing the rays one after
+/// another. They are searched as one packet and shaded `SHADED` at a time, in order.
 pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
     with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, out))
 }
@@ -133,7 +138,13 @@ fn trace_packet_inline<V: F64x4>(
     }
     let mut hits = [None; PACKET];
     fast.intersect_packet(rays, &mut hits[..n], &mut t.stats);
-    shade_packet::<V, _>(t, fast, rays, &hits[..n], out);
+    for ((rays, hits), out) in rays
+        .chunks(SHADED)
+        .zip(hits[..n].chunks(SHADED))
+        .zip(out.chunks_mut(SHADED))
+    {
+        shade_packet::<V, _>(t, fast, rays, hits, out);
+    }
 }
 
 /// A packet of rays from their nearest hits: `out[i]` is exactly what `Tracer::shade` gives
@@ -150,7 +161,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
 ) {
     let scene = t.scene;
     let n = hits.len();
-    let mut shaded: [Option<Interaction>; PACKET] = [None; PACKET];
+    let mut shaded: [Option<Interaction>; SHADED] = [None; SHADED];
     for i in 0..n {
         t.count(tasks.kind(i));
         match &hits[i] {
@@ -164,7 +175,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
     // Where the objects are tested four rays at a time, the usual lights and surfaces are lit
     // in lanes too, shadow rays and all (`light_lanes`).
     let in_lanes = fast.tests_in_lanes();
-    let mut view = [DVec3::ZERO; PACKET];
+    let mut view = [DVec3::ZERO; SHADED];
     if in_lanes {
         for (i, v) in view[..n].iter_mut().enumerate() {
             *v = -tasks.ray(i).dir;
@@ -180,10 +191,10 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
                 alone = surfaces.alone | far;
             }
         }
-        let mut terms = [DVec3::ZERO; PACKET];
-        let mut shadow_rays = [UNUSED; PACKET];
-        let mut reach = [0.0; PACKET];
-        let mut lanes = [0usize; PACKET];
+        let mut terms = [DVec3::ZERO; SHADED];
+        let mut shadow_rays = [UNUSED; SHADED];
+        let mut reach = [0.0; SHADED];
+        let mut lanes = [0usize; SHADED];
         let mut cast = 0;
         for i in 0..n {
             let Some(si) = &shaded[i] else { continue };
@@ -249,7 +260,7 @@ fn secondary_packet<L: Lanes + ?Sized>(
     shaded: &[Option<Interaction>],
     out: &mut [DVec3],
 ) {
-    let mut splits: [Option<(f64, f64)>; PACKET] = [None; PACKET];
+    let mut splits: [Option<(f64, f64)>; SHADED] = [None; SHADED];
     let mut reflected = Children::new();
     let mut transmitted = Children::new();
     for (i, si) in shaded.iter().enumerate() {
@@ -306,10 +317,10 @@ fn trace_children_inline<V: F64x4>(t: &mut Tracer, fast: &FastScene, children: &
     if n == 0 {
         return;
     }
-    let rays: ArrayVec<Ray, PACKET> = children.tasks.iter().map(|t| t.ray).collect();
-    let mut hits = [None; PACKET];
+    let rays: ArrayVec<Ray, SHADED> = children.tasks.iter().map(|t| t.ray).collect();
+    let mut hits = [None; SHADED];
     fast.intersect_packet(&rays, &mut hits[..n], &mut t.stats);
-    let mut colors = [DVec3::ZERO; PACKET];
+    let mut colors = [DVec3::ZERO; SHADED];
     shade_packet::<V, _>(t, fast, &children.tasks[..], &hits[..n], &mut colors[..n]);
     for k in 0..n {
         let distance = hits[k].map_or(f64::INFINITY, |h| h.t);

@@ -4,6 +4,7 @@
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
+use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
 
@@ -12,7 +13,8 @@ use super::antialias::{
     GAUSS_RADIUS,
 };
 use super::Image;
-use crate::fast::{primary_rays, trace_packet, DiffusePaths, FastScene, PACKET};
+use crate::fast::{primary_rays, trace_packet, DiffusePaths, FastScene, PACKET, SHADED};
+use crate::geometry::Ray;
 use crate::sampling::{pixel_key, Rng, SamplePoint};
 use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
 use crate::stats::Stats;
@@ -243,13 +245,51 @@ impl<'s> Film<'s> {
         fy: f64,
         visit: &mut dyn FnMut(Sample),
     ) {
-        for chunk in self.offsets.chunks(PACKET) {
+        for chunk in self.offsets.chunks(SHADED) {
             let rays = primary_rays(&self.camera, fx, fy, chunk);
-            let mut values = [DVec3::ZERO; PACKET];
+            let mut values = [DVec3::ZERO; SHADED];
             trace_packet(t, fast, &rays, &mut values[..rays.len()]);
             for (o, value) in chunk.iter().zip(values) {
                 visit(Sample { uv: *o, value });
             }
+        }
+    }
+
+    /// How many neighbouring pixels of a row go into one packet of the fast wing: as many as
+    /// their grid samples fill, where a BVH is walked (a packet walks it once for all its
+    /// rays, so the walk's own work is shared by more of them). One wherever the samples are
+    /// traced any other way, or draw random numbers (each pixel draws from its own generator).
+    pub fn pixels_per_packet(&self) -> usize {
+        let n = self.offsets.len();
+        match &self.fast {
+            Some(fast)
+                if self.antialias() == Antialias::Grid
+                    && self.path.is_none()
+                    && !self.scene.features.sampled
+                    && !fast.tests_in_lanes()
+                    && n > 1 =>
+            {
+                (PACKET / n).max(1)
+            }
+            _ => 1,
+        }
+    }
+
+    /// The pixels (x, y), (x + 1, y), … of a row, one for each of `out`, from their grid
+    /// samples traced as one packet: each exactly what `pixel` gives it (the same samples,
+    /// summed in the same order). For up to `pixels_per_packet` pixels.
+    pub fn grid_pixels(&self, t: &mut Tracer, x: u32, y: u32, out: &mut [DVec3]) {
+        let fast = self.fast.as_ref().expect("the fast wing traces packets");
+        let n = self.offsets.len();
+        let mut rays = ArrayVec::<Ray, PACKET>::new();
+        for k in 0..out.len() {
+            let fx = (x + k as u32) as f64;
+            rays.extend(primary_rays(&self.camera, fx, y as f64, &self.offsets));
+        }
+        let mut values = [DVec3::ZERO; PACKET];
+        trace_packet(t, fast, &rays, &mut values[..rays.len()]);
+        for (px, samples) in out.iter_mut().zip(values.chunks(n)) {
+            *px = samples.iter().fold(DVec3::ZERO, |sum, v| sum + *v) / n as f64;
         }
     }
 
@@ -537,8 +577,15 @@ fn per_pixel(
             if cancel.load(Ordering::Relaxed) {
                 return t.stats;
             }
-            for (x, px) in row.iter_mut().enumerate() {
-                *px = film.pixel(&mut t, x as u32, y as u32, &corner);
+            let group = film.pixels_per_packet();
+            if group > 1 {
+                for (k, pixels) in row.chunks_mut(group).enumerate() {
+                    film.grid_pixels(&mut t, (k * group) as u32, y as u32, pixels);
+                }
+            } else {
+                for (x, px) in row.iter_mut().enumerate() {
+                    *px = film.pixel(&mut t, x as u32, y as u32, &corner);
+                }
             }
             on_row(y as u32);
             t.stats
