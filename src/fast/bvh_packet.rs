@@ -5,6 +5,8 @@
 //! them in the binary tree, and tests the items of exactly the leaves those visit, with the same
 //! arithmetic.
 
+use arrayvec::ArrayVec;
+
 use super::bvh4::{Bvh4, Node4};
 use super::hull::{overlaps_lanes, Hull, Verdict};
 use super::lanes::{lane_mask, RayLanes};
@@ -291,7 +293,7 @@ pub fn any_packet<V: F64x4>(
 
 /// A child waiting on the walk's stack: child `slot` of node `node`, with the rays that met its
 /// box when it was tested, after `leaves` leaves had been visited.
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 struct Pending {
     node: u32,
     slot: u8,
@@ -306,8 +308,7 @@ struct Walk<'a, V> {
     packet: &'a Packet<V>,
     t_min: f64,
     signs: Option<[bool; 3]>,
-    stack: &'a mut [Pending; STACK],
-    top: usize,
+    stack: ArrayVec<Pending, STACK>,
     leaves: u32,
 }
 
@@ -330,21 +331,19 @@ impl<V: F64x4> Walk<'_, V> {
             .hits_four(node, self.t_min, t_max, reach, active);
         for k in node.order(self.signs).into_iter().rev() {
             if hits[k] != 0 {
-                self.stack[self.top] = Pending {
+                self.stack.push(Pending {
                     node: index,
                     slot: k as u8,
                     rays: hits[k],
                     leaves: self.leaves,
-                };
-                self.top += 1;
+                });
             }
         }
     }
 
     #[inline(always)]
     fn pop(&mut self) -> Option<Pending> {
-        self.top = self.top.checked_sub(1)?;
-        Some(self.stack[self.top])
+        self.stack.pop()
     }
 }
 
@@ -386,14 +385,12 @@ fn walk_packet<V: F64x4>(
     let used = lane_masks::<V>(len);
     let mut reach = reach_of::<V>(t_max, &used);
     let packet = Packet::<V>::new(quads, len);
-    let mut stack = [Pending::default(); STACK];
     let mut walk = Walk {
         bvh,
         packet: &packet,
         t_min,
         signs,
-        stack: &mut stack,
-        top: 0,
+        stack: ArrayVec::new(),
         leaves: 0,
     };
     walk.enter(0, all & !done, t_max, reach, &mut work);
