@@ -289,15 +289,15 @@ fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) ->
 /// In a BVH scene, the grid samples of neighbouring pixels of a row go into one packet (as
 /// many pixels as fill it): each pixel gets, to the bit, the value the core gives it sample by
 /// sample, and the packet the counters of rays and shading of the core's pixels together. At
-/// 4, 9 and 16 samples a pixel, 8, 3 and 2 pixels a packet; rows of 16 pixels end in a
-/// shorter packet at 9.
+/// 1, 4, 9 and 16 samples a pixel, 32, 8, 3 and 2 pixels a packet; a row of 16 pixels is a
+/// shorter packet at 1, and ends in one at 9.
 #[test]
 fn neighbouring_pixels_traced_as_one_packet_are_the_cores_pixels() {
     let mut scene = common::scene(&common::many_spheres(400));
     scene.camera = scene.camera.resized(16, 12);
     assert!(scene.bvh_nodes() > 0);
     let no_corners = |_: &mut Tracer, _: u32, _: u32| -> DVec3 { unreachable!("grid sampling") };
-    for (spp, group) in [(4, 8), (9, 3), (16, 2)] {
+    for (spp, group) in [(1, 32), (4, 8), (9, 3), (16, 2)] {
         let fast = RenderOptions {
             spp,
             ..RenderOptions::of(&scene)

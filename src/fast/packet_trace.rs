@@ -27,7 +27,7 @@ use crate::shading::local::ambient;
 use crate::trace::{RayKind, Task, Tracer};
 
 /// The most rays shaded together: a pixel's grid samples (a packet of several pixels' rays is
-/// searched at once, then shaded a pixel at a time), or the secondary rays of their surfaces.
+/// searched at once, then shaded `SHADED` at a time), or the secondary rays of their surfaces.
 pub const SHADED: usize = 16;
 
 /// The rays of a packet, each with its place in the tree: a pixel's primary rays, or the tasks
@@ -111,10 +111,10 @@ impl Children {
     }
 }
 
-/// Primary rays, up to `PACKET` (the grid samples of a pixel or of neighbouring pixels), each
-/// pixel's in `SHADED`s: `out[i]` is exactly what `Tracer::radiance` gives ray i, and the
-/// counters of rays and the random numbers drawn are those of tracing the rays one after
-/// another. They are searched as one packet and shaded `SHADED` at a time, in order.
+/// Primary rays, up to `PACKET` (the grid samples of a pixel, or of neighbouring pixels in a
+/// BVH scene): `out[i]` is exactly what `Tracer::radiance` gives ray i, and the counters of
+/// rays and the random numbers drawn are those of tracing the rays one after another. They are
+/// searched as one packet, then shaded `SHADED` at a time, in order.
 pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
     with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, out))
 }

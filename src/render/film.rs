@@ -256,9 +256,10 @@ impl<'s> Film<'s> {
     }
 
     /// How many neighbouring pixels of a row go into one packet of the fast wing: as many as
-    /// their grid samples fill, where a BVH is walked (a packet walks it once for all its
-    /// rays, so the walk's own work is shared by more of them). One wherever the samples are
-    /// traced any other way, or draw random numbers (each pixel draws from its own generator).
+    /// their grid samples fill (32 pixels of one sample each), where a BVH is walked (a packet
+    /// walks it once for all its rays, so the walk's own work is shared by more of them). One
+    /// wherever the samples are traced any other way, or draw random numbers (each pixel draws
+    /// from its own generator).
     pub fn pixels_per_packet(&self) -> usize {
         let n = self.offsets.len();
         match &self.fast {
@@ -266,8 +267,7 @@ impl<'s> Film<'s> {
                 if self.antialias() == Antialias::Grid
                     && self.path.is_none()
                     && !self.scene.features.sampled
-                    && !fast.tests_in_lanes()
-                    && n > 1 =>
+                    && !fast.tests_in_lanes() =>
             {
                 (PACKET / n).max(1)
             }
