@@ -44,11 +44,12 @@ pub const PACKET: usize = 32;
 /// A set of a packet's rays: bit i for ray i.
 pub type RaySet = u32;
 
+const _: () = assert!(PACKET <= RaySet::BITS as usize, "a RaySet names every ray");
+
 /// The four bits of a set of rays for its group of four number `q` (rays 4q to 4q + 3).
 #[inline(always)]
-#[allow(clippy::unnecessary_cast)] // a cast from a RaySet wider than u32 where it is one
 pub fn quad_bits(rays: RaySet, q: usize) -> u32 {
-    (rays >> (4 * q) & 0b1111) as u32
+    rays >> (4 * q) & 0b1111
 }
 
 /// The set of the first `len` rays of a packet (1 ≤ len ≤ `PACKET`).

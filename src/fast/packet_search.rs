@@ -176,7 +176,7 @@ impl FastScene<'_> {
                         let lowered = lane_mask::<V>(within).bitselect(t, limit);
                         limits[4 * q..4 * q + 4].copy_from_slice(&lowered.to_array());
                         let t = t.to_array();
-                        for lane in ones(RaySet::from(within)) {
+                        for lane in ones(within) {
                             hits[lanes[4 * q + lane]] = Some(Hit {
                                 t: t[lane],
                                 object: *object,
@@ -346,7 +346,7 @@ impl FastScene<'_> {
         if let Probe::Sphere { sphere, .. } = probe {
             let found = spheres_in_quads(sphere, quads, reached, t_max, stats);
             for (q, quad) in found.into_iter().enumerate() {
-                blocked |= RaySet::from(quad.within) << (4 * q);
+                blocked |= quad.within << (4 * q);
             }
             return blocked;
         }

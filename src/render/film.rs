@@ -258,8 +258,8 @@ impl<'s> Film<'s> {
     /// How many neighbouring pixels of a row go into one packet of the fast wing: as many as
     /// their grid samples fill (32 pixels of one sample each), where a BVH is walked (a packet
     /// walks it once for all its rays, so the walk's own work is shared by more of them). One
-    /// wherever the samples are traced any other way, or draw random numbers (each pixel draws
-    /// from its own generator).
+    /// wherever the samples are traced any other way, draw random numbers (each pixel draws
+    /// from its own generator), or are more than a packet shades at once.
     pub fn pixels_per_packet(&self) -> usize {
         let n = self.offsets.len();
         match &self.fast {
@@ -267,9 +267,10 @@ impl<'s> Film<'s> {
                 if self.antialias() == Antialias::Grid
                     && self.path.is_none()
                     && !self.scene.features.sampled
-                    && !fast.tests_in_lanes() =>
+                    && !fast.tests_in_lanes()
+                    && n <= SHADED =>
             {
-                (PACKET / n).max(1)
+                PACKET / n
             }
             _ => 1,
         }
@@ -277,10 +278,17 @@ impl<'s> Film<'s> {
 
     /// The pixels (x, y), (x + 1, y), … of a row, one for each of `out`, from their grid
     /// samples traced as one packet: each exactly what `pixel` gives it (the same samples,
-    /// summed in the same order). For up to `pixels_per_packet` pixels.
+    /// summed in the same order). For up to `pixels_per_packet` pixels, where that is more
+    /// than one.
     pub fn grid_pixels(&self, t: &mut Tracer, x: u32, y: u32, out: &mut [DVec3]) {
         let fast = self.fast.as_ref().expect("the fast wing traces packets");
         let n = self.offsets.len();
+        let group = self.pixels_per_packet();
+        assert!(
+            group > 1 && out.len() <= group,
+            "{} pixels of {n} samples do not make one packet",
+            out.len()
+        );
         let mut rays = ArrayVec::<Ray, PACKET>::new();
         for k in 0..out.len() {
             let fx = (x + k as u32) as f64;
