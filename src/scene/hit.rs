@@ -22,7 +22,7 @@ pub struct Hit {
 }
 
 /// The shading record, built only for the hit that is shaded.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct Interaction {
     /// The hit point, world space.
     pub point: DVec3,
@@ -43,10 +43,20 @@ pub struct Interaction {
 }
 
 impl Scene {
-    /// The shading record of a hit. Inlined, with the normal's dispatch, into the tracer: it runs
-    /// once per shaded hit.
+    /// The shading record of a hit.
     #[inline(always)]
     pub fn interaction(&self, ray: &Ray, hit: &Hit) -> Interaction {
+        let mut si = Interaction::default();
+        self.record_interaction(ray, hit, &mut si);
+        si
+    }
+
+    /// The shading record of a hit, written into `si`. Inlined, with the normal's dispatch,
+    /// into the tracer: it runs once per shaded hit. The fast wing keeps a packet's records in
+    /// an array and has each written where it stays: a record built elsewhere and copied in
+    /// is read back, wide, from narrower stores still in flight, which stalls the processor.
+    #[inline(always)]
+    pub fn record_interaction(&self, ray: &Ray, hit: &Hit, si: &mut Interaction) {
         let leaf = &self.leaves[hit.surface.leaf as usize];
         let point = ray.at(hit.t);
         let mut outward = leaf.normal(point, hit.surface.face);
@@ -63,20 +73,18 @@ impl Scene {
         // The one place a surface's colour is looked up: a material without patterns (most)
         // only copies its constants.
         let m = &self.materials[leaf.material as usize];
-        let mut paint = m.paint();
+        // Field by field: a record built whole is assembled elsewhere and copied in.
+        si.point = point;
+        si.normal = normal;
+        si.inside = inside;
+        si.leaf = hit.surface.leaf;
+        si.face = hit.surface.face;
+        si.object = hit.object;
+        si.material = leaf.material;
+        si.paint = m.paint();
         if let Some(patterns) = &m.patterns {
             let at = self.pattern_point(leaf, point, hit.surface.face, patterns.need_uv());
-            paint = patterns.paint(&paint, &at);
-        }
-        Interaction {
-            point,
-            normal,
-            inside,
-            leaf: hit.surface.leaf,
-            face: hit.surface.face,
-            object: hit.object,
-            material: leaf.material,
-            paint,
+            si.paint = patterns.paint(&si.paint, &at);
         }
     }
 

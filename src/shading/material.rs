@@ -74,7 +74,7 @@ pub struct Material {
 
 /// What a pattern may vary, as it is at one point of a surface: the colour O and the
 /// coefficients kd, ks, kr, kt.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Paint {
     /// The colour O at the point.
     pub color: DVec3,
