@@ -161,19 +161,16 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
 ) {
     let scene = t.scene;
     let n = hits.len();
-    // Each record is written in its place (`Scene::record_interaction`); a lane without a
-    // hit is then emptied.
-    let mut shaded = [Some(Interaction::default()); SHADED];
+    let mut shaded: [Option<Interaction>; SHADED] = [None; SHADED];
     for i in 0..n {
         t.count(tasks.kind(i));
-        match (&hits[i], &mut shaded[i]) {
-            (Some(hit), Some(si)) => {
+        match &hits[i] {
+            None => out[i] = scene.background,
+            Some(hit) => {
+                // The record is written in its place (`Scene::record_interaction`).
+                let si = shaded[i].insert(Interaction::default());
                 scene.record_interaction(tasks.ray(i), hit, si);
                 out[i] = ambient(scene.material(si.material), &si.paint, scene.ambient);
-            }
-            (_, slot) => {
-                *slot = None;
-                out[i] = scene.background;
             }
         }
     }
