@@ -267,6 +267,10 @@ fn secondary_packet<L: Lanes + ?Sized>(
     shaded: &[Option<Interaction>],
     out: &mut [DVec3],
 ) {
+    // A packet of matte surfaces (the usual floor) sends nothing on.
+    if !shaded.iter().flatten().any(|si| si.paint.sends_rays()) {
+        return;
+    }
     let mut splits: [Option<(f64, f64)>; SHADED] = [None; SHADED];
     let mut reflected = Children::new();
     let mut transmitted = Children::new();
