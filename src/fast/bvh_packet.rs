@@ -70,17 +70,18 @@ impl<V: F64x4> Packet<V> {
             len,
             hull: None,
         };
-        for (quad, lanes) in p.quads.iter_mut().zip(quads).take(len.div_ceil(4)) {
+        let groups = len.div_ceil(4);
+        let mut inv = [[V::ZERO; 3]; PACKET / 4];
+        for ((quad, lanes), inv) in p.quads.iter_mut().zip(quads).zip(&mut inv).take(groups) {
             for axis in 0..3 {
+                inv[axis] = V::splat(1.0) / lanes.dir[axis];
                 quad.origin[axis] = lanes.origin[axis].to_array();
-                quad.inv_dir[axis] = (V::splat(1.0) / lanes.dir[axis]).to_array();
+                quad.inv_dir[axis] = inv[axis].to_array();
             }
         }
-        p.hull = Hull::new((0..len).map(|i| {
-            let quad = &p.quads[i / 4];
-            let lane = |v: &[[f64; 4]; 3]| [v[0][i % 4], v[1][i % 4], v[2][i % 4]];
-            (lane(&quad.origin), lane(&quad.inv_dir))
-        }));
+        let rays = first_rays(len);
+        p.hull =
+            Hull::of_groups((0..groups).map(|q| (quads[q].origin, inv[q], quad_bits(rays, q))));
         p
     }
 

@@ -77,6 +77,59 @@ impl<V: F64x4> Hull<V> {
             inv_lo = inv_lo.min(inv);
             inv_hi = inv_hi.max(inv);
         }
+        sound.then(|| Hull::of_bounds([origin_lo, origin_hi], [inv_lo, inv_hi], negative))
+    }
+
+    /// `new` for rays laid out four to a group, axis by axis: each group's origins and 1/d
+    /// (lane k for its ray k) and the lanes that hold rays. The same bounds, found four rays at
+    /// a time, and so the same hull.
+    #[inline(always)]
+    pub fn of_groups(groups: impl IntoIterator<Item = ([V; 3], [V; 3], u32)>) -> Option<Hull<V>> {
+        let (inf, neg_inf) = (V::splat(f64::INFINITY), V::splat(f64::NEG_INFINITY));
+        let (mut origin_lo, mut origin_hi) = ([inf; 3], [neg_inf; 3]);
+        let (mut inv_lo, mut inv_hi) = ([inf; 3], [neg_inf; 3]);
+        // By axis (bit a): some ray's 1/d has its sign bit set, or some ray's has not.
+        let (mut negative, mut positive) = (0u32, 0u32);
+        let mut finite = true;
+        for (origin, inv, used) in groups {
+            let unused = lane_mask::<V>(!used);
+            for a in 0..3 {
+                let both = origin[a].is_finite() & inv[a].is_finite();
+                finite &= both.to_bitmask() & used == used;
+                let signs = inv[a].to_bitmask() & used;
+                negative |= ((signs != 0) as u32) << a;
+                positive |= ((signs != used) as u32) << a;
+                // Unused lanes hold ±∞, which neither bound takes.
+                origin_lo[a] = origin_lo[a].fast_min(unused.bitselect(inf, origin[a]));
+                origin_hi[a] = origin_hi[a].fast_max(unused.bitselect(neg_inf, origin[a]));
+                inv_lo[a] = inv_lo[a].fast_min(unused.bitselect(inf, inv[a]));
+                inv_hi[a] = inv_hi[a].fast_max(unused.bitselect(neg_inf, inv[a]));
+            }
+        }
+        if !finite || negative & positive != 0 {
+            return None;
+        }
+        let across = |v: [V; 3], pick: fn(f64, f64) -> f64| {
+            DVec3::from_array(v.map(|v| {
+                let [a, b, c, d] = v.to_array();
+                pick(pick(a, b), pick(c, d))
+            }))
+        };
+        Some(Hull::of_bounds(
+            [across(origin_lo, min), across(origin_hi, max)],
+            [across(inv_lo, min), across(inv_hi, max)],
+            negative,
+        ))
+    }
+
+    /// The hull with these bounds on origins and 1/d, whose 1/d are negative on the axes set in
+    /// `negative` (bit a for axis a).
+    #[inline(always)]
+    fn of_bounds(
+        [origin_lo, origin_hi]: [DVec3; 2],
+        [inv_lo, inv_hi]: [DVec3; 2],
+        negative: u32,
+    ) -> Hull<V> {
         let axes = std::array::from_fn(|a| Axis {
             origin_lo: origin_lo[a],
             origin_hi: origin_hi[a],
@@ -84,14 +137,14 @@ impl<V: F64x4> Hull<V> {
             inv_hi: inv_hi[a],
             negative: negative & (1 << a) != 0,
         });
-        sound.then_some(Hull {
+        Hull {
             axes,
             origin_lo: lanes(origin_lo),
             origin_hi: lanes(origin_hi),
             inv_lo: lanes(inv_lo),
             inv_hi: lanes(inv_hi),
             negative: lane_mask(negative),
-        })
+        }
     }
 
     /// The slab test of box b for every ray at once, each ray searching [t_min, t_max] with
@@ -329,5 +382,86 @@ mod tests {
         ])
         .is_none());
         assert!(Hull::<Wide>::new([(o, [1.0, 2.0, 1.0]), (o, [3.0, 0.5, 1.0])]).is_some());
+    }
+
+    /// Every number of a hull, to the bit (its sign mask is NaN where set).
+    fn bits(h: Hull<Wide>) -> Vec<u64> {
+        let lanes = [h.origin_lo, h.origin_hi, h.inv_lo, h.inv_hi, h.negative];
+        let axes = h.axes.iter().flat_map(|a| {
+            [
+                a.origin_lo,
+                a.origin_hi,
+                a.inv_lo,
+                a.inv_hi,
+                a.negative as u8 as f64,
+            ]
+        });
+        lanes
+            .iter()
+            .flat_map(|v| v.to_array())
+            .chain(axes)
+            .map(f64::to_bits)
+            .collect()
+    }
+
+    /// The hull of rays laid out four to a group is the hull of the same rays one by one, for
+    /// packets of 1 to 32 rays (the last group partly filled, its spare lanes holding values
+    /// that would widen the bounds), with the rays' origins and 1/d of one sign or of both, an
+    /// infinite 1/d, a NaN origin, and a 1/d of −0.
+    #[test]
+    fn a_hull_built_four_rays_at_a_time_is_the_hull_built_ray_by_ray() {
+        let mut rng = Rng::for_pixel(12, 0, 0);
+        let mut u = move || rng.uniform();
+        let mut built = 0;
+        for case in 0..3000 {
+            let len = 1 + case % 32;
+            let sign = if case % 3 == 0 { -1.0 } else { 1.0 };
+            let mut rays: Vec<([f64; 3], [f64; 3])> = (0..len)
+                .map(|_| {
+                    let o = [u() - 0.5, 10.0 * u(), -5.0 + u()];
+                    let inv = [sign * (0.5 + u()), 1.0 + u(), sign * (1.0 + 3.0 * u())];
+                    (o, inv)
+                })
+                .collect();
+            let i = (case * 7) % len;
+            match case % 11 {
+                1 => rays[i].1[0] = -rays[i].1[0],
+                2 => rays[i].1[1] = f64::INFINITY,
+                3 => rays[i].0[2] = f64::NAN,
+                4 => rays[i].1[2] = -0.0,
+                _ => {}
+            }
+            // Spare lanes: far outside the rays' bounds, of the other sign, or not finite.
+            let spare = [1e300, -1e300, f64::NAN, f64::INFINITY][case % 4];
+            let groups: Vec<([Wide; 3], [Wide; 3], u32)> = rays
+                .chunks(4)
+                .map(|group| {
+                    let lane = |k: usize, axis: usize, inv: bool| {
+                        group
+                            .get(k)
+                            .map_or(spare, |(o, d)| if inv { d } else { o }[axis])
+                    };
+                    let axis = |axis: usize, inv: bool| {
+                        Wide::new(std::array::from_fn(|k| lane(k, axis, inv)))
+                    };
+                    let used = (1u32 << group.len()) - 1;
+                    (
+                        std::array::from_fn(|a| axis(a, false)),
+                        std::array::from_fn(|a| axis(a, true)),
+                        used,
+                    )
+                })
+                .collect();
+            let one_by_one = Hull::<Wide>::new(rays.iter().copied());
+            let four_at_a_time = Hull::<Wide>::of_groups(groups);
+            assert_eq!(
+                four_at_a_time.map(bits),
+                one_by_one.map(bits),
+                "case {case}"
+            );
+            built += one_by_one.is_some() as usize;
+        }
+        // Most packets have a hull; some have none.
+        assert!((1500..3000).contains(&built), "{built}");
     }
 }
