@@ -72,7 +72,9 @@ impl<V: F64x4> Packet<V> {
         };
         let groups = len.div_ceil(4);
         let mut inv = [[V::ZERO; 3]; PACKET / 4];
+        // A plain loop over the axes: closures here would be compiled outside the lanes' copy.
         for ((quad, lanes), inv) in p.quads.iter_mut().zip(quads).zip(&mut inv).take(groups) {
+            #[allow(clippy::needless_range_loop)]
             for axis in 0..3 {
                 inv[axis] = V::splat(1.0) / lanes.dir[axis];
                 quad.origin[axis] = lanes.origin[axis].to_array();
