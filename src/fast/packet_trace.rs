@@ -184,7 +184,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
         }
     }
     let surfaces = in_lanes.then(|| SurfaceLanes::new(scene, &shaded, &view, n));
-    let hit = (0..n).fold(0u32, |bits, i| bits | (shaded[i].is_some() as u32) << i);
+    let surfaces_hit = (0..n).fold(0u32, |bits, i| bits | (shaded[i].is_some() as u32) << i);
     for (k, light) in scene.lights.iter().enumerate() {
         let single = light.shadow_rays() == 1 && t.options.shadows;
         let mut alone = u32::MAX;
@@ -195,7 +195,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
             }
         }
         // The surfaces left to `light_share`, one by one (usually none where the lanes lit).
-        if alone & hit == 0 {
+        if alone & surfaces_hit == 0 {
             continue;
         }
         let mut terms = [DVec3::ZERO; SHADED];

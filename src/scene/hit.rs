@@ -73,7 +73,8 @@ impl Scene {
         // The one place a surface's colour is looked up: a material without patterns (most)
         // only copies its constants.
         let m = &self.materials[leaf.material as usize];
-        // Field by field: a record built whole is assembled elsewhere and copied in.
+        // Field by field, into `si`: a record built whole would be assembled in a stack slot
+        // and copied in.
         si.point = point;
         si.normal = normal;
         si.inside = inside;
