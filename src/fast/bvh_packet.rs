@@ -71,19 +71,21 @@ impl<V: F64x4> Packet<V> {
             hull: None,
         };
         let groups = len.div_ceil(4);
-        let mut inv = [[V::ZERO; 3]; PACKET / 4];
-        // A plain loop over the axes: closures here would be compiled outside the lanes' copy.
-        for ((quad, lanes), inv) in p.quads.iter_mut().zip(quads).zip(&mut inv).take(groups) {
-            #[allow(clippy::needless_range_loop)]
+        for (quad, lanes) in p.quads.iter_mut().zip(quads).take(groups) {
             for axis in 0..3 {
-                inv[axis] = V::splat(1.0) / lanes.dir[axis];
                 quad.origin[axis] = lanes.origin[axis].to_array();
-                quad.inv_dir[axis] = inv[axis].to_array();
+                quad.inv_dir[axis] = (V::splat(1.0) / lanes.dir[axis]).to_array();
             }
         }
         let rays = first_rays(len);
-        p.hull =
-            Hull::of_groups((0..groups).map(|q| (quads[q].origin, inv[q], quad_bits(rays, q))));
+        p.hull = Hull::of_groups((0..groups).map(|q| {
+            let [x, y, z] = p.quads[q].inv_dir;
+            (
+                quads[q].origin,
+                [V::new(x), V::new(y), V::new(z)],
+                quad_bits(rays, q),
+            )
+        }));
         p
     }
 
