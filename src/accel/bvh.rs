@@ -104,7 +104,7 @@ impl Bvh {
     }
 
     /// `box_cost`: the SAH's cost of one box test relative to one item's test. Subtrees over
-    /// `parallel_items` items or more build their halves on two threads.
+    /// `parallel_items` items or more, near the root, build their halves on two threads.
     fn build_with(boxes: &[Aabb], box_cost: f64, parallel_items: usize) -> Bvh {
         let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
         let mut nodes = Vec::with_capacity(2 * boxes.len());
@@ -280,9 +280,12 @@ struct Builder<'a> {
     parallel_items: usize,
 }
 
-/// A subtree over at least this many items builds its right half on another thread, when
-/// there is one (below it, moving the half's nodes in would cost more than the thread saves).
-const PARALLEL_ITEMS: usize = 1 << 16;
+/// A subtree over at least this many items, in the tree's top `PARALLEL_DEPTH` levels, builds
+/// its right half on another thread when there is one. Below that size a thread saves less than
+/// it costs to start; deeper down the threads are all busy already, and every level built apart
+/// moves its halves' nodes once more (for a million triangles, more time than it saves).
+const PARALLEL_ITEMS: usize = 1 << 12;
+const PARALLEL_DEPTH: usize = 3;
 
 impl Builder<'_> {
     /// Appends the subtree over `items` to `nodes` in depth-first order and returns its root's
@@ -333,7 +336,8 @@ impl Builder<'_> {
         nodes[index].count = 0;
         nodes[index].axis = axis as u8;
         let (left, right) = items.split_at_mut(mid);
-        let right_index = if n >= self.parallel_items && rayon::current_num_threads() > 1 {
+        let parallel = n >= self.parallel_items && depth < PARALLEL_DEPTH;
+        let right_index = if parallel && rayon::current_num_threads() > 1 {
             // The same tree as one thread builds: the right subtree on its own, then moved in
             // behind the left one with its offsets shifted.
             let ((), subtree) = rayon::join(

@@ -43,14 +43,15 @@ pub fn of(
     let mut builder = Builder {
         materials: material_index,
         patterned: materials.iter().map(|m| m.patterns.is_some()).collect(),
-        leaves: Vec::new(),
+        // A leaf an object at least: one allocation of the usual size, not a doubling series.
+        leaves: Vec::with_capacity(file.objects.len()),
         limits,
         base: &base,
         triangles: 0,
         warnings,
     };
-    let mut objects = Vec::new();
-    let mut names = HashSet::new();
+    let mut objects = Vec::with_capacity(file.objects.len());
+    let mut names = HashSet::with_capacity(file.objects.len());
     for (i, o) in file.objects.iter().enumerate() {
         let name = o
             .value
