@@ -179,31 +179,16 @@ fn budget_pixels(
         )));
     }
     let bytes = pixels.saturating_mul(bytes_per_pixel);
-    if memory_can_hold(bytes) {
-        Ok(())
-    } else {
-        Err(Failure(format!(
-            "{what} of {pixels} pixels needs {} of memory, more than can be had",
-            crate::files::bytes(bytes)
-        )))
-    }
-}
-
-/// Whether `bytes` can be had at once: no more than the machine's memory and swap together,
-/// which is what Linux's default overcommit lets one allocation have. The allocator is not
-/// asked: mimalloc reserves address space past that check, and the render would be killed for
-/// want of memory halfway instead of refused at once.
-fn memory_can_hold(bytes: u64) -> bool {
-    #[cfg(all(target_os = "linux", target_pointer_width = "64"))]
-    {
-        // SAFETY: `sysinfo` writes only into the struct it is given.
-        let mut info: libc::sysinfo = unsafe { std::mem::zeroed() };
-        if unsafe { libc::sysinfo(&mut info) } == 0 {
-            let total = info.totalram.saturating_add(info.totalswap);
-            return bytes <= total.saturating_mul(u64::from(info.mem_unit.max(1)));
-        }
-    }
-    usize::try_from(bytes).is_ok_and(|n| Vec::<u8>::new().try_reserve_exact(n).is_ok())
+    let mut probe: Vec<u8> = Vec::new();
+    usize::try_from(bytes)
+        .ok()
+        .and_then(|n| probe.try_reserve_exact(n).ok())
+        .ok_or_else(|| {
+            Failure(format!(
+                "{what} of {pixels} pixels needs {} of memory, more than can be had",
+                crate::files::bytes(bytes)
+            ))
+        })
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
