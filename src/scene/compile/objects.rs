@@ -43,7 +43,8 @@ pub fn of(
     let mut builder = Builder {
         materials: material_index,
         patterned: materials.iter().map(|m| m.patterns.is_some()).collect(),
-        // A leaf an object at least: one allocation of the usual size, not a doubling series.
+        // Every object has at least one leaf: one allocation of the usual size, not a series of
+        // doublings.
         leaves: Vec::with_capacity(file.objects.len()),
         limits,
         base: &base,
