@@ -285,6 +285,8 @@ struct Builder<'a> {
 /// it costs to start; deeper down the threads are all busy already, and every level built apart
 /// moves its halves' nodes once more (for a million triangles, more time than it saves).
 const PARALLEL_ITEMS: usize = 1 << 12;
+/// The levels from the root whose subtrees may build their halves on two threads: up to eight
+/// builds at once, enough to keep the threads busy while one half finishes before the other.
 const PARALLEL_DEPTH: usize = 3;
 
 impl Builder<'_> {
