@@ -452,7 +452,7 @@ pub enum TransformStep {
 
 /// An object, a CSG child or a group member (where `name` and `material` are optional).
 /// Exactly one shape key must be present; `compile` checks that.
-#[derive(Clone, Debug, Deserialize)]
+#[derive(Clone, Debug, Default, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectSpec {
     pub name: Option<String>,

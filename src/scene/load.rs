@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use serde_saphyr::Spanned;
 
 use super::error::{self, SceneError};
-use super::{compile, format, split, Limits, Scene};
+use super::{compile, format, simple_items, split, Limits, Scene};
 use crate::files::ReadError;
 
 /// Parser options: strict about what the scene format is not (tags, non-finite numbers),
@@ -123,10 +123,48 @@ pub(super) fn parse_in_pieces(
     file: &str,
     pieces: usize,
 ) -> Result<format::SceneFile, SceneError> {
+    if let Some(parsed) = parse_simple(text, file) {
+        return parsed;
+    }
     match split::split(text, pieces) {
         Some(split) => parse_split(split, text.len(), file).or_else(|_| from_yaml(text, file)),
         None => from_yaml(text, file),
     }
+}
+
+/// A large file whose objects after the first are simple items (`simple_items`): the items
+/// read directly while the parser reads the rest of the file, the other items blanked. None
+/// where some item is not simple; the one-piece parse's error where the rest does not parse.
+fn parse_simple(text: &str, file: &str) -> Option<Result<format::SceneFile, SceneError>> {
+    if text.len() < split::MIN_SPLIT_BYTES {
+        return None;
+    }
+    let list = split::object_list(text)?;
+    let &second = list.items.get(1)?;
+    // The file without the items after the first (the lines after the list kept where they
+    // are, if there are any).
+    let after = &text[list.end..];
+    let head = if after.lines().all(|l| split::content(l).trim().is_empty()) {
+        text[..second].to_string()
+    } else {
+        format!(
+            "{}{}{after}",
+            &text[..second],
+            split::blank(&text[second..list.end])?
+        )
+    };
+    let (head, objects) = rayon::join(
+        || from_yaml_sized::<format::SceneFile>(&head, text.len(), file),
+        || simple_items::read(text, &list, 1),
+    );
+    let objects = objects?;
+    Some(match head {
+        Ok(mut scene) => {
+            scene.objects.extend(objects);
+            Ok(scene)
+        }
+        Err(_) => from_yaml(text, file),
+    })
 }
 
 /// Parses a file's pieces in parallel and joins their objects in order.

@@ -19,6 +19,7 @@ mod objects;
 mod search;
 mod segments;
 mod settings;
+mod simple_items;
 mod split;
 
 use std::path::PathBuf;

@@ -68,35 +68,44 @@ fn cut(text: &str, pieces: usize) -> Option<Split> {
     let head = format!(
         "{}{}{}",
         &text[..cuts[0]],
-        blank(&text[cuts[0]..list.end]),
+        blank(&text[cuts[0]..list.end])?,
         &text[list.end..]
     );
     let ends = cuts.iter().skip(1).copied().chain([list.end]);
     let pieces = cuts
         .iter()
         .zip(ends)
-        .map(|(&from, to)| format!("{}{}", blank(&text[..from]), &text[from..to]))
-        .collect();
+        .map(|(&from, to)| Some(format!("{}{}", blank(&text[..from])?, &text[from..to])))
+        .collect::<Option<_>>()?;
     Some(Split { head, pieces })
 }
 
-/// Every character but line breaks replaced by a space (byte for byte, so offsets hold).
-fn blank(text: &str) -> String {
-    let bytes = text
-        .bytes()
-        .map(|b| if b == b'\n' { b } else { b' ' })
-        .collect();
-    String::from_utf8(bytes).expect("spaces and line breaks are UTF-8")
+/// Whole lines of text blanked, keeping every line's characters and bytes (positions count
+/// both): an ASCII line becomes spaces, a line with other characters a comment of itself
+/// (`#` for its first byte). None where a line starts with a character beyond ASCII.
+pub(super) fn blank(text: &str) -> Option<String> {
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        if line.is_ascii() {
+            out.extend(line.bytes().map(|b| if b == b'\n' { '\n' } else { ' ' }));
+        } else if line.as_bytes()[0].is_ascii() && !line.starts_with('\n') {
+            out.push('#');
+            out.push_str(&line[1..]);
+        } else {
+            return None;
+        }
+    }
+    Some(out)
 }
 
 /// Where the top-level `objects:` block list's items start, and where the list ends.
-struct ObjectList {
-    items: Vec<usize>,
-    end: usize,
+pub(super) struct ObjectList {
+    pub items: Vec<usize>,
+    pub end: usize,
 }
 
 /// Finds the block list under a top-level `objects:` key, if the file is plain enough to cut.
-fn object_list(text: &str) -> Option<ObjectList> {
+pub(super) fn object_list(text: &str) -> Option<ObjectList> {
     // Flow collections may span lines; a line inside one is neither the key nor an item.
     let flow = super::flow::scan(text);
     let open_at = |at: usize| {
@@ -152,7 +161,7 @@ fn object_list(text: &str) -> Option<ObjectList> {
 }
 
 /// The file's lines with the byte offset each starts at (line breaks kept).
-fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
+pub(super) fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
     text.split_inclusive('\n').scan(0, |at, line| {
         let start = *at;
         *at += line.len();
@@ -163,7 +172,7 @@ fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
 /// A line without its comment and line break. Before the first quote in the file (a cut file
 /// has none up to the end of its list), `#` starts a comment at the start of a line or after
 /// a space.
-fn content(line: &str) -> &str {
+pub(super) fn content(line: &str) -> &str {
     let line = line.trim_end_matches(['\n', '\r']);
     let bytes = line.as_bytes();
     let comment = (0..bytes.len()).find(|&i| bytes[i] == b'#' && (i == 0 || bytes[i - 1] == b' '));
@@ -203,7 +212,7 @@ mod tests {
             // Comments, one of them looking like an item, and blank lines.
             4 => format!(
                 "{pad}# - {{ sphere: {{ center: [0, 0, 0], radius: 1 }} }}\n\n\
-                 {pad}- {{ cone: {{ apex: [0, 1, 0], base: [0, 0, 0], radius: {x} }} }} # a#b\n\
+                 {pad}- {{ cone: {{ apex: [0, 1, 0], base: [0, 0, 0], radius: {x} }} }} # a#b, ×\n\
                  # a comment at the margin\n   \n"
             ),
             5 => format!("{pad}-\n{pad}  triangle: [[0, 0, 0], [1, 0, {x}], [0, 1, 0]]\n"),
@@ -222,7 +231,7 @@ mod tests {
     /// A scene file: settings, the object list (indented by `pad`), perhaps settings after it.
     fn scene(styles: &[u8], pad: &str, after: bool, crlf: bool) -> String {
         let mut text = String::from(
-            "# a scene\ncamera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\n\
+            "# a scene — façade\ncamera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\n\
              materials:\n  m: { color: [1, 0, 0], kd: 0.8 }\nobjects:   # the list\n",
         );
         for (i, &style) in styles.iter().enumerate() {
@@ -266,8 +275,13 @@ mod tests {
         assert_eq!(split.pieces.len(), 2);
         assert_eq!(split.head.len(), text.len());
         for piece in &split.pieces {
-            let from = piece.len() - piece.trim_start().len();
-            assert!(piece[..from].bytes().all(|b| b == b' ' || b == b'\n'));
+            // Blanked: spaces, and lines beyond ASCII as comments of themselves.
+            let from = piece.find("\n  - ").expect("an item") + 3;
+            for line in piece[..from].lines() {
+                assert!(line.starts_with('#') || line.bytes().all(|b| b == b' '));
+            }
+            let chars = |s: &str| s.chars().count();
+            assert_eq!(chars(&piece[..from]), chars(&text[..from]));
             assert_eq!(&piece[from..], &text[from..piece.len()]);
             assert!(
                 text[..from].ends_with("\n  "),
@@ -298,7 +312,7 @@ mod tests {
             let text = format!("{list}{spoiler}");
             assert!(cut(&text, 2).is_none(), "{spoiler}");
         }
-        let quoted = list.replace("# a scene\n", "integrator: 'whitted'\n");
+        let quoted = list.replace("# a scene — façade\n", "integrator: 'whitted'\n");
         assert!(cut(&quoted, 2).is_none(), "a string before the list");
         let flow = list.replace("objects:   # the list\n", "objects: [\n") + "]\n";
         assert!(cut(&flow, 2).is_none(), "a flow list");
