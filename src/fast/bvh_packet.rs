@@ -59,34 +59,44 @@ pub fn first_rays(len: usize) -> RaySet {
 }
 
 impl<V: F64x4> Packet<V> {
-    /// The packet of `len` rays from the groups of four the searches lay them out in for the
-    /// objects' tests (`RayLanes`): 1/d four lanes at a time, the same division as
-    /// `DVec3::recip` in each lane.
+    /// A packet of `len` rays, to be laid out where it stays (`lay_out`): a packet returned
+    /// whole would be copied on (1.9 kB), and the copy's wide loads wait for the narrower
+    /// stores just made.
     #[inline(always)]
-    fn new(quads: &[RayLanes<V>; PACKET / 4], len: usize) -> Packet<V> {
+    fn empty(len: usize) -> Packet<V> {
         assert!((1..=PACKET).contains(&len), "1 to {PACKET} rays per packet");
-        let mut p = Packet {
+        Packet {
             quads: [Quad::default(); PACKET / 4],
             len,
             hull: None,
-        };
-        let groups = len.div_ceil(4);
-        for (quad, lanes) in p.quads.iter_mut().zip(quads).take(groups) {
+        }
+    }
+
+    /// The packet's rays from the groups of four the searches lay them out in for the
+    /// objects' tests (`RayLanes`): 1/d four lanes at a time, the same division as
+    /// `DVec3::recip` in each lane.
+    #[inline(always)]
+    fn lay_out(&mut self, quads: &[RayLanes<V>; PACKET / 4]) {
+        let groups = self.len.div_ceil(4);
+        for (quad, lanes) in self.quads.iter_mut().zip(quads).take(groups) {
             for axis in 0..3 {
                 quad.origin[axis] = lanes.origin[axis].to_array();
                 quad.inv_dir[axis] = (V::splat(1.0) / lanes.dir[axis]).to_array();
             }
         }
-        let rays = first_rays(len);
-        p.hull = Hull::of_groups((0..groups).map(|q| {
-            let [x, y, z] = p.quads[q].inv_dir;
-            (
-                quads[q].origin,
-                [V::new(x), V::new(y), V::new(z)],
-                quad_bits(rays, q),
-            )
-        }));
-        p
+        let rays = first_rays(self.len);
+        self.hull = Hull::of_groups(
+            groups,
+            #[inline(always)]
+            |q| {
+                let [x, y, z] = self.quads[q].inv_dir;
+                (
+                    quads[q].origin,
+                    [V::new(x), V::new(y), V::new(z)],
+                    quad_bits(rays, q),
+                )
+            },
+        );
     }
 
     /// Bit i set if ray i meets the box within [t_min, t_max[i]], for the rays `active` names:
@@ -390,7 +400,8 @@ fn walk_packet<V: F64x4>(
     // The range of the rays' t_max, narrowed again after every leaf (a closer hit).
     let used = lane_masks::<V>(len);
     let mut reach = reach_of::<V>(t_max, &used);
-    let packet = Packet::<V>::new(quads, len);
+    let mut packet = Packet::<V>::empty(len);
+    packet.lay_out(quads);
     let mut walk = Walk {
         bvh,
         packet: &packet,

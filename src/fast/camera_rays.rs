@@ -6,21 +6,26 @@
 use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 
+use super::bvh_packet::PACKET;
 use super::packet_trace::SHADED;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
 use crate::scene::{Camera, Projection};
 
 /// The rays through (fx + o.x, fy + o.y) for each offset o (at most `SHADED`), in order:
-/// `camera.ray` for each.
-pub fn primary_rays(camera: &Camera, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, SHADED> {
+/// `camera.ray` for each, added to `rays` (written where they stay: rays returned whole would
+/// be copied on).
+pub fn primary_rays(
+    camera: &Camera,
+    fx: f64,
+    fy: f64,
+    offsets: &[DVec2],
+    rays: &mut ArrayVec<Ray, PACKET>,
+) {
     assert!(offsets.len() <= SHADED, "at most {SHADED} rays at once");
     match Frame::of(camera) {
-        Some(frame) => with_lanes!(V => frame.rays::<V>(fx, fy, offsets)),
-        None => offsets
-            .iter()
-            .map(|o| camera.ray(fx + o.x, fy + o.y))
-            .collect(),
+        Some(frame) => with_lanes!(V => frame.rays::<V>(fx, fy, offsets, rays)),
+        None => rays.extend(offsets.iter().map(|o| camera.ray(fx + o.x, fy + o.y))),
     }
 }
 
@@ -58,8 +63,13 @@ impl Frame {
     }
 
     #[inline(always)]
-    fn rays<V: F64x4>(&self, fx: f64, fy: f64, offsets: &[DVec2]) -> ArrayVec<Ray, SHADED> {
-        let mut rays = ArrayVec::new();
+    fn rays<V: F64x4>(
+        &self,
+        fx: f64,
+        fy: f64,
+        offsets: &[DVec2],
+        rays: &mut ArrayVec<Ray, PACKET>,
+    ) {
         for group in offsets.chunks(4) {
             // Unused lanes repeat the group's first offset; their rays are not kept.
             let at = |k: usize| group.get(k).unwrap_or(&group[0]);
@@ -72,7 +82,6 @@ impl Frame {
                 rays.push(Ray::raw(self.eye, DVec3::new(x[k], y[k], z[k])));
             }
         }
-        rays
     }
 
     /// The unit directions toward image coordinates (sx, sy), axis by axis.
@@ -140,13 +149,13 @@ mod tests {
                     })
                     .collect()
             };
-            assert_eq!(
-                bits(&primary_rays(&camera, fx, fy, &offsets)),
-                bits(&expected),
-                "case {case}"
-            );
+            let mut rays = ArrayVec::new();
+            primary_rays(&camera, fx, fy, &offsets, &mut rays);
+            assert_eq!(bits(&rays), bits(&expected), "case {case}");
             let frame = Frame::of(&camera).expect("look_at makes a look-at camera");
-            assert_eq!(bits(&frame.rays::<Wide>(fx, fy, &offsets)), bits(&expected));
+            let mut rays = ArrayVec::new();
+            frame.rays::<Wide>(fx, fy, &offsets, &mut rays);
+            assert_eq!(bits(&rays), bits(&expected));
         }
     }
 }

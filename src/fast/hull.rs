@@ -80,18 +80,23 @@ impl<V: F64x4> Hull<V> {
         sound.then(|| Hull::of_bounds([origin_lo, origin_hi], [inv_lo, inv_hi], negative))
     }
 
-    /// `new` for rays laid out four to a group, axis by axis: each group's origins and 1/d
-    /// (lane k for its ray k) and the lanes that hold rays. The same bounds, found four rays at
-    /// a time, and so the same hull.
+    /// `new` for rays laid out four to a group, axis by axis: `group(q)` for each of the
+    /// `count` groups, its origins and 1/d (lane k for its ray k) and the lanes that hold
+    /// rays. The same bounds, found four rays at a time, and so the same hull. (Groups asked
+    /// for one by one, not iterated: an iterator's items, ~200 bytes each, are copied on.)
     #[inline(always)]
-    pub fn of_groups(groups: impl IntoIterator<Item = ([V; 3], [V; 3], u32)>) -> Option<Hull<V>> {
+    pub fn of_groups(
+        count: usize,
+        group: impl Fn(usize) -> ([V; 3], [V; 3], u32),
+    ) -> Option<Hull<V>> {
         let (inf, neg_inf) = (V::splat(f64::INFINITY), V::splat(f64::NEG_INFINITY));
         let (mut origin_lo, mut origin_hi) = ([inf; 3], [neg_inf; 3]);
         let (mut inv_lo, mut inv_hi) = ([inf; 3], [neg_inf; 3]);
         // By axis (bit a): some ray's 1/d has its sign bit set, or some ray's has not.
         let (mut negative, mut positive) = (0u32, 0u32);
         let mut finite = true;
-        for (origin, inv, used) in groups {
+        for q in 0..count {
+            let (origin, inv, used) = group(q);
             let unused = lane_mask::<V>(!used);
             for a in 0..3 {
                 let both = origin[a].is_finite() & inv[a].is_finite();
@@ -453,7 +458,7 @@ mod tests {
                 })
                 .collect();
             let one_by_one = Hull::<Wide>::new(rays.iter().copied());
-            let four_at_a_time = Hull::<Wide>::of_groups(groups);
+            let four_at_a_time = Hull::<Wide>::of_groups(groups.len(), |q| groups[q]);
             assert_eq!(
                 four_at_a_time.map(bits),
                 one_by_one.map(bits),

@@ -53,15 +53,15 @@ pub(super) struct SurfaceLanes<'a> {
 }
 
 impl<'a> SurfaceLanes<'a> {
-    /// The first `n` surfaces of a packet, found by rays whose v = −d is `view`.
+    /// The surfaces of a packet, found by rays whose v = −d is `view`, none chosen yet
+    /// (`choose` chooses them where they stay: returned whole, they would be copied on, and
+    /// the copy's wide loads would wait for the narrower stores just made).
     #[inline(always)]
     pub fn new(
-        scene: &Scene,
         shaded: &'a [Option<Interaction>; SHADED],
         view: &'a [DVec3; SHADED],
-        n: usize,
     ) -> SurfaceLanes<'a> {
-        let mut lanes = SurfaceLanes {
+        SurfaceLanes {
             shaded,
             view,
             chosen: [0; SHADED],
@@ -69,8 +69,13 @@ impl<'a> SurfaceLanes<'a> {
             exponent: [0; SHADED],
             blinn: 0,
             alone: 0,
-        };
-        for (i, si) in shaded[..n].iter().enumerate() {
+        }
+    }
+
+    /// Chooses among the first `n` surfaces those lit in lanes.
+    #[inline(always)]
+    pub fn choose(&mut self, scene: &Scene, n: usize) {
+        for (i, si) in self.shaded[..n].iter().enumerate() {
             let Some(si) = si else { continue };
             let m = scene.material(si.material);
             let exponent = if m.transmitted_highlight {
@@ -83,16 +88,15 @@ impl<'a> SurfaceLanes<'a> {
             };
             match exponent {
                 Some(e) => {
-                    (lanes.chosen[lanes.count], lanes.exponent[i]) = (i, e);
-                    lanes.count += 1;
+                    (self.chosen[self.count], self.exponent[i]) = (i, e);
+                    self.count += 1;
                     if m.highlight == Highlight::Blinn {
-                        lanes.blinn |= 1 << i;
+                        self.blinn |= 1 << i;
                     }
                 }
-                None => lanes.alone |= 1 << i,
+                None => self.alone |= 1 << i,
             }
         }
-        lanes
     }
 
     /// Light k (a light `lanes_light` accepts: at `position`, of `intensity`) at the chosen

@@ -183,7 +183,10 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
             *v = -tasks.ray(i).dir;
         }
     }
-    let surfaces = in_lanes.then(|| SurfaceLanes::new(scene, &shaded, &view, n));
+    let mut surfaces = in_lanes.then(|| SurfaceLanes::new(&shaded, &view));
+    if let Some(surfaces) = &mut surfaces {
+        surfaces.choose(scene, n);
+    }
     let surfaces_hit = (0..n).fold(0u32, |bits, i| bits | (shaded[i].is_some() as u32) << i);
     for (k, light) in scene.lights.iter().enumerate() {
         let single = light.shadow_rays() == 1 && t.options.shadows;

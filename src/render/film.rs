@@ -246,7 +246,8 @@ impl<'s> Film<'s> {
         visit: &mut dyn FnMut(Sample),
     ) {
         for chunk in self.offsets.chunks(SHADED) {
-            let rays = primary_rays(&self.camera, fx, fy, chunk);
+            let mut rays = ArrayVec::new();
+            primary_rays(&self.camera, fx, fy, chunk, &mut rays);
             let mut values = [DVec3::ZERO; SHADED];
             trace_packet(t, fast, &rays, &mut values[..rays.len()]);
             for (o, value) in chunk.iter().zip(values) {
@@ -292,7 +293,7 @@ impl<'s> Film<'s> {
         let mut rays = ArrayVec::<Ray, PACKET>::new();
         for k in 0..out.len() {
             let fx = (x + k as u32) as f64;
-            rays.extend(primary_rays(&self.camera, fx, y as f64, &self.offsets));
+            primary_rays(&self.camera, fx, y as f64, &self.offsets, &mut rays);
         }
         let mut values = [DVec3::ZERO; PACKET];
         trace_packet(t, fast, &rays, &mut values[..rays.len()]);
