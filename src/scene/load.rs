@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use rayon::prelude::*;
-use serde_saphyr::Spanned;
+use serde_saphyr::{Location, Spanned};
 
 use super::error::{self, SceneError};
 use super::{compile, format, simple_items, split, Limits, Scene};
@@ -153,14 +153,23 @@ fn parse_simple(text: &str, file: &str) -> Option<Result<format::SceneFile, Scen
             split::blank(&text[second..list.end])?
         )
     };
-    let (head, objects) = rayon::join(
+    // The objects' list is filled where it stays, the first item's slot kept for the head's.
+    let mut objects = Vec::with_capacity(list.items.len());
+    let (head, simple) = rayon::join(
         || from_yaml_sized::<format::SceneFile>(&head, text.len(), file),
-        || simple_items::read(text, &list, 1),
+        || {
+            let slot = Spanned::new(Default::default(), Location::UNKNOWN, Location::UNKNOWN);
+            objects.push(slot);
+            simple_items::read(text, &list, 1, &mut objects)
+        },
     );
-    let objects = objects?;
+    if !simple {
+        return None;
+    }
     Some(match head {
         Ok(mut scene) => {
-            scene.objects.extend(objects);
+            objects[0] = scene.objects.pop().expect("the head holds the first item");
+            scene.objects = objects;
             Ok(scene)
         }
         Err(_) => from_yaml(text, file),
