@@ -194,42 +194,40 @@ impl<'a> Cursor<'a> {
     }
 
     fn sphere(&mut self) -> Option<SphereSpec> {
-        let (mut center, mut radius) = (None, None);
-        self.map(|c, key| match key {
-            "center" => once(&mut center, c.vector().map(|v| v.value)),
-            "radius" => once(&mut radius, c.number()),
-            _ => None,
-        })?;
-        Some(SphereSpec {
-            center: center?,
-            radius: radius?,
-        })
+        let (center, radius) =
+            self.pair(("center", Cursor::plain_vector), ("radius", Cursor::number))?;
+        Some(SphereSpec { center, radius })
     }
 
     fn plane(&mut self) -> Option<PlaneSpec> {
-        let (mut point, mut normal) = (None, None);
-        self.map(|c, key| match key {
-            "point" => once(&mut point, c.vector().map(|v| v.value)),
-            "normal" => once(&mut normal, c.vector()),
-            _ => None,
-        })?;
-        Some(PlaneSpec {
-            point: point?,
-            normal: normal?,
-        })
+        let (point, normal) =
+            self.pair(("point", Cursor::plain_vector), ("normal", Cursor::vector))?;
+        Some(PlaneSpec { point, normal })
     }
 
     fn aabox(&mut self) -> Option<BoxSpec> {
-        let (mut min, mut max) = (None, None);
+        let (min, max) = self.pair(("min", Cursor::vector), ("max", Cursor::plain_vector))?;
+        Some(BoxSpec { min, max })
+    }
+
+    /// `{ a: …, b: … }` with the keys in either order, each once, both there.
+    fn pair<A, B>(
+        &mut self,
+        (key_a, read_a): (&str, fn(&mut Self) -> Option<A>),
+        (key_b, read_b): (&str, fn(&mut Self) -> Option<B>),
+    ) -> Option<(A, B)> {
+        let (mut a, mut b) = (None, None);
         self.map(|c, key| match key {
-            "min" => once(&mut min, c.vector()),
-            "max" => once(&mut max, c.vector().map(|v| v.value)),
+            _ if key == key_a => once(&mut a, read_a(c)),
+            _ if key == key_b => once(&mut b, read_b(c)),
             _ => None,
         })?;
-        Some(BoxSpec {
-            min: min?,
-            max: max?,
-        })
+        Some((a?, b?))
+    }
+
+    /// `[x, y, z]`, without its position.
+    fn plain_vector(&mut self) -> Option<V3> {
+        self.vector().map(|v| v.value)
     }
 
     /// `[x, y, z]`.
