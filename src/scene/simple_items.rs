@@ -4,7 +4,7 @@
 //!   - { sphere: { center: [0.3794, 2.4523, 2.2536], radius: 0.12 }, material: m20 }
 //! ```
 //!
-//! Items of that shape are read here directly, about ten times faster than the YAML parser
+//! Items of that shape are read here directly, about eight times faster than the YAML parser
 //! reads them, into the very values (positions included) the parser gives. What is read is
 //! narrow on purpose: a mapping of `name`, `material` and one of `sphere`, `plane` or `box`,
 //! each key once; names of letters, digits, `_` and `-` that no YAML schema reads as anything
