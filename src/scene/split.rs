@@ -268,6 +268,18 @@ mod tests {
         from_yaml::<SceneFile>(text, "f").unwrap().objects
     }
 
+    /// Blanked lines keep their characters and bytes: ASCII lines become spaces, others a
+    /// comment of themselves; a line that starts beyond ASCII cannot be blanked so.
+    #[test]
+    fn blanking_keeps_characters_and_bytes() {
+        let text = "  - { name: a }\n\n  - { name: café } # ×\r\n";
+        let blanked = blank(text).expect("every line starts in ASCII");
+        assert_eq!(blanked, "               \n\n# - { name: café } # ×\r\n");
+        assert_eq!(blanked.len(), text.len());
+        assert_eq!(blanked.chars().count(), text.chars().count());
+        assert_eq!(blank("é: 1\n"), None);
+    }
+
     #[test]
     fn pieces_start_at_items_and_keep_every_position() {
         let text = scene(&[0, 1, 2, 3, 4, 5, 6, 7, 0, 1], "  ", true, false);
