@@ -269,9 +269,12 @@ impl<'a> Cursor<'a> {
             sign(&mut i);
             decimal &= digits(&mut i);
         }
+        if !decimal || i != b.len() {
+            return None;
+        }
         let x: f64 = word.parse().ok()?;
         let fits = x.is_finite() && x.abs() <= MAX_MAGNITUDE;
-        (decimal && i == b.len() && fits).then(|| self.spanned(Num(x), at, word.len()))
+        fits.then(|| self.spanned(Num(x), at, word.len()))
     }
 
     /// A name: a letter or `_`, then letters, digits, `_` and `-`; not one of the words a YAML

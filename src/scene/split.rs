@@ -88,7 +88,7 @@ pub(super) fn blank(text: &str) -> Option<String> {
     for line in text.split_inclusive('\n') {
         if line.is_ascii() {
             out.extend(line.bytes().map(|b| if b == b'\n' { '\n' } else { ' ' }));
-        } else if line.as_bytes()[0].is_ascii() && !line.starts_with('\n') {
+        } else if line.as_bytes()[0].is_ascii() {
             out.push('#');
             out.push_str(&line[1..]);
         } else {
@@ -161,7 +161,7 @@ pub(super) fn object_list(text: &str) -> Option<ObjectList> {
 }
 
 /// The file's lines with the byte offset each starts at (line breaks kept).
-pub(super) fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
+fn lines(text: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
     text.split_inclusive('\n').scan(0, |at, line| {
         let start = *at;
         *at += line.len();
