@@ -27,9 +27,10 @@ pub struct Features {
     pub sampled: bool,
     /// Number of lights.
     pub lights: usize,
-    /// Objects with a transparent material (kt > 0) and their index of refraction: the media
-    /// a refracted ray can be in.
-    pub transparent_objects: Vec<(u32, f64)>,
+    /// Objects with a transparent material (kt > 0) and that material (the first such of
+    /// the object's leaves), whose index of refraction holds inside: the media a refracted
+    /// ray can be in.
+    pub transparent_objects: Vec<(u32, u32)>,
     /// Per object and light (`object · lights + light`): the object is a bounded convex solid
     /// and the light lies outside it, so a shadow ray from a point inside it is blocked by it.
     hides_light_inside: Vec<bool>,
@@ -44,14 +45,14 @@ impl Features {
                 .iter()
                 .any(|l| f(&scene.materials[l.material as usize]))
         };
-        let mut transparent_objects: Vec<(u32, f64)> = vec![];
+        let mut transparent_objects: Vec<(u32, u32)> = vec![];
         for l in &scene.leaves {
             let m = &scene.materials[l.material as usize];
             if l.shape.is_solid()
                 && m.transparent()
                 && transparent_objects.iter().all(|x| x.0 != l.object)
             {
-                transparent_objects.push((l.object, m.ior));
+                transparent_objects.push((l.object, l.material));
             }
         }
         let hides_light_inside = (0..scene.objects.len() as u32)

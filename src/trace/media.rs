@@ -9,24 +9,24 @@ use super::task::Task;
 use super::tree::Indices;
 use super::Tracer;
 use crate::geometry::Ray;
-use crate::scene::Interaction;
+use crate::scene::{Interaction, Scene};
 use crate::shading::{Fresnel, Material};
 
-/// The refractive media a ray is inside, innermost last: up to eight transparent objects and
-/// their indices of refraction. (Two arrays rather than one of pairs: a pair of u32 and f64
-/// takes 16 bytes, and the stack is copied with every refraction ray.)
+/// The refractive media a ray is inside, innermost last: up to eight transparent objects, each
+/// with the material it was entered through (its index of refraction holds inside). Indices,
+/// not the numbers: the stack is copied with every ray, and 68 bytes copy faster than 104.
 #[derive(Clone, Copy, Debug)]
 pub struct Media {
     objects: [u32; 8],
-    iors: [f64; 8],
-    len: usize,
+    materials: [u32; 8],
+    len: u32,
 }
 
 impl Default for Media {
     fn default() -> Media {
         Media {
             objects: [u32::MAX; 8],
-            iors: [1.0; 8],
+            materials: [u32::MAX; 8],
             len: 0,
         }
     }
@@ -34,33 +34,50 @@ impl Default for Media {
 
 impl Media {
     /// The index of refraction around the ray (1 for vacuum/air).
-    pub fn current(&self) -> f64 {
-        if self.len == 0 {
-            1.0
-        } else {
-            self.iors[self.len - 1]
+    pub fn current(&self, scene: &Scene) -> f64 {
+        match self.len {
+            0 => 1.0,
+            n => scene.material(self.materials[n as usize - 1]).ior,
         }
     }
 
-    fn entering(&self, object: u32, ior: f64) -> Media {
+    /// The stack with `object`, entered through `material`, innermost.
+    pub(crate) fn entering(&self, object: u32, material: u32) -> Media {
         let mut m = *self;
-        if m.len < m.objects.len() {
-            (m.objects[m.len], m.iors[m.len]) = (object, ior);
-            m.len += 1;
+        m.push(object, material);
+        m
+    }
+
+    /// The stack without `object`: the media beyond a surface where the ray leaves it.
+    pub(crate) fn leaving(&self, object: u32) -> Media {
+        let mut m = Media::default();
+        for (o, material) in self.iter() {
+            if o != object {
+                m.push(o, material);
+            }
         }
         m
     }
 
-    fn contains(&self, object: u32) -> bool {
-        self.objects[..self.len].contains(&object)
+    fn push(&mut self, object: u32, material: u32) {
+        let n = self.len as usize;
+        if n < self.objects.len() {
+            (self.objects[n], self.materials[n]) = (object, material);
+            self.len += 1;
+        }
     }
 
-    /// (object, index of refraction), outermost first.
-    fn iter(&self) -> impl Iterator<Item = (u32, f64)> + '_ {
-        self.objects[..self.len]
+    fn contains(&self, object: u32) -> bool {
+        self.objects[..self.len as usize].contains(&object)
+    }
+
+    /// (object, material), outermost first.
+    fn iter(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        let n = self.len as usize;
+        self.objects[..n]
             .iter()
             .copied()
-            .zip(self.iors[..self.len].iter().copied())
+            .zip(self.materials[..n].iter().copied())
     }
 }
 
@@ -91,41 +108,36 @@ impl<R: Recorder> Tracer<'_, R> {
     /// before and just beyond the surface), rather than only pushed and popped, so that n1 and
     /// n2 stay right where two glasses touch in a shared face. With one transparent object
     /// nothing can touch or nest, and entering or leaving says it all; a surface that
-    /// transmits nothing and has no Fresnel term needs neither index.
+    /// transmits nothing and has no Fresnel term needs neither index. `m` is the surface's
+    /// material (`si.material`).
     pub(crate) fn across(&mut self, task: &Task, si: &Interaction, m: &Material) -> Across {
-        let (near, beyond) = if si.paint.kt == 0.0 && m.fresnel == Fresnel::None {
-            (task.media, task.media)
-        } else if self.scene.features.transparent_objects.len() <= 1 {
+        let scene = self.scene;
+        let media = &task.media;
+        // n1 is the index on the near side; `beyond` the media past the surface.
+        let (n1, beyond) = if si.paint.kt == 0.0 && m.fresnel == Fresnel::None {
+            (media.current(scene), *media)
+        } else if scene.features.transparent_objects.len() <= 1 {
+            let entered = media.entering(si.object, si.material);
             if si.inside {
-                let mut outside = Media::default();
-                for (o, ior) in task.media.iter() {
-                    if o != si.object {
-                        outside = outside.entering(o, ior);
-                    }
-                }
-                (task.media.entering(si.object, m.ior), outside)
+                (entered.current(scene), media.leaving(si.object))
             } else {
-                (task.media, task.media.entering(si.object, m.ior))
+                (media.current(scene), entered)
             }
         } else {
-            let step = 2.0 * self.scene.bias(task.ray.origin, si.point);
+            let step = 2.0 * scene.bias(task.ray.origin, si.point);
             let d = task.ray.dir;
-            let near = self.media_at(si.point + step * si.normal, d, &task.media);
-            let entered = task.media.entering(si.object, m.ior);
+            let near = self.media_at(si.point + step * si.normal, d, media);
+            let entered = media.entering(si.object, si.material);
             let beyond = self.media_at(si.point - step * si.normal, d, &entered);
-            (near, beyond)
+            (near.current(scene), beyond)
         };
-        let n2 = if self.scene.leaves[si.leaf as usize].shape.is_solid() {
-            beyond.current()
+        let n2 = if scene.leaves[si.leaf as usize].shape.is_solid() {
+            beyond.current(scene)
         } else {
             // A lone triangle is a sheet with no inside: nothing changes across it.
-            near.current()
+            n1
         };
-        Across {
-            n1: near.current(),
-            n2,
-            beyond,
-        }
+        Across { n1, n2, beyond }
     }
 
     /// The transparent solids that contain q, innermost last: those already on the ray's
@@ -134,14 +146,14 @@ impl<R: Recorder> Tracer<'_, R> {
         let scene = self.scene;
         let probe = Ray { origin: q, dir: d };
         let mut out = Media::default();
-        for (o, ior) in stack.iter() {
+        for (o, material) in stack.iter() {
             if scene.contains(o, &probe, &mut self.stats) {
-                out = out.entering(o, ior);
+                out.push(o, material);
             }
         }
-        for &(o, ior) in &scene.features.transparent_objects {
+        for &(o, material) in &scene.features.transparent_objects {
             if !stack.contains(o) && scene.contains(o, &probe, &mut self.stats) {
-                out = out.entering(o, ior);
+                out.push(o, material);
             }
         }
         out
@@ -156,12 +168,22 @@ mod tests {
     /// eighth's index) rather than written past the end.
     #[test]
     fn a_ninth_nested_medium_is_left_out() {
-        let mut m = Media::default();
+        // Nine glasses g0..g8 with indices 1.0, 1.1, …, 1.8.
+        let mut yaml =
+            String::from("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials:\n");
         for k in 0..9 {
-            m = m.entering(k, 1.0 + k as f64 / 10.0);
+            yaml += &format!("  g{k}: {{ kt: 1, ior: {} }}\n", 1.0 + k as f64 / 10.0);
+        }
+        yaml += "objects:\n  - { sphere: { center: [0, 0, 0], radius: 1 }, material: g0 }\n";
+        let scene = crate::scene::parse(&yaml, "nine.yaml", None, &Default::default()).unwrap();
+        let glass = |k: u32| (0..9).find(|&i| scene.material(i).ior == 1.0 + k as f64 / 10.0);
+        let mut m = Media::default();
+        assert_eq!(m.current(&scene), 1.0);
+        for k in 0..9 {
+            m = m.entering(k, glass(k).unwrap());
         }
         assert_eq!(m.iter().count(), 8);
-        assert_eq!(m.current(), 1.7);
+        assert_eq!(m.current(&scene), 1.7);
         assert!(m.contains(7) && !m.contains(8));
     }
 }
