@@ -1,13 +1,14 @@
 //! The rays a surface sends on, as tasks to trace later: the core's `Tracer::secondary` traces
 //! its reflection and refraction rays at once, one surface after another; a packet of surfaces
 //! first gathers all their rays (`packet_trace::secondary_packet`) and traces them as packets
-//! of their own. Built from the core's own pieces (`Tracer::across`, `fresnel_weights`,
-//! `reflect`, `refract`, `Tracer::spawn`, the `Task` constructors), so the rays are the core's
-//! to the bit.
+//! of their own. Built from the core's own pieces (`Media`, `Tracer::across`,
+//! `fresnel_weights`, `reflect`, `refract`, `Tracer::spawn`, the `Task` constructors), so the
+//! rays are the core's to the bit.
 
 use crate::scene::Interaction;
 use crate::shading::optics::{fresnel_weights, reflect, refract};
-use crate::trace::{Task, Tracer};
+use crate::shading::{Fresnel, Material};
+use crate::trace::{Across, Task, Tracer};
 
 /// A surface's secondary rays, before the depth limit and the adaptive threshold have their
 /// say.
@@ -33,7 +34,7 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, si: &Interaction) -> Outgoin
     let m = t.scene.material(si.material);
     let d = task.ray.dir;
     // `Tracer::coefficients`, written out to be compiled into the packet loop.
-    let across = t.across(task, si, m);
+    let across = across(t, task, si, m);
     let (kr, kt) = fresnel_weights(
         m.fresnel,
         -d.dot(si.normal),
@@ -67,4 +68,32 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, si: &Interaction) -> Outgoin
         reflection,
         transmission,
     }
+}
+
+/// `Tracer::across`, written out to be compiled into the packet loop where the geometry need
+/// not be asked (a surface that transmits nothing and has no Fresnel term, or a scene with at
+/// most one transparent object): n1 and n2 returned from a call come back through memory, and
+/// the one wide load that reads them there waits for the call's two narrow stores.
+#[inline(always)]
+fn across(t: &mut Tracer, task: &Task, si: &Interaction, m: &Material) -> Across {
+    let scene = t.scene;
+    let refracts = si.paint.kt != 0.0 || m.fresnel != Fresnel::None;
+    if refracts && scene.features.transparent_objects.len() > 1 {
+        return t.across(task, si, m);
+    }
+    let media = &task.media;
+    let (n1, beyond) = if !refracts {
+        (media.current(scene), *media)
+    } else if si.inside {
+        let within = media.entering(si.object, si.material);
+        (within.current(scene), media.leaving(si.object))
+    } else {
+        (media.current(scene), media.entering(si.object, si.material))
+    };
+    let n2 = if scene.leaves[si.leaf as usize].shape.is_solid() {
+        beyond.current(scene)
+    } else {
+        n1
+    };
+    Across { n1, n2, beyond }
 }

@@ -10,7 +10,7 @@ pub mod tracer;
 pub mod tree;
 pub mod whitted;
 
-pub use media::Media;
+pub use media::{Across, Media};
 pub use task::Task;
 pub use tracer::{TraceOptions, Tracer};
 pub use tree::{Inspection, RayKind, RayNode, Termination};
