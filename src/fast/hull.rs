@@ -58,9 +58,9 @@ struct Axis {
 impl<V: F64x4> Hull<V> {
     /// The hull of rays given as (origin, 1/d), or None when two rays' 1/d differ in sign on
     /// an axis, or an origin or a 1/d is infinite or NaN (the bounds would not bound them).
-    /// Whole vectors at a time: built for every packet, it cost as much as a ray's own tests
-    /// when done axis by axis.
-    #[inline(always)]
+    /// The definition the faster constructors (`of_directions`, `of_groups`) are tested
+    /// against.
+    #[cfg(test)]
     pub fn new(rays: impl IntoIterator<Item = ([f64; 3], [f64; 3])>) -> Option<Hull<V>> {
         let mut rays = rays
             .into_iter()
@@ -77,6 +77,32 @@ impl<V: F64x4> Hull<V> {
             inv_lo = inv_lo.min(inv);
             inv_hi = inv_hi.max(inv);
         }
+        sound.then(|| Hull::of_bounds([origin_lo, origin_hi], [inv_lo, inv_hi], negative))
+    }
+
+    /// `new` for rays given by their origins and directions d: the same hull, with six
+    /// divisions in all rather than three a ray. On each side of zero 1/x falls as x rises, and
+    /// a correctly rounded division keeps that order, so over rays whose d share a sign on an
+    /// axis the smallest 1/d is 1/(the largest d) and the largest is 1/(the smallest d), to
+    /// the bit. (Sign bits and finiteness follow too: 1/d has d's sign bit, and is finite for
+    /// every ray where it is for both extremes.)
+    #[inline(always)]
+    pub fn of_directions(rays: impl IntoIterator<Item = (DVec3, DVec3)>) -> Option<Hull<V>> {
+        let mut rays = rays.into_iter();
+        let (o, d) = rays.next()?;
+        let negative = d.is_negative_bitmask();
+        let (mut origin_lo, mut origin_hi, mut d_lo, mut d_hi) = (o, o, d, d);
+        let mut sound = o.is_finite_mask().all() && !d.is_nan_mask().any();
+        for (o, d) in rays {
+            sound &= o.is_finite_mask().all() && !d.is_nan_mask().any();
+            sound &= d.is_negative_bitmask() == negative;
+            origin_lo = origin_lo.min(o);
+            origin_hi = origin_hi.max(o);
+            d_lo = d_lo.min(d);
+            d_hi = d_hi.max(d);
+        }
+        let (inv_lo, inv_hi) = (d_hi.recip(), d_lo.recip());
+        sound &= (inv_lo.is_finite_mask() & inv_hi.is_finite_mask()).all();
         sound.then(|| Hull::of_bounds([origin_lo, origin_hi], [inv_lo, inv_hi], negative))
     }
 
@@ -387,6 +413,61 @@ mod tests {
         ])
         .is_none());
         assert!(Hull::<Wide>::new([(o, [1.0, 2.0, 1.0]), (o, [3.0, 0.5, 1.0])]).is_some());
+    }
+
+    /// The hull of rays given by their directions is the hull of their 1/d, to the bit:
+    /// for directions of one sign or of both, with zeros of either sign, infinities, NaN,
+    /// numbers so small that 1/d overflows, and ties.
+    #[test]
+    fn a_hull_built_from_directions_is_the_hull_of_their_reciprocals() {
+        let mut rng = Rng::for_pixel(13, 0, 0);
+        let mut u = move || rng.uniform();
+        let special = [
+            0.0,
+            -0.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            1e-310,
+            -1e-310,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            1.0,
+        ];
+        let mut built = 0;
+        for case in 0..4000 {
+            let len = 1 + case % 20;
+            let sign = [1.0, -1.0, 1.0, -1.0][case % 4];
+            let mut rays: Vec<(DVec3, DVec3)> = (0..len)
+                .map(|_| {
+                    let o = DVec3::new(u() - 0.5, 10.0 * u(), -5.0 + u());
+                    let d = DVec3::new(sign * (0.1 + u()), 1e-3 + u(), sign * u().powi(9));
+                    (o, d)
+                })
+                .collect();
+            let i = (case * 7) % len;
+            if case % 5 == 1 {
+                rays[i].1[case % 3] = special[(case / 5) % special.len()];
+            }
+            if case % 13 == 2 {
+                rays[i].0[1] = [f64::NAN, f64::INFINITY][case % 2];
+            }
+            if case % 7 == 3 {
+                rays[i].1 = rays[(i + 1) % len].1; // a tie
+            }
+            let from_directions = Hull::<Wide>::of_directions(rays.iter().copied());
+            let reciprocals = rays
+                .iter()
+                .map(|(o, d)| (o.to_array(), d.recip().to_array()));
+            let from_reciprocals = Hull::<Wide>::new(reciprocals);
+            assert_eq!(
+                from_directions.map(bits),
+                from_reciprocals.map(bits),
+                "case {case}: {rays:?}"
+            );
+            built += from_reciprocals.is_some() as usize;
+        }
+        assert!((2000..4000).contains(&built), "{built}");
     }
 
     /// Every number of a hull, to the bit (its sign mask is NaN where set).

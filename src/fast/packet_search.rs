@@ -470,11 +470,8 @@ impl FastScene<'_> {
         if !self.boxes_outside_bvh || rays.len() <= LANES {
             return 0;
         }
-        // 1/d as `SlabLanes` finds it: the hull bounds what the rays' own tests use.
-        let hull = Hull::<V>::new(
-            rays.iter()
-                .map(|r| (r.origin.to_array(), r.dir.recip().to_array())),
-        );
+        // The hull of 1/d as `SlabLanes` finds it: it bounds what the rays' own tests use.
+        let hull = Hull::<V>::of_directions(rays.iter().map(|r| (r.origin, r.dir)));
         let Some(hull) = hull else {
             return 0;
         };
