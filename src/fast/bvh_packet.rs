@@ -122,18 +122,11 @@ impl<V: F64x4> Packet<V> {
         self.ray_by_ray(b, t_min, t_max, active)
     }
 
-    /// `hits` for the four children of a node at once (bit i of answer k: ray i meets child
-    /// k; 0 for an unused child): the hull's verdicts on the four boxes in one set of vector
-    /// instructions, and the rays one by one for a box where it cannot tell.
+    /// The hull's verdicts on the four children of a node at once, in one set of vector
+    /// instructions: (bit k: every ray misses child k, bit k: every ray meets it); none
+    /// without a hull.
     #[inline(always)]
-    fn hits_four(
-        &self,
-        node: &Node4,
-        t_min: f64,
-        t_max: &[f64; PACKET],
-        reach: (f64, f64),
-        active: RaySet,
-    ) -> [RaySet; 4] {
+    fn verdicts_four(&self, node: &Node4, t_min: f64, reach: (f64, f64)) -> Verdicts {
         let (misses, all_hit) = match &self.hull {
             Some(hull) => hull.classify_four(
                 #[inline(always)]
@@ -143,19 +136,31 @@ impl<V: F64x4> Packet<V> {
             ),
             None => (0, 0),
         };
-        let mut hits = [0; 4];
-        for (k, hit) in hits.iter_mut().enumerate() {
-            let bit = 1 << k;
-            if u32::from(node.used) & bit == 0 || misses & bit != 0 {
-                continue;
-            }
-            *hit = if all_hit & bit != 0 {
-                active
-            } else {
-                self.ray_by_ray(&node.bounds(k), t_min, t_max, active)
-            };
+        Verdicts { misses, all_hit }
+    }
+
+    /// `hits` for child k of a node, given the hull's `verdicts` on its children (0 for an
+    /// unused child): the rays one by one where the hull cannot tell. (Asked child by child
+    /// as the walk pushes them: an array of the four answers, written four bytes at a time
+    /// and copied on sixteen at a time, waits for its stores.)
+    #[inline(always)]
+    fn child_hits(
+        &self,
+        node: &Node4,
+        k: usize,
+        verdicts: Verdicts,
+        t_min: f64,
+        t_max: &[f64; PACKET],
+        active: RaySet,
+    ) -> RaySet {
+        let bit = 1 << k;
+        if u32::from(node.used) & bit == 0 || verdicts.misses & bit != 0 {
+            0
+        } else if verdicts.all_hit & bit != 0 {
+            active
+        } else {
+            self.ray_by_ray(&node.bounds(k), t_min, t_max, active)
         }
-        hits
     }
 
     /// The slab test of one box, ray by ray in groups of four.
@@ -307,6 +312,14 @@ pub fn any_packet<V: F64x4>(
     )
 }
 
+/// The hull's verdicts on a node's four children: bit k of `misses`, every ray misses child
+/// k; of `all_hit`, every ray meets it.
+#[derive(Clone, Copy)]
+struct Verdicts {
+    misses: u32,
+    all_hit: u32,
+}
+
 /// A child waiting on the walk's stack: child `slot` of node `node`, with the rays that met its
 /// box when it was tested, after `leaves` leaves had been visited.
 #[derive(Clone, Copy)]
@@ -342,15 +355,14 @@ impl<V: F64x4> Walk<'_, V> {
     ) {
         let node = &self.bvh.nodes()[index as usize];
         work.nodes += u64::from(active.count_ones());
-        let hits = self
-            .packet
-            .hits_four(node, self.t_min, t_max, reach, active);
+        let verdicts = self.packet.verdicts_four(node, self.t_min, reach);
         for k in node.order(self.signs).into_iter().rev() {
-            if hits[k] != 0 {
+            let rays = (self.packet).child_hits(node, k, verdicts, self.t_min, t_max, active);
+            if rays != 0 {
                 self.stack.push(Pending {
                     node: index,
                     slot: k as u8,
-                    rays: hits[k],
+                    rays,
                     leaves: self.leaves,
                 });
             }
