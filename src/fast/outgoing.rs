@@ -5,6 +5,8 @@
 //! `fresnel_weights`, `reflect`, `refract`, `Tracer::spawn`, the `Task` constructors), so the
 //! rays are the core's to the bit.
 
+use glam::DVec3;
+
 use crate::scene::Interaction;
 use crate::shading::optics::{fresnel_weights, reflect, refract};
 use crate::shading::{Fresnel, Material};
@@ -29,10 +31,11 @@ pub(super) enum Transmission {
 }
 
 /// The rays the surface `si` sends on, for a ray `task` that hit it: as in `Tracer::secondary`.
+/// `d` is the task's direction, read from the packet's rays: a primary ray's task has just
+/// been built, and a wide load of what was just written field by field waits for the stores.
 #[inline(always)]
-pub(super) fn outgoing(t: &mut Tracer, task: &Task, si: &Interaction) -> Outgoing {
+pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> Outgoing {
     let m = t.scene.material(si.material);
-    let d = task.ray.dir;
     // `Tracer::coefficients`, written out to be compiled into the packet loop.
     let across = across(t, task, si, m);
     let (kr, kt) = fresnel_weights(

@@ -282,7 +282,7 @@ fn secondary_packet<L: Lanes + ?Sized>(
         if !si.paint.sends_rays() || t.stops_at(&si.paint) {
             continue;
         }
-        let c = outgoing(t, &tasks.task(i), si);
+        let c = outgoing(t, &tasks.task(i), tasks.ray(i).dir, si);
         splits[i] = Some((c.kr, c.kt));
         if let Some(child) = &c.reflection {
             let traced = t.stopped(child).is_none();
