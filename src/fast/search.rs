@@ -29,11 +29,13 @@ pub struct FastScene<'s> {
     pub(super) bvh4: Bvh4,
     /// The probes every ray tests (the scene's `unbounded` objects, runs of spheres grouped).
     pub(super) unbounded: Vec<Probe>,
-    /// Per object: its CSG tree's flat form, when it has one.
-    flat_csg: Vec<Option<FlatCsg>>,
+    /// Per object: its CSG tree's flat form, when it has one. (Boxed, as the next: a few
+    /// hundred bytes of `None` for every one of 10 000 spheres is megabytes of fresh pages
+    /// for the kernel to clear.)
+    flat_csg: Vec<Option<Box<FlatCsg>>>,
     /// Per object: its flat form of two operands the lanes can test (spheres, boxes,
     /// cylinders, cones), when it has one.
-    pub(super) csg_lanes: Vec<Option<CsgLanes>>,
+    pub(super) csg_lanes: Vec<Option<Box<CsgLanes>>>,
     /// Some object outside the BVH is tested behind its box: packets tested in lanes then find
     /// their 1/d in lanes, for each such box's test of four rays at once.
     pub(super) boxes_outside_bvh: bool,
@@ -56,13 +58,14 @@ impl<'s> FastScene<'s> {
     /// lanes, CSG trees flattened).
     pub fn new(scene: &'s Scene) -> FastScene<'s> {
         let index = &scene.index;
-        let flat_csg: Vec<Option<FlatCsg>> = scene
+        let flat_csg: Vec<Option<Box<FlatCsg>>> = scene
             .objects
             .iter()
             .map(|o| match &o.geometry {
                 Geometry::Csg(root) => FlatCsg::new(root, |leaf| {
                     scene.leaves[leaf as usize].world_sphere().cloned()
-                }),
+                })
+                .map(Box::new),
                 Geometry::Leaf(_) | Geometry::Group(_) => None,
             })
             .collect();
@@ -82,7 +85,7 @@ impl<'s> FastScene<'s> {
         fast.csg_lanes = fast
             .flat_csg
             .iter()
-            .map(|f| fast.lanes_form(f.as_ref()?))
+            .map(|f| fast.lanes_form(f.as_ref()?).map(Box::new))
             .collect();
         let boxed = |probes: &[Probe]| probes.iter().any(|p| p.boxed_object().is_some());
         fast.boxes_outside_bvh = boxed(&fast.unbounded);
