@@ -32,12 +32,15 @@ pub enum Encoding {
 }
 
 impl Image {
-    /// A black image (every intensity 0) of that size.
+    /// A black image (every intensity 0) of that size. Its memory comes zeroed from the
+    /// system, untouched: the kernel clears each page when the render first writes to it, on
+    /// whichever thread that is, rather than all of them here, on one thread, before the
+    /// render starts.
     pub fn new(width: u32, height: u32) -> Image {
         Image {
             width,
             height,
-            pixels: vec![DVec3::ZERO; (width as usize) * (height as usize)],
+            pixels: bytemuck::zeroed_vec((width as usize) * (height as usize)),
         }
     }
 
