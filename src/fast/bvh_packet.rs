@@ -123,8 +123,7 @@ impl<V: F64x4> Packet<V> {
     }
 
     /// The hull's verdicts on the four children of a node at once, in one set of vector
-    /// instructions: (bit k: every ray misses child k, bit k: every ray meets it); none
-    /// without a hull.
+    /// instructions; none without a hull.
     #[inline(always)]
     fn verdicts_four(&self, node: &Node4, t_min: f64, reach: (f64, f64)) -> Verdicts {
         let (misses, all_hit) = match &self.hull {
@@ -357,7 +356,9 @@ impl<V: F64x4> Walk<'_, V> {
         work.nodes += u64::from(active.count_ones());
         let verdicts = self.packet.verdicts_four(node, self.t_min, reach);
         for k in node.order(self.signs).into_iter().rev() {
-            let rays = (self.packet).child_hits(node, k, verdicts, self.t_min, t_max, active);
+            let rays = self
+                .packet
+                .child_hits(node, k, verdicts, self.t_min, t_max, active);
             if rays != 0 {
                 self.stack.push(Pending {
                     node: index,
