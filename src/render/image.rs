@@ -197,7 +197,7 @@ pub fn encode_formula(c: f64, encoding: Encoding) -> u8 {
 }
 
 /// Buckets of the table's first guess: the curve is steepest near 0, where it still rises less
-/// than one 8-bit step per bucket, so one comparison usually settles the value.
+/// than one 8-bit step per bucket, so one comparison settles the value.
 const SRGB_BUCKETS: usize = 4096;
 
 /// sRGB encoding as thresholds. The formula is monotone, so its value at c is the number of
@@ -225,6 +225,9 @@ impl SrgbTable {
         let mut start = [0u8; SRGB_BUCKETS];
         for (i, s) in start.iter_mut().enumerate() {
             *s = formula(i as f64 / SRGB_BUCKETS as f64);
+            // `encode` steps past one threshold at most: the next lies beyond the bucket.
+            let next = thresholds[(*s as usize + 2).min(256)];
+            assert!(next >= (i + 1) as f64 / SRGB_BUCKETS as f64);
         }
         SrgbTable { thresholds, start }
     }
@@ -238,12 +241,11 @@ impl SrgbTable {
         if c >= 1.0 {
             return 255;
         }
-        // c · 2¹² is exact, so the bucket's bounds are exactly i/4096 ≤ c < (i+1)/4096.
-        let mut v = self.start[(c * SRGB_BUCKETS as f64) as usize];
-        while c >= self.thresholds[v as usize + 1] {
-            v += 1;
-        }
-        v
+        // c · 2¹² is exact, so the bucket's bounds are exactly i/4096 ≤ c < (i+1)/4096. At most
+        // one threshold lies in a bucket above its first value (`build` checks it): one
+        // comparison, which the compiler makes without a branch to mispredict.
+        let v = self.start[(c * SRGB_BUCKETS as f64) as usize];
+        v + (c >= self.thresholds[v as usize + 1]) as u8
     }
 }
 
