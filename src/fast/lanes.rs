@@ -154,9 +154,11 @@ pub fn box_hit_lanes<V: F64x4>(b: &Aabb, r: &SlabLanes<V>, t_min: f64, t_max: V)
 }
 
 /// `probe::plane_hit` for the rays of `rays` with t_min ≥ 0, with the same operations in the
-/// same order: each lane's t, and bit i set when ray lane i crosses the plane with
-/// t_min < t < t_max[i] (that t is then the one `plane_hit` returns). `plane_hit`'s early exit
-/// for height and rate of the same sign needs no test here: t = −height/rate ≤ 0 there.
+/// same order: bit i set when ray lane i crosses the plane with t_min < t < t_max[i], and the
+/// lanes' t (in a set lane, the one `plane_hit` returns). `plane_hit`'s early exit for height
+/// and rate of the same sign needs no test lane by lane, as t = −height/rate ≤ 0 there; where
+/// it holds in every lane (shadow rays from above a floor to a light above it), no lane
+/// crosses and the division is left out.
 #[inline(always)]
 pub fn plane_hits_of_lanes<V: F64x4>(
     plane: &Plane,
@@ -171,6 +173,12 @@ pub fn plane_hits_of_lanes<V: F64x4>(
     let [ox, oy, oz] = rays.origin;
     let rate = dx * nx + dy * ny + dz * nz;
     let height = (ox - px) * nx + (oy - py) * ny + (oz - pz) * nz;
+    let zero = V::ZERO;
+    let ahead =
+        (height.simd_gt(zero) & rate.simd_lt(zero)) | (height.simd_lt(zero) & rate.simd_gt(zero));
+    if !ahead.any() {
+        return (zero, 0);
+    }
     let t = -height / rate;
     let crossing = rate.simd_ne(V::ZERO)
         & t.simd_gt(V::splat(t_min))
@@ -231,6 +239,41 @@ mod tests {
                 prop_assert_eq!(slabs.inv_dir(i).to_array().map(f64::to_bits), inv.to_array().map(f64::to_bits));
                 let alone = b.hit(r.origin, inv, 0.0, t_max[i]);
                 prop_assert_eq!(bits & (1 << i) != 0, alone, "lane {} of {:?}", i, r);
+            }
+        }
+    }
+
+    proptest! {
+        /// Each lane's bit, and its t where the bit is set, is its own ray's `plane_hit` to
+        /// the bit: rays from either side of the floor y = 0 (or on it), going up, down or
+        /// along it, so that whole groups face away from it (the lanes' early exit) as often
+        /// as not, with t_min 0 or positive.
+        #[test]
+        fn each_lanes_plane_crossing_is_its_rays_own(
+            rays in proptest::collection::vec(ray(), 1..=4),
+            t_max in [reach(), reach(), reach(), reach()],
+            t_min in prop_oneof![Just(0.0), 0.0..1.0f64],
+            up in any::<bool>(),
+        ) {
+            // Half the cases: every direction turned away from the floor, every origin above.
+            let rays: Vec<Ray> = rays
+                .iter()
+                .map(|r| match up {
+                    true => Ray {
+                        origin: DVec3::new(r.origin.x, r.origin.y.abs(), r.origin.z),
+                        dir: DVec3::new(r.dir.x, r.dir.y.abs(), r.dir.z),
+                    },
+                    false => *r,
+                })
+                .collect();
+            let floor = Plane { point: DVec3::ZERO, normal: DVec3::Y };
+            let lanes = RayLanes::<Wide>::new(&rays);
+            let (t, bits) = plane_hits_of_lanes(&floor, &lanes, t_min, Wide::new(t_max));
+            prop_assert_eq!(bits >> rays.len(), 0);
+            for (i, r) in rays.iter().enumerate() {
+                let alone = crate::fast::probe::plane_hit(&floor, r, t_min, t_max[i]);
+                let lane = (bits & (1 << i) != 0).then(|| t.to_array()[i]);
+                prop_assert_eq!(lane.map(f64::to_bits), alone.map(f64::to_bits), "lane {} of {:?}", i, r);
             }
         }
     }
