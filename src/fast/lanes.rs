@@ -155,10 +155,10 @@ pub fn box_hit_lanes<V: F64x4>(b: &Aabb, r: &SlabLanes<V>, t_min: f64, t_max: V)
 
 /// `probe::plane_hit` for the rays of `rays` with t_min ≥ 0, with the same operations in the
 /// same order: bit i set when ray lane i crosses the plane with t_min < t < t_max[i], and the
-/// lanes' t (in a set lane, the one `plane_hit` returns). `plane_hit`'s early exit for height
-/// and rate of the same sign needs no test lane by lane, as t = −height/rate ≤ 0 there; where
-/// it holds in every lane (shadow rays from above a floor to a light above it), no lane
-/// crosses and the division is left out.
+/// lanes' t (in a set lane, the one `plane_hit` returns). As there, a lane whose height and
+/// rate do not have strictly opposite signs has t = −height/rate ≤ 0 (or NaN) and no
+/// crossing; where that holds in every lane (shadow rays from above a floor to a light above
+/// it), the division is left out.
 #[inline(always)]
 pub fn plane_hits_of_lanes<V: F64x4>(
     plane: &Plane,
@@ -180,7 +180,7 @@ pub fn plane_hits_of_lanes<V: F64x4>(
         return (zero, 0);
     }
     let t = -height / rate;
-    let crossing = rate.simd_ne(V::ZERO)
+    let crossing = ahead
         & t.simd_gt(V::splat(t_min))
         & t.simd_lt(t_max)
         & t.abs().simd_lt(V::splat(f64::INFINITY));

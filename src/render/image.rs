@@ -202,7 +202,7 @@ const SRGB_BUCKETS: usize = 4096;
 
 /// sRGB encoding as thresholds. The formula is monotone, so its value at c is the number of
 /// thresholds (the least c giving each value 1..=255) at or below c; the bucket of c gives the
-/// value at the bucket's low end, and stepping past the thresholds up to c gives the rest.
+/// value at the bucket's low end, and the one threshold a bucket can hold above it the rest.
 struct SrgbTable {
     /// thresholds[k]: the least c encoded as k or more (k = 1..=255); thresholds[256] = ∞.
     thresholds: [f64; 257],
