@@ -222,9 +222,15 @@ impl SrgbTable {
         for (k, t) in thresholds.iter_mut().enumerate().take(256).skip(1) {
             *t = least_reaching(formula, k as u8);
         }
+        // The value at c is the number of thresholds at or below c.
         let mut start = [0u8; SRGB_BUCKETS];
+        let mut value = 0;
         for (i, s) in start.iter_mut().enumerate() {
-            *s = formula(i as f64 / SRGB_BUCKETS as f64);
+            let c = i as f64 / SRGB_BUCKETS as f64;
+            while thresholds[value + 1] <= c {
+                value += 1;
+            }
+            *s = value as u8;
             // `encode` steps past one threshold at most: the next lies beyond the bucket.
             let next = thresholds[(*s as usize + 2).min(256)];
             assert!(next >= (i + 1) as f64 / SRGB_BUCKETS as f64);
@@ -249,19 +255,24 @@ impl SrgbTable {
     }
 }
 
-/// The least c in [0, 1] with f(c) ≥ k, for a monotone f with f(0) < k ≤ f(1): bisection on
-/// the bit patterns of non-negative doubles, which are ordered like their values.
+/// The least c in [0, 1] encoded as k or more: the inverse of the curve at the value's lower
+/// rounding edge, (k − ½)/255, then stepped one double at a time to the exact edge (the
+/// inverse's rounding leaves it a few doubles off; the formula is monotone).
 fn least_reaching(f: impl Fn(f64) -> u8, k: u8) -> f64 {
-    let (mut below, mut reaching) = (0f64.to_bits(), 1f64.to_bits());
-    while reaching - below > 1 {
-        let mid = below + (reaching - below) / 2;
-        if f(f64::from_bits(mid)) >= k {
-            reaching = mid;
-        } else {
-            below = mid;
-        }
+    let v = (k as f64 - 0.5) / 255.0;
+    let guess = if v <= 12.92 * 0.0031308 {
+        v / 12.92
+    } else {
+        ((v + 0.055) / 1.055).powf(2.4)
+    };
+    let mut c = guess.clamp(0.0, 1.0);
+    while c < 1.0 && f(c) < k {
+        c = c.next_up();
     }
-    f64::from_bits(reaching)
+    while c > 0.0 && f(c.next_down()) >= k {
+        c = c.next_down();
+    }
+    c
 }
 
 /// Writes `bytes` to `path` whole or not at all (see `write_atomically_with`).
