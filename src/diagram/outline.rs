@@ -89,7 +89,7 @@ pub fn outlines(scene: &Scene, view: View, section: f64) -> Vec<LeafOutline> {
 
 /// The outline of one primitive, if the view shows one.
 pub fn leaf_outline(l: &Leaf, view: View, section: f64) -> Option<Outline> {
-    let tf = l.transform.as_ref();
+    let tf = l.transform.as_deref();
     let world = |p: DVec3| tf.map_or(p, |t| t.point_to_world(p));
     let flat = |pts: Vec<DVec3>| {
         Outline::Polygon(hull(

@@ -31,7 +31,9 @@ pub struct Scan {
 /// Scans `text` for its flow collections.
 pub fn scan(text: &str) -> Scan {
     let mut scan = Scan::default();
-    let mut open: Vec<Bracket> = Vec::new();
+    // The open brackets as (byte offset, line index, the line's start, bracket): a column is
+    // counted only for those the text never closes.
+    let mut open: Vec<(usize, usize, usize, u8)> = Vec::new();
     let mut quote: Option<u8> = None;
     // The indentation of the line holding a block scalar's `|` or `>`: its content is every
     // following line indented more (or blank).
@@ -55,12 +57,7 @@ pub fn scan(text: &str) -> Scan {
         let mut node_start = quote.is_none();
         let mut prev = b' ';
         let bytes = body.as_bytes();
-        let bracket = |i: usize, c: u8| Bracket {
-            at: start + i,
-            line: index as u64 + 1,
-            column: body[..i].chars().count() as u64 + 1,
-            open: c as char,
-        };
+        let bracket = |i: usize, c: u8| (start + i, index, start, c);
         let mut i = 0;
         while i < bytes.len() {
             let c = bytes[i];
@@ -135,7 +132,15 @@ pub fn scan(text: &str) -> Scan {
             prev = c;
         }
     }
-    scan.unclosed = open;
+    scan.unclosed = open
+        .into_iter()
+        .map(|(at, index, line_start, c)| Bracket {
+            at,
+            line: index as u64 + 1,
+            column: text[line_start..at].chars().count() as u64 + 1,
+            open: c as char,
+        })
+        .collect();
     scan
 }
 

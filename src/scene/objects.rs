@@ -21,8 +21,9 @@ pub struct Leaf {
     pub shape: Shape,
     /// From the shape's own space to the world, when the shape is not stored in world space
     /// (a transform that changes its kind, or a material with patterns, which are looked up
-    /// in the object's own space).
-    pub transform: Option<Transform>,
+    /// in the object's own space). Boxed: most leaves have none, and a leaf is read in
+    /// every pass over a scene's leaves.
+    pub transform: Option<Box<Transform>>,
     /// Index of its material in `Scene::materials`.
     pub material: u32,
     /// World-space bounds.

@@ -108,29 +108,25 @@ pub(super) struct ObjectList {
 pub(super) fn object_list(text: &str) -> Option<ObjectList> {
     // Flow collections may span lines; a line inside one is neither the key nor an item.
     let flow = super::flow::scan(text);
-    let open_at = |at: usize| {
-        flow.lines
-            .binary_search_by_key(&at, |&(start, _)| start)
-            .map_or(0, |i| flow.lines[i].1)
-    };
-    let mut key_at = None;
-    for (at, line) in lines(text) {
+    // The lines with how many collections are open at each (the scan's lines are the text's),
+    // read once: up to the key, the list, the rest.
+    let mut lines = lines(text).zip(flow.lines.iter().map(|&(_, open)| open));
+    let is_key = |code: &str, open| code.trim_end() == "objects:" && open == 0;
+    let key_at = loop {
+        let ((at, line), open) = lines.next()?;
         let code = content(line);
-        if code.trim_end() == "objects:" && open_at(at) == 0 {
-            if key_at.is_some() {
-                return None; // a duplicate key: let the parser report it
-            }
-            key_at = Some(at);
-        } else if key_at.is_none() && code.contains(['"', '\'']) {
+        if is_key(code, open) {
+            break at;
+        }
+        if code.contains(['"', '\'']) {
             return None; // a quoted string could span lines, hiding the key or the list
         }
-    }
-    let key_at = key_at?;
+    };
 
     let mut items = Vec::new();
     let mut indent = None;
     let mut end = text.len();
-    for (at, line) in lines(text).skip_while(|&(at, _)| at <= key_at) {
+    for ((at, line), depth) in lines.by_ref() {
         let code = content(line);
         if code.trim().is_empty() {
             continue;
@@ -144,16 +140,21 @@ pub(super) fn object_list(text: &str) -> Option<ObjectList> {
             return None;
         }
         let list_indent = *indent.get_or_insert(this_indent);
-        let depth = open_at(at);
         if depth == 0 && starts_item(list_indent) {
             items.push(at);
         } else if depth == 0 && this_indent <= list_indent {
-            if code[this_indent..].starts_with('-') {
-                return None; // `-1`, `--`: not an item, but too close to one to trust
+            // `-1`, `--`: not an item, but too close to one to trust; a second key: the
+            // parser reports it.
+            if code[this_indent..].starts_with('-') || is_key(code, depth) {
+                return None;
             }
             end = at; // the next key, or a line the parser will reject in context
             break;
         }
+    }
+    // A second key further on (a top-level line ends the list, so none is inside it).
+    if lines.any(|((_, line), open)| is_key(content(line), open)) {
+        return None;
     }
     // A collection left open inside the list would swallow what follows it.
     let open_inside = flow.unclosed.iter().any(|b| b.at > key_at && b.at < end);
@@ -331,6 +332,12 @@ mod tests {
         let twice =
             format!("{list}objects:\n  - {{ sphere: {{ center: [0, 0, 0], radius: 1 }} }}\n");
         assert!(cut(&twice, 2).is_none(), "a duplicate key");
+        let later = twice.replacen("\nobjects:\n  - {", "\nspp: 4\nobjects:\n  - {", 1);
+        assert!(later.contains("spp: 4\nobjects:"));
+        assert!(
+            cut(&later, 2).is_none(),
+            "a duplicate key after other settings"
+        );
     }
 
     /// An object named `x[` near the end of a large list and a light named `y]` after the

@@ -53,6 +53,7 @@ pub fn of(
     };
     let mut objects = Vec::with_capacity(file.objects.len());
     let mut names = HashSet::with_capacity(file.objects.len());
+    let identity = Transform::new(DAffine3::IDENTITY);
     for (i, o) in file.objects.iter().enumerate() {
         let name = o
             .value
@@ -64,7 +65,6 @@ pub fn of(
             return invalid(pos(o), format!("duplicate object name `{name}`"));
         }
         let object = objects.len() as u32;
-        let identity = Transform::new(DAffine3::IDENTITY);
         objects.push(builder.object(o, name, object, None, &identity, 0)?);
     }
     Ok((builder.leaves, objects))
@@ -189,10 +189,7 @@ impl Builder<'_> {
         };
         let node = self.node(o, material, parent, &mut ctx, true)?;
         let (geometry, bounds) = match node {
-            CsgNode::Leaf { leaf, bounds } => {
-                self.leaves[leaf as usize].name = name.clone();
-                (Geometry::Leaf(leaf), bounds)
-            }
+            CsgNode::Leaf { leaf, bounds } => (Geometry::Leaf(leaf), bounds),
             node => {
                 let b = node.bounds();
                 (Geometry::Csg(node), b)
@@ -279,7 +276,12 @@ impl Builder<'_> {
             Some(m) if !top => self.material(m)?,
             _ => material,
         };
-        let transform = parent.after(&transform(&spec.transform)?);
+        // Without steps of its own an object is where its parent puts it.
+        let transform = if spec.transform.is_empty() {
+            parent.clone()
+        } else {
+            parent.after(&transform(&spec.transform)?)
+        };
         match shape_keys(spec) {
             1 => {}
             0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, mesh, icosphere, union, intersection, difference, complement, group"),
@@ -338,21 +340,23 @@ impl Builder<'_> {
             );
         }
         ctx.leaf_count += 1;
-        let name = spec
-            .name
-            .clone()
-            .unwrap_or_else(|| format!("{}.{}{}", ctx.object_name, shape.kind(), ctx.leaf_count));
+        // An object that is one shape is its own leaf, named as the object.
+        let name = match &spec.name {
+            _ if top => ctx.object_name.to_string(),
+            Some(name) => name.clone(),
+            None => format!("{}.{}{}", ctx.object_name, shape.kind(), ctx.leaf_count),
+        };
         // A shape the transform keeps of its kind is stored in world space: no ray needs
         // carrying to object space for it. A patterned one stays in its own space, where its
         // patterns are looked up.
         let (shape, transform) = if transform.to_world == DAffine3::IDENTITY {
             (shape, None)
         } else if self.patterned[material as usize] {
-            (shape, Some(transform))
+            (shape, Some(Box::new(transform)))
         } else {
             match shape.moved(&transform) {
                 Some(moved) => (moved, None),
-                None => (shape, Some(transform)),
+                None => (shape, Some(Box::new(transform))),
             }
         };
         let bounds = match &transform {
