@@ -295,17 +295,17 @@ impl Builder<'_> {
     /// from the start of `nodes`.
     fn node(&self, items: &mut [u32], first: usize, depth: usize, nodes: &mut Vec<Node>) -> usize {
         let index = nodes.len();
-        let bounds = items
-            .iter()
-            .fold(Aabb::empty(), |b, &i| b.union(&self.boxes[i as usize]));
+        // The box around the items, and the box around their centres (which the split needs).
+        let (mut bounds, mut centroid_bounds) = (Aabb::empty(), Aabb::empty());
+        for &i in items.iter() {
+            bounds = bounds.union(&self.boxes[i as usize]);
+            centroid_bounds = centroid_bounds.grow(self.centers[i as usize]);
+        }
         nodes.push(Node::new(bounds, first as u32, items.len() as u16));
         let n = items.len();
         if n <= 1 {
             return index;
         }
-        let centroid_bounds = items
-            .iter()
-            .fold(Aabb::empty(), |b, &i| b.grow(self.centers[i as usize]));
         let extent = centroid_bounds.max - centroid_bounds.min;
         let axis = extent.max_position();
         if extent[axis] <= 0.0 {

@@ -30,44 +30,102 @@ pub struct Scan {
 
 /// Scans `text` for its flow collections.
 pub fn scan(text: &str) -> Scan {
-    let mut scan = Scan::default();
-    // The open brackets as (byte offset, line index, the line's start, bracket): a column is
-    // counted only for those the text never closes.
-    let mut open: Vec<(usize, usize, usize, u8)> = Vec::new();
-    let mut quote: Option<u8> = None;
-    // The indentation of the line holding a block scalar's `|` or `>`: its content is every
-    // following line indented more (or blank).
-    let mut block_scalar: Option<usize> = None;
-    let mut at = 0usize;
-    for (index, line) in text.split_inclusive('\n').enumerate() {
+    scan_in_halves(text, PARALLEL_BYTES)
+}
+
+/// From this size a text is scanned in two halves on two threads.
+const PARALLEL_BYTES: usize = 64 * 1024;
+
+/// Where a scan stands at the start of a line.
+#[derive(Debug, Default, PartialEq)]
+struct State {
+    /// The open brackets as (byte offset, the line's start, bracket): a line and column are
+    /// counted only for those the text never closes.
+    open: Vec<(usize, usize, u8)>,
+    /// The quote a scalar spanning lines is in.
+    quote: Option<u8>,
+    /// The indentation of the line holding a block scalar's `|` or `>`: its content is every
+    /// following line indented more (or blank).
+    block_scalar: Option<usize>,
+}
+
+/// `scan`, in two halves on two threads from `min_bytes` on. The second half is scanned as if
+/// it started outside any collection, quote or block scalar; where the first half does not end
+/// so, the second half is scanned again from where the first one ends.
+fn scan_in_halves(text: &str, min_bytes: usize) -> Scan {
+    // The start of the first line after the middle byte.
+    let middle = text.len() / 2;
+    let halfway = (text.len() >= min_bytes)
+        .then(|| text.as_bytes()[middle..].iter().position(|&b| b == b'\n'))
+        .flatten()
+        .map(|i| middle + i + 1);
+    let (lines, end) = match halfway {
+        Some(cut) => {
+            let ((mut lines, state), (rest, rest_end)) = rayon::join(
+                || scan_lines(text, 0..cut, State::default()),
+                || scan_lines(text, cut..text.len(), State::default()),
+            );
+            let (rest, end) = if state == State::default() {
+                (rest, rest_end)
+            } else {
+                scan_lines(text, cut..text.len(), state)
+            };
+            lines.extend(rest);
+            (lines, end)
+        }
+        None => scan_lines(text, 0..text.len(), State::default()),
+    };
+    let unclosed = end
+        .open
+        .into_iter()
+        .map(|(at, line_start, c)| Bracket {
+            at,
+            line: text[..line_start].bytes().filter(|&b| b == b'\n').count() as u64 + 1,
+            column: text[line_start..at].chars().count() as u64 + 1,
+            open: c as char,
+        })
+        .collect();
+    Scan { lines, unclosed }
+}
+
+/// The lines of `text[range]` (which starts at a line) scanned from `state`: each line's start
+/// and the collections open there, and the state after the last line.
+fn scan_lines(
+    text: &str,
+    range: std::ops::Range<usize>,
+    mut state: State,
+) -> (Vec<(usize, usize)>, State) {
+    let mut lines = Vec::new();
+    let mut at = range.start;
+    for line in text[range].split_inclusive('\n') {
         let start = at;
         at += line.len();
-        scan.lines.push((start, open.len()));
+        lines.push((start, state.open.len()));
         let body = line.trim_end_matches(['\n', '\r']);
         let indent = body.len() - body.trim_start_matches(' ').len();
-        if let Some(parent) = block_scalar {
+        if let Some(parent) = state.block_scalar {
             if body.trim().is_empty() || indent > parent {
                 continue;
             }
-            block_scalar = None;
+            state.block_scalar = None;
         }
         // A node can start at the start of a line in block context, and anywhere a
         // collection's entry begins. Byte by byte: every character that matters is ASCII, and
         // a byte of a longer UTF-8 character is never one of them.
-        let mut node_start = quote.is_none();
+        let mut node_start = state.quote.is_none();
         let mut prev = b' ';
         let bytes = body.as_bytes();
-        let bracket = |i: usize, c: u8| (start + i, index, start, c);
+        let bracket = |i: usize, c: u8| (start + i, start, c);
         let mut i = 0;
         while i < bytes.len() {
             let c = bytes[i];
             let next = bytes.get(i + 1).copied().unwrap_or(b' ');
             i += 1;
-            if let Some(q) = quote {
+            if let Some(q) = state.quote {
                 match (q, c) {
                     (b'"', b'\\') => i += 1,
                     (b'\'', b'\'') if next == b'\'' => i += 1,
-                    (q, c) if q == c => quote = None,
+                    (q, c) if q == c => state.quote = None,
                     _ => {}
                 }
                 prev = c;
@@ -76,7 +134,7 @@ pub fn scan(text: &str) -> Scan {
             if c == b'#' && prev.is_ascii_whitespace() {
                 break; // a comment: the rest of the line
             }
-            let in_flow = !open.is_empty();
+            let in_flow = !state.open.is_empty();
             let spaced = next.is_ascii_whitespace();
             if c.is_ascii_whitespace() {
                 prev = c;
@@ -85,12 +143,12 @@ pub fn scan(text: &str) -> Scan {
             if node_start {
                 match c {
                     b'"' | b'\'' => {
-                        quote = Some(c);
+                        state.quote = Some(c);
                         node_start = false;
                     }
-                    b'[' | b'{' => open.push(bracket(i - 1, c)),
+                    b'[' | b'{' => state.open.push(bracket(i - 1, c)),
                     b'|' | b'>' if !in_flow => {
-                        block_scalar = Some(indent);
+                        state.block_scalar = Some(indent);
                         break;
                     }
                     b'-' if spaced && !in_flow => {}
@@ -102,7 +160,7 @@ pub fn scan(text: &str) -> Scan {
                         }
                     }
                     b']' | b'}' if in_flow => {
-                        open.pop();
+                        state.open.pop();
                         node_start = false;
                     }
                     b',' if in_flow => {}
@@ -111,11 +169,11 @@ pub fn scan(text: &str) -> Scan {
             } else if in_flow {
                 match c {
                     b'[' | b'{' => {
-                        open.push(bracket(i - 1, c));
+                        state.open.push(bracket(i - 1, c));
                         node_start = true;
                     }
                     b']' | b'}' => {
-                        open.pop();
+                        state.open.pop();
                     }
                     b',' => node_start = true,
                     b':' if spaced
@@ -132,16 +190,7 @@ pub fn scan(text: &str) -> Scan {
             prev = c;
         }
     }
-    scan.unclosed = open
-        .into_iter()
-        .map(|(at, index, line_start, c)| Bracket {
-            at,
-            line: index as u64 + 1,
-            column: text[line_start..at].chars().count() as u64 + 1,
-            open: c as char,
-        })
-        .collect();
-    scan
+    (lines, state)
 }
 
 /// The collection a syntax error on `line` most likely comes from: the last one opened on an
@@ -157,6 +206,42 @@ pub fn unclosed_before(text: &str, line: u64) -> Option<Bracket> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    /// Lines of the kinds the scan follows: collections opened and closed across lines,
+    /// quotes spanning lines, block scalars, comments, brackets in plain scalars, text beyond
+    /// ASCII.
+    const LINES: &[&str] = &[
+        "objects:\n",
+        "  - { name: a, sphere: { center: [0, 1, 2], radius: 1 } }\n",
+        "camera: { eye: [0, 0, -5],\n",
+        "  look_at: [0, 0, 0] }\n",
+        "lights: [\n",
+        "]\n",
+        "  - name: x[\n",
+        "  - name: y] # ]\n",
+        "note: \"a [ quote\n",
+        "  spanning ] lines\"\n",
+        "it: 'don''t {\n",
+        "  stop'\n",
+        "text: |\n",
+        "  - [ not an item\n",
+        "\n",
+        "façade: { é: [1, 2],\r\n",
+    ];
+
+    proptest! {
+        /// Scanned in halves or in one go, a text has the same lines, depths and unclosed
+        /// brackets, wherever the halves meet.
+        #[test]
+        fn halves_scan_as_the_whole(picks in prop::collection::vec(0..LINES.len(), 0..40)) {
+            let text: String = picks.iter().map(|&k| LINES[k]).collect();
+            let whole = scan_in_halves(&text, usize::MAX);
+            let halves = scan_in_halves(&text, 0);
+            prop_assert_eq!(&halves.lines, &whole.lines);
+            prop_assert_eq!(&halves.unclosed, &whole.unclosed);
+        }
+    }
 
     fn depths(text: &str) -> Vec<usize> {
         scan(text).lines.iter().map(|&(_, d)| d).collect()

@@ -103,8 +103,13 @@ impl Scene {
     /// The scene with its features found and its search index built, once its description is
     /// complete.
     pub fn prepared(mut self) -> Scene {
-        self.features = Features::of(&self);
-        self.set_accel(Accel::Bvh);
+        // Neither depends on the other: on two threads where there are two.
+        let (features, index) = rayon::join(
+            || Features::of(&self),
+            || SearchIndex::build(&self, Accel::Bvh),
+        );
+        self.features = features;
+        self.index = index;
         self
     }
 
