@@ -211,3 +211,30 @@ fn a_groups_hierarchy_finds_what_brute_force_finds() {
     };
     assert_eq!(render_simple(&s, core).0.pixels, with_bvh.pixels);
 }
+
+/// A leaf is named as the tree shows it: an object that is one shape by the object's name
+/// (given, or `object` and its place in the list), a CSG child by its own name or its
+/// object's name, its kind and its place, a group member as the member.
+#[test]
+fn every_leaf_is_named_as_the_tree_shows_it() {
+    let s = scene(
+        "  - { sphere: { center: [0, 0, 0], radius: 1 }, material: red }
+  - { name: a, sphere: { center: [3, 0, 0], radius: 1 }, material: red }
+  - name: lens
+    material: blue
+    intersection:
+      - { sphere: { center: [6, 0, 0], radius: 1 } }
+      - { name: right, sphere: { center: [6.5, 0, 0], radius: 1 } }
+  - name: g
+    material: red
+    group:
+      - { sphere: { center: [9, 0, 0], radius: 1 } }
+",
+    );
+    let names: Vec<&str> = s.leaves.iter().map(|l| l.name.as_str()).collect();
+    assert_eq!(
+        names,
+        ["object1", "a", "lens.sphere1", "right", "g.sphere1"]
+    );
+    assert_eq!(s.objects[0].name, "object1");
+}

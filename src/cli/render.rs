@@ -200,6 +200,11 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     result
 }
 
+/// What a render stopped by a signal reports.
+fn interrupted() -> Failure {
+    Failure("interrupted".into())
+}
+
 /// Writes the image to its destination (whole or not at all).
 fn write_image(
     image: &crate::render::Image,
@@ -213,7 +218,7 @@ fn write_image(
         Destination::Stdout(format) => {
             let bytes = image.encoded(format, encoding)?;
             if stop.load(std::sync::atomic::Ordering::SeqCst) {
-                return Err(Failure("interrupted".into()));
+                return Err(interrupted());
             }
             super::output::print_raw(&bytes)
         }
@@ -339,7 +344,6 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             b.inc(1)
         }
     };
-    let interrupted = || Failure("interrupted".into());
     let (image, stats) = match a.depth_strip {
         None => pool
             .install(|| render(&scene, options, &on_row, stop))

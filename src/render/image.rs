@@ -217,10 +217,9 @@ fn srgb_table() -> &'static SrgbTable {
 
 impl SrgbTable {
     fn build() -> SrgbTable {
-        let formula = |c: f64| encode_formula(c, Encoding::Srgb);
         let mut thresholds = [f64::INFINITY; 257];
         for (k, t) in thresholds.iter_mut().enumerate().take(256).skip(1) {
-            *t = least_reaching(formula, k as u8);
+            *t = least_encoded_as(k as u8);
         }
         // The value at c is the number of thresholds at or below c.
         let mut start = [0u8; SRGB_BUCKETS];
@@ -255,10 +254,11 @@ impl SrgbTable {
     }
 }
 
-/// The least c in [0, 1] encoded as k or more: the inverse of the curve at the value's lower
-/// rounding edge, (k − ½)/255, then stepped one double at a time to the exact edge (the
-/// inverse's rounding leaves it a few doubles off; the formula is monotone).
-fn least_reaching(f: impl Fn(f64) -> u8, k: u8) -> f64 {
+/// The least c in [0, 1] the sRGB formula encodes as k or more: the inverse of the curve at
+/// the value's lower rounding edge, (k − ½)/255, then stepped one double at a time to the exact
+/// edge (the inverse's rounding leaves it a few doubles off; the formula is monotone).
+fn least_encoded_as(k: u8) -> f64 {
+    let f = |c: f64| encode_formula(c, Encoding::Srgb);
     let v = (k as f64 - 0.5) / 255.0;
     let guess = if v <= 12.92 * 0.0031308 {
         v / 12.92

@@ -225,7 +225,7 @@ impl Builder<'_> {
         if depth > self.limits.max_csg_depth {
             return invalid(p, "groups nested too deeply");
         }
-        let transform = parent.after(&transform(&o.value.transform)?);
+        let transform = placed(parent, &o.value.transform)?;
         let mut names = HashSet::new();
         let mut objects = Vec::with_capacity(members.len());
         for (i, m) in members.iter().enumerate() {
@@ -276,12 +276,7 @@ impl Builder<'_> {
             Some(m) if !top => self.material(m)?,
             _ => material,
         };
-        // Without steps of its own an object is where its parent puts it.
-        let transform = if spec.transform.is_empty() {
-            parent.clone()
-        } else {
-            parent.after(&transform(&spec.transform)?)
-        };
+        let transform = placed(parent, &spec.transform)?;
         match shape_keys(spec) {
             1 => {}
             0 => return invalid(p, "no shape: give one of sphere, plane, box, cylinder, cone, triangle, mesh, icosphere, union, intersection, difference, complement, group"),
@@ -538,6 +533,15 @@ fn key_name(spec: &ObjectSpec) -> &'static str {
 }
 
 /// The steps compose in the order written: the first step is applied first.
+/// The transform of an object with these steps inside `parent` (its own steps first). Without
+/// steps of its own an object is where its parent puts it: no product, no inverse.
+fn placed(parent: &Transform, steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
+    if steps.is_empty() {
+        return Ok(parent.clone());
+    }
+    Ok(parent.after(&transform(steps)?))
+}
+
 pub(super) fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
     let mut m = DAffine3::IDENTITY;
     for s in steps {
