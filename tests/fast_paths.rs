@@ -405,6 +405,50 @@ max_depth: 4
     );
 }
 
+/// With a BVH, under every kind of light: the usual point light lights four surfaces at a
+/// time and its shadow rays go through the BVH as one packet, beside surfaces the lanes leave
+/// to `light_share` (Hall's transmitted highlight, a fractional exponent) and lights they
+/// cannot take.
+#[test]
+fn every_pixel_of_a_bvh_scene_under_every_kind_of_light_is_traced_sample_by_sample() {
+    let mut yaml = [
+        "camera: { eye: [0, 2, -9], look_at: [0, 0.8, 0], width: 20, height: 15 }
+spp: 9
+ambient: 0.2
+max_depth: 4
+",
+        EVERY_KIND_OF_LIGHT,
+        "  - { name: lamp, point: [3, 6, -4], intensity: 0.6 }
+materials:
+  floor: { color: 0.6, ka: 0.2, kd: 0.8 }
+  hall: { color: 1, kd: 0.05, ks: 0.5, shininess: 20, kr: 0.1, kt: 0.85, ior: 1.5, transmitted_highlight: true }
+  satin: { color: [0.2, 0.5, 0.9], kd: 0.7, ks: 0.5, shininess: 12.5 }
+",
+        SPHERES_ON_A_FLOOR,
+        "  - { name: hall, sphere: { center: [-3.4, 0.6, -1.2], radius: 0.6 }, material: hall }
+",
+    ]
+    .concat();
+    // A row of small spheres behind the others: enough objects for a BVH.
+    for i in 0..16 {
+        let x = i as f64 * 0.6 - 4.5;
+        yaml.push_str(&format!(
+            "  - {{ name: bead{i}, sphere: {{ center: [{x}, 0.25, 3.5], radius: 0.25 }}, material: satin }}\n"
+        ));
+    }
+    let scene = parse(&yaml, "lights.yaml", None, &Limits::default()).unwrap();
+    assert!(scene.bvh_nodes() > 0);
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.shadow_skipped_dark > 0
+            && total.shadow_skipped_backfacing > 0
+            && total.refraction_rays > 0
+            && total.reflection_rays > 0
+            && total.bvh_nodes_visited > 0,
+        "{total:?}"
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
 

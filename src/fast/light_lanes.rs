@@ -1,17 +1,17 @@
-//! A point light's share at four surfaces of a packet at once, in scenes whose objects are
-//! tested four rays at a time (no BVH): the steps of `light_share` (the light's direction and
-//! distance, the diffuse and specular terms of I_local, whether a shadow ray is needed), of
-//! `Tracer::shadow_ray`, and the shadow rays' search, all in lanes, for the usual light (a point
-//! light that does not fade) and the usual surface (Blinn or Phong highlights with a whole
-//! exponent up to 1024). Each lane does the IEEE operations the core does for its surface, in
-//! the same order, so every term, ray, colour and counter of rays is the core's to the bit.
-//! Other surfaces and lights, and points where the light's distance is 0 or not finite, take
-//! `light_share` itself.
+//! A point light's share at four surfaces of a packet at once: the steps of `light_share` (the
+//! light's direction and distance, the diffuse and specular terms of I_local, whether a shadow
+//! ray is needed) and of `Tracer::shadow_ray`, all in lanes, for the usual light (a point light
+//! that does not fade) and the usual surface (Blinn or Phong highlights with a whole exponent up
+//! to 1024). In scenes whose objects are tested four rays at a time (no BVH) the shadow rays are
+//! searched in those lanes too; through a BVH, as one packet with the others toward the light.
+//! Each lane does the IEEE operations the core does for its surface, in the same order, so
+//! every term, ray, colour and counter of rays is the core's to the bit. Other surfaces and
+//! lights, and points where the light's distance is 0 or not finite, take `light_share` itself.
 
 use glam::DVec3;
 
 use super::lanes::{lane_mask, RayLanes, LANES, UNUSED};
-use super::packet_trace::SHADED;
+use super::packet_trace::{ShadowPacket, SHADED};
 use super::search::FastScene;
 use super::simd::F64x4;
 use crate::geometry::Ray;
@@ -100,9 +100,10 @@ impl<'a> SurfaceLanes<'a> {
     }
 
     /// Light k (a light `lanes_light` accepts: at `position`, of `intensity`) at the chosen
-    /// surfaces, four at a time: `out[i] += s·(diffuse + specular)` with s from the surface's
-    /// shadow ray, or s = 0 where it casts none. Returns the packet lanes whose point is at the
-    /// light or at no finite distance from it: those take `light_share`.
+    /// surfaces, four at a time, shadow rays searched in lanes too (a scene without a BVH):
+    /// `out[i] += s·(diffuse + specular)` with s from the surface's shadow ray, or s = 0 where
+    /// it casts none. Returns the packet lanes whose point is at the light or at no finite
+    /// distance from it: those take `light_share`.
     #[inline(always)]
     pub fn light<V: F64x4>(
         &self,
@@ -114,23 +115,82 @@ impl<'a> SurfaceLanes<'a> {
     ) -> u32 {
         let mut far = 0;
         for group in self.chosen[..self.count].chunks(LANES) {
-            far |= self.group::<V>(t, fast, k, light, group, out);
+            let lit = self.group::<V>(t, k, light, group);
+            let mut blocked = 0;
+            if lit.cast != 0 {
+                let rays = RayLanes::from_lanes(lit.origin, lit.l);
+                let one_by_one = if fast.boxes_outside_bvh {
+                    one_by_one(&rays)
+                } else {
+                    [UNUSED; LANES]
+                };
+                blocked =
+                    fast.occluded_lanes(&rays, &one_by_one, lit.reach, lit.cast, &mut t.stats);
+            }
+            // color += s·terms: s = 1 where the shadow ray reaches the light, else 0.
+            let s = lane_mask::<V>(lit.cast & !blocked).bitselect(V::ONE, V::ZERO);
+            let [sx, sy, sz] = lit.terms.map(|term| (s * term).to_array());
+            for (j, &i) in group.iter().enumerate() {
+                if lit.far & 1 << j == 0 {
+                    out[i] += DVec3::new(sx[j], sy[j], sz[j]);
+                }
+            }
+            far |= lit.far_lanes(group);
         }
         far
     }
 
-    /// `light` for the surfaces in the packet lanes `group` (one to four; spare lanes repeat
-    /// the first, and their results are dropped).
+    /// `light` up to the shadow rays, for a scene whose shadow rays are searched as one packet
+    /// (through the BVH): each surface's term and shadow ray go to `shadows`, which the caller
+    /// searches and adds as it does `light_share`'s; a surface that casts none gets s = 0 here.
+    #[inline(always)]
+    pub fn light_before_shadows<V: F64x4>(
+        &self,
+        t: &mut Tracer,
+        k: usize,
+        light: (DVec3, DVec3),
+        shadows: &mut ShadowPacket,
+        out: &mut [DVec3],
+    ) -> u32 {
+        let mut far = 0;
+        for group in self.chosen[..self.count].chunks(LANES) {
+            let lit = self.group::<V>(t, k, light, group);
+            let [tx, ty, tz] = lit.terms.map(V::to_array);
+            let [ox, oy, oz] = lit.origin.map(V::to_array);
+            let [dx, dy, dz] = lit.l.map(V::to_array);
+            let reach = lit.reach.to_array();
+            for (j, &i) in group.iter().enumerate() {
+                if lit.far & 1 << j != 0 {
+                    continue;
+                }
+                let term = DVec3::new(tx[j], ty[j], tz[j]);
+                if lit.cast & 1 << j == 0 {
+                    // As `color += s · terms` with s = 0, to the bit.
+                    out[i] += 0.0 * term;
+                } else {
+                    let ray = Ray {
+                        origin: DVec3::new(ox[j], oy[j], oz[j]),
+                        dir: DVec3::new(dx[j], dy[j], dz[j]),
+                    };
+                    shadows.cast(i, term, ray, reach[j]);
+                }
+            }
+            far |= lit.far_lanes(group);
+        }
+        far
+    }
+
+    /// The light's terms at the surfaces in the packet lanes `group` (one to four; spare lanes
+    /// repeat the first, and their results are dropped), which of them cast a shadow ray (the
+    /// counters counted), and those rays.
     #[inline(always)]
     fn group<V: F64x4>(
         &self,
         t: &mut Tracer,
-        fast: &FastScene,
         k: usize,
         (position, intensity): (DVec3, DVec3),
         group: &[usize],
-        out: &mut [DVec3],
-    ) -> u32 {
+    ) -> GroupLit<V> {
         let (mut at, len) = ([group[0]; LANES], group.len());
         at[..len].copy_from_slice(group);
         let used = (1u32 << len) - 1;
@@ -165,28 +225,42 @@ impl<'a> SurfaceLanes<'a> {
         t.stats.shadow_rays += cast.count_ones() as u64;
 
         // `Tracer::shadow_ray`: from the point moved off the surface by the bias, toward l, as
-        // far as the light less the bias; then the search for a blocker.
-        let mut blocked = 0;
-        if cast != 0 {
-            let (origin, reach) = shadow_rays(t.scene.shadow_bias, &surfaces, n_dot_l, d);
-            let rays = RayLanes::from_lanes(origin, l);
-            let one_by_one = if fast.boxes_outside_bvh {
-                one_by_one(&rays)
-            } else {
-                [UNUSED; LANES]
-            };
-            blocked = fast.occluded_lanes(&rays, &one_by_one, reach, cast, &mut t.stats);
+        // far as the light less the bias.
+        let (origin, reach) = if cast != 0 {
+            shadow_rays(t.scene.shadow_bias, &surfaces, n_dot_l, d)
+        } else {
+            ([V::ZERO; 3], V::ZERO)
+        };
+        GroupLit {
+            terms,
+            l,
+            far,
+            cast,
+            origin,
+            reach,
         }
+    }
+}
 
-        // color += s·terms: s = 1 where the shadow ray reaches the light, else 0.
-        let s = lane_mask::<V>(cast & !blocked).bitselect(V::ONE, V::ZERO);
-        let [sx, sy, sz] = terms.map(|term| (s * term).to_array());
-        for j in 0..len {
-            if far & 1 << j == 0 {
-                out[at[j]] += DVec3::new(sx[j], sy[j], sz[j]);
-            }
-        }
-        (0..len).fold(0, |bits, j| bits | (far >> j & 1) << at[j])
+/// A light at four surfaces, before their shadow rays are searched.
+struct GroupLit<V> {
+    /// The diffuse plus specular term, before the shadow factor.
+    terms: [V; 3],
+    /// Toward the light.
+    l: [V; 3],
+    /// The lanes (bits 0–3) left to `light_share`, and those that cast a shadow ray.
+    far: u32,
+    cast: u32,
+    /// The shadow rays' origins and reach, where any lane casts one.
+    origin: [V; 3],
+    reach: V,
+}
+
+impl<V> GroupLit<V> {
+    /// The packet lanes of `group` left to `light_share`.
+    #[inline(always)]
+    fn far_lanes(&self, group: &[usize]) -> u32 {
+        (0..group.len()).fold(0, |bits, j| bits | (self.far >> j & 1) << group[j])
     }
 }
 

@@ -3,11 +3,12 @@
 //! `Tracer::light_share`, `Tracer::shadow_factor`, `Tracer::finish`, …, and `outgoing` for
 //! `Tracer::secondary`) in another order: every ray's local terms of a light first, then all
 //! their shadow rays toward it together (trying first the object that blocked the last shadow
-//! ray toward that light, `Tracer::last_blockers`; without a BVH, the usual point lights take
-//! four surfaces at once, shadow rays and all, `light_lanes`), then the secondary rays as
-//! packets of their own. Each ray's intensity, the counters of rays and of skipped shading and the random
-//! numbers drawn are those of tracing the rays one after another with `Tracer::radiance`. The
-//! tracer must find its hits through the same `FastScene` the packets are searched with.
+//! ray toward that light, `Tracer::last_blockers`; the usual point lights take four surfaces at
+//! once, `light_lanes`, and without a BVH their shadow rays too), then the secondary rays as
+//! packets of their own. Each ray's intensity, the counters of rays and of skipped shading and
+//! the random numbers drawn are those of tracing the rays one after another with
+//! `Tracer::radiance`. The tracer must find its hits through the same `FastScene` the packets
+//! are searched with.
 
 use std::borrow::Cow;
 
@@ -15,7 +16,6 @@ use arrayvec::ArrayVec;
 use glam::DVec3;
 
 use super::bvh_packet::PACKET;
-use super::lanes::UNUSED;
 use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
 use super::outgoing::{outgoing, Transmission};
@@ -24,6 +24,7 @@ use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
 use crate::shading::local::ambient;
+use crate::shading::Light;
 use crate::trace::{RayKind, Task, Tracer};
 
 /// The most rays shaded together: a pixel's grid samples (a packet of several pixels' rays is
@@ -111,6 +112,53 @@ impl Children {
     }
 }
 
+/// A light's terms at a packet's surfaces that cast a shadow ray toward it, and those rays, to
+/// be searched together.
+pub(super) struct ShadowPacket {
+    /// The packet lane of each shadow ray, and its surface's diffuse plus specular term.
+    terms: ArrayVec<(usize, DVec3), SHADED>,
+    rays: ArrayVec<Ray, SHADED>,
+    reach: ArrayVec<f64, SHADED>,
+}
+
+impl ShadowPacket {
+    fn new() -> ShadowPacket {
+        ShadowPacket {
+            terms: ArrayVec::new(),
+            rays: ArrayVec::new(),
+            reach: ArrayVec::new(),
+        }
+    }
+
+    /// The shadow ray of the surface in packet lane `lane`, whose term waits on it.
+    #[inline(always)]
+    pub fn cast(&mut self, lane: usize, term: DVec3, ray: Ray, reach: f64) {
+        self.terms.push((lane, term));
+        self.rays.push(ray);
+        self.reach.push(reach);
+    }
+
+    /// Searches the shadow rays toward light k (trying first the object that blocked the last
+    /// one) and adds each term with its shadow factor s: `out[i] += s·term`, s = 1 where the
+    /// ray reaches the light, else 0.
+    #[inline(always)]
+    fn search(&self, t: &mut Tracer, fast: &FastScene, k: usize, out: &mut [DVec3]) {
+        if self.rays.is_empty() {
+            return;
+        }
+        let blocked = fast.occluded_packet(
+            &self.rays,
+            &self.reach,
+            &mut t.last_blockers[k],
+            &mut t.stats,
+        );
+        for (j, &(i, term)) in self.terms.iter().enumerate() {
+            let s = if blocked & (1 << j) == 0 { 1.0 } else { 0.0 };
+            out[i] += s * term;
+        }
+    }
+}
+
 /// Primary rays, up to `PACKET` (the grid samples of a pixel, or of neighbouring pixels in a
 /// BVH scene): `out[i]` is exactly what `Tracer::radiance` gives ray i, and the counters of
 /// rays and the random numbers drawn are those of tracing the rays one after another. They are
@@ -174,73 +222,63 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
             }
         }
     }
-    // Where the objects are tested four rays at a time, the usual lights and surfaces are lit
-    // in lanes too, shadow rays and all (`light_lanes`).
+    // The usual lights (a point light that does not fade, one shadow ray) light the usual
+    // surfaces four at a time (`light_lanes`); where the objects are tested four rays at a
+    // time, shadow rays and all.
     let in_lanes = fast.tests_in_lanes();
+    let shadows_on = t.options.shadows;
+    let single = |light: &Light| light.shadow_rays() == 1 && shadows_on;
+    let some_in_lanes = scene
+        .lights
+        .iter()
+        .any(|light| single(light) && lanes_light(light).is_some());
     let mut view = [DVec3::ZERO; SHADED];
-    if in_lanes {
+    if some_in_lanes {
         for (i, v) in view[..n].iter_mut().enumerate() {
             *v = -tasks.ray(i).dir;
         }
     }
-    let mut surfaces = in_lanes.then(|| SurfaceLanes::new(&shaded, &view));
+    let mut surfaces = some_in_lanes.then(|| SurfaceLanes::new(&shaded, &view));
     if let Some(surfaces) = &mut surfaces {
         surfaces.choose(scene, n);
     }
     let surfaces_hit = (0..n).fold(0u32, |bits, i| bits | (shaded[i].is_some() as u32) << i);
     for (k, light) in scene.lights.iter().enumerate() {
-        let single = light.shadow_rays() == 1 && t.options.shadows;
+        let single = single(light);
+        let mut shadows = ShadowPacket::new();
         let mut alone = u32::MAX;
-        if let (true, Some(surfaces)) = (single, &surfaces) {
-            if let Some(light) = lanes_light(light) {
-                let far = surfaces.light::<V>(t, fast, k, light, out);
-                alone = surfaces.alone | far;
-            }
+        if let (true, Some(surfaces), Some(light)) = (single, &surfaces, lanes_light(light)) {
+            let far = if in_lanes {
+                surfaces.light::<V>(t, fast, k, light, out)
+            } else {
+                surfaces.light_before_shadows::<V>(t, k, light, &mut shadows, out)
+            };
+            alone = surfaces.alone | far;
         }
         // The surfaces left to `light_share`, one by one (usually none where the lanes lit).
-        if alone & surfaces_hit == 0 {
-            continue;
-        }
-        let mut terms = [DVec3::ZERO; SHADED];
-        let mut shadow_rays = [UNUSED; SHADED];
-        let mut reach = [0.0; SHADED];
-        let mut lanes = [0usize; SHADED];
-        let mut cast = 0;
-        for i in 0..n {
-            let Some(si) = &shaded[i] else { continue };
-            if alone & 1 << i == 0 {
-                continue;
-            }
-            let m = scene.material(si.material);
-            let (sample, lit, skipped) =
-                light_share::<V>(t, m, si, tasks.ray(i), || tasks.task(i), k);
-            terms[i] = lit;
-            if skipped {
-                // As `color += s · terms` with s = 0, to the bit.
-                out[i] += 0.0 * terms[i];
-            } else if single {
-                t.stats.shadow_rays += 1;
-                (shadow_rays[cast], reach[cast]) = t.shadow_ray(si, sample.l, sample.distance);
-                lanes[cast] = i;
-                cast += 1;
-            } else {
-                let s = t.shadow_factor(si, tasks.depth(i), &sample, light);
-                out[i] += s * terms[i];
+        if alone & surfaces_hit != 0 {
+            for i in 0..n {
+                let Some(si) = &shaded[i] else { continue };
+                if alone & 1 << i == 0 {
+                    continue;
+                }
+                let m = scene.material(si.material);
+                let (sample, term, skipped) =
+                    light_share::<V>(t, m, si, tasks.ray(i), || tasks.task(i), k);
+                if skipped {
+                    // As `color += s · terms` with s = 0, to the bit.
+                    out[i] += 0.0 * term;
+                } else if single {
+                    t.stats.shadow_rays += 1;
+                    let (ray, reach) = t.shadow_ray(si, sample.l, sample.distance);
+                    shadows.cast(i, term, ray, reach);
+                } else {
+                    let s = t.shadow_factor(si, tasks.depth(i), &sample, light);
+                    out[i] += s * term;
+                }
             }
         }
-        if cast == 0 {
-            continue;
-        }
-        let blocked = fast.occluded_packet(
-            &shadow_rays[..cast],
-            &reach[..cast],
-            &mut t.last_blockers[k],
-            &mut t.stats,
-        );
-        for (k, &i) in lanes[..cast].iter().enumerate() {
-            let s = if blocked & (1 << k) == 0 { 1.0 } else { 0.0 };
-            out[i] += s * terms[i];
-        }
+        shadows.search(t, fast, k, out);
     }
     if scene.features.sampled || !fast.tests_in_lanes() {
         // Glossy and frosted surfaces draw random numbers: the rays go on one by one, in
