@@ -3,6 +3,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;
+use raytree::bench;
 use raytree::fast::simd::Wide;
 use raytree::fast::{sphere_hit, DiffusePaths, FastScene, SphereGroup, PACKET};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
@@ -391,6 +392,26 @@ fn render(c: &mut Criterion) {
             ..RenderOptions::of(&whitted)
         };
         g.bench_function(name, |b| b.iter(|| render_simple(&whitted, options)));
+    }
+    g.finish();
+    // 10 000 spheres through the BVH, at 16 samples per pixel: the wing searches two pixels'
+    // samples as one packet and lights four surfaces at a time, their shadow rays one packet.
+    let many = parse(
+        &bench::spheres(10_000),
+        "spheres.yaml",
+        None,
+        &Limits::default(),
+    )
+    .unwrap();
+    let mut g = c.benchmark_group("render 10 000 spheres 160×120, 16 spp");
+    g.sample_size(20);
+    for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
+        let options = RenderOptions {
+            engine,
+            spp: 16,
+            ..RenderOptions::of(&many)
+        };
+        g.bench_function(name, |b| b.iter(|| render_simple(&many, options)));
     }
     g.finish();
 }
