@@ -47,6 +47,8 @@ pub(super) struct SurfaceLanes<'a> {
     exponent: [u32; SHADED],
     /// By packet lane: Blinn's highlight (bit set) or Phong's.
     blinn: u32,
+    /// By packet lane: the point is inside its object (which may hide the light from it).
+    inside: u32,
     /// The shaded surfaces that take `light_share` (Hall's transmitted highlight, a
     /// fractional exponent).
     pub alone: u32,
@@ -68,6 +70,7 @@ impl<'a> SurfaceLanes<'a> {
             count: 0,
             exponent: [0; SHADED],
             blinn: 0,
+            inside: 0,
             alone: 0,
         }
     }
@@ -92,6 +95,9 @@ impl<'a> SurfaceLanes<'a> {
                     self.count += 1;
                     if m.highlight == Highlight::Blinn {
                         self.blinn |= 1 << i;
+                    }
+                    if si.inside {
+                        self.inside |= 1 << i;
                     }
                 }
                 None => self.alone |= 1 << i,
@@ -214,11 +220,15 @@ impl<'a> SurfaceLanes<'a> {
         // outside of.
         let features = &t.scene.features;
         let behind = n_dot_l.simd_le(V::ZERO).to_bitmask() & used & !far;
-        let inside = (0..len).fold(0, |bits, j| {
-            let hidden = si[j].inside && features.hides_light_inside(si[j].object, k);
-            bits | (hidden as u32) << j
-        }) & !behind
-            & !far;
+        let inside = if self.inside != 0 {
+            (0..len).fold(0, |bits, j| {
+                let hidden = si[j].inside && features.hides_light_inside(si[j].object, k);
+                bits | (hidden as u32) << j
+            }) & !behind
+                & !far
+        } else {
+            0
+        };
         let cast = used & !far & !behind & !inside;
         t.stats.shadow_skipped_backfacing += behind.count_ones() as u64;
         t.stats.shadow_skipped_inside += inside.count_ones() as u64;
@@ -260,6 +270,9 @@ impl<V> GroupLit<V> {
     /// The packet lanes of `group` left to `light_share`.
     #[inline(always)]
     fn far_lanes(&self, group: &[usize]) -> u32 {
+        if self.far == 0 {
+            return 0;
+        }
         (0..group.len()).fold(0, |bits, j| bits | (self.far >> j & 1) << group[j])
     }
 }
