@@ -244,7 +244,9 @@ fn reach_of<V: F64x4>(t_max: &[f64; PACKET], used: &[V; PACKET / 4]) -> (f64, f6
 /// `RayLanes::new` of each four in order). A node is fetched once for the packet and its four
 /// children's boxes tested for all its rays together. At a leaf, `visit(item, rays, t_max)`
 /// runs for each item with the set of rays that reached it (bit i for ray i): it is
-/// `closest`'s visit for each of them, lowering `t_max[i]` to a nearer hit.
+/// `closest`'s visit for each of them, lowering `t_max[i]` to a nearer hit, and answers the
+/// rays whose t_max it may have lowered (a superset will do: the walk tests boxes again only
+/// after a leaf that lowered some t_max).
 ///
 /// The rays' directions must have the signs of the first one's (see `signs`): then every ray
 /// meets the leaves in the order `closest` takes it through the binary tree, and visits the
@@ -257,7 +259,7 @@ pub fn closest_packet<V: F64x4>(
     quads: &[RayLanes<V>; PACKET / 4],
     t_min: f64,
     t_max: &mut [f64; PACKET],
-    mut visit: impl FnMut(u32, RaySet, &mut [f64; PACKET]),
+    mut visit: impl FnMut(u32, RaySet, &mut [f64; PACKET]) -> RaySet,
 ) -> Visits {
     let Some(first) = rays.first() else {
         return Visits::default();
@@ -273,9 +275,9 @@ pub fn closest_packet<V: F64x4>(
         0,
         // Inlined into the walk, so that the visits are compiled in the lanes' copy.
         #[inline(always)]
-        |item, rays, t_max| {
-            visit(item, rays, t_max);
-            0
+        |item, rays, t_max| Reached {
+            done: 0,
+            lowered: visit(item, rays, t_max),
         },
     );
     work
@@ -307,8 +309,18 @@ pub fn any_packet<V: F64x4>(
         None,
         blocked,
         #[inline(always)]
-        |item, rays, _| visit(item, rays),
+        |item, rays, _| Reached {
+            done: visit(item, rays),
+            lowered: 0,
+        },
     )
+}
+
+/// What a leaf's item did to the rays that reached it: the rays it answered for good
+/// (`any`'s blockers), and those whose t_max it may have lowered (`closest`'s nearer hits).
+struct Reached {
+    done: RaySet,
+    lowered: RaySet,
 }
 
 /// The hull's verdicts on a node's four children: bit k of `misses`, every ray misses child
@@ -329,8 +341,8 @@ struct Pending {
     leaves: u32,
 }
 
-/// A packet's walk in progress: the children waiting, and how many leaves have been visited
-/// that may have lowered a t_max (only closest's visits lower them).
+/// A packet's walk in progress: the children waiting, and how many visited leaves lowered
+/// some ray's t_max (only closest's visits lower them).
 struct Walk<'a, V> {
     bvh: &'a Bvh4,
     packet: &'a Packet<V>,
@@ -386,13 +398,15 @@ const STACK: usize = 128;
 /// meets them (`Node4::order`): nearer side first by the rays' common `signs`, or left first
 /// without them (as `any` does). At a leaf, `step(item, rays, t_max)` runs for every item, in
 /// order, with the rays that meet the leaf's box and are not done, and answers those that are
-/// done now (they leave the packet). Answers the rays that are done.
+/// done now (they leave the packet) and those whose t_max it lowered. Answers the rays that
+/// are done.
 ///
 /// Which rays visit a leaf is exactly the binary walk's: there, a ray visits a leaf when it
 /// meets the leaf's box with the t_max it has when the leaf comes off the stack (meeting it
 /// then, it met every box above, which holds it, earlier and with a t_max no smaller). Here
 /// the children are tested when their parent is taken; a leaf tested before an earlier leaf
-/// lowered some t_max (closest's visits) is tested again when it comes off the stack.
+/// lowered some t_max (closest's visits) is tested again when it comes off the stack (a leaf
+/// tested since would answer the same).
 /// Subtrees are not tested again: their rays are a superset of those that meet them, and their
 /// leaves' own tests decide.
 #[inline(always)]
@@ -403,7 +417,7 @@ fn walk_packet<V: F64x4>(
     t_max: &mut [f64; PACKET],
     signs: Option<[bool; 3]>,
     mut done: RaySet,
-    mut step: impl FnMut(u32, RaySet, &mut [f64; PACKET]) -> RaySet,
+    mut step: impl FnMut(u32, RaySet, &mut [f64; PACKET]) -> Reached,
 ) -> (RaySet, Visits) {
     let mut work = Visits::default();
     if bvh.nodes().is_empty() || len == 0 {
@@ -453,14 +467,17 @@ fn walk_packet<V: F64x4>(
             continue;
         }
         let first = offset as usize;
+        let mut lowered = 0;
         for &item in &bvh.items()[first..first + count as usize] {
             let reached = hit & !done;
             if reached != 0 {
                 work.items += u64::from(reached.count_ones());
-                done |= step(item, reached, t_max) & reached;
+                let answer = step(item, reached, t_max);
+                done |= answer.done & reached;
+                lowered |= answer.lowered;
             }
         }
-        if signs.is_some() {
+        if lowered != 0 {
             walk.leaves += 1;
             reach = reach_of::<V>(t_max, &used);
         }

@@ -168,10 +168,12 @@ impl FastScene<'_> {
                 } = probe
                 {
                     let found = spheres_in_quads(sphere, &quads, reached, limits, stats);
+                    let mut nearer = 0;
                     for (q, QuadHits { within, t, limit }) in found.into_iter().enumerate() {
                         if within == 0 {
                             continue;
                         }
+                        nearer |= within << (4 * q);
                         // The group's four limits stored at once: the walk reads them back
                         // as one vector, which four single stores would stall.
                         let lowered = lane_mask::<V>(within).bitselect(t, limit);
@@ -185,16 +187,19 @@ impl FastScene<'_> {
                             });
                         }
                     }
-                    return;
+                    return nearer;
                 }
+                let mut nearer = 0;
                 for lane in ones(reached) {
                     let (ray, inv) = (&packet[lane], packet_inv[lane]);
                     if let Some(h) = self.probe_hit::<V>(probe, ray, inv, 0.0, limits[lane], stats)
                     {
                         hits[lanes[lane]] = Some(h);
                         limits[lane] = limits[lane].min(h.t);
+                        nearer |= 1 << lane;
                     }
                 }
+                nearer
             },
         );
         stats.bvh_nodes_visited += visits.nodes;
