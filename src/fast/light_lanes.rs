@@ -11,7 +11,7 @@
 use glam::DVec3;
 
 use super::lanes::{lane_mask, RayLanes, LANES, UNUSED};
-use super::packet_trace::{ShadowPacket, SHADED};
+use super::packet_trace::ShadowPacket;
 use super::search::FastScene;
 use super::simd::F64x4;
 use crate::geometry::Ray;
@@ -34,17 +34,18 @@ pub(super) fn lanes_light(light: &Light) -> Option<(DVec3, DVec3)> {
     }
 }
 
-/// Which surfaces of a packet the lanes light, and what they need to know of their materials.
-pub(super) struct SurfaceLanes<'a> {
-    /// The packet's surfaces, and by packet lane v = −d, toward the viewer (lane i < SHADED:
-    /// indexing them `% SHADED` only spares the bounds checks).
-    shaded: &'a [Option<Interaction>; SHADED],
-    view: &'a [DVec3; SHADED],
+/// Which surfaces of a packet of up to N rays the lanes light, and what they need to know of
+/// their materials.
+pub(super) struct SurfaceLanes<'a, const N: usize> {
+    /// The packet's surfaces, and by packet lane v = −d, toward the viewer (lane i < N:
+    /// indexing them `% N` only spares the bounds checks).
+    shaded: &'a [Option<Interaction>; N],
+    view: &'a [DVec3; N],
     /// The packet lanes of those surfaces, in order, and their number.
-    chosen: [usize; SHADED],
+    chosen: [usize; N],
     count: usize,
     /// By packet lane: the highlight's exponent m (0 where ks ≤ 0: nothing to raise).
-    exponent: [u32; SHADED],
+    exponent: [u32; N],
     /// By packet lane: Blinn's highlight (bit set) or Phong's.
     blinn: u32,
     /// By packet lane: the point is inside its object (which may hide the light from it).
@@ -54,21 +55,21 @@ pub(super) struct SurfaceLanes<'a> {
     pub alone: u32,
 }
 
-impl<'a> SurfaceLanes<'a> {
+impl<'a, const N: usize> SurfaceLanes<'a, N> {
     /// The surfaces of a packet, found by rays whose v = −d is `view`, none chosen yet
     /// (`choose` chooses them where they stay: returned whole, they would be copied on, and
     /// the copy's wide loads would wait for the narrower stores just made).
     #[inline(always)]
     pub fn new(
-        shaded: &'a [Option<Interaction>; SHADED],
-        view: &'a [DVec3; SHADED],
-    ) -> SurfaceLanes<'a> {
+        shaded: &'a [Option<Interaction>; N],
+        view: &'a [DVec3; N],
+    ) -> SurfaceLanes<'a, N> {
         SurfaceLanes {
             shaded,
             view,
-            chosen: [0; SHADED],
+            chosen: [0; N],
             count: 0,
-            exponent: [0; SHADED],
+            exponent: [0; N],
             blinn: 0,
             inside: 0,
             alone: 0,
@@ -155,7 +156,7 @@ impl<'a> SurfaceLanes<'a> {
         t: &mut Tracer,
         k: usize,
         light: (DVec3, DVec3),
-        shadows: &mut ShadowPacket,
+        shadows: &mut ShadowPacket<N>,
         out: &mut [DVec3],
     ) -> u32 {
         let mut far = 0;
@@ -200,8 +201,8 @@ impl<'a> SurfaceLanes<'a> {
         let (mut at, len) = ([group[0]; LANES], group.len());
         at[..len].copy_from_slice(group);
         let used = (1u32 << len) - 1;
-        let si = at.map(|i| self.shaded[i % SHADED].as_ref().expect("a shaded surface"));
-        let v = at.map(|i| self.view[i % SHADED]);
+        let si = at.map(|i| self.shaded[i % N].as_ref().expect("a shaded surface"));
+        let v = at.map(|i| self.view[i % N]);
         let surfaces: Surfaces<V> = Surfaces {
             point: axes(si.map(|s| s.point)),
             normal: axes(si.map(|s| s.normal)),
@@ -210,7 +211,7 @@ impl<'a> SurfaceLanes<'a> {
             kd: lanes(si.map(|s| s.paint.kd)),
             ks: lanes(si.map(|s| s.paint.ks)),
             blinn: lane_mask(lane_bits(at, |i| self.blinn >> i & 1 != 0)),
-            exponent: at.map(|i| self.exponent[i % SHADED]),
+            exponent: at.map(|i| self.exponent[i % N]),
         };
         let (l, d, far) = toward(position, surfaces.point);
         let far = far & used;

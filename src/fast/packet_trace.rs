@@ -27,8 +27,10 @@ use crate::shading::local::ambient;
 use crate::shading::Light;
 use crate::trace::{RayKind, Task, Tracer};
 
-/// The most rays shaded together: a pixel's grid samples (a packet of several pixels' rays is
-/// searched at once, then shaded `SHADED` at a time), or the secondary rays of their surfaces.
+/// The most rays shaded together where the objects are tested four rays at a time: a pixel's
+/// grid samples, or the secondary rays of their surfaces. Through a BVH a whole packet of
+/// several pixels' rays (up to `PACKET`) is shaded together, so that its shadow rays toward a
+/// light walk the tree as one packet.
 pub const SHADED: usize = 16;
 
 /// The rays of a packet, each with its place in the tree: a pixel's primary rays, or the tasks
@@ -114,15 +116,15 @@ impl Children {
 
 /// A light's terms at a packet's surfaces that cast a shadow ray toward it, and those rays, to
 /// be searched together.
-pub(super) struct ShadowPacket {
+pub(super) struct ShadowPacket<const N: usize> {
     /// The packet lane of each shadow ray, and its surface's diffuse plus specular term.
-    terms: ArrayVec<(usize, DVec3), SHADED>,
-    rays: ArrayVec<Ray, SHADED>,
-    reach: ArrayVec<f64, SHADED>,
+    terms: ArrayVec<(usize, DVec3), N>,
+    rays: ArrayVec<Ray, N>,
+    reach: ArrayVec<f64, N>,
 }
 
-impl ShadowPacket {
-    fn new() -> ShadowPacket {
+impl<const N: usize> ShadowPacket<N> {
+    fn new() -> ShadowPacket<N> {
         ShadowPacket {
             terms: ArrayVec::new(),
             rays: ArrayVec::new(),
@@ -162,7 +164,8 @@ impl ShadowPacket {
 /// Primary rays, up to `PACKET` (the grid samples of a pixel, or of neighbouring pixels in a
 /// BVH scene): `out[i]` is exactly what `Tracer::radiance` gives ray i, and the counters of
 /// rays and the random numbers drawn are those of tracing the rays one after another. They are
-/// searched as one packet, then shaded `SHADED` at a time, in order.
+/// searched as one packet, then shaded together through a BVH, else `SHADED` at a time, in
+/// order.
 pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
     with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, out))
 }
@@ -186,21 +189,25 @@ fn trace_packet_inline<V: F64x4>(
     }
     let mut hits = [None; PACKET];
     fast.intersect_packet(rays, &mut hits[..n], &mut t.stats);
+    if !fast.tests_in_lanes() {
+        shade_packet::<V, _, PACKET>(t, fast, rays, &hits[..n], out);
+        return;
+    }
     for ((rays, hits), out) in rays
         .chunks(SHADED)
         .zip(hits[..n].chunks(SHADED))
         .zip(out.chunks_mut(SHADED))
     {
-        shade_packet::<V, _>(t, fast, rays, hits, out);
+        shade_packet::<V, _, SHADED>(t, fast, rays, hits, out);
     }
 }
 
-/// A packet of rays from their nearest hits: `out[i]` is exactly what `Tracer::shade` gives
-/// task i. The shadow rays toward each light are searched together
+/// A packet of up to N rays from their nearest hits: `out[i]` is exactly what `Tracer::shade`
+/// gives task i. The shadow rays toward each light are searched together
 /// (`FastScene::occluded_packet`); the secondary rays go in waves (`secondary_packet`) where
 /// the objects are tested in lanes and nothing draws random numbers, else one after another.
 #[inline(always)]
-fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
+fn shade_packet<V: F64x4, L: Lanes + ?Sized, const N: usize>(
     t: &mut Tracer,
     fast: &FastScene,
     tasks: &L,
@@ -209,7 +216,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
 ) {
     let scene = t.scene;
     let n = hits.len();
-    let mut shaded: [Option<Interaction>; SHADED] = [None; SHADED];
+    let mut shaded: [Option<Interaction>; N] = [None; N];
     for i in 0..n {
         t.count(tasks.kind(i));
         match &hits[i] {
@@ -232,7 +239,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
         .lights
         .iter()
         .any(|light| single(light) && lanes_light(light).is_some());
-    let mut view = [DVec3::ZERO; SHADED];
+    let mut view = [DVec3::ZERO; N];
     if some_in_lanes {
         for (i, v) in view[..n].iter_mut().enumerate() {
             *v = -tasks.ray(i).dir;
@@ -280,10 +287,11 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized>(
         }
         shadows.search(t, fast, k, out);
     }
-    if scene.features.sampled || !fast.tests_in_lanes() {
+    if scene.features.sampled || !fast.tests_in_lanes() || N > SHADED {
         // Glossy and frosted surfaces draw random numbers: the rays go on one by one, in
         // order, so each draws the numbers it draws when traced alone. And gathering the
-        // secondary rays into packets pays only where packets are tested four rays at a time.
+        // secondary rays into packets pays only where packets are tested four rays at a time
+        // (those packets, and only those, are at most `SHADED` rays).
         // A surface that sends no rays on is finished as it is (the tracer records nothing
         // here), without building its task.
         for i in 0..n {
@@ -373,7 +381,7 @@ fn trace_children_inline<V: F64x4>(t: &mut Tracer, fast: &FastScene, children: &
     let mut hits = [None; SHADED];
     fast.intersect_packet(&rays, &mut hits[..n], &mut t.stats);
     let mut colors = [DVec3::ZERO; SHADED];
-    shade_packet::<V, _>(t, fast, &children.tasks[..], &hits[..n], &mut colors[..n]);
+    shade_packet::<V, _, SHADED>(t, fast, &children.tasks[..], &hits[..n], &mut colors[..n]);
     for k in 0..n {
         let distance = hits[k].map_or(f64::INFINITY, |h| h.t);
         let color = t.attenuated(colors[k], distance);
