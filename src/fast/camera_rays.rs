@@ -1,47 +1,40 @@
-//! A pixel's primary rays four at a time: the core's `Camera::ray` for the look-at camera, lane
+//! A film's primary rays four at a time: the core's `Camera::ray` for the look-at camera, lane
 //! by lane, with the same operations in the same order (the point on the image plane, its
 //! offset from the eye, and `DVec3::normalize`'s square root, reciprocal and products), so each
 //! ray is the core's to the bit. The window model takes the core's own steps.
+//!
+//! A grid sample's point on the image plane, e + forward + x·right + y·up, takes a division
+//! for x and one for y. Every pixel of a column has the same x at its samples, and every pixel
+//! of a row the same y, so the sums' parts are worked out once a film (`ImagePlane::new`):
+//! e + forward + x·right for each column and offset, y·up for each row and offset.
+
+use std::ops::Range;
 
 use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 
 use super::bvh_packet::PACKET;
-use super::packet_trace::SHADED;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
 use crate::scene::{Camera, Projection};
 
-/// The rays through (fx + o.x, fy + o.y) for each offset o (at most `SHADED`), in order:
-/// `camera.ray` for each, added to `rays` (written where they stay: rays returned whole would
-/// be copied on).
-pub fn primary_rays(
-    camera: &Camera,
-    fx: f64,
-    fy: f64,
-    offsets: &[DVec2],
-    rays: &mut ArrayVec<Ray, PACKET>,
-) {
-    assert!(offsets.len() <= SHADED, "at most {SHADED} rays at once");
-    match Frame::of(camera) {
-        Some(frame) => with_lanes!(V => frame.rays::<V>(fx, fy, offsets, rays)),
-        None => rays.extend(offsets.iter().map(|o| camera.ray(fx + o.x, fy + o.y))),
-    }
-}
-
-/// The look-at camera's frame, as `Camera::image_point` reads it.
-struct Frame {
+/// A look-at camera's image plane at a film's sample offsets.
+pub struct ImagePlane {
     eye: DVec3,
-    forward: DVec3,
-    right: DVec3,
-    up: DVec3,
-    tan_half_fov: f64,
-    size: (f64, f64),
+    /// The image's size in pixels, and the number of offsets.
+    width: u32,
+    height: u32,
+    offsets: usize,
+    /// Axis by axis, e + forward + x·right for column c and offset k at c·offsets + k.
+    columns: [Vec<f64>; 3],
+    /// Axis by axis, y·up for row r and offset k at r·offsets + k.
+    rows: [Vec<f64>; 3],
 }
 
-impl Frame {
-    /// The frame of a look-at camera; None for the window model.
-    fn of(camera: &Camera) -> Option<Frame> {
+impl ImagePlane {
+    /// The image plane of `camera` at the samples (c + o.x, r + o.y) of every pixel (c, r), for
+    /// each offset o; None for the window model.
+    pub fn new(camera: &Camera, offsets: &[DVec2]) -> Option<ImagePlane> {
         let Projection::LookAt {
             eye,
             forward,
@@ -52,60 +45,87 @@ impl Frame {
         else {
             return None;
         };
-        Some(Frame {
+        let (w, h) = (camera.width as f64, camera.height as f64);
+        let n = offsets.len();
+        let mut columns = [(); 3].map(|_| Vec::with_capacity(camera.width as usize * n));
+        for c in 0..camera.width {
+            for o in offsets {
+                // `image_point`: x = (2·sx/w − 1)·tan(fov/2)·(w/h), and its sum's first terms.
+                let x = (2.0 * (c as f64 + o.x) / w - 1.0) * tan_half_fov * (w / h);
+                let part = eye + forward + x * right;
+                for (axis, column) in columns.iter_mut().enumerate() {
+                    column.push(part[axis]);
+                }
+            }
+        }
+        let mut rows = [(); 3].map(|_| Vec::with_capacity(camera.height as usize * n));
+        for r in 0..camera.height {
+            for o in offsets {
+                // y = (1 − 2·sy/h)·tan(fov/2).
+                let y = (1.0 - 2.0 * (r as f64 + o.y) / h) * tan_half_fov;
+                let part = y * up;
+                for (axis, row) in rows.iter_mut().enumerate() {
+                    row.push(part[axis]);
+                }
+            }
+        }
+        Some(ImagePlane {
             eye,
-            forward,
-            right,
-            up,
-            tan_half_fov,
-            size: (camera.width as f64, camera.height as f64),
+            width: camera.width,
+            height: camera.height,
+            offsets: n,
+            columns,
+            rows,
         })
     }
 
-    #[inline(always)]
-    fn rays<V: F64x4>(
-        &self,
-        fx: f64,
-        fy: f64,
-        offsets: &[DVec2],
-        rays: &mut ArrayVec<Ray, PACKET>,
-    ) {
-        for group in offsets.chunks(4) {
-            // Unused lanes repeat the group's first offset; their rays are not kept.
-            let at = |k: usize| group.get(k).unwrap_or(&group[0]);
-            let (o0, o1, o2, o3) = (at(0), at(1), at(2), at(3));
-            let sx = V::splat(fx) + V::setr(o0.x, o1.x, o2.x, o3.x);
-            let sy = V::splat(fy) + V::setr(o0.y, o1.y, o2.y, o3.y);
-            let dir = self.directions(sx, sy);
-            let [x, y, z] = [dir[0].to_array(), dir[1].to_array(), dir[2].to_array()];
-            for k in 0..group.len() {
-                rays.push(Ray::raw(self.eye, DVec3::new(x[k], y[k], z[k])));
-            }
-        }
+    /// Whether pixel (x, y) lies in the image.
+    pub fn holds(&self, x: u32, y: u32) -> bool {
+        x < self.width && y < self.height
     }
 
-    /// The unit directions toward image coordinates (sx, sy), axis by axis.
+    /// The rays of pixel (x, y) (which the image holds) through the offsets numbered `which`,
+    /// in order: `camera.ray` for each, added to `rays` (written where they stay: rays
+    /// returned whole would be copied on).
+    pub fn rays(&self, x: u32, y: u32, which: Range<usize>, rays: &mut ArrayVec<Ray, PACKET>) {
+        assert!(self.holds(x, y) && which.end <= self.offsets);
+        with_lanes!(V => self.rays_in_lanes::<V>(x, y, which, rays))
+    }
+
     #[inline(always)]
-    fn directions<V: F64x4>(&self, sx: V, sy: V) -> [V; 3] {
-        let (w, h) = (V::splat(self.size.0), V::splat(self.size.1));
-        let (one, two, tan) = (V::ONE, V::splat(2.0), V::splat(self.tan_half_fov));
-        // `image_point`: x = (2·sx/w − 1)·tan(fov/2)·(w/h), y = (1 − 2·sy/h)·tan(fov/2).
-        let x = (two * sx / w - one) * tan * (w / h);
-        let y = (one - two * sy / h) * tan;
-        // p = e + forward + x·right + y·up, and d = p − e, one axis at a time.
-        let mut d = [V::ZERO; 3];
-        for (axis, d) in d.iter_mut().enumerate() {
-            let e = V::splat(self.eye[axis]);
-            let p = e
-                + V::splat(self.forward[axis])
-                + x * V::splat(self.right[axis])
-                + y * V::splat(self.up[axis]);
-            *d = p - e;
+    fn rays_in_lanes<V: F64x4>(
+        &self,
+        x: u32,
+        y: u32,
+        which: Range<usize>,
+        rays: &mut ArrayVec<Ray, PACKET>,
+    ) {
+        let column = x as usize * self.offsets;
+        let row = y as usize * self.offsets;
+        for first in which.clone().step_by(4) {
+            let count = (which.end - first).min(4);
+            // Unused lanes repeat the group's last offset; their rays are not kept.
+            let lanes = |v: &[f64], at: usize| {
+                let at = at + first;
+                match v.get(at..at + 4) {
+                    Some(four) if count == 4 => V::new(four.try_into().unwrap()),
+                    _ => V::new(std::array::from_fn(|k| v[at + k.min(count - 1)])),
+                }
+            };
+            // p = (e + forward + x·right) + y·up, and d = p − e, one axis at a time.
+            let mut d = [V::ZERO; 3];
+            for (axis, d) in d.iter_mut().enumerate() {
+                let p = lanes(&self.columns[axis], column) + lanes(&self.rows[axis], row);
+                *d = p - V::splat(self.eye[axis]);
+            }
+            // `DVec3::normalize`: d · (1 / √(d·d)).
+            let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let recip = V::ONE / length;
+            let [dx, dy, dz] = [d[0] * recip, d[1] * recip, d[2] * recip].map(V::to_array);
+            for k in 0..count {
+                rays.push(Ray::raw(self.eye, DVec3::new(dx[k], dy[k], dz[k])));
+            }
         }
-        // `DVec3::normalize`: d · (1 / √(d·d)).
-        let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-        let recip = V::ONE / length;
-        [d[0] * recip, d[1] * recip, d[2] * recip]
     }
 }
 
@@ -117,8 +137,8 @@ mod tests {
 
     /// Every ray is `Camera::ray`'s to the bit: cameras looking every way, in both handed
     /// frames, with fields of view from narrow to wide, odd image sizes, offsets anywhere in
-    /// the pixel, and packets of every length up to 16 (the lanes' own copy and the
-    /// processor's).
+    /// the pixel, pixels anywhere in the image, and runs of offsets of every length up to 16
+    /// (the lanes' own copy and the processor's).
     #[test]
     fn the_rays_are_the_cameras_own() {
         let mut rng = Rng::for_pixel(31, 0, 0);
@@ -133,12 +153,13 @@ mod tests {
             } else {
                 Camera::look_at_right_handed(eye, target, DVec3::Y, fov, width, height)
             };
-            let n = 1 + case % SHADED;
+            let n = 1 + case % 16;
             let offsets: Vec<DVec2> = (0..n).map(|_| DVec2::new(u(), u())).collect();
-            let (fx, fy) = ((u() * width as f64).floor(), (u() * height as f64).floor());
-            let expected: Vec<Ray> = offsets
+            let (x, y) = ((u() * width as f64) as u32, (u() * height as f64) as u32);
+            let first = case / 16 % n;
+            let expected: Vec<Ray> = offsets[first..]
                 .iter()
-                .map(|o| camera.ray(fx + o.x, fy + o.y))
+                .map(|o| camera.ray(x as f64 + o.x, y as f64 + o.y))
                 .collect();
             let bits = |rays: &[Ray]| -> Vec<[u64; 6]> {
                 rays.iter()
@@ -149,12 +170,12 @@ mod tests {
                     })
                     .collect()
             };
+            let plane = ImagePlane::new(&camera, &offsets).expect("a look-at camera");
             let mut rays = ArrayVec::new();
-            primary_rays(&camera, fx, fy, &offsets, &mut rays);
+            plane.rays(x, y, first..n, &mut rays);
             assert_eq!(bits(&rays), bits(&expected), "case {case}");
-            let frame = Frame::of(&camera).expect("look_at makes a look-at camera");
             let mut rays = ArrayVec::new();
-            frame.rays::<Wide>(fx, fy, &offsets, &mut rays);
+            plane.rays_in_lanes::<Wide>(x, y, first..n, &mut rays);
             assert_eq!(bits(&rays), bits(&expected));
         }
     }

@@ -60,10 +60,7 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
     /// (`choose` chooses them where they stay: returned whole, they would be copied on, and
     /// the copy's wide loads would wait for the narrower stores just made).
     #[inline(always)]
-    pub fn new(
-        shaded: &'a [Option<Interaction>; N],
-        view: &'a [DVec3; N],
-    ) -> SurfaceLanes<'a, N> {
+    pub fn new(shaded: &'a [Option<Interaction>; N], view: &'a [DVec3; N]) -> SurfaceLanes<'a, N> {
         SurfaceLanes {
             shaded,
             view,

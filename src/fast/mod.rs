@@ -38,7 +38,7 @@ mod span_lanes;
 mod sphere_group;
 
 pub use bvh_packet::PACKET;
-pub use camera_rays::primary_rays;
+pub use camera_rays::ImagePlane;
 pub use diffuse_paths::DiffusePaths;
 pub use packet_trace::{trace_packet, SHADED};
 pub use probe::{plane_hit, sphere_hit};

@@ -2,6 +2,7 @@
 //! number of threads (each pixel's samples and random numbers depend only on the pixel, and
 //! partial sums are added in a fixed order).
 
+use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use arrayvec::ArrayVec;
@@ -13,7 +14,7 @@ use super::antialias::{
     GAUSS_RADIUS,
 };
 use super::Image;
-use crate::fast::{primary_rays, trace_packet, DiffusePaths, FastScene, PACKET, SHADED};
+use crate::fast::{trace_packet, DiffusePaths, FastScene, ImagePlane, PACKET, SHADED};
 use crate::geometry::Ray;
 use crate::sampling::{pixel_key, Rng, SamplePoint};
 use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
@@ -88,6 +89,9 @@ pub struct Film<'s> {
     /// The fast wing's form of the path tracer, for a scene of diffuse surfaces only.
     diffuse_paths: Option<DiffusePaths<'s>>,
     offsets: Vec<DVec2>,
+    /// The look-at camera's image plane at the grid samples, where the fast wing traces
+    /// them in packets.
+    plane: Option<ImagePlane>,
 }
 
 impl<'s> Film<'s> {
@@ -102,6 +106,11 @@ impl<'s> Film<'s> {
         let fast = options.engine == Engine::Fast;
         let path = (scene.integrator == Integrator::Path)
             .then(|| PathTracer::new(scene, options.max_depth));
+        let offsets = grid_offsets(options.spp.max(1));
+        let grid = path.is_none() && options.antialias == Antialias::Grid;
+        let plane = (fast && grid)
+            .then(|| ImagePlane::new(&camera, &offsets))
+            .flatten();
         Film {
             scene,
             camera,
@@ -109,7 +118,8 @@ impl<'s> Film<'s> {
             options,
             path,
             diffuse_paths: path.filter(|_| fast).and_then(DiffusePaths::new),
-            offsets: grid_offsets(options.spp.max(1)),
+            offsets,
+            plane,
         }
     }
 
@@ -203,7 +213,7 @@ impl<'s> Film<'s> {
         let jittered = self.antialias() == Antialias::Jittered;
         let packets = self.offsets.len() > 1;
         if let (false, None, true, Some(fast)) = (jittered, &self.path, packets, &self.fast) {
-            self.grid_in_packets(t, fast, fx, fy, visit);
+            self.grid_in_packets(t, fast, x, y, visit);
             return;
         }
         if self.path.is_some() {
@@ -235,23 +245,37 @@ impl<'s> Film<'s> {
         }
     }
 
-    /// The grid samples of the pixel at (fx, fy), as `for_each_own_sample` takes them, traced
-    /// as packets by the fast wing: a regular grid's rays are all known before any is traced.
+    /// The grid samples of pixel (x, y), as `for_each_own_sample` takes them, traced as
+    /// packets by the fast wing: a regular grid's rays are all known before any is traced.
     fn grid_in_packets(
         &self,
         t: &mut Tracer,
         fast: &FastScene,
-        fx: f64,
-        fy: f64,
+        x: u32,
+        y: u32,
         visit: &mut dyn FnMut(Sample),
     ) {
-        for chunk in self.offsets.chunks(SHADED) {
+        for (c, chunk) in self.offsets.chunks(SHADED).enumerate() {
             let mut rays = ArrayVec::new();
-            primary_rays(&self.camera, fx, fy, chunk, &mut rays);
+            let first = c * SHADED;
+            self.grid_rays(x, y, first..first + chunk.len(), &mut rays);
             let mut values = [DVec3::ZERO; SHADED];
             trace_packet(t, fast, &rays, &mut values[..rays.len()]);
             for (o, value) in chunk.iter().zip(values) {
                 visit(Sample { uv: *o, value });
+            }
+        }
+    }
+
+    /// The primary rays of pixel (x, y) through the grid offsets numbered `which`, in order
+    /// (`Camera::ray` for each, to the bit).
+    fn grid_rays(&self, x: u32, y: u32, which: Range<usize>, rays: &mut ArrayVec<Ray, PACKET>) {
+        match &self.plane {
+            Some(plane) if plane.holds(x, y) => plane.rays(x, y, which, rays),
+            _ => {
+                let (fx, fy) = (x as f64, y as f64);
+                let ray = |o: &DVec2| self.camera.ray(fx + o.x, fy + o.y);
+                rays.extend(self.offsets[which].iter().map(ray));
             }
         }
     }
@@ -292,8 +316,7 @@ impl<'s> Film<'s> {
         );
         let mut rays = ArrayVec::<Ray, PACKET>::new();
         for k in 0..out.len() {
-            let fx = (x + k as u32) as f64;
-            primary_rays(&self.camera, fx, y as f64, &self.offsets, &mut rays);
+            self.grid_rays(x + k as u32, y, 0..n, &mut rays);
         }
         let mut values = [DVec3::ZERO; PACKET];
         trace_packet(t, fast, &rays, &mut values[..rays.len()]);
