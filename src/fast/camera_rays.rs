@@ -16,7 +16,7 @@ use glam::{DVec2, DVec3};
 use super::bvh_packet::PACKET;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
-use crate::scene::{Camera, Projection};
+use crate::scene::{plane_x, plane_y, Camera, Projection};
 
 /// A look-at camera's image plane at a film's sample offsets.
 pub struct ImagePlane {
@@ -50,8 +50,8 @@ impl ImagePlane {
         let mut columns = [(); 3].map(|_| Vec::with_capacity(camera.width as usize * n));
         for c in 0..camera.width {
             for o in offsets {
-                // `image_point`: x = (2·sx/w − 1)·tan(fov/2)·(w/h), and its sum's first terms.
-                let x = (2.0 * (c as f64 + o.x) / w - 1.0) * tan_half_fov * (w / h);
+                // `image_point`'s x, and its sum's first terms.
+                let x = plane_x(c as f64 + o.x, (w, h), tan_half_fov);
                 let part = eye + forward + x * right;
                 for (axis, column) in columns.iter_mut().enumerate() {
                     column.push(part[axis]);
@@ -61,9 +61,7 @@ impl ImagePlane {
         let mut rows = [(); 3].map(|_| Vec::with_capacity(camera.height as usize * n));
         for r in 0..camera.height {
             for o in offsets {
-                // y = (1 − 2·sy/h)·tan(fov/2).
-                let y = (1.0 - 2.0 * (r as f64 + o.y) / h) * tan_half_fov;
-                let part = y * up;
+                let part = plane_y(r as f64 + o.y, h, tan_half_fov) * up;
                 for (axis, row) in rows.iter_mut().enumerate() {
                     row.push(part[axis]);
                 }

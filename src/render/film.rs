@@ -106,21 +106,20 @@ impl<'s> Film<'s> {
         let fast = options.engine == Engine::Fast;
         let path = (scene.integrator == Integrator::Path)
             .then(|| PathTracer::new(scene, options.max_depth));
-        let offsets = grid_offsets(options.spp.max(1));
-        let grid = path.is_none() && options.antialias == Antialias::Grid;
-        let plane = (fast && grid)
-            .then(|| ImagePlane::new(&camera, &offsets))
-            .flatten();
-        Film {
+        let mut film = Film {
             scene,
             camera,
             fast: fast.then(|| FastScene::new(scene)),
             options,
             path,
             diffuse_paths: path.filter(|_| fast).and_then(DiffusePaths::new),
-            offsets,
-            plane,
+            offsets: grid_offsets(options.spp.max(1)),
+            plane: None,
+        };
+        if fast && film.antialias() == Antialias::Grid {
+            film.plane = ImagePlane::new(&film.camera, &film.offsets);
         }
+        film
     }
 
     /// A tracer of this film's rays. Each thread takes its own: it carries the random numbers

@@ -144,8 +144,8 @@ impl Camera {
                 up,
                 tan_half_fov,
             } => {
-                let x = (2.0 * sx / w - 1.0) * tan_half_fov * (w / h);
-                let y = (1.0 - 2.0 * sy / h) * tan_half_fov;
+                let x = plane_x(sx, (w, h), *tan_half_fov);
+                let y = plane_y(sy, h, *tan_half_fov);
                 *eye + *forward + x * *right + y * *up
             }
             Projection::Window {
@@ -181,6 +181,17 @@ impl Camera {
     pub fn pixel_ray(&self, x: u32, y: u32) -> Ray {
         self.ray(x as f64 + 0.5, y as f64 + 0.5)
     }
+}
+
+/// The look-at camera's coordinate along `right` on its image plane (one unit from the eye)
+/// of the image column sx, in an image w × h: x = (2·sx/w − 1)·tan(fov/2)·(w/h).
+pub(crate) fn plane_x(sx: f64, (w, h): (f64, f64), tan_half_fov: f64) -> f64 {
+    (2.0 * sx / w - 1.0) * tan_half_fov * (w / h)
+}
+
+/// The coordinate along `up` of the image row sy, in an image h high: y = (1 − 2·sy/h)·tan(fov/2).
+pub(crate) fn plane_y(sy: f64, h: f64, tan_half_fov: f64) -> f64 {
+    (1.0 - 2.0 * sy / h) * tan_half_fov
 }
 
 #[cfg(test)]

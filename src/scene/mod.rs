@@ -27,6 +27,7 @@ use std::path::PathBuf;
 use glam::DVec3;
 
 pub use builder::{MaterialDesc, SceneBuilder};
+pub(crate) use camera::{plane_x, plane_y};
 pub use camera::{Camera, Projection};
 pub use compile::Limits;
 pub use error::{Pos, SceneError};
