@@ -331,7 +331,7 @@ pub fn write_atomically_with(
             tmp.as_file().set_permissions(meta.permissions())?;
         }
         let mut out = Cancellable {
-            inner: BufWriter::with_capacity(1 << 20, tmp.reopen()?),
+            inner: BufWriter::with_capacity(64 << 10, tmp.reopen()?),
             cancel,
         };
         write(&mut out)?;
