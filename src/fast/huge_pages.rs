@@ -10,7 +10,8 @@
 //! `always`) and only for the parts of it aligned to 2 MiB, hence the alignment; elsewhere
 //! the advice is ignored and the block behaves as any other.
 //!
-//! A mapping is zero when it is made, so `alloc_zeroed` of a large block writes nothing.
+//! A mapping is zero when it is made, so `alloc_zeroed` of a large block writes nothing, and a
+//! large block shrinks where it is (a mesh's arrays are shrunk to fit once built).
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::ptr;
@@ -122,7 +123,14 @@ unsafe impl GlobalAlloc for HugePages {
         let new_layout = unsafe { Layout::from_size_align_unchecked(new_size, layout.align()) };
         match (is_large(&layout), is_large(&new_layout)) {
             (false, false) => unsafe { System.realloc(block, layout, new_size) },
-            (true, true) if mapped(new_size) == mapped(layout.size()) => block,
+            (true, true) if mapped(new_size) <= mapped(layout.size()) => {
+                // The block stays where it is; whole huge pages past its new end go back.
+                let (kept, had) = (mapped(new_size), mapped(layout.size()));
+                if kept < had {
+                    unsafe { libc::munmap(block.add(kept) as *mut libc::c_void, had - kept) };
+                }
+                block
+            }
             _ => {
                 let moved = unsafe { self.alloc(new_layout) };
                 if !moved.is_null() {
@@ -145,8 +153,8 @@ mod tests {
         Layout::from_size_align(size, align).unwrap()
     }
 
-    /// Writes a pattern over every byte of the block, and reads it back: a block smaller than
-    /// its layout, or overlapping another, shows.
+    /// Writes a pattern over every byte of the block; `check` reads it back, so a block smaller
+    /// than its layout, or overlapping another, shows.
     unsafe fn fill(block: *mut u8, size: usize, seed: u8) {
         let bytes = unsafe { std::slice::from_raw_parts_mut(block, size) };
         for (i, b) in bytes.iter_mut().enumerate() {
@@ -161,16 +169,15 @@ mod tests {
         }
     }
 
-    /// The block lies on a huge page's boundary, wholly inside the mapping, and the head and
-    /// the tail given back are the rest of it.
+    /// The block lies on a huge page's boundary, wholly inside the mapping (one huge page
+    /// longer than the block), and the head and the tail given back are the rest of it.
     #[test]
     fn the_block_is_aligned_inside_its_mapping() {
-        let length = 3 * HUGE_PAGE;
         for start in (0..=HUGE_PAGE).step_by(4096).map(|s| s + 7 * HUGE_PAGE) {
             let (head, block, tail) = aligned_within(start);
             assert_eq!(block % HUGE_PAGE, 0, "start {start:#x}");
             assert_eq!(block, start + head);
-            assert_eq!(head + length + tail, length + HUGE_PAGE);
+            assert_eq!(head + tail, HUGE_PAGE);
         }
     }
 
@@ -228,7 +235,7 @@ mod tests {
     }
 
     /// Growing and shrinking across the line between small and large keeps the contents,
-    /// within the same huge pages and into new ones.
+    /// within the same huge pages and into new ones; a large block shrinks where it is.
     #[test]
     fn realloc_keeps_the_contents_across_sizes() {
         let a = HugePages;
@@ -249,8 +256,17 @@ mod tests {
             fill(block, l.size(), 7);
             for &size in &sizes[1..] {
                 let kept = l.size().min(size);
+                let before = block;
                 block = a.realloc(block, l, size);
                 assert!(!block.is_null());
+                if is_large(&l) && size >= LARGE && size < l.size() {
+                    assert_eq!(
+                        block,
+                        before,
+                        "{} bytes shrunk to {size} in place",
+                        l.size()
+                    );
+                }
                 assert_eq!(block as usize % 16, 0);
                 l = layout(size, 16);
                 if is_large(&l) {
