@@ -593,8 +593,8 @@ objects:
   - { name: glass, sphere: { center: [1.6, 1, -0.5], radius: 1 }, material: glass }
 ";
 
-/// A plain scene with everything the secondary rays' waves must get right: Fresnel, glass
-/// nested in glass (n1/n2 from the geometry), an air bubble inside glass (total internal
+/// A plain scene with everything the secondary rays' waves must get right: Fresnel (on glass,
+/// and on a metal that transmits nothing: kr·R there as well), glass nested in glass (n1/n2 from the geometry), an air bubble inside glass (total internal
 /// reflection), distance attenuation of secondary rays, the adaptive threshold and the depth
 /// limit, under every kind of light. Every pixel is exactly its samples traced one by one.
 #[test]
@@ -612,10 +612,12 @@ secondary_attenuation: [1, 0.05, 0]
   floor: { color: 0.6, ka: 0.2, kd: 0.8, kr: 0.1 }
   air: { color: 1, kt: 1, kr: 0.2, ior: 1.0 }
   diamond: { color: 1, kd: 0.02, kr: 0.2, kt: 0.8, ior: 2.4 }
+  metal: { color: [0.9, 0.8, 0.5], kd: 0.1, kr: 0.9, ior: 1.8, fresnel: schlick }
 ",
         SPHERES_ON_A_FLOOR,
         "  - { name: bubble, sphere: { center: [1.7, 1.1, -0.6], radius: 0.45 }, material: air }
   - { name: diamond, sphere: { center: [-0.6, 0.5, -1.5], radius: 0.5 }, material: diamond }
+  - { name: metal, sphere: { center: [-2.6, 0.6, -1.2], radius: 0.6 }, material: metal }
 ",
     ]
     .concat();

@@ -36,6 +36,22 @@ pub(super) enum Transmission {
 #[inline(always)]
 pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> Outgoing {
     let m = t.scene.material(si.material);
+    let mirror = reflect(d, si.normal);
+    if !refracts(si, m) {
+        // A surface that transmits nothing and has no Fresnel term: kr and kt are the
+        // material's, and neither index (nor the media beyond) is needed.
+        let reflection = if si.paint.kr > 0.0 {
+            Some(task.reflection(t.spawn(si, mirror, task), si.paint.kr))
+        } else {
+            None
+        };
+        return Outgoing {
+            kr: si.paint.kr,
+            kt: si.paint.kt,
+            reflection,
+            transmission: None,
+        };
+    }
     // `Tracer::coefficients`, written out to be compiled into the packet loop.
     let across = across(t, task, si, m);
     let (kr, kt) = fresnel_weights(
@@ -45,7 +61,6 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
         (si.paint.kr, si.paint.kt),
     );
     let indices = across.indices();
-    let mirror = reflect(d, si.normal);
     // Plain branches, not closures: the compiler inlines them into the packet loop.
     let reflection = if kr > 0.0 {
         Some(task.reflection(t.spawn(si, mirror, task), kr))
@@ -73,21 +88,24 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
     }
 }
 
-/// `Tracer::across`, written out to be compiled into the packet loop where the geometry need
-/// not be asked (a surface that transmits nothing and has no Fresnel term, or a scene with at
-/// most one transparent object): n1 and n2 returned from a call come back through memory, and
-/// the one wide load that reads them there waits for the call's two narrow stores.
+/// Whether the surface refracts or weighs its rays by Fresnel's term: only then do the
+/// indices on its two sides matter.
+fn refracts(si: &Interaction, m: &Material) -> bool {
+    si.paint.kt != 0.0 || m.fresnel != Fresnel::None
+}
+
+/// `Tracer::across` for a surface that refracts, written out to be compiled into the packet
+/// loop where the geometry need not be asked (a scene with at most one transparent object):
+/// n1 and n2 returned from a call come back through memory, and the one wide load that reads
+/// them there waits for the call's two narrow stores.
 #[inline(always)]
 fn across(t: &mut Tracer, task: &Task, si: &Interaction, m: &Material) -> Across {
     let scene = t.scene;
-    let refracts = si.paint.kt != 0.0 || m.fresnel != Fresnel::None;
-    if refracts && scene.features.transparent_objects.len() > 1 {
+    if scene.features.transparent_objects.len() > 1 {
         return t.across(task, si, m);
     }
     let media = &task.media;
-    let (n1, beyond) = if !refracts {
-        (media.current(scene), *media)
-    } else if si.inside {
+    let (n1, beyond) = if si.inside {
         let within = media.entering(si.object, si.material);
         (within.current(scene), media.leaving(si.object))
     } else {

@@ -377,7 +377,12 @@ fn trace_children_inline<V: F64x4>(t: &mut Tracer, fast: &FastScene, children: &
     if n == 0 {
         return;
     }
-    let rays: ArrayVec<Ray, SHADED> = children.tasks.iter().map(|t| t.ray).collect();
+    // Pushed one by one where they stay: a collected ArrayVec is built elsewhere and moved
+    // here whole, its wide loads waiting on the narrow stores just made.
+    let mut rays: ArrayVec<Ray, SHADED> = ArrayVec::new();
+    for task in &children.tasks {
+        rays.push(task.ray);
+    }
     let mut hits = [None; SHADED];
     fast.intersect_packet(&rays, &mut hits[..n], &mut t.stats);
     let mut colors = [DVec3::ZERO; SHADED];
