@@ -34,7 +34,6 @@ impl Default for Media {
 
 impl Media {
     /// The index of refraction around the ray (1 for vacuum/air).
-    #[inline]
     pub fn current(&self, scene: &Scene) -> f64 {
         match self.len {
             0 => 1.0,
