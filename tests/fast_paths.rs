@@ -594,9 +594,10 @@ objects:
 ";
 
 /// A plain scene with everything the secondary rays' waves must get right: Fresnel (on glass,
-/// and on a metal that transmits nothing: kr·R there as well), glass nested in glass (n1/n2 from the geometry), an air bubble inside glass (total internal
-/// reflection), distance attenuation of secondary rays, the adaptive threshold and the depth
-/// limit, under every kind of light. Every pixel is exactly its samples traced one by one.
+/// and on a metal that transmits nothing: kr·R there as well), glass nested in glass (n1/n2
+/// from the geometry), an air bubble inside glass (total internal reflection), distance
+/// attenuation of secondary rays, the adaptive threshold and the depth limit, under every
+/// kind of light. Every pixel is exactly its samples traced one by one.
 #[test]
 fn every_pixel_of_a_plain_scene_with_nested_glass_traced_in_waves_is_traced_sample_by_sample() {
     let yaml = [

@@ -36,49 +36,42 @@ pub(super) enum Transmission {
 #[inline(always)]
 pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> Outgoing {
     let m = t.scene.material(si.material);
+    // `Tracer::coefficients`, written out to be compiled into the packet loop. A surface that
+    // transmits nothing and has no Fresnel term needs neither index nor the media beyond:
+    // its kr and kt are the material's.
+    let (kr, kt, across) = if refracts(si, m) {
+        let across = across(t, task, si, m);
+        let (kr, kt) = fresnel_weights(
+            m.fresnel,
+            -d.dot(si.normal),
+            (across.n1, across.n2),
+            (si.paint.kr, si.paint.kt),
+        );
+        (kr, kt, Some(across))
+    } else {
+        (si.paint.kr, si.paint.kt, None)
+    };
     let mirror = reflect(d, si.normal);
-    if !refracts(si, m) {
-        // A surface that transmits nothing and has no Fresnel term: kr and kt are the
-        // material's, and neither index (nor the media beyond) is needed.
-        let reflection = if si.paint.kr > 0.0 {
-            Some(task.reflection(t.spawn(si, mirror, task), si.paint.kr))
-        } else {
-            None
-        };
-        return Outgoing {
-            kr: si.paint.kr,
-            kt: si.paint.kt,
-            reflection,
-            transmission: None,
-        };
-    }
-    // `Tracer::coefficients`, written out to be compiled into the packet loop.
-    let across = across(t, task, si, m);
-    let (kr, kt) = fresnel_weights(
-        m.fresnel,
-        -d.dot(si.normal),
-        (across.n1, across.n2),
-        (si.paint.kr, si.paint.kt),
-    );
-    let indices = across.indices();
     // Plain branches, not closures: the compiler inlines them into the packet loop.
     let reflection = if kr > 0.0 {
         Some(task.reflection(t.spawn(si, mirror, task), kr))
     } else {
         None
     };
-    let transmission = if kt > 0.0 {
-        Some(match refract(d, si.normal, indices.n1, indices.n2) {
-            Some(dir) => {
-                let ray = t.spawn(si, dir, task);
-                Transmission::Refracted(task.refraction(ray, kt, across.beyond, indices))
-            }
-            None => Transmission::TotalInternalReflection(
-                task.mirror_inside(t.spawn(si, mirror, task), kt),
-            ),
-        })
-    } else {
-        None
+    let transmission = match across {
+        Some(across) if kt > 0.0 => {
+            let indices = across.indices();
+            Some(match refract(d, si.normal, indices.n1, indices.n2) {
+                Some(dir) => {
+                    let ray = t.spawn(si, dir, task);
+                    Transmission::Refracted(task.refraction(ray, kt, across.beyond, indices))
+                }
+                None => Transmission::TotalInternalReflection(
+                    task.mirror_inside(t.spawn(si, mirror, task), kt),
+                ),
+            })
+        }
+        _ => None,
     };
     Outgoing {
         kr,
