@@ -588,7 +588,7 @@ impl FastScene<'_> {
                 let mut passed = self.box_passed_by(o, used, slabs, limit, stats);
                 if let Some((csg, found)) = self.csg_in_lanes(o, slabs, passed, limit, stats) {
                     let t = found.t.to_array();
-                    for i in (0..rays.len()).filter(|i| found.hit & (1 << i) != 0) {
+                    for i in ones(found.hit & used) {
                         t_max[i] = t[i];
                         hits[i] = Some(Hit {
                             t: t[i],
@@ -598,7 +598,7 @@ impl FastScene<'_> {
                     }
                     passed = found.undecided;
                 }
-                for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
+                for i in ones(passed & used) {
                     if let Some(h) =
                         self.object_hit::<V>(o, &rays[i], slabs.inv_dir(i), 0.0, t_max[i], stats)
                     {
@@ -633,7 +633,7 @@ impl FastScene<'_> {
                     blocked = found.hit;
                     passed = found.undecided;
                 }
-                for i in (0..rays.len()).filter(|i| passed & (1 << i) != 0) {
+                for i in ones(passed & open) {
                     if self
                         .object_hit::<V>(o, &rays[i], slabs.inv_dir(i), 0.0, reach[i], stats)
                         .is_some()
