@@ -92,6 +92,17 @@ fn away_from_the_sources_the_built_in_lessons_are_listed_and_checked() {
             String::from_utf8_lossy(&o.stderr)
         );
     }
+    // One lesson listed by its name, away from the sources as well.
+    let o = raytree_in(tmp.path(), &["lessons", "01-camera", "--format", "json"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let listed: Vec<&str> = doc["lessons"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(listed, ["01-camera"]);
     let wrong = raytree_in(
         tmp.path(),
         &[

@@ -10,18 +10,20 @@ use super::args::Format;
 use super::Failure;
 use crate::lessons::progress::Progress;
 use crate::lessons::validate::validate;
-use crate::lessons::{lessons_root, Lesson, Solutions};
+use crate::lessons::{find_lesson, lessons_root, Lesson, Solutions};
 
 #[derive(clap::Args, Debug)]
 #[command(args_conflicts_with_subcommands = true)]
 #[command(after_help = "Examples:
   raytree lessons
+  raytree lessons 08-pixel-intensity
   raytree lessons --format json
   raytree lessons validate my-course/")]
 pub struct Args {
     #[command(subcommand)]
     action: Option<Action>,
-    /// A folder of lessons (default: raytree's own, or RAYTREE_LESSONS).
+    /// A folder of lessons (default: raytree's own, or RAYTREE_LESSONS), or one lesson, by
+    /// its folder or its name (`08-pixel-intensity`).
     dir: Option<PathBuf>,
     /// Output: text to read, or JSON for programs.
     #[arg(long, value_enum, default_value_t = Format::Text)]
@@ -60,7 +62,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         None => {}
     }
     let root = match a.dir {
-        Some(dir) => dir,
+        Some(dir) => find_lesson(&dir),
         None => lessons_root()?,
     };
     let lessons = load_all(&root)?;
