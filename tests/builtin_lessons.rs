@@ -92,6 +92,21 @@ fn away_from_the_sources_the_built_in_lessons_are_listed_and_checked() {
             String::from_utf8_lossy(&o.stderr)
         );
     }
+    // A lesson's name stands for its scene wherever a command takes a scene.
+    let named = raytree_in(
+        tmp.path(),
+        &["inspect", "05-reflection", "--pixel", "20,15"],
+    );
+    assert!(
+        named.status.success(),
+        "{}",
+        String::from_utf8_lossy(&named.stderr)
+    );
+    let source = source_lessons().join("05-reflection/scene.yaml");
+    let source = source.to_str().unwrap();
+    let by_path = raytree_in(tmp.path(), &["inspect", source, "--pixel", "20,15"]);
+    assert!(stdout(&named).contains("primary"), "{}", stdout(&named));
+    assert_eq!(stdout(&named), stdout(&by_path));
     // One lesson listed by its name, away from the sources as well.
     let o = raytree_in(tmp.path(), &["lessons", "01-camera", "--format", "json"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -92,7 +92,7 @@ pub enum Format {
 /// How a scene is loaded.
 #[derive(clap::Args, Debug, Clone)]
 pub struct SceneArgs {
-    /// The scene file (YAML), or a lesson's folder for its scene.yaml.
+    /// The scene file (YAML), or a lesson's folder or name for its scene.yaml.
     #[arg(value_parser = scene_path)]
     pub scene: PathBuf,
     /// Go beyond the budgets that keep a mistake from exhausting memory: 64 million pixels,
@@ -122,6 +122,20 @@ pub fn scene_path(arg: &str) -> Result<PathBuf, String> {
     })
 }
 
+/// The scene.yaml of the lesson named `path` where no file or folder `path` exists (the
+/// lessons folder is known only once the command line is read: `--lessons`), else `path`.
+fn named_lesson_scene(path: &Path) -> PathBuf {
+    if path.exists() {
+        return path.to_path_buf();
+    }
+    let scene = crate::lessons::find_lesson(path).join("scene.yaml");
+    if scene.is_file() {
+        scene
+    } else {
+        path.to_path_buf()
+    }
+}
+
 /// The budgets a command works within: the defaults, or `--allow-huge`'s.
 pub fn limits(allow_huge: bool) -> Limits {
     if allow_huge {
@@ -131,8 +145,10 @@ pub fn limits(allow_huge: bool) -> Limits {
     }
 }
 
-/// Loads a scene, printing its warnings.
+/// Loads a scene, printing its warnings. A name that is no path (`08-pixel-intensity`) stands
+/// for the scene of the lesson of that name, as `raytree explore` finds it.
 pub fn load_scene(path: &Path, allow_huge: bool, accel: AccelArg) -> Result<Scene, Failure> {
+    let path = &named_lesson_scene(path);
     let mut scene = crate::scene::load(path, &limits(allow_huge)).map_err(Failure::scene)?;
     for (pos, warning) in &scene.warnings {
         super::output::eprintln(&format!(

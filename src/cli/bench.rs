@@ -32,7 +32,7 @@ enum Measure {
   raytree bench sweep benches/peers/whitted.yaml --knob adaptive --values 0,0.001,0.01,0.1 --plot adaptive.png
   raytree bench sweep scene.yaml --knob depth --values 1,2,4,8 --reference truth.exr --csv depth.csv")]
     Sweep {
-        /// The scene file (YAML), or a lesson's folder for its scene.yaml.
+        /// The scene file (YAML), or a lesson's folder or name for its scene.yaml.
         #[arg(value_parser = super::args::scene_path)]
         scene: std::path::PathBuf,
         /// The setting turned from one render to the next.
@@ -97,7 +97,7 @@ enum Measure {
   raytree bench threads benches/peers/whitted.yaml
   raytree bench threads lessons/examples/cornell.yaml --threads 2 --runs 3 --format json")]
     Threads {
-        /// The scene file (YAML), or a lesson's folder for its scene.yaml.
+        /// The scene file (YAML), or a lesson's folder or name for its scene.yaml.
         #[arg(value_parser = super::args::scene_path)]
         scene: std::path::PathBuf,
         /// N (default: every core, at least 2).
