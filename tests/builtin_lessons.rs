@@ -45,18 +45,25 @@ fn source_lessons() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons")
 }
 
-#[test]
-fn away_from_the_sources_the_built_in_lessons_are_listed_and_checked() {
-    let tmp = tempfile::tempdir().unwrap();
-    let o = raytree_in(tmp.path(), &["lessons", "--format", "json"]);
+/// The ids of the lessons `raytree lessons … --format json` lists, run in `dir`, and the
+/// whole document.
+fn listed_lessons(dir: &Path, args: &[&str]) -> (Vec<String>, serde_json::Value) {
+    let o = raytree_in(dir, args);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
-    let ids: Vec<&str> = doc["lessons"]
+    let ids = doc["lessons"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|l| l["id"].as_str().expect("every lesson loads"))
+        .map(|l| l["id"].as_str().expect("every lesson loads").to_string())
         .collect();
+    (ids, doc)
+}
+
+#[test]
+fn away_from_the_sources_the_built_in_lessons_are_listed_and_checked() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (ids, doc) = listed_lessons(tmp.path(), &["lessons", "--format", "json"]);
     let expected: Vec<String> = {
         let mut v: Vec<String> = std::fs::read_dir(source_lessons())
             .unwrap()
@@ -108,15 +115,7 @@ fn away_from_the_sources_the_built_in_lessons_are_listed_and_checked() {
     assert!(stdout(&named).contains("primary"), "{}", stdout(&named));
     assert_eq!(stdout(&named), stdout(&by_path));
     // One lesson listed by its name, away from the sources as well.
-    let o = raytree_in(tmp.path(), &["lessons", "01-camera", "--format", "json"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
-    let listed: Vec<&str> = doc["lessons"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|l| l["id"].as_str().unwrap())
-        .collect();
+    let (listed, _) = listed_lessons(tmp.path(), &["lessons", "01-camera", "--format", "json"]);
     assert_eq!(listed, ["01-camera"]);
     let wrong = raytree_in(
         tmp.path(),
