@@ -85,7 +85,7 @@ impl Scene {
         si.paint = m.paint();
         if let Some(patterns) = &m.patterns {
             let at = self.pattern_point(leaf, point, hit.surface.face, patterns.need_uv());
-            si.paint = patterns.paint(&si.paint, &at);
+            patterns.paint(&mut si.paint, &at);
         }
     }
 

@@ -110,18 +110,29 @@ pub struct Patterns {
     pub kr: Option<Pattern>,
     /// The pattern of kt, if it varies.
     pub kt: Option<Pattern>,
+    /// Whether one of them reads the surface's own (u, v): found once (`Patterns::noting_uv`),
+    /// not at every hit.
+    uv: bool,
 }
 
 impl Patterns {
-    /// The values at a point: the patterns' where there is one, the constant's elsewhere.
-    pub fn paint(&self, constant: &Paint, at: &PatternPoint) -> Paint {
-        let k = |p: &Option<Pattern>, c: f64| p.as_ref().map_or(c, |p| p.value(at).x);
-        Paint {
-            color: self.color.as_ref().map_or(constant.color, |p| p.value(at)),
-            kd: k(&self.kd, constant.kd),
-            ks: k(&self.ks, constant.ks),
-            kr: k(&self.kr, constant.kr),
-            kt: k(&self.kt, constant.kt),
+    /// The values at a point: each value with a pattern is the pattern's there; the others keep
+    /// the constants `paint` holds.
+    pub fn paint(&self, paint: &mut Paint, at: &PatternPoint) {
+        // Written in place, field by field: a whole Paint returned and copied in would be read
+        // back wide while its narrow stores are still on their way.
+        if let Some(p) = &self.color {
+            paint.color = p.value(at);
+        }
+        for (pattern, k) in [
+            (&self.kd, &mut paint.kd),
+            (&self.ks, &mut paint.ks),
+            (&self.kr, &mut paint.kr),
+            (&self.kt, &mut paint.kt),
+        ] {
+            if let Some(p) = pattern {
+                *k = p.value(at).x;
+            }
         }
     }
 
@@ -138,9 +149,15 @@ impl Patterns {
         .filter_map(|(name, p)| p.as_ref().map(|p| (name, p)))
     }
 
-    /// Whether one of them reads the surface's own (u, v).
+    /// The patterns, noting whether one of them reads the surface's own (u, v).
+    pub fn noting_uv(self) -> Patterns {
+        let uv = self.named().any(|(_, p)| p.needs_uv());
+        Patterns { uv, ..self }
+    }
+
+    /// Whether one of them reads the surface's own (u, v) (as `noting_uv` found).
     pub fn need_uv(&self) -> bool {
-        self.named().any(|(_, p)| p.needs_uv())
+        self.uv
     }
 }
 impl Material {

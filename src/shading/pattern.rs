@@ -113,6 +113,7 @@ pub enum Kind {
 
 impl Pattern {
     /// The value at a point.
+    #[inline]
     pub fn value(&self, at: &PatternPoint) -> DVec3 {
         match self {
             Pattern::Constant(c) => *c,
@@ -202,7 +203,6 @@ impl Pattern {
 impl Placed {
     /// The point in the pattern's own space: through the inverse of its transform (the surface's
     /// (u, v) too, as the point (u, v, 0), for `mapping: uv`).
-    #[inline]
     fn place(&self, at: &PatternPoint) -> PatternPoint {
         match &self.to_pattern {
             None => *at,
@@ -213,40 +213,52 @@ impl Placed {
         }
     }
 
+    /// The value at a point: looked up where the point is in the pattern's own space.
     fn value(&self, at: &PatternPoint) -> DVec3 {
-        let at = self.place(at);
+        // Without a transform the point is looked up where it is: a copy of it, read back
+        // whole just after it was written field by field, would wait on those stores.
+        match &self.to_pattern {
+            None => self.kind.value(at),
+            Some(_) => self.kind.value(&self.place(at)),
+        }
+    }
+}
+
+impl Kind {
+    /// The value at a point in the pattern's own space.
+    fn value(&self, at: &PatternPoint) -> DVec3 {
         let p = at.point;
         let pick = |[a, b]: &[Pattern; 2], first: bool| {
             if first {
-                a.value(&at)
+                a.value(at)
             } else {
-                b.value(&at)
+                b.value(at)
             }
         };
-        match &self.kind {
+        match self {
             Kind::Stripes(v) => pick(v, even(cell(p.x))),
             Kind::Rings(v) => pick(v, even(cell((p.x * p.x + p.z * p.z).sqrt()))),
             Kind::Checker(v) => pick(v, even(cell(p.x) + cell(p.y) + cell(p.z))),
             Kind::Gradient([a, b]) => {
                 // The fraction of the way across the cell, never below 0 at its boundary.
                 let f = (p.x - cell(p.x)).max(0.0);
-                let a = a.value(&at);
-                a + (b.value(&at) - a) * f
+                let a = a.value(at);
+                a + (b.value(at) - a) * f
             }
             Kind::Blend {
                 weight,
                 values: [a, b],
-            } => a.value(&at).lerp(b.value(&at), *weight),
+            } => a.value(at).lerp(b.value(at), *weight),
             Kind::UvChecker {
                 width,
                 height,
                 mapping,
                 values,
             } => {
-                let uv = mapping.uv(&at);
+                let uv = mapping.uv(at);
                 pick(values, even(cell(uv.x * width) + cell(uv.y * height)))
             }
-            Kind::Image { image, mapping } => image.bilinear(mapping.uv(&at)),
+            Kind::Image { image, mapping } => image.bilinear(mapping.uv(at)),
         }
     }
 }

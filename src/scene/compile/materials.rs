@@ -116,7 +116,7 @@ fn material(name: &str, m: &MaterialSpec, textures: &mut Textures) -> Result<Mat
             .as_ref()
             .map(|f| lobe(name, "frosted", f))
             .transpose()?,
-        patterns: (patterns != Patterns::default()).then(|| Box::new(patterns)),
+        patterns: (patterns != Patterns::default()).then(|| Box::new(patterns.noting_uv())),
     })
 }
 
