@@ -40,8 +40,10 @@ pub fn cell(x: f64) -> f64 {
     (x + BOUNDARY).floor()
 }
 
+/// Whether a whole number n is even: n − 2⌊n/2⌋ = 0 (false for NaN and the infinities). The
+/// remainder n mod 2 says the same, but through `fmod`, which takes several times as long.
 fn even(n: f64) -> bool {
-    n.rem_euclid(2.0) == 0.0
+    n - 2.0 * (0.5 * n).floor() == 0.0
 }
 
 /// Where a pattern is looked up: the hit point in the object's own space, and the surface's own
