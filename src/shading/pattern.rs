@@ -343,6 +343,31 @@ mod tests {
         }
     }
 
+    /// Parity by its definition: n is even when n = 2k for a whole k, negative n and whole
+    /// numbers past 2⁵³ included; NaN and the infinities are not even.
+    #[test]
+    fn even_and_odd_cells() {
+        for k in [
+            -1e6,
+            -3.0,
+            -1.0,
+            0.0,
+            1.0,
+            2.0,
+            2f64.powi(52),
+            2f64.powi(60),
+        ] {
+            assert!(even(2.0 * k), "{}", 2.0 * k);
+            if k.abs() < 2f64.powi(52) {
+                assert!(!even(2.0 * k + 1.0), "{}", 2.0 * k + 1.0);
+            }
+        }
+        assert!(even(-0.0));
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert!(!even(x), "{x}");
+        }
+    }
+
     /// "Stripes with a pattern transformation": scaling(2, 2, 2), at (1.5, 0, 0) → white.
     #[test]
     fn a_transformed_pattern_is_looked_up_through_its_inverse() {
