@@ -85,25 +85,41 @@ impl<V: F64x4> Hull<V> {
     /// a correctly rounded division keeps that order, so over rays whose d share a sign on an
     /// axis the smallest 1/d is 1/(the largest d) and the largest is 1/(the smallest d), to
     /// the bit. (Sign bits and finiteness follow too: 1/d has d's sign bit, and is finite for
-    /// every ray where it is for both extremes.)
+    /// every ray where it is for both extremes.) The bounds are found with a ray's x, y and z
+    /// side by side in one vector's lanes 0–2.
     #[inline(always)]
     pub fn of_directions(rays: impl IntoIterator<Item = (DVec3, DVec3)>) -> Option<Hull<V>> {
         let mut rays = rays.into_iter();
         let (o, d) = rays.next()?;
-        let negative = d.is_negative_bitmask();
+        let (o, d) = (xyz::<V>(o), xyz::<V>(d));
+        let negative = d.to_bitmask();
         let (mut origin_lo, mut origin_hi, mut d_lo, mut d_hi) = (o, o, d, d);
-        let mut sound = o.is_finite_mask().all() && !d.is_nan_mask().any();
+        // All ones where every origin is finite and no d is NaN (lane 3 holds zeros).
+        let mut sound = o.is_finite() & d.simd_eq(d);
+        // The axes where some ray's d differs in sign from the first's.
+        let mut signs_differ = 0;
         for (o, d) in rays {
-            sound &= o.is_finite_mask().all() && !d.is_nan_mask().any();
-            sound &= d.is_negative_bitmask() == negative;
-            origin_lo = origin_lo.min(o);
-            origin_hi = origin_hi.max(o);
-            d_lo = d_lo.min(d);
-            d_hi = d_hi.max(d);
+            let (o, d) = (xyz::<V>(o), xyz::<V>(d));
+            sound = sound & o.is_finite() & d.simd_eq(d);
+            signs_differ |= d.to_bitmask() ^ negative;
+            origin_lo = origin_lo.fast_min(o);
+            origin_hi = origin_hi.fast_max(o);
+            d_lo = d_lo.fast_min(d);
+            d_hi = d_hi.fast_max(d);
         }
-        let (inv_lo, inv_hi) = (d_hi.recip(), d_lo.recip());
-        sound &= (inv_lo.is_finite_mask() & inv_hi.is_finite_mask()).all();
-        sound.then(|| Hull::of_bounds([origin_lo, origin_hi], [inv_lo, inv_hi], negative))
+        if !sound.all() || signs_differ != 0 {
+            return None;
+        }
+        let vector = |v: V| {
+            let [x, y, z, _] = v.to_array();
+            DVec3::new(x, y, z)
+        };
+        let (inv_lo, inv_hi) = (vector(d_hi).recip(), vector(d_lo).recip());
+        let finite = (inv_lo.is_finite_mask() & inv_hi.is_finite_mask()).all();
+        finite.then(|| {
+            let origin = [vector(origin_lo), vector(origin_hi)];
+            Hull::of_bounds(origin, [inv_lo, inv_hi], negative)
+        })
     }
 
     /// `new` for rays laid out four to a group, axis by axis: `group(q)` for each of the
@@ -276,6 +292,12 @@ pub fn overlaps_lanes<V: F64x4>(enter: V, exit: V) -> u32 {
 #[inline(always)]
 fn lanes<V: F64x4>(v: DVec3) -> V {
     V::new([v.x, v.y, v.z, 0.0])
+}
+
+/// `lanes` from registers (`F64x4::setr`), for vectors just computed or read.
+#[inline(always)]
+fn xyz<V: F64x4>(v: DVec3) -> V {
+    V::setr(v.x, v.y, v.z, 0.0)
 }
 
 // Plain comparisons (one instruction each): nothing here is NaN, so `f64::min`'s care for
