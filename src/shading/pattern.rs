@@ -45,8 +45,8 @@ pub fn cell(x: f64) -> f64 {
 /// Below 2⁵² in size, x ± 2⁵² (the sign of x) has no bits left for a fraction, so the sum is
 /// rounded to a whole number, and subtracting 2⁵² again gives x rounded to the nearest whole
 /// number, exactly; ⌊x⌋ is that, or one less where that is above x. From 2⁵² on every f64 is
-/// whole, ±∞ are their own floor, and NaN stays NaN. (The one difference from `f64::floor`: ⌊−0⌋ is
-/// +0 here.)
+/// whole, ±∞ are their own floor, and NaN stays NaN. (The one difference from `f64::floor`:
+/// ⌊−0⌋ is +0 here.)
 #[inline]
 fn floor(x: f64) -> f64 {
     const NO_FRACTION: f64 = 4_503_599_627_370_496.0; // 2⁵²
