@@ -5,6 +5,7 @@ mod aabox;
 pub mod cone;
 pub mod csg;
 pub mod cylinder;
+pub mod floor;
 mod mesh;
 mod plane;
 mod ray;

@@ -19,11 +19,12 @@
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
 
+use super::floor::floor;
 use super::{cylinder, Shape};
 
 /// x − ⌊x⌋, in [0, 1) (a value that rounds to 1 wraps to 0).
 pub fn wrap(x: f64) -> f64 {
-    let f = x - x.floor();
+    let f = x - floor(x);
     if f >= 1.0 {
         0.0
     } else {

@@ -29,6 +29,7 @@ use std::sync::Arc;
 use glam::{DAffine3, DVec2, DVec3};
 
 use super::texture::{Image, Mapping};
+use crate::geometry::floor::floor;
 
 /// A point less than this (in the pattern's units: cells of side 1) below a cell boundary
 /// counts as on the boundary.
@@ -38,27 +39,6 @@ pub const BOUNDARY: f64 = 1e-9;
 #[inline]
 pub fn cell(x: f64) -> f64 {
     floor(x + BOUNDARY)
-}
-
-/// ⌊x⌋. On an x86-64 without SSE4.1's rounding instruction (the baseline raytree is built for)
-/// `f64::floor` is a library call, which costs a checker lookup more than its arithmetic does.
-/// Below 2⁵² in size, x ± 2⁵² (the sign of x) has no bits left for a fraction, so the sum is
-/// rounded to a whole number, and subtracting 2⁵² again gives x rounded to the nearest whole
-/// number, exactly; ⌊x⌋ is that, or one less where that is above x. From 2⁵² on every f64 is
-/// whole, ±∞ are their own floor, and NaN stays NaN. (The one difference from `f64::floor`:
-/// ⌊−0⌋ is +0 here.)
-#[inline]
-fn floor(x: f64) -> f64 {
-    const NO_FRACTION: f64 = 4_503_599_627_370_496.0; // 2⁵²
-    if cfg!(target_feature = "sse4.1") {
-        return x.floor();
-    }
-    if x.abs() >= NO_FRACTION {
-        return x;
-    }
-    let m = NO_FRACTION.copysign(x);
-    let nearest = (x + m) - m;
-    nearest - if nearest > x { 1.0 } else { 0.0 }
 }
 
 /// Whether a whole number n is even: its last binary digit is 0. Below 2⁵³ in size a whole
@@ -366,38 +346,6 @@ mod tests {
             ((0.0, 0.0, 1.01), BLACK),
         ] {
             assert_eq!(c.value(&at(p.0, p.1, p.2)), want, "{p:?}");
-        }
-    }
-
-    /// ⌊x⌋ by its definition, the whole number r with r ≤ x < r + 1, at fractions either side
-    /// of zero, next to 2⁵² where f64s stop having fractions, and past it; and as `f64::floor`
-    /// gives it over a sweep of steps of 1/8 and of 0.1 (which are not exact in binary).
-    #[test]
-    fn floor_is_the_whole_number_at_or_below() {
-        let big = 2f64.powi(52);
-        for (x, want) in [
-            (2.5, 2.0),
-            (-2.5, -3.0),
-            (-2.0, -2.0),
-            (0.0, 0.0),
-            (1e-300, 0.0),
-            (-1e-300, -1.0),
-            (1.0 - f64::EPSILON, 0.0),
-            (-(big - 0.5), -big),
-            (big - 0.5, big - 1.0),
-            (-big, -big),
-            (big + 1.0, big + 1.0),
-            (-1e300, -1e300),
-            (f64::INFINITY, f64::INFINITY),
-            (f64::NEG_INFINITY, f64::NEG_INFINITY),
-        ] {
-            assert_eq!(floor(x), want, "⌊{x}⌋");
-        }
-        assert!(floor(f64::NAN).is_nan());
-        for i in -400..=400 {
-            for x in [i as f64 / 8.0, i as f64 * 0.1] {
-                assert_eq!(floor(x), x.floor(), "⌊{x}⌋");
-            }
         }
     }
 

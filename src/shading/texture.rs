@@ -10,6 +10,7 @@ use glam::{DVec2, DVec3};
 use serde::Deserialize;
 
 use super::pattern::PatternPoint;
+use crate::geometry::floor::floor;
 use crate::geometry::uv::{cube, cylindrical, planar, spherical, wrap};
 
 /// How a point of a surface gets its (u, v).
@@ -227,7 +228,7 @@ impl Image {
     pub fn footprint(&self, uv: DVec2) -> Footprint {
         let x = wrap(uv.x) * self.width as f64 - 0.5;
         let y = (1.0 - wrap(uv.y)) * self.height as f64 - 0.5;
-        let (x0, y0) = (x.floor(), y.floor());
+        let (x0, y0) = (floor(x), floor(y));
         Footprint {
             x,
             y,
