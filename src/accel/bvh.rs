@@ -47,21 +47,24 @@ impl Node {
     }
 }
 
-/// The largest f32 at or below x (−∞ below f32's range).
+/// The largest f32 at or below x (−∞ below f32's range). Both candidates are worked out and
+/// one chosen, which compiles to a select: which way x rounds is a coin toss a branch misses.
 fn round_down(x: f64) -> f32 {
     let f = x as f32;
+    let below = f.next_down();
     if f as f64 > x {
-        f.next_down()
+        below
     } else {
         f
     }
 }
 
-/// The smallest f32 at or above x (+∞ above f32's range).
+/// The smallest f32 at or above x (+∞ above f32's range), chosen as in `round_down`.
 fn round_up(x: f64) -> f32 {
     let f = x as f32;
+    let above = f.next_up();
     if (f as f64) < x {
-        f.next_up()
+        above
     } else {
         f
     }
