@@ -1,8 +1,9 @@
-//! Hot paths: shape intersections, BVH traversal against brute force, whole paths of the path
+//! Hot paths: shape intersections, BVH traversal against brute force and its build, whole paths of the path
 //! tracer, and a small render.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;
+use raytree::accel::{Aabb, Bvh};
 use raytree::bench;
 use raytree::fast::simd::Wide;
 use raytree::fast::{sphere_hit, DiffusePaths, FastScene, SphereGroup, PACKET};
@@ -176,6 +177,33 @@ fn bvh(c: &mut Criterion) {
                 })
             });
         }
+    }
+    g.finish();
+}
+
+/// Building the hierarchy over the boxes of 10 000 small spheres (as `many.yaml` has), on one
+/// thread and on two.
+fn bvh_build(c: &mut Criterion) {
+    let boxes: Vec<Aabb> = (0..10_000)
+        .map(|i| {
+            let h = |k: f64| ((i as f64 + 1.0) * k).fract() - 0.5;
+            let c = DVec3::new(
+                h(0.754_877_666) * 20.0,
+                h(0.569_840_291) * 4.0,
+                h(0.671_123_1) * 20.0,
+            );
+            Aabb::new(c - 0.12, c + 0.12)
+        })
+        .collect();
+    let mut g = c.benchmark_group("bvh build, 10 000 boxes");
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        g.bench_with_input(BenchmarkId::new("threads", threads), &threads, |b, _| {
+            b.iter(|| pool.install(|| Bvh::build(black_box(&boxes))))
+        });
     }
     g.finish();
 }
@@ -553,6 +581,6 @@ fn paths(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, lanes, primary_packets, shadow_packets, csg, boxes, room, paths, render
+    targets = shapes, sphere_group, bvh, bvh_build, lanes, primary_packets, shadow_packets, csg, boxes, room, paths, render
 }
 criterion_main!(benches);
