@@ -1,5 +1,5 @@
-//! Hot paths: shape intersections, BVH traversal against brute force and its build, whole paths of the path
-//! tracer, and a small render.
+//! Hot paths: shape intersections, BVH traversal against brute force and the BVH's build, whole
+//! paths of the path tracer, and a small render.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use glam::DVec3;

@@ -1,5 +1,6 @@
 //! Geometry: rays, the primitive shapes (each with one routine that intersects it with a
-//! ray, giving its span), transforms, segment lists and CSG.
+//! ray, giving its span), transforms, segment lists and CSG; and the surfaces' own (u, v) and
+//! the ⌊x⌋ that patterns, uv and textures look cells up with.
 
 mod aabox;
 pub mod cone;
