@@ -113,6 +113,33 @@ fn every_peer_scene_renders_the_same_with_both_engines() {
     }
 }
 
+/// Seventy boxes searched without a BVH (`--accel none`), the first far off, so that every
+/// packet rules its box out at once: the packet's verdicts are kept one bit per object for
+/// the first 64, and the boxes beyond them are each tested, not mistaken for the first.
+#[test]
+fn boxes_beyond_the_sixty_fourth_without_a_bvh_are_the_cores() {
+    let mut yaml = String::from(
+        "camera: { eye: [0, 5, -30], look_at: [0, 0, 0], width: 40, height: 30 }\n\
+         lights: [ { point: [10, 20, -10] } ]\nmaterials: { m: { kd: 0.8 } }\nobjects:\n\
+         - { box: { min: [100, 100, 100], max: [101, 101, 101] }, material: m }\n",
+    );
+    for i in 0..69 {
+        let (x, y) = (
+            f64::from(i % 10) * 2.2 - 10.0,
+            f64::from(i / 10) * 2.2 - 7.0,
+        );
+        yaml.push_str(&format!(
+            "- {{ box: {{ min: [{x}, {y}, 0], max: [{}, {}, 1.5] }}, material: m }}\n",
+            x + 1.5,
+            y + 1.5
+        ));
+    }
+    let mut scene = parse(&yaml, "boxes.yaml", None, &Limits::default()).unwrap();
+    scene.set_accel(Accel::None);
+    let (fast, _) = assert_engines_agree("70 boxes", &scene, 16);
+    assert!(fast.shadow_rays > 0);
+}
+
 /// Under a canopy of spheres, the shadow rays of neighbouring pixels toward a light are
 /// blocked by the same sphere: a packet of them tries the last blocker toward that light
 /// first, and is spared most of its walks of the BVH, with the same image.

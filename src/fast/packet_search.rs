@@ -452,7 +452,7 @@ impl FastScene<'_> {
                         }
                     }
                 }
-                Probe::Object(_) | Probe::Box { .. } if missed >> k & 1 != 0 => {
+                Probe::Object(_) | Probe::Box { .. } if ruled_out(missed, k) => {
                     // Counted as each ray's own test of the box counts its miss.
                     stats.bounds_skipped += n;
                 }
@@ -691,6 +691,12 @@ impl FastScene<'_> {
         stats.csg_pruned += found.pruned;
         Some((csg, found))
     }
+}
+
+/// Whether `missed` (`boxes_missed_by_all`) rules out the object of probe k: it holds a bit
+/// for each of the first 64 probes only, and says nothing of the rest.
+fn ruled_out(missed: u64, k: usize) -> bool {
+    k < 64 && missed >> k & 1 != 0
 }
 
 #[cfg(test)]
