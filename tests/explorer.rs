@@ -19,18 +19,9 @@ use raytree::tui::{input, ui, update, App, Msg};
 const MIRROR: &str = "tests/scenes/explorer-mirror.yaml";
 const CSG: &str = "tests/scenes/explorer-csg.yaml";
 
-/// Progress (answers right) goes to a data folder of this test binary, not the user's.
-fn private_data() {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let dir = std::env::temp_dir().join(format!("raytree-explorer-{}", std::process::id()));
-        std::env::set_var("RAYTREE_DATA", dir);
-    });
-}
-
 /// An explorer on `target` in a `w` × `h` terminal, its preview rendered.
 fn open(target: &str, color: ColorMode, (w, h): (u16, u16)) -> App {
-    private_data();
+    common::private_data();
     let mut app = App::open(Some(Path::new(target)), color).expect("opens");
     update(&mut app, Msg::Resize(w, h));
     app.render_now();

@@ -5,27 +5,21 @@
 
 use std::path::Path;
 
+mod common;
+
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers, MouseEvent, MouseEventKind};
 use proptest::prelude::*;
 use raytree::render::preview::ColorMode;
 use raytree::tui::{input, ui, update, App, Msg};
 
-/// Progress (answers typed at a prompt) goes to a data folder of this test binary.
-fn private_data() {
-    static ONCE: std::sync::Once = std::sync::Once::new();
-    ONCE.call_once(|| {
-        let dir = std::env::temp_dir().join(format!("raytree-keys-{}", std::process::id()));
-        std::env::set_var("RAYTREE_DATA", dir);
-    });
-}
-
 /// Where the explorer starts: the lesson list, lessons with CSG, triangles, a path-traced
 /// scene and textures, and a mirror scene of the tests.
-const TARGETS: [Option<&str>; 6] = [
+const TARGETS: [Option<&str>; 7] = [
     None,
     Some("lessons/08-pixel-intensity"),
     Some("lessons/10-csg"),
     Some("lessons/11-triangles"),
+    Some("lessons/15-path-tracing"),
     Some("lessons/16-textures"),
     Some("tests/scenes/explorer-mirror.yaml"),
 ];
@@ -97,7 +91,7 @@ proptest! {
         (w, h) in (1u16..200, 1u16..60),
         events in prop::collection::vec(event(), 1..40),
     ) {
-        private_data();
+        common::private_data();
         let mut app = App::open(target.map(Path::new), ColorMode::Ascii).expect("opens");
         update(&mut app, Msg::Resize(w, h));
         app.render_now();

@@ -481,7 +481,7 @@ impl FastScene<'_> {
             return 0;
         };
         let mut missed = 0;
-        for (k, p) in self.unbounded.iter().enumerate().take(64) {
+        for (k, p) in self.unbounded.iter().enumerate().take(u64::BITS as usize) {
             if let Some(o) = p.boxed_object() {
                 let bounds = &self.scene.objects[o as usize].bounds;
                 if self.tested_behind_box(o)
@@ -696,7 +696,7 @@ impl FastScene<'_> {
 /// Whether `missed` (`boxes_missed_by_all`) rules out the object of probe k: it holds a bit
 /// for each of the first 64 probes only, and says nothing of the rest.
 fn ruled_out(missed: u64, k: usize) -> bool {
-    k < 64 && missed >> k & 1 != 0
+    k < u64::BITS as usize && missed >> k & 1 != 0
 }
 
 #[cfg(test)]

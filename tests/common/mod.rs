@@ -8,6 +8,16 @@ use std::path::{Path, PathBuf};
 use proptest::prelude::*;
 use raytree::scene::{parse, Limits, Scene};
 
+/// Points the explorer's data folder (answers marked right) at one of this test binary's own,
+/// not the user's (set once per test process).
+pub fn private_data() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let dir = std::env::temp_dir().join(format!("raytree-tests-{}", std::process::id()));
+        std::env::set_var("RAYTREE_DATA", dir);
+    });
+}
+
 /// A scene from YAML text; a test scene that does not parse is a bug in the test.
 pub fn scene(yaml: &str) -> Scene {
     parse(yaml, "test.yaml", None, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
