@@ -5,36 +5,33 @@
 //! `fresnel_weights`, `reflect`, `refract`, `Tracer::spawn`, the `Task` constructors), so the
 //! rays are the core's to the bit.
 
+use arrayvec::ArrayVec;
 use glam::DVec3;
+
+use super::packet_trace::SHADED;
 
 use crate::scene::Interaction;
 use crate::shading::optics::{fresnel_weights, reflect, refract};
 use crate::shading::{Fresnel, Material};
 use crate::trace::{Across, Task, Tracer};
 
-/// A surface's secondary rays, before the depth limit and the adaptive threshold have their
-/// say.
-pub(super) struct Outgoing {
-    /// kr and kt after the Fresnel term.
-    pub kr: f64,
-    pub kt: f64,
-    /// The mirror ray, when kr > 0.
-    pub reflection: Option<Task>,
-    /// The refracted ray when kt > 0; past the limiting angle, the mirror ray that stays
-    /// inside and carries kt.
-    pub transmission: Option<Transmission>,
-}
-
-pub(super) enum Transmission {
-    Refracted(Task),
-    TotalInternalReflection(Task),
-}
-
-/// The rays the surface `si` sends on, for a ray `task` that hit it: as in `Tracer::secondary`.
-/// `d` is the task's direction, read from the packet's rays: a primary ray's task has just
-/// been built, and a wide load of what was just written field by field waits for the stores.
+/// The rays the surface `si` in packet lane `lane` sends on, for a ray `task` that hit it, as
+/// in `Tracer::secondary`: the mirror ray goes to `reflected`, the refracted ray (past the
+/// limiting angle, the mirror ray that stays inside: rays bouncing inside a glass are many) to
+/// `transmitted`, each built in its place there (a task is some 170 bytes, and one returned
+/// in a value is copied on twice more). Returns kr and kt after the Fresnel term. `d` is the
+/// task's direction, read from the packet's rays: a primary ray's task has just been built,
+/// and a wide load of what was just written field by field waits for the stores.
 #[inline(always)]
-pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> Outgoing {
+pub(super) fn outgoing(
+    t: &mut Tracer,
+    task: &Task,
+    d: DVec3,
+    si: &Interaction,
+    lane: usize,
+    reflected: &mut Children,
+    transmitted: &mut Children,
+) -> (f64, f64) {
     let m = t.scene.material(si.material);
     // `Tracer::coefficients`, written out to be compiled into the packet loop. A surface that
     // transmits nothing and has no Fresnel term needs neither index nor the media beyond:
@@ -52,32 +49,67 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
         (si.paint.kr, si.paint.kt, None)
     };
     let mirror = reflect(d, si.normal);
-    // Plain branches, not closures: the compiler inlines them into the packet loop.
-    let reflection = if kr > 0.0 {
-        Some(task.reflection(t.spawn(si, mirror, task), kr))
-    } else {
-        None
-    };
-    let transmission = match across {
-        Some(across) if kt > 0.0 => {
-            let indices = across.indices();
-            Some(match refract(d, si.normal, indices.n1, indices.n2) {
-                Some(dir) => {
-                    let ray = t.spawn(si, dir, task);
-                    Transmission::Refracted(task.refraction(ray, kt, across.beyond, indices))
+    if kr > 0.0 {
+        let ray = t.spawn(si, mirror, task);
+        reflected.add(t, lane, task.reflection(ray, kr));
+    }
+    if let Some(across) = across.filter(|_| kt > 0.0) {
+        let indices = across.indices();
+        match refract(d, si.normal, indices.n1, indices.n2) {
+            Some(dir) => {
+                let ray = t.spawn(si, dir, task);
+                let child = task.refraction(ray, kt, across.beyond, indices);
+                transmitted.add(t, lane, child);
+            }
+            None => {
+                let ray = t.spawn(si, mirror, task);
+                if transmitted.add(t, lane, task.mirror_inside(ray, kt)) {
+                    t.stats.total_internal_reflections += 1;
                 }
-                None => Transmission::TotalInternalReflection(
-                    task.mirror_inside(t.spawn(si, mirror, task), kt),
-                ),
-            })
+            }
         }
-        _ => None,
-    };
-    Outgoing {
-        kr,
-        kt,
-        reflection,
-        transmission,
+    }
+    (kr, kt)
+}
+
+/// The reflection (or refraction) rays of a packet's surfaces, gathered to be traced as a
+/// packet of their own, and the colour each surface receives through them.
+pub(super) struct Children {
+    pub tasks: ArrayVec<Task, SHADED>,
+    /// The surface (its lane in the parent packet) each task leaves from.
+    pub lanes: [usize; SHADED],
+    /// Per parent lane: the intensity arriving through its child (zero for a child the depth
+    /// limit or the adaptive threshold stopped); None for a surface without such a child.
+    pub colors: [Option<DVec3>; SHADED],
+}
+
+impl Children {
+    pub fn new() -> Children {
+        Children {
+            tasks: ArrayVec::new(),
+            lanes: [0; SHADED],
+            colors: [None; SHADED],
+        }
+    }
+
+    /// The child `task` of the surface in lane `lane`: traced unless the depth limit or the
+    /// adaptive threshold stop it, and then it brings nothing. Whether it is traced. (Pushed
+    /// before it is asked, so that it is built where it stays.)
+    #[inline(always)]
+    fn add(&mut self, t: &mut Tracer, lane: usize, task: Task) -> bool {
+        self.colors[lane] = Some(DVec3::ZERO);
+        self.lanes[self.tasks.len()] = lane;
+        self.tasks.push(task);
+        let traced = t.stopped(self.tasks.last().expect("just pushed")).is_none();
+        if !traced {
+            self.tasks.pop();
+        }
+        traced
+    }
+
+    /// The intensity arriving at the surface in lane `lane` through its child.
+    pub fn settle(&mut self, lane: usize, color: DVec3) {
+        self.colors[lane] = Some(color);
     }
 }
 

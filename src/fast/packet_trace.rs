@@ -18,7 +18,7 @@ use glam::DVec3;
 use super::bvh_packet::PACKET;
 use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
-use super::outgoing::{outgoing, Transmission};
+use super::outgoing::{outgoing, Children};
 use super::search::FastScene;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
@@ -77,40 +77,6 @@ impl Lanes for [Task] {
 
     fn task(&self, i: usize) -> Cow<'_, Task> {
         Cow::Borrowed(&self[i])
-    }
-}
-
-/// The reflection (or refraction) rays of a packet's surfaces, gathered to be traced as a
-/// packet of their own, and the colour each surface receives through them.
-struct Children {
-    tasks: ArrayVec<Task, SHADED>,
-    /// The surface (its lane in the parent packet) each task leaves from.
-    lanes: [usize; SHADED],
-    /// Per parent lane: the intensity arriving through its child (zero for a child the depth
-    /// limit or the adaptive threshold stopped); None for a surface without such a child.
-    colors: [Option<DVec3>; SHADED],
-}
-
-impl Children {
-    fn new() -> Children {
-        Children {
-            tasks: ArrayVec::new(),
-            lanes: [0; SHADED],
-            colors: [None; SHADED],
-        }
-    }
-
-    /// The child of the surface in lane `lane`: to be traced, or stopped (it brings nothing).
-    fn add(&mut self, lane: usize, task: &Task, traced: bool) {
-        if traced {
-            self.lanes[self.tasks.len()] = lane;
-            self.tasks.push(*task);
-        }
-        self.colors[lane] = Some(DVec3::ZERO);
-    }
-
-    fn settle(&mut self, lane: usize, color: DVec3) {
-        self.colors[lane] = Some(color);
     }
 }
 
@@ -328,28 +294,9 @@ fn secondary_packet<L: Lanes + ?Sized>(
         if !si.paint.sends_rays() || t.stops_at(&si.paint) {
             continue;
         }
-        let c = outgoing(t, &tasks.task(i), tasks.ray(i).dir, si);
-        splits[i] = Some((c.kr, c.kt));
-        if let Some(child) = &c.reflection {
-            let traced = t.stopped(child).is_none();
-            reflected.add(i, child, traced);
-        }
-        match &c.transmission {
-            None => {}
-            Some(Transmission::Refracted(child)) => {
-                let traced = t.stopped(child).is_none();
-                transmitted.add(i, child, traced)
-            }
-            // The mirror ray joins the refraction rays' packet (rays bouncing inside a glass
-            // are many).
-            Some(Transmission::TotalInternalReflection(child)) => {
-                let traced = t.stopped(child).is_none();
-                if traced {
-                    t.stats.total_internal_reflections += 1;
-                }
-                transmitted.add(i, child, traced);
-            }
-        }
+        let (task, d) = (tasks.task(i), tasks.ray(i).dir);
+        let split = outgoing(t, &task, d, si, i, &mut reflected, &mut transmitted);
+        splits[i] = Some(split);
     }
     trace_children(t, fast, &mut reflected);
     trace_children(t, fast, &mut transmitted);
