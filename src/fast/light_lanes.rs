@@ -195,8 +195,12 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
         (position, intensity): (DVec3, DVec3),
         group: &[usize],
     ) -> GroupLit<V> {
-        let (mut at, len) = ([group[0]; LANES], group.len());
-        at[..len].copy_from_slice(group);
+        let len = group.len();
+        // A whole group (the usual) is copied as one array, not through `copy_from_slice`
+        // (a call into the library for a length known only at run time).
+        let at: [usize; LANES] = group
+            .try_into()
+            .unwrap_or_else(|_| std::array::from_fn(|j| group[if j < len { j } else { 0 }]));
         let used = (1u32 << len) - 1;
         let si = at.map(|i| self.shaded[i % N].as_ref().expect("a shaded surface"));
         let v = at.map(|i| self.view[i % N]);
