@@ -15,23 +15,22 @@ use crate::shading::optics::{fresnel_weights, reflect, refract};
 use crate::shading::{Fresnel, Material};
 use crate::trace::{Across, Task, Tracer};
 
-/// The rays the surface `si` in packet lane `lane` sends on, for a ray `task` that hit it, as
-/// in `Tracer::secondary`: the mirror ray goes to `reflected`, the refracted ray (past the
-/// limiting angle, the mirror ray that stays inside: rays bouncing inside a glass are many) to
-/// `transmitted`, each built in its place there (a task is some 170 bytes, and one returned
-/// in a value is copied on twice more). Returns kr and kt after the Fresnel term. `d` is the
-/// task's direction, read from the packet's rays: a primary ray's task has just been built,
-/// and a wide load of what was just written field by field waits for the stores.
+/// Where the rays a surface sends on go, before they are built: kr and kt after the Fresnel
+/// term, the mirror direction, and where the surface transmits (kt > 0) the media across it
+/// and the refracted direction (None past the limiting angle).
+pub(super) struct Bends {
+    pub kr: f64,
+    pub kt: f64,
+    mirror: DVec3,
+    transmission: Option<(Across, Option<DVec3>)>,
+}
+
+/// The directions of the rays the surface `si` sends on, for a ray `task` that hit it, as in
+/// `Tracer::secondary`. `d` is the task's direction, read from the packet's rays: a primary
+/// ray's task has just been built, and a wide load of what was just written field by field
+/// waits for the stores.
 #[inline(always)]
-pub(super) fn outgoing(
-    t: &mut Tracer,
-    task: &Task,
-    d: DVec3,
-    si: &Interaction,
-    lane: usize,
-    reflected: &mut Children,
-    transmitted: &mut Children,
-) -> (f64, f64) {
+pub(super) fn bend(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> Bends {
     let m = t.scene.material(si.material);
     // `Tracer::coefficients`, written out to be compiled into the packet loop. A surface that
     // transmits nothing and has no Fresnel term needs neither index nor the media beyond:
@@ -48,28 +47,51 @@ pub(super) fn outgoing(
     } else {
         (si.paint.kr, si.paint.kt, None)
     };
-    let mirror = reflect(d, si.normal);
+    let transmission = across.filter(|_| kt > 0.0).map(|across| {
+        let refracted = refract(d, si.normal, across.n1, across.n2);
+        (across, refracted)
+    });
+    Bends {
+        kr,
+        kt,
+        mirror: reflect(d, si.normal),
+        transmission,
+    }
+}
+
+/// The rays the surface `si` in packet lane `lane` sends on, along `bends`: the mirror ray to
+/// `reflected`, the refracted ray (past the limiting angle, the mirror ray that stays inside:
+/// rays bouncing inside a glass are many) to `transmitted`, each built in its place there (a
+/// task is some 170 bytes, and one returned in a value is copied on twice more).
+#[inline(always)]
+pub(super) fn send(
+    t: &mut Tracer,
+    task: &Task,
+    si: &Interaction,
+    lane: usize,
+    bends: &Bends,
+    reflected: &mut Children,
+    transmitted: &mut Children,
+) {
+    let Bends { kr, kt, mirror, .. } = *bends;
     if kr > 0.0 {
         let ray = t.spawn(si, mirror, task);
         reflected.add(t, lane, task.reflection(ray, kr));
     }
-    if let Some(across) = across.filter(|_| kt > 0.0) {
-        let indices = across.indices();
-        match refract(d, si.normal, indices.n1, indices.n2) {
-            Some(dir) => {
-                let ray = t.spawn(si, dir, task);
-                let child = task.refraction(ray, kt, across.beyond, indices);
-                transmitted.add(t, lane, child);
-            }
-            None => {
-                let ray = t.spawn(si, mirror, task);
-                if transmitted.add(t, lane, task.mirror_inside(ray, kt)) {
-                    t.stats.total_internal_reflections += 1;
-                }
+    match &bends.transmission {
+        None => {}
+        Some((across, Some(dir))) => {
+            let ray = t.spawn(si, *dir, task);
+            let child = task.refraction(ray, kt, across.beyond, across.indices());
+            transmitted.add(t, lane, child);
+        }
+        Some((_, None)) => {
+            let ray = t.spawn(si, mirror, task);
+            if transmitted.add(t, lane, task.mirror_inside(ray, kt)) {
+                t.stats.total_internal_reflections += 1;
             }
         }
     }
-    (kr, kt)
 }
 
 /// The reflection (or refraction) rays of a packet's surfaces, gathered to be traced as a

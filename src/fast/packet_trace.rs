@@ -18,7 +18,7 @@ use glam::DVec3;
 use super::bvh_packet::PACKET;
 use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
-use super::outgoing::{outgoing, Children};
+use super::outgoing::{bend, send, Bends, Children};
 use super::search::FastScene;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
@@ -286,22 +286,26 @@ fn secondary_packet<L: Lanes + ?Sized>(
     if !shaded.iter().flatten().any(|si| si.paint.sends_rays()) {
         return;
     }
-    let mut splits: [Option<(f64, f64)>; SHADED] = [None; SHADED];
-    let mut reflected = Children::new();
-    let mut transmitted = Children::new();
+    // First the directions of all the surfaces' rays, then the rays: one surface's square
+    // roots and divisions then overlap the next one's, instead of holding up its rays.
+    let mut bends: [Option<Bends>; SHADED] = [const { None }; SHADED];
     for (i, si) in shaded.iter().enumerate() {
         let Some(si) = si else { continue };
-        if !si.paint.sends_rays() || t.stops_at(&si.paint) {
-            continue;
+        if si.paint.sends_rays() && !t.stops_at(&si.paint) {
+            bends[i] = Some(bend(t, &tasks.task(i), tasks.ray(i).dir, si));
         }
-        let (task, d) = (tasks.task(i), tasks.ray(i).dir);
-        let split = outgoing(t, &task, d, si, i, &mut reflected, &mut transmitted);
-        splits[i] = Some(split);
+    }
+    let mut reflected = Children::new();
+    let mut transmitted = Children::new();
+    for (i, (si, bends)) in shaded.iter().zip(&bends).enumerate() {
+        if let (Some(si), Some(bends)) = (si, bends) {
+            send(t, &tasks.task(i), si, i, bends, &mut reflected, &mut transmitted);
+        }
     }
     trace_children(t, fast, &mut reflected);
     trace_children(t, fast, &mut transmitted);
-    for (i, split) in splits.iter().enumerate() {
-        let Some((kr, kt)) = *split else { continue };
+    for (i, bends) in bends.iter().enumerate() {
+        let Some(Bends { kr, kt, .. }) = *bends else { continue };
         let mut sum = DVec3::ZERO;
         if let Some(color) = reflected.colors[i] {
             sum += kr * color;
