@@ -1,7 +1,7 @@
 //! The rays a surface sends on, as tasks to trace later: the core's `Tracer::secondary` traces
 //! its reflection and refraction rays at once, one surface after another; a packet of surfaces
-//! first gathers all their rays (`packet_trace::secondary_packet`) and traces them as packets
-//! of their own. Built from the core's own pieces (`Media`, `Tracer::across`,
+//! first finds all their directions (`outgoing`), then builds all their rays (`send`), and
+//! traces them as packets of their own (`packet_trace::secondary_packet`). Built from the core's own pieces (`Media`, `Tracer::across`,
 //! `fresnel_weights`, `reflect`, `refract`, `Tracer::spawn`, the `Task` constructors), so the
 //! rays are the core's to the bit.
 
@@ -18,7 +18,7 @@ use crate::trace::{Across, Task, Tracer};
 /// Where the rays a surface sends on go, before they are built: kr and kt after the Fresnel
 /// term, the mirror direction, and where the surface transmits (kt > 0) the media across it
 /// and the refracted direction (None past the limiting angle).
-pub(super) struct Bends {
+pub(super) struct Outgoing {
     pub kr: f64,
     pub kt: f64,
     mirror: DVec3,
@@ -30,7 +30,7 @@ pub(super) struct Bends {
 /// ray's task has just been built, and a wide load of what was just written field by field
 /// waits for the stores.
 #[inline(always)]
-pub(super) fn bend(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> Bends {
+pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> Outgoing {
     let m = t.scene.material(si.material);
     // `Tracer::coefficients`, written out to be compiled into the packet loop. A surface that
     // transmits nothing and has no Fresnel term needs neither index nor the media beyond:
@@ -51,7 +51,7 @@ pub(super) fn bend(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> B
         let refracted = refract(d, si.normal, across.n1, across.n2);
         (across, refracted)
     });
-    Bends {
+    Outgoing {
         kr,
         kt,
         mirror: reflect(d, si.normal),
@@ -59,7 +59,7 @@ pub(super) fn bend(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) -> B
     }
 }
 
-/// The rays the surface `si` in packet lane `lane` sends on, along `bends`: the mirror ray to
+/// The rays the surface `si` in packet lane `lane` sends on, as `plan` has them: the mirror ray to
 /// `reflected`, the refracted ray (past the limiting angle, the mirror ray that stays inside:
 /// rays bouncing inside a glass are many) to `transmitted`, each built in its place there (a
 /// task is some 170 bytes, and one returned in a value is copied on twice more).
@@ -69,16 +69,16 @@ pub(super) fn send(
     task: &Task,
     si: &Interaction,
     lane: usize,
-    bends: &Bends,
+    plan: &Outgoing,
     reflected: &mut Children,
     transmitted: &mut Children,
 ) {
-    let Bends { kr, kt, mirror, .. } = *bends;
+    let Outgoing { kr, kt, mirror, .. } = *plan;
     if kr > 0.0 {
         let ray = t.spawn(si, mirror, task);
         reflected.add(t, lane, task.reflection(ray, kr));
     }
-    match &bends.transmission {
+    match &plan.transmission {
         None => {}
         Some((across, Some(dir))) => {
             let ray = t.spawn(si, *dir, task);

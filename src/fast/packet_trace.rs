@@ -1,11 +1,11 @@
 //! The Whitted recursion for a packet of rays: a pixel's grid samples, then the secondary rays
 //! of their surfaces, wave after wave. The core's steps (`light_share` for
-//! `Tracer::light_share`, `Tracer::shadow_factor`, `Tracer::finish`, …, and `outgoing` for
-//! `Tracer::secondary`) in another order: every ray's local terms of a light first, then all
-//! their shadow rays toward it together (trying first the object that blocked the last shadow
-//! ray toward that light, `Tracer::last_blockers`; the usual point lights take four surfaces at
-//! once, `light_lanes`, and without a BVH their shadow rays too), then the secondary rays as
-//! packets of their own. Each ray's intensity, the counters of rays and of skipped shading and
+//! `Tracer::light_share`, `Tracer::shadow_factor`, `Tracer::finish`, …, and `outgoing` with
+//! `send` for `Tracer::secondary`) in another order: every ray's local terms of a light first,
+//! then all their shadow rays toward it together (trying first the object that blocked the last
+//! shadow ray toward that light, `Tracer::last_blockers`; the usual point lights take four
+//! surfaces at once, `light_lanes`, and without a BVH their shadow rays too), then the
+//! secondary rays as packets of their own. Each ray's intensity, the counters of rays and of skipped shading and
 //! the random numbers drawn are those of tracing the rays one after another with
 //! `Tracer::radiance`. The tracer must find its hits through the same `FastScene` the packets
 //! are searched with.
@@ -18,7 +18,7 @@ use glam::DVec3;
 use super::bvh_packet::PACKET;
 use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
-use super::outgoing::{bend, send, Bends, Children};
+use super::outgoing::{outgoing, send, Children, Outgoing};
 use super::search::FastScene;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
@@ -288,24 +288,27 @@ fn secondary_packet<L: Lanes + ?Sized>(
     }
     // First the directions of all the surfaces' rays, then the rays: one surface's square
     // roots and divisions then overlap the next one's, instead of holding up its rays.
-    let mut bends: [Option<Bends>; SHADED] = [const { None }; SHADED];
+    let mut plans: [Option<Outgoing>; SHADED] = [const { None }; SHADED];
     for (i, si) in shaded.iter().enumerate() {
         let Some(si) = si else { continue };
         if si.paint.sends_rays() && !t.stops_at(&si.paint) {
-            bends[i] = Some(bend(t, &tasks.task(i), tasks.ray(i).dir, si));
+            plans[i] = Some(outgoing(t, &tasks.task(i), tasks.ray(i).dir, si));
         }
     }
     let mut reflected = Children::new();
     let mut transmitted = Children::new();
-    for (i, (si, bends)) in shaded.iter().zip(&bends).enumerate() {
-        if let (Some(si), Some(bends)) = (si, bends) {
-            send(t, &tasks.task(i), si, i, bends, &mut reflected, &mut transmitted);
+    for (i, (si, plan)) in shaded.iter().zip(&plans).enumerate() {
+        if let (Some(si), Some(plan)) = (si, plan) {
+            let task = tasks.task(i);
+            send(t, &task, si, i, plan, &mut reflected, &mut transmitted);
         }
     }
     trace_children(t, fast, &mut reflected);
     trace_children(t, fast, &mut transmitted);
-    for (i, bends) in bends.iter().enumerate() {
-        let Some(Bends { kr, kt, .. }) = *bends else { continue };
+    for (i, plan) in plans.iter().enumerate() {
+        let Some(Outgoing { kr, kt, .. }) = *plan else {
+            continue;
+        };
         let mut sum = DVec3::ZERO;
         if let Some(color) = reflected.colors[i] {
             sum += kr * color;
