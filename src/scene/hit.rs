@@ -63,11 +63,13 @@ impl Scene {
         if hit.surface.flip {
             outward = -outward;
         }
-        // The ray meets the surface from behind: the normal is turned to face it, and the ray
-        // is inside the solid (a triangle has no inside: it is seen from either side).
-        let from_behind = outward.dot(ray.dir) > 0.0;
-        let normal = if from_behind { -outward } else { outward };
-        let inside = from_behind && leaf.shape.is_solid();
+        // A triangle has no inside: it is seen from whichever side the ray comes.
+        let inside = leaf.shape.is_solid() && outward.dot(ray.dir) > 0.0;
+        let normal = if outward.dot(ray.dir) > 0.0 {
+            -outward
+        } else {
+            outward
+        };
         // The one place a surface's colour is looked up: a material without patterns (most)
         // only copies its constants.
         let m = &self.materials[leaf.material as usize];
