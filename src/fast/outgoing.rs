@@ -1,9 +1,9 @@
 //! The rays a surface sends on, as tasks to trace later: the core's `Tracer::secondary` traces
 //! its reflection and refraction rays at once, one surface after another; a packet of surfaces
 //! first finds all their directions (`outgoing`), then builds all their rays (`send`), and
-//! traces them as packets of their own (`packet_trace::secondary_packet`). Built from the core's own pieces (`Media`, `Tracer::across`,
-//! `fresnel_weights`, `reflect`, `refract`, `Tracer::spawn`, the `Task` constructors), so the
-//! rays are the core's to the bit.
+//! traces them as packets of their own (`packet_trace::secondary_packet`). Built from the
+//! core's own pieces (`Media`, `Tracer::across`, `fresnel_weights`, `reflect`, `refract`,
+//! `Tracer::spawn`, the `Task` constructors), so the rays are the core's to the bit.
 
 use arrayvec::ArrayVec;
 use glam::DVec3;
@@ -59,10 +59,10 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
     }
 }
 
-/// The rays the surface `si` in packet lane `lane` sends on, as `plan` has them: the mirror ray to
-/// `reflected`, the refracted ray (past the limiting angle, the mirror ray that stays inside:
-/// rays bouncing inside a glass are many) to `transmitted`, each built in its place there (a
-/// task is some 170 bytes, and one returned in a value is copied on twice more).
+/// The rays the surface `si` in packet lane `lane` sends on, as `plan` has them: the mirror
+/// ray to `reflected`, the refracted ray (past the limiting angle, the mirror ray that stays
+/// inside: rays bouncing inside a glass are many) to `transmitted`, each built in its place
+/// there (a task is 168 bytes, and one returned in a value is copied on twice more).
 #[inline(always)]
 pub(super) fn send(
     t: &mut Tracer,

@@ -5,10 +5,10 @@
 //! then all their shadow rays toward it together (trying first the object that blocked the last
 //! shadow ray toward that light, `Tracer::last_blockers`; the usual point lights take four
 //! surfaces at once, `light_lanes`, and without a BVH their shadow rays too), then the
-//! secondary rays as packets of their own. Each ray's intensity, the counters of rays and of skipped shading and
-//! the random numbers drawn are those of tracing the rays one after another with
-//! `Tracer::radiance`. The tracer must find its hits through the same `FastScene` the packets
-//! are searched with.
+//! secondary rays as packets of their own. Each ray's intensity, the counters of rays and of
+//! skipped shading and the random numbers drawn are those of tracing the rays one after
+//! another with `Tracer::radiance`. The tracer must find its hits through the same
+//! `FastScene` the packets are searched with.
 
 use std::borrow::Cow;
 
@@ -287,7 +287,9 @@ fn secondary_packet<L: Lanes + ?Sized>(
         return;
     }
     // First the directions of all the surfaces' rays, then the rays: one surface's square
-    // roots and divisions then overlap the next one's, instead of holding up its rays.
+    // roots and divisions then overlap the next one's, instead of holding up its rays. (A
+    // primary ray's task is built in each pass: kept between them, 16 of them on the stack,
+    // the wave is slower.)
     let mut plans: [Option<Outgoing>; SHADED] = [const { None }; SHADED];
     for (i, si) in shaded.iter().enumerate() {
         let Some(si) = si else { continue };
