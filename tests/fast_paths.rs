@@ -134,7 +134,7 @@ fn boxes_beyond_the_sixty_fourth_without_a_bvh_are_the_cores() {
             y + 1.5
         ));
     }
-    let mut scene = parse(&yaml, "boxes.yaml", None, &Limits::default()).unwrap();
+    let mut scene = common::scene(&yaml);
     scene.set_accel(Accel::None);
     let (fast, _) = assert_engines_agree("70 boxes", &scene, 16);
     assert!(fast.shadow_rays > 0);
