@@ -16,13 +16,27 @@ use crate::shading::{Fresnel, Material};
 use crate::trace::{Across, Task, Tracer};
 
 /// Where the rays a surface sends on go, before they are built: kr and kt after the Fresnel
-/// term, the mirror direction, and where the surface transmits (kt > 0) the media across it
-/// and the refracted direction (None past the limiting angle).
+/// term, and each ray's fate. A ray the depth limit or the adaptive threshold cuts off is
+/// counted where its fate is decided, and its direction (a refracted one costs two square
+/// roots and two divisions) is never found: at the last level of a glass every ray is one.
 pub(super) struct Outgoing {
     pub kr: f64,
     pub kt: f64,
-    mirror: DVec3,
-    transmission: Option<(Across, Option<DVec3>)>,
+    /// The mirror ray, along the mirror direction.
+    reflection: Fate<DVec3>,
+    /// The refracted ray: the media across the surface and the refracted direction, or past
+    /// the limiting angle (None) the mirror direction of the ray that stays inside.
+    transmission: Fate<(Across, Result<DVec3, DVec3>)>,
+}
+
+/// What becomes of one of the rays a surface may send on.
+enum Fate<D> {
+    /// The surface sends none (its k is not positive).
+    None,
+    /// The depth limit or the adaptive threshold stops it: it brings nothing.
+    CutOff,
+    /// It is traced, in direction D.
+    Traced(D),
 }
 
 /// The directions of the rays the surface `si` sends on, for a ray `task` that hit it, as in
@@ -47,15 +61,44 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
     } else {
         (si.paint.kr, si.paint.kt, None)
     };
-    let transmission = across.filter(|_| kt > 0.0).map(|across| {
-        let refracted = refract(d, si.normal, across.n1, across.n2);
-        (across, refracted)
-    });
+    let reflection = match fate(t, task, kr) {
+        Fate::Traced(()) => Fate::Traced(reflect(d, si.normal)),
+        Fate::CutOff => Fate::CutOff,
+        Fate::None => Fate::None,
+    };
+    let transmission = match (across, fate(t, task, kt)) {
+        (Some(across), Fate::Traced(())) => {
+            let refracted = refract(d, si.normal, across.n1, across.n2);
+            Fate::Traced((across, refracted.ok_or_else(|| reflect(d, si.normal))))
+        }
+        (Some(_), Fate::CutOff) => Fate::CutOff,
+        _ => Fate::None,
+    };
     Outgoing {
         kr,
         kt,
-        mirror: reflect(d, si.normal),
+        reflection,
         transmission,
+    }
+}
+
+/// Whether the surface sends a child weighted by k, and whether it is traced. Each child of
+/// `task` (reflection, refraction, or the mirror ray inside past the limiting angle) is one
+/// level deeper and weighs weight·k, so whether it is cut off (`Tracer::stopped`, which counts
+/// it) is known before its direction is.
+#[inline(always)]
+fn fate(t: &mut Tracer, task: &Task, k: f64) -> Fate<()> {
+    if k <= 0.0 || k.is_nan() {
+        return Fate::None;
+    }
+    let child = Task {
+        depth: task.depth + 1,
+        weight: task.weight * k,
+        ..*task
+    };
+    match t.stopped(&child) {
+        Some(_) => Fate::CutOff,
+        None => Fate::Traced(()),
     }
 }
 
@@ -73,23 +116,27 @@ pub(super) fn send(
     reflected: &mut Children,
     transmitted: &mut Children,
 ) {
-    let Outgoing { kr, kt, mirror, .. } = *plan;
-    if kr > 0.0 {
-        let ray = t.spawn(si, mirror, task);
-        reflected.add(t, lane, task.reflection(ray, kr));
+    let Outgoing { kr, kt, .. } = *plan;
+    match plan.reflection {
+        Fate::None => {}
+        Fate::CutOff => reflected.cut_off(lane),
+        Fate::Traced(mirror) => {
+            let ray = t.spawn(si, mirror, task);
+            reflected.add(lane, task.reflection(ray, kr));
+        }
     }
     match &plan.transmission {
-        None => {}
-        Some((across, Some(dir))) => {
+        Fate::None => {}
+        Fate::CutOff => transmitted.cut_off(lane),
+        Fate::Traced((across, Ok(dir))) => {
             let ray = t.spawn(si, *dir, task);
             let child = task.refraction(ray, kt, across.beyond, across.indices());
-            transmitted.add(t, lane, child);
+            transmitted.add(lane, child);
         }
-        Some((_, None)) => {
-            let ray = t.spawn(si, mirror, task);
-            if transmitted.add(t, lane, task.mirror_inside(ray, kt)) {
-                t.stats.total_internal_reflections += 1;
-            }
+        Fate::Traced((_, Err(mirror))) => {
+            let ray = t.spawn(si, *mirror, task);
+            transmitted.add(lane, task.mirror_inside(ray, kt));
+            t.stats.total_internal_reflections += 1;
         }
     }
 }
@@ -114,19 +161,17 @@ impl Children {
         }
     }
 
-    /// The child `task` of the surface in lane `lane`: traced unless the depth limit or the
-    /// adaptive threshold stop it, and then it brings nothing. Whether it is traced. (Pushed
-    /// before it is asked, so that it is built where it stays.)
+    /// The child `task` of the surface in lane `lane`, to be traced (built in its place).
     #[inline(always)]
-    fn add(&mut self, t: &mut Tracer, lane: usize, task: Task) -> bool {
-        self.colors[lane] = Some(DVec3::ZERO);
+    fn add(&mut self, lane: usize, task: Task) {
         self.lanes[self.tasks.len()] = lane;
         self.tasks.push(task);
-        let traced = t.stopped(self.tasks.last().expect("just pushed")).is_none();
-        if !traced {
-            self.tasks.pop();
-        }
-        traced
+    }
+
+    /// The surface in lane `lane` has a child that is cut off: it brings nothing.
+    #[inline(always)]
+    fn cut_off(&mut self, lane: usize) {
+        self.colors[lane] = Some(DVec3::ZERO);
     }
 
     /// The intensity arriving at the surface in lane `lane` through its child.

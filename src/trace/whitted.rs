@@ -361,6 +361,7 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// Why a secondary ray is not traced, if it is not: its depth reached the limit, or its
     /// weight fell below the adaptive threshold (it could change the pixel too little).
+    #[inline]
     fn limit(&self, task: &Task) -> Option<Termination> {
         if task.depth >= self.options.max_depth {
             Some(Termination::MaxDepth)
@@ -372,6 +373,7 @@ impl<R: Recorder> Tracer<'_, R> {
     }
 
     /// `limit`, counted among the work skipped.
+    #[inline]
     pub(crate) fn stopped(&mut self, task: &Task) -> Option<Termination> {
         let why = self.limit(task);
         match why {
