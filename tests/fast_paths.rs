@@ -313,37 +313,65 @@ fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) ->
     total
 }
 
-/// In a BVH scene, the grid samples of neighbouring pixels of a row go into one packet (as
-/// many pixels as fill it): each pixel gets, to the bit, the value the core gives it sample by
-/// sample, and the packet the counters of rays and shading of the core's pixels together. At
-/// 1, 4, 9 and 16 samples a pixel, 32, 8, 3 and 2 pixels a packet; a row of 16 pixels is a
-/// shorter packet at 1, and ends in one at 9.
+/// The grid samples of neighbouring pixels of a row go into one packet (as many pixels as fill
+/// it): each pixel gets, to the bit, the value the core gives it sample by sample, and the
+/// packet the counters of rays and shading of the core's pixels together. In a BVH scene a
+/// packet is 32 rays: at 1, 4, 9 and 16 samples a pixel, 32, 8, 3 and 2 pixels; a row of 16
+/// pixels is a shorter packet at 1, and ends in one at 9.
 #[test]
 fn neighbouring_pixels_traced_as_one_packet_are_the_cores_pixels() {
     let mut scene = common::scene(&common::many_spheres(400));
     scene.camera = scene.camera.resized(16, 12);
     assert!(scene.bvh_nodes() > 0);
+    let reflected = assert_packed_pixels_are_the_cores(&scene, &[(1, 32), (4, 8), (9, 3), (16, 2)]);
+    assert!(reflected > 0, "the mirror spheres were seen");
+}
+
+/// Where the objects are tested four rays at a time (no BVH) a packet is the 16 rays shaded
+/// together: at 1, 2 and 4 samples a pixel, 16, 8 and 4 pixels of the Whitted peer scene (a
+/// row of 40 ends in a shorter packet at 1 and 16); 9 and 16 samples fill a packet alone.
+#[test]
+fn neighbouring_pixels_tested_in_lanes_as_one_packet_are_the_cores_pixels() {
+    let scene = small_peer_scene("whitted");
+    let reflected = assert_packed_pixels_are_the_cores(&scene, &[(1, 16), (2, 8), (4, 4)]);
+    assert!(reflected > 0, "the mirror and the glass were seen");
+    for spp in [9, 16] {
+        let film = Film::new(
+            &scene,
+            RenderOptions {
+                spp,
+                ..RenderOptions::of(&scene)
+            },
+        );
+        assert_eq!(film.pixels_per_packet(), 1, "{spp} spp");
+    }
+}
+
+/// Each row of `scene` traced `group` pixels at a time at each (spp, group), against the core
+/// pixel by pixel; the reflection rays traced.
+fn assert_packed_pixels_are_the_cores(scene: &Scene, groups: &[(u32, usize)]) -> u64 {
+    let (width, height) = (scene.camera.width, scene.camera.height);
     let no_corners = |_: &mut Tracer, _: u32, _: u32| -> DVec3 { unreachable!("grid sampling") };
-    for (spp, group) in [(1, 32), (4, 8), (9, 3), (16, 2)] {
+    let mut reflected = 0;
+    for &(spp, group) in groups {
         let fast = RenderOptions {
             spp,
-            ..RenderOptions::of(&scene)
+            ..RenderOptions::of(scene)
         };
         let core = RenderOptions {
             engine: Engine::Core,
             ..fast
         };
-        let (fast, core) = (Film::new(&scene, fast), Film::new(&scene, core));
+        let (fast, core) = (Film::new(scene, fast), Film::new(scene, core));
         assert_eq!(fast.pixels_per_packet(), group, "{spp} spp");
         assert_eq!(
             core.pixels_per_packet(),
             1,
             "the core traces pixels one by one"
         );
-        let mut reflected = 0;
-        for y in 0..12 {
-            for x0 in (0..16).step_by(group) {
-                let pixels = group.min(16 - x0 as usize);
+        for y in 0..height {
+            for x0 in (0..width).step_by(group) {
+                let pixels = group.min((width - x0) as usize);
                 let mut packed = fast.tracer();
                 let mut values = vec![DVec3::NAN; pixels];
                 fast.grid_pixels(&mut packed, x0, y, &mut values);
@@ -365,8 +393,8 @@ fn neighbouring_pixels_traced_as_one_packet_are_the_cores_pixels() {
                 reflected += packed.stats.reflection_rays;
             }
         }
-        assert!(reflected > 0, "the mirror spheres were seen");
     }
+    reflected
 }
 
 /// In a BVH scene: the primary rays and the shadow rays search it as packets.

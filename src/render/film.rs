@@ -280,10 +280,13 @@ impl<'s> Film<'s> {
     }
 
     /// How many neighbouring pixels of a row go into one packet of the fast wing: as many as
-    /// their grid samples fill (32 pixels of one sample each), where a BVH is walked (a packet
-    /// walks it once for all its rays, so the walk's own work is shared by more of them). One
-    /// wherever the samples are traced any other way, draw random numbers (each pixel draws
-    /// from its own generator), or are more than a packet shades at once.
+    /// their grid samples fill. Where a BVH is walked that is a whole packet (32 pixels of one
+    /// sample each: a packet walks the tree once for all its rays, so the walk's own work is
+    /// shared by more of them); where the objects are tested four rays at a time, as many as
+    /// are shaded together (16 pixels of one sample, 4 of four), so that a picture of one
+    /// sample per pixel is traced in lanes too. One wherever the samples are traced any other
+    /// way, draw random numbers (each pixel draws from its own generator), or fill a packet
+    /// alone.
     pub fn pixels_per_packet(&self) -> usize {
         let n = self.offsets.len();
         match &self.fast {
@@ -291,10 +294,13 @@ impl<'s> Film<'s> {
                 if self.antialias() == Antialias::Grid
                     && self.path.is_none()
                     && !self.scene.features.sampled
-                    && !fast.tests_in_lanes()
                     && n <= SHADED =>
             {
-                PACKET / n
+                if fast.tests_in_lanes() {
+                    SHADED / n
+                } else {
+                    PACKET / n
+                }
             }
             _ => 1,
         }
