@@ -479,3 +479,43 @@ fn a_lessons_folder_stands_for_its_scene() {
         stderr(&none)
     );
 }
+
+/// A corridor of two facing mirrors as deep as a scene may ask (64 levels), rendered by the
+/// command's own workers: every sample's ray bounces 63 times (63 reflection rays, 64 shadow
+/// rays toward the light between the mirrors, the 64th reflection cut off), and the render
+/// finishes on their stacks.
+#[test]
+fn render_goes_64_levels_deep() {
+    let scene = temp("corridor.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 1, 0], look_at: [0, 1, 1], fov: 60, width: 16, height: 12 }
+max_depth: 64
+adaptive_threshold: 0
+spp: 16
+lights: [ { point: [0, 5, 0], intensity: 1 } ]
+materials: { mirror: { color: 0.5, kd: 0.1, kr: 0.99 } }
+objects:
+  - { plane: { point: [0, 0, 3], normal: [0, 0, -1] }, material: mirror }
+  - { plane: { point: [0, 0, -3], normal: [0, 0, 1] }, material: mirror }
+",
+    )
+    .unwrap();
+    let image = temp("corridor.ppm");
+    let o = raytree(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        image.to_str().unwrap(),
+        "--stats",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let samples = 16 * 12 * 16;
+    assert_eq!(v["stats"]["primary_rays"], samples);
+    assert_eq!(v["stats"]["reflection_rays"], 63 * samples);
+    assert_eq!(v["stats"]["shadow_rays"], 64 * samples);
+    assert_eq!(v["stats"]["max_depth_cutoffs"], samples);
+}

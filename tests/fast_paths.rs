@@ -327,25 +327,60 @@ fn neighbouring_pixels_traced_as_one_packet_are_the_cores_pixels() {
     assert!(reflected > 0, "the mirror spheres were seen");
 }
 
-/// Where the objects are tested four rays at a time (no BVH) a packet is the 16 rays shaded
-/// together: at 1, 2 and 4 samples a pixel, 16, 8 and 4 pixels of the Whitted peer scene (a
-/// row of 40 ends in a shorter packet at 1 and 16); 9 and 16 samples fill a packet alone.
+/// Where the objects are tested four rays at a time (no BVH) a packet is the 32 rays shaded
+/// together: at 1, 2, 4, 9 and 16 samples a pixel, 32, 16, 8, 3 and 2 pixels of the Whitted
+/// peer scene (a row of 40 ends in a shorter packet at 1, 9 and 16); 25 samples fill a packet
+/// alone.
 #[test]
 fn neighbouring_pixels_tested_in_lanes_as_one_packet_are_the_cores_pixels() {
     let scene = small_peer_scene("whitted");
-    let reflected = assert_packed_pixels_are_the_cores(&scene, &[(1, 16), (2, 8), (4, 4)]);
+    let groups = [(1, 32), (2, 16), (4, 8), (9, 3), (16, 2)];
+    let reflected = assert_packed_pixels_are_the_cores(&scene, &groups);
     assert!(reflected > 0, "the mirror and the glass were seen");
-    for spp in [9, 16] {
-        let film = Film::new(
-            &scene,
-            RenderOptions {
-                spp,
-                ..RenderOptions::of(&scene)
-            },
-        );
-        assert_eq!(film.pixels_per_packet(), 1, "{spp} spp");
-    }
+    let film = Film::new(
+        &scene,
+        RenderOptions {
+            spp: 25,
+            ..RenderOptions::of(&scene)
+        },
+    );
+    assert_eq!(film.pixels_per_packet(), 1, "25 spp");
 }
+
+/// A corridor of two facing mirrors, as deep as a scene may ask (64 levels): every primary
+/// ray bounces from one mirror to the other until the depth limit, so each sample traces 63
+/// reflection rays and 64 shadow rays (the light hangs between the mirrors, and a plane cannot
+/// shadow a point on its own side), and its 64th reflection is cut off. Both engines render it
+/// alike on threads with stacks of 1 MiB, half the platform's default: 64 levels of waves of
+/// secondary rays outgrow no stack (in an optimised build a level of waves takes tens of
+/// kilobytes, and deeper levels go on a stack of their own).
+#[test]
+fn a_corridor_of_mirrors_64_levels_deep_outgrows_no_stack() {
+    let scene = common::scene(MIRROR_CORRIDOR);
+    let small_stacks = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .stack_size(1 << 20)
+        .build()
+        .unwrap();
+    let (fast, _) = small_stacks.install(|| assert_engines_agree("corridor", &scene, 16));
+    let samples = 16 * 12 * 16;
+    assert_eq!(fast.primary_rays, samples);
+    assert_eq!(fast.reflection_rays, 63 * samples);
+    assert_eq!(fast.shadow_rays, 64 * samples);
+    assert_eq!(fast.max_depth_cutoffs, samples);
+}
+
+/// Two facing mirrors 6 apart, the camera between them looking along one's normal.
+const MIRROR_CORRIDOR: &str = "
+camera: { eye: [0, 1, 0], look_at: [0, 1, 1], fov: 60, width: 16, height: 12 }
+max_depth: 64
+adaptive_threshold: 0
+lights: [ { point: [0, 5, 0], intensity: 1 } ]
+materials: { mirror: { color: 0.5, kd: 0.1, kr: 0.99 } }
+objects:
+  - { plane: { point: [0, 0, 3], normal: [0, 0, -1] }, material: mirror }
+  - { plane: { point: [0, 0, -3], normal: [0, 0, 1] }, material: mirror }
+";
 
 /// Each row of `scene` traced `group` pixels at a time at each (spp, group), against the core
 /// pixel by pixel; the reflection rays traced.

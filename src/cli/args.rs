@@ -50,8 +50,13 @@ pub fn parse_ray(s: &str) -> Result<Ray, String> {
 /// enough to start at once.
 pub const MAX_THREADS: usize = 1024;
 
-/// A pool of `--threads N` workers (default: one per core), or a clear error before any is
-/// started.
+/// The stack of each render worker: the fast wing's waves of secondary rays take tens of
+/// kilobytes a level on it (`fast::packet_trace`), and a tree may be 64 levels deep. Only the
+/// pages a render touches are ever given memory.
+pub const RENDER_STACK: usize = 32 * 1024 * 1024;
+
+/// A pool of `--threads N` workers (default: one per core), each with a `RENDER_STACK`, or a
+/// clear error before any is started.
 pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Failure> {
     if let Some(n) = threads {
         if !(1..=MAX_THREADS).contains(&n) {
@@ -62,6 +67,7 @@ pub fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, Failure>
     }
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
+        .stack_size(RENDER_STACK)
         .build()
         .map_err(|e| {
             Failure(format!(

@@ -31,7 +31,7 @@ use crate::trace::{RayKind, Task, Tracer};
 /// grid samples, or the secondary rays of their surfaces. Through a BVH a whole packet of
 /// several pixels' rays (up to `PACKET`) is shaded together, so that its shadow rays toward a
 /// light walk the tree as one packet.
-pub const SHADED: usize = 16;
+pub const SHADED: usize = 32;
 
 /// The rays of a packet, each with its place in the tree: a pixel's primary rays, or the tasks
 /// of a packet of secondary rays.
@@ -323,9 +323,20 @@ fn secondary_packet<L: Lanes + ?Sized>(
 }
 
 /// Traces the children that are not stopped as one packet, and settles their parents' colours.
+/// Each level of waves keeps its rays' records, tasks and hits on the stack (tens of kilobytes):
+/// where a tree goes deeper than the thread's stack holds (the render's workers have room for
+/// 64 levels, `cli::args::RENDER_STACK`; other threads may have less), the next level goes on
+/// a fresh stack of its own.
 fn trace_children(t: &mut Tracer, fast: &FastScene, children: &mut Children) {
-    with_lanes!(V => trace_children_inline::<V>(t, fast, children))
+    stacker::maybe_grow(
+        WAVE_STACK,
+        8 * WAVE_STACK,
+        || with_lanes!(V => trace_children_inline::<V>(t, fast, children)),
+    )
 }
+
+/// More than one level of waves takes of the stack, in any build.
+const WAVE_STACK: usize = 256 * 1024;
 
 #[inline(always)]
 fn trace_children_inline<V: F64x4>(t: &mut Tracer, fast: &FastScene, children: &mut Children) {

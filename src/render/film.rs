@@ -283,7 +283,7 @@ impl<'s> Film<'s> {
     /// their grid samples fill. Where a BVH is walked that is a whole packet (32 pixels of one
     /// sample each: a packet walks the tree once for all its rays, so the walk's own work is
     /// shared by more of them); where the objects are tested four rays at a time, as many as
-    /// are shaded together (16 pixels of one sample, 4 of four), so that a picture of one
+    /// are shaded together (32 pixels of one sample, 2 of sixteen), so that a picture of one
     /// sample per pixel is traced in lanes too. One wherever the samples are traced any other
     /// way, draw random numbers (each pixel draws from its own generator), or fill a packet
     /// alone.
