@@ -486,25 +486,10 @@ fn a_lessons_folder_stands_for_its_scene() {
 /// finishes on their stacks.
 #[test]
 fn render_goes_64_levels_deep() {
-    let scene = temp("corridor.yaml");
-    std::fs::write(
-        &scene,
-        "camera: { eye: [0, 1, 0], look_at: [0, 1, 1], fov: 60, width: 16, height: 12 }
-max_depth: 64
-adaptive_threshold: 0
-spp: 16
-lights: [ { point: [0, 5, 0], intensity: 1 } ]
-materials: { mirror: { color: 0.5, kd: 0.1, kr: 0.99 } }
-objects:
-  - { plane: { point: [0, 0, 3], normal: [0, 0, -1] }, material: mirror }
-  - { plane: { point: [0, 0, -3], normal: [0, 0, 1] }, material: mirror }
-",
-    )
-    .unwrap();
     let image = temp("corridor.ppm");
     let o = raytree(&[
         "render",
-        scene.to_str().unwrap(),
+        "tests/scenes/mirror-corridor.yaml",
         "-o",
         image.to_str().unwrap(),
         "--stats",

@@ -356,7 +356,7 @@ fn neighbouring_pixels_tested_in_lanes_as_one_packet_are_the_cores_pixels() {
 /// kilobytes, and deeper levels go on a stack of their own).
 #[test]
 fn a_corridor_of_mirrors_64_levels_deep_outgrows_no_stack() {
-    let scene = common::scene(MIRROR_CORRIDOR);
+    let scene = common::scene_file("tests/scenes/mirror-corridor.yaml");
     let small_stacks = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .stack_size(1 << 20)
@@ -369,18 +369,6 @@ fn a_corridor_of_mirrors_64_levels_deep_outgrows_no_stack() {
     assert_eq!(fast.shadow_rays, 64 * samples);
     assert_eq!(fast.max_depth_cutoffs, samples);
 }
-
-/// Two facing mirrors 6 apart, the camera between them looking along one's normal.
-const MIRROR_CORRIDOR: &str = "
-camera: { eye: [0, 1, 0], look_at: [0, 1, 1], fov: 60, width: 16, height: 12 }
-max_depth: 64
-adaptive_threshold: 0
-lights: [ { point: [0, 5, 0], intensity: 1 } ]
-materials: { mirror: { color: 0.5, kd: 0.1, kr: 0.99 } }
-objects:
-  - { plane: { point: [0, 0, 3], normal: [0, 0, -1] }, material: mirror }
-  - { plane: { point: [0, 0, -3], normal: [0, 0, 1] }, material: mirror }
-";
 
 /// Each row of `scene` traced `group` pixels at a time at each (spp, group), against the core
 /// pixel by pixel; the reflection rays traced.
