@@ -30,8 +30,9 @@ use crate::trace::{RayKind, Task, Tracer};
 /// The most rays shaded together where the objects are tested four rays at a time: a pixel's
 /// grid samples, or the secondary rays of their surfaces. Through a BVH a whole packet of
 /// several pixels' rays (up to `PACKET`) is shaded together, so that its shadow rays toward a
-/// light walk the tree as one packet.
+/// light walk the tree as one packet. Both are 32: two pixels of 16 samples.
 pub const SHADED: usize = 32;
+const _: () = assert!(SHADED <= PACKET, "a packet of primary rays shades whole");
 
 /// The rays of a packet, each with its place in the tree: a pixel's primary rays, or the tasks
 /// of a packet of secondary rays.
@@ -322,7 +323,7 @@ fn secondary_packet<L: Lanes + ?Sized>(
     }
 }
 
-/// Traces the children that are not stopped as one packet, and settles their parents' colours.
+/// Traces the children as one packet, and settles their parents' colours.
 /// Each level of waves keeps its rays' records, tasks and hits on the stack (tens of kilobytes):
 /// where a tree goes deeper than the thread's stack holds (the render's workers have room for
 /// 64 levels, `cli::args::RENDER_STACK`; other threads may have less), the next level goes on

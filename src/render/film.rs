@@ -280,27 +280,21 @@ impl<'s> Film<'s> {
     }
 
     /// How many neighbouring pixels of a row go into one packet of the fast wing: as many as
-    /// their grid samples fill. Where a BVH is walked that is a whole packet (32 pixels of one
-    /// sample each: a packet walks the tree once for all its rays, so the walk's own work is
-    /// shared by more of them); where the objects are tested four rays at a time, as many as
-    /// are shaded together (32 pixels of one sample, 2 of sixteen), so that a picture of one
-    /// sample per pixel is traced in lanes too. One wherever the samples are traced any other
-    /// way, draw random numbers (each pixel draws from its own generator), or fill a packet
-    /// alone.
+    /// their grid samples fill (32 pixels of one sample, 2 of sixteen). A packet searches and
+    /// shades its rays together: it walks a BVH once for all of them, or tests each object
+    /// against them four at a time, and a wider packet shares that work among more rays. One
+    /// wherever the samples are traced any other way, draw random numbers (each pixel draws
+    /// from its own generator), or fill a packet alone.
     pub fn pixels_per_packet(&self) -> usize {
         let n = self.offsets.len();
         match &self.fast {
-            Some(fast)
+            Some(_)
                 if self.antialias() == Antialias::Grid
                     && self.path.is_none()
                     && !self.scene.features.sampled
                     && n <= SHADED =>
             {
-                if fast.tests_in_lanes() {
-                    SHADED / n
-                } else {
-                    PACKET / n
-                }
+                PACKET / n
             }
             _ => 1,
         }
