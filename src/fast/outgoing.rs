@@ -16,17 +16,21 @@ use crate::shading::{Fresnel, Material};
 use crate::trace::{Across, Task, Tracer};
 
 /// Where the rays a surface sends on go, before they are built: kr and kt after the Fresnel
-/// term, and each ray's fate. A ray the depth limit or the adaptive threshold cuts off is
-/// counted where its fate is decided, and its direction (a refracted one costs two square
-/// roots and two divisions) is never found: at the last level of a glass every ray is one.
+/// term, the mirror direction, and each ray's fate. A ray the depth limit or the adaptive
+/// threshold cuts off is counted where its fate is decided, and no refracted direction (two
+/// square roots and two divisions) is found for it: at the last level of a glass every ray
+/// is one.
 pub(super) struct Outgoing {
     pub kr: f64,
     pub kt: f64,
-    /// The mirror ray, along the mirror direction.
-    reflection: Fate<DVec3>,
-    /// The refracted ray: the media across the surface and the refracted direction, or past
-    /// the limiting angle (None) the mirror direction of the ray that stays inside.
-    transmission: Fate<(Across, Result<DVec3, DVec3>)>,
+    /// The mirror direction: of the reflected ray, and of the ray that stays inside past the
+    /// limiting angle.
+    mirror: DVec3,
+    /// The reflected ray.
+    reflection: Fate<()>,
+    /// The refracted ray: the media across the surface and the refracted direction (None past
+    /// the limiting angle).
+    transmission: Fate<(Across, Option<DVec3>)>,
 }
 
 /// What becomes of one of the rays a surface may send on.
@@ -35,7 +39,7 @@ enum Fate<D> {
     None,
     /// The depth limit or the adaptive threshold stops it: it brings nothing.
     CutOff,
-    /// It is traced, in direction D.
+    /// It is traced, with what it needs to be built.
     Traced(D),
 }
 
@@ -61,15 +65,11 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
     } else {
         (si.paint.kr, si.paint.kt, None)
     };
-    let reflection = match fate(t, task, kr) {
-        Fate::Traced(()) => Fate::Traced(reflect(d, si.normal)),
-        Fate::CutOff => Fate::CutOff,
-        Fate::None => Fate::None,
-    };
+    let reflection = fate(t, task, kr);
     let transmission = match (across, fate(t, task, kt)) {
         (Some(across), Fate::Traced(())) => {
             let refracted = refract(d, si.normal, across.n1, across.n2);
-            Fate::Traced((across, refracted.ok_or_else(|| reflect(d, si.normal))))
+            Fate::Traced((across, refracted))
         }
         (Some(_), Fate::CutOff) => Fate::CutOff,
         _ => Fate::None,
@@ -77,6 +77,7 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
     Outgoing {
         kr,
         kt,
+        mirror: reflect(d, si.normal),
         reflection,
         transmission,
     }
@@ -116,11 +117,11 @@ pub(super) fn send(
     reflected: &mut Children,
     transmitted: &mut Children,
 ) {
-    let Outgoing { kr, kt, .. } = *plan;
+    let Outgoing { kr, kt, mirror, .. } = *plan;
     match plan.reflection {
         Fate::None => {}
         Fate::CutOff => reflected.cut_off(lane),
-        Fate::Traced(mirror) => {
+        Fate::Traced(()) => {
             let ray = t.spawn(si, mirror, task);
             reflected.add(lane, task.reflection(ray, kr));
         }
@@ -128,13 +129,13 @@ pub(super) fn send(
     match &plan.transmission {
         Fate::None => {}
         Fate::CutOff => transmitted.cut_off(lane),
-        Fate::Traced((across, Ok(dir))) => {
+        Fate::Traced((across, Some(dir))) => {
             let ray = t.spawn(si, *dir, task);
             let child = task.refraction(ray, kt, across.beyond, across.indices());
             transmitted.add(lane, child);
         }
-        Fate::Traced((_, Err(mirror))) => {
-            let ray = t.spawn(si, *mirror, task);
+        Fate::Traced((_, None)) => {
+            let ray = t.spawn(si, mirror, task);
             transmitted.add(lane, task.mirror_inside(ray, kt));
             t.stats.total_internal_reflections += 1;
         }
