@@ -649,6 +649,55 @@ objects:
     }
 }
 
+/// Checkered surfaces: the usual ones (a checker of two colours on an untransformed leaf)
+/// painted four at a time, beside those the core paints: two floors of different colours in
+/// one packet (a plane, and a box whose top is seen through the other's cells), a checker on a
+/// moved sphere, a checker turned and scaled by its own transform, a checker with a nested
+/// pattern, a checker of kd, stripes. The camera looks along the floor's cell boundaries (x and
+/// z whole), and a mirror and a glass sphere send packets of secondary rays onto the floors.
+/// Every pixel is exactly its samples traced one by one, and both engines render one image.
+#[test]
+fn checkered_surfaces_painted_in_lanes_are_painted_as_the_core_paints_them() {
+    let yaml = "camera: { eye: [0, 2, -6], look_at: [0, 0.5, 2], width: 40, height: 30 }
+spp: 4
+ambient: 0.3
+max_depth: 3
+lights:
+  - { name: key, point: [-3, 6, -4], intensity: 0.9 }
+materials:
+  floor: { color: { pattern: checker, colors: [[0.9, 0.8, 0.7], [0.2, 0.3, 0.1]] }, ka: 0.2, kd: 0.8 }
+  tiles: { color: { pattern: checker, colors: [0.1, 0.95] }, ka: 0.2, kd: 0.7, ks: 0.3, shininess: 20 }
+  ball: { color: { pattern: checker, colors: [[0.9, 0.1, 0.1], [0.9, 0.9, 0.9]] }, kd: 0.9 }
+  turned: { color: { pattern: checker, colors: [0.8, 0.3], transform: [ { scale: 0.5 }, { rotate_y: 30 } ] }, kd: 0.9 }
+  nested: { color: { pattern: checker, colors: [0.8, { pattern: stripes, colors: [0.1, 0.5] }] }, kd: 0.9 }
+  spotty: { color: { pattern: checker, colors: [0.8, 0.3] }, kd: { pattern: checker, colors: [0.2, 0.9] } }
+  striped: { color: { pattern: stripes, colors: [0.8, 0.3] }, kd: 0.9 }
+  mirror: { color: 0.1, kd: 0.1, kr: 0.8 }
+  glass: { color: 1, kd: 0.05, kr: 0.1, kt: 0.9, ior: 1.5 }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { name: dais, box: { min: [-3, 0, 3], max: [3, 0.25, 6] }, material: tiles }
+  - name: ball
+    sphere: { center: [0, 0, 0], radius: 0.5 }
+    transform: [ { translate: [-2, 0.5, 0] } ]
+    material: ball
+  - { name: turned, sphere: { center: [-1, 0.5, 2], radius: 0.5 }, material: turned }
+  - { name: nested, sphere: { center: [1, 0.5, 2], radius: 0.5 }, material: nested }
+  - { name: spotty, sphere: { center: [2, 0.5, 0], radius: 0.5 }, material: spotty }
+  - { name: striped, sphere: { center: [0, 1.5, 4], radius: 0.5 }, material: striped }
+  - { name: mirror, sphere: { center: [-0.7, 0.6, -1], radius: 0.6 }, material: mirror }
+  - { name: glass, sphere: { center: [0.8, 0.6, -1.5], radius: 0.6 }, material: glass }
+";
+    let scene = parse(yaml, "checkers.yaml", None, &Limits::default()).unwrap();
+    assert!(FastScene::new(&scene).tests_in_lanes());
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.reflection_rays > 0 && total.refraction_rays > 0,
+        "{total:?}"
+    );
+    assert_engines_agree("checkers", &scene, 16);
+}
+
 /// Every kind of light: point (attenuated), directional, an area light (its grid of shadow rays
 /// goes one point at a time), a dark one, and one below most surfaces.
 const EVERY_KIND_OF_LIGHT: &str = "lights:

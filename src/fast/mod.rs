@@ -6,10 +6,10 @@
 //! together (`packet_trace`), searched together through the BVH folded to four children a node
 //! (`bvh4`, `bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
 //! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
-//! the usual point lights' terms and shadow rays four surfaces at a time (`light_lanes`),
-//! flat CSG objects read off their primitives' spans (`csg_crossing`) or in lanes
-//! (`csg_lanes`, `span_lanes`), and the path tracer for scenes of diffuse surfaces
-//! (`diffuse_paths`). The binary's allocator maps large blocks in huge pages (`huge_pages`).
+//! the usual point lights' terms and shadow rays four surfaces at a time (`light_lanes`), and
+//! the usual checkers' colours (`checker_lanes`), flat CSG objects read off their primitives'
+//! spans (`csg_crossing`) or in lanes (`csg_lanes`, `span_lanes`), and the path tracer for
+//! scenes of diffuse surfaces (`diffuse_paths`). The binary's allocator maps large blocks in huge pages (`huge_pages`).
 //!
 //! The contract: every image the wing renders equals, bit for bit, the image of the core's
 //! recursion with the core's search, and so do the counters of rays and of skipped shading
@@ -21,6 +21,7 @@
 mod bvh4;
 mod bvh_packet;
 mod camera_rays;
+mod checker_lanes;
 mod csg_crossing;
 mod csg_lanes;
 mod diffuse_paths;

@@ -16,6 +16,7 @@ use arrayvec::ArrayVec;
 use glam::DVec3;
 
 use super::bvh_packet::PACKET;
+use super::checker_lanes;
 use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
 use super::outgoing::{outgoing, send, Children, Outgoing};
@@ -184,14 +185,29 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized, const N: usize>(
     let scene = t.scene;
     let n = hits.len();
     let mut shaded: [Option<Interaction>; N] = [None; N];
+    // The records are written in their places (`Scene::record_interaction`), the usual
+    // checkers painted four at a time.
+    let mut checkers = 0u32;
     for i in 0..n {
         t.count(tasks.kind(i));
         match &hits[i] {
             None => out[i] = scene.background,
             Some(hit) => {
-                // The record is written in its place (`Scene::record_interaction`).
                 let si = shaded[i].insert(Interaction::default());
-                scene.record_interaction(tasks.ray(i), hit, si);
+                let m = scene.record_surface(tasks.ray(i), hit, si);
+                if checker_lanes::in_lanes(fast, m, si) {
+                    checkers |= 1 << i;
+                } else {
+                    scene.paint_patterns(m, si);
+                    out[i] = ambient(m, &si.paint, scene.ambient);
+                }
+            }
+        }
+    }
+    if checkers != 0 {
+        checker_lanes::paint_checkers::<V, N>(fast, &mut shaded, checkers);
+        for (i, si) in shaded[..n].iter().enumerate() {
+            if let Some(si) = si.as_ref().filter(|_| checkers & 1 << i != 0) {
                 out[i] = ambient(scene.material(si.material), &si.paint, scene.ambient);
             }
         }

@@ -9,6 +9,7 @@
 use glam::DVec3;
 
 use super::bvh4::Bvh4;
+use super::checker_lanes::checker_colors;
 use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
@@ -44,6 +45,8 @@ pub struct FastScene<'s> {
     boxed_objects: bool,
     /// No BVH: a packet's rays, primary, shadow and secondary, are tested four at a time.
     pub(super) in_lanes: bool,
+    /// Per material: the colours of its checker, when the lanes paint it (`checker_lanes`).
+    checkers: Vec<Option<[DVec3; 2]>>,
 }
 
 impl LeafSpans for Scene {
@@ -79,6 +82,7 @@ impl<'s> FastScene<'s> {
             boxes_outside_bvh: false,
             boxed_objects: false,
             in_lanes: false,
+            checkers: scene.materials.iter().map(checker_colors).collect(),
         };
         fast.bounded = index.bounded.iter().map(|&o| fast.probe(o)).collect();
         fast.unbounded = grouped(index.unbounded.iter().map(|&o| fast.probe(o)).collect());
@@ -114,6 +118,12 @@ impl<'s> FastScene<'s> {
             [*a, *b],
             [*a_box, *b_box],
         )
+    }
+
+    /// The colours of a material's checker, when the lanes paint it.
+    #[inline(always)]
+    pub(super) fn checker(&self, material: u32) -> Option<&[DVec3; 2]> {
+        self.checkers[material as usize].as_ref()
     }
 
     /// Whether packets of rays go four at a time through the objects (no BVH: `intersect_in_lanes`).

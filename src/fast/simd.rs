@@ -76,6 +76,8 @@ pub trait F64x4:
     fn abs(self) -> Self;
     /// √x, correctly rounded.
     fn sqrt(self) -> Self;
+    /// ⌊x⌋, bit for bit `f64::floor`.
+    fn floor(self) -> Self;
     /// 1/x, correctly rounded (a division).
     fn recip(self) -> Self {
         Self::ONE / self
@@ -217,6 +219,10 @@ impl F64x4 for Wide {
     #[inline(always)]
     fn sqrt(self) -> Self {
         wide::f64x4::sqrt(self)
+    }
+    #[inline(always)]
+    fn floor(self) -> Self {
+        wide::f64x4::new(self.to_array().map(crate::geometry::floor::floor))
     }
     #[inline(always)]
     fn min(self, rhs: Self) -> Self {
@@ -417,6 +423,11 @@ mod avx {
             Avx(unsafe { _mm256_sqrt_pd(self.0) })
         }
         #[inline(always)]
+        fn floor(self) -> Self {
+            // SAFETY: see the type's comment. Rounding toward −∞ keeps −0, ±∞ and NaN.
+            Avx(unsafe { _mm256_round_pd::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(self.0) })
+        }
+        #[inline(always)]
         fn min(self, rhs: Self) -> Self {
             // MINPD gives its second operand where either is NaN: `self` must win there.
             rhs.is_nan().blend(self, self.fast_min(rhs))
@@ -581,6 +592,7 @@ mod tests {
                 ("is_sign_negative", |a, _, _| a.is_sign_negative()),
                 ("abs", |a, _, _| a.abs()),
                 ("sqrt", |a, _, _| a.sqrt()),
+                ("floor", |a, _, _| a.floor()),
                 ("recip", |a, _, _| a.recip()),
                 ("min", |a, b, _| a.min(b)),
                 ("max", |a, b, _| a.max(b)),

@@ -8,7 +8,7 @@ use glam::{DVec2, DVec3};
 
 use super::{Leaf, Scene};
 use crate::geometry::{Ray, Surface};
-use crate::shading::{Paint, PatternPoint};
+use crate::shading::{Material, Paint, PatternPoint};
 
 /// The cheap record of an intersection: enough to find everything else later.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,12 +51,22 @@ impl Scene {
         si
     }
 
-    /// The shading record of a hit, written into `si`. Inlined, with the normal's dispatch,
-    /// into the tracer: it runs once per shaded hit. The fast wing keeps a packet's records in
-    /// an array and has each written where it stays: a record built elsewhere and copied in
-    /// is read back, wide, from narrower stores still in flight, which stalls the processor.
+    /// The shading record of a hit, written into `si`: the surface there, then its colour.
+    /// Inlined, with the normal's dispatch, into the tracer: it runs once per shaded hit. The
+    /// fast wing keeps a packet's records in an array and has each written where it stays: a
+    /// record built elsewhere and copied in is read back, wide, from narrower stores still in
+    /// flight, which stalls the processor.
     #[inline(always)]
     pub fn record_interaction(&self, ray: &Ray, hit: &Hit, si: &mut Interaction) {
+        let material = self.record_surface(ray, hit, si);
+        self.paint_patterns(material, si);
+    }
+
+    /// The record of a hit without its patterns: the point, the normal facing the ray, whether
+    /// the ray leaves the solid, and the material's constant colour and coefficients. Returns
+    /// the material, whose patterns `paint_patterns` looks up.
+    #[inline(always)]
+    pub fn record_surface(&self, ray: &Ray, hit: &Hit, si: &mut Interaction) -> &Material {
         let leaf = &self.leaves[hit.surface.leaf as usize];
         let point = ray.at(hit.t);
         let mut outward = leaf.normal(point, hit.surface.face);
@@ -70,9 +80,6 @@ impl Scene {
         } else {
             outward
         };
-        // The one place a surface's colour is looked up: a material without patterns (most)
-        // only copies its constants.
-        let m = &self.materials[leaf.material as usize];
         // Field by field, into `si`: a record built whole would be assembled in a stack slot
         // and copied in.
         si.point = point;
@@ -82,9 +89,18 @@ impl Scene {
         si.face = hit.surface.face;
         si.object = hit.object;
         si.material = leaf.material;
+        let m = &self.materials[leaf.material as usize];
         si.paint = m.paint();
+        m
+    }
+
+    /// The patterns of the record's material `m` looked up at its point: the one place a
+    /// surface's colour is looked up (a material without patterns, most, keeps its constants).
+    #[inline(always)]
+    pub fn paint_patterns(&self, m: &Material, si: &mut Interaction) {
         if let Some(patterns) = &m.patterns {
-            let at = self.pattern_point(leaf, point, hit.surface.face, patterns.need_uv());
+            let leaf = &self.leaves[si.leaf as usize];
+            let at = self.pattern_point(leaf, si.point, si.face, patterns.need_uv());
             patterns.paint(&mut si.paint, &at);
         }
     }
