@@ -13,6 +13,7 @@
 
 use glam::DVec3;
 
+use super::lanes::LANES;
 use super::search::FastScene;
 use super::simd::F64x4;
 use crate::scene::Interaction;
@@ -43,6 +44,7 @@ pub(super) fn checker_colors(material: &Material) -> Option<[DVec3; 2]> {
 /// Whether the lanes paint the surface `si` of material `m`.
 #[inline(always)]
 pub(super) fn in_lanes(fast: &FastScene, m: &Material, si: &Interaction) -> bool {
+    // Most materials have no patterns: they are answered without a look in the table.
     m.patterns.is_some()
         && fast.checker(si.material).is_some()
         && fast.scene.leaves[si.leaf as usize].transform.is_none()
@@ -58,14 +60,15 @@ pub(super) fn paint_checkers<V: F64x4, const N: usize>(
 ) {
     while taken != 0 {
         // Up to four surfaces; a short group repeats its last.
-        let mut lanes = [0; 4];
+        let mut lanes = [0; LANES];
         let mut count = 0;
-        while taken != 0 && count < 4 {
+        while taken != 0 && count < LANES {
+            // `% N` spares the bounds checks: bit i is set only for i < N.
             lanes[count] = taken.trailing_zeros() as usize % N;
             taken &= taken - 1;
             count += 1;
         }
-        for k in count..4 {
+        for k in count..LANES {
             lanes[k] = lanes[count - 1];
         }
         let point = |k: usize| shaded[lanes[k]].as_ref().map_or(DVec3::ZERO, |si| si.point);
@@ -81,7 +84,7 @@ pub(super) fn paint_checkers<V: F64x4, const N: usize>(
 
 /// Bit k set where the checker's cell of `points[k]` is even (its colour is A).
 #[inline(always)]
-fn even_cells<V: F64x4>([p0, p1, p2, p3]: [DVec3; 4]) -> u32 {
+fn even_cells<V: F64x4>([p0, p1, p2, p3]: [DVec3; LANES]) -> u32 {
     let cell = |a: f64, b: f64, c: f64, d: f64| (V::new([a, b, c, d]) + V::splat(BOUNDARY)).floor();
     let n =
         cell(p0.x, p1.x, p2.x, p3.x) + cell(p0.y, p1.y, p2.y, p3.y) + cell(p0.z, p1.z, p2.z, p3.z);

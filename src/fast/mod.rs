@@ -9,7 +9,8 @@
 //! the usual point lights' terms and shadow rays four surfaces at a time (`light_lanes`), and
 //! the usual checkers' colours (`checker_lanes`), flat CSG objects read off their primitives'
 //! spans (`csg_crossing`) or in lanes (`csg_lanes`, `span_lanes`), and the path tracer for
-//! scenes of diffuse surfaces (`diffuse_paths`). The binary's allocator maps large blocks in huge pages (`huge_pages`).
+//! scenes of diffuse surfaces (`diffuse_paths`). The binary's allocator maps large blocks in
+//! huge pages (`huge_pages`).
 //!
 //! The contract: every image the wing renders equals, bit for bit, the image of the core's
 //! recursion with the core's search, and so do the counters of rays and of skipped shading
