@@ -13,6 +13,7 @@ use glam::DVec3;
 use super::lanes::{lane_mask, RayLanes, LANES, UNUSED};
 use super::packet_trace::ShadowPacket;
 use super::search::FastScene;
+use super::shadow_cones::{self, TowardLight};
 use super::simd::F64x4;
 use crate::geometry::Ray;
 use crate::scene::{Interaction, Scene};
@@ -128,8 +129,24 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
                 } else {
                     [UNUSED; LANES]
                 };
-                blocked =
-                    fast.occluded_lanes(&rays, &one_by_one, lit.reach, lit.cast, &mut t.stats);
+                // Written out, not `Option::map`: a closure holding lanes may be compiled
+                // outside the wing's copy.
+                let toward = match fast.shadow_cones.get(k) {
+                    Some(cones) => Some(TowardLight {
+                        cones,
+                        l: lit.l,
+                        slack: lit.slack,
+                    }),
+                    None => None,
+                };
+                blocked = fast.occluded_lanes(
+                    &rays,
+                    &one_by_one,
+                    lit.reach,
+                    lit.cast,
+                    toward.as_ref(),
+                    &mut t.stats,
+                );
             }
             // color += s·terms: s = 1 where the shadow ray reaches the light, else 0.
             let s = lane_mask::<V>(lit.cast & !blocked).bitselect(V::ONE, V::ZERO);
@@ -238,10 +255,10 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
 
         // `Tracer::shadow_ray`: from the point moved off the surface by the bias, toward l, as
         // far as the light less the bias.
-        let (origin, reach) = if cast != 0 {
+        let (origin, reach, bias) = if cast != 0 {
             shadow_rays(t.scene.shadow_bias, &surfaces, n_dot_l, d)
         } else {
-            ([V::ZERO; 3], V::ZERO)
+            ([V::ZERO; 3], V::ZERO, V::ZERO)
         };
         GroupLit {
             terms,
@@ -250,6 +267,7 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
             cast,
             origin,
             reach,
+            slack: shadow_cones::slack(bias, &surfaces.point, d),
         }
     }
 }
@@ -266,6 +284,9 @@ struct GroupLit<V> {
     /// The shadow rays' origins and reach, where any lane casts one.
     origin: [V; 3],
     reach: V,
+    /// How far each shadow ray may stray from the line back from the light along −l
+    /// (`shadow_cones::slack`).
+    slack: V,
 }
 
 impl<V> GroupLit<V> {
@@ -361,14 +382,14 @@ fn toward<V: F64x4>(position: DVec3, [px, py, pz]: [V; 3]) -> ([V; 3], V, u32) {
 /// `Tracer::shadow_ray` toward a light at distance d: each origin is the point moved off its
 /// surface by the bias (the scene's, or 10⁻¹⁰ of the point's size, as `Scene::offset` finds it
 /// for a ray from the point itself) to the side of the normal the light is on, and the ray
-/// reaches as far as the light less the bias.
+/// reaches as far as the light less the bias; and that bias.
 #[inline(always)]
 fn shadow_rays<V: F64x4>(
     bias: Option<f64>,
     surfaces: &Surfaces<V>,
     n_dot_l: V,
     d: V,
-) -> ([V; 3], V) {
+) -> ([V; 3], V, V) {
     let [px, py, pz] = surfaces.point;
     let [nx, ny, nz] = surfaces.normal;
     let bias = match bias {
@@ -388,6 +409,7 @@ fn shadow_rays<V: F64x4>(
     (
         [px + side * nx, py + side * ny, pz + side * nz],
         reach.simd_gt(V::ZERO).bitselect(reach, V::ZERO),
+        bias,
     )
 }
 
@@ -626,8 +648,8 @@ mod tests {
         }
     }
 
-    /// The shadow rays' origins and reach are `Tracer::shadow_ray`'s (`Scene::offset` from the
-    /// point itself, and `shadow_reach`) to the bit, with the automatic bias at every scale and
+    /// The shadow rays' origins, reach and bias are `Tracer::shadow_ray`'s (`Scene::offset`
+    /// from the point itself, and `shadow_reach`) to the bit, with the automatic bias at every scale and
     /// with a scene's fixed one.
     #[test]
     fn the_shadow_rays_in_lanes_are_the_cores() {
@@ -649,13 +671,13 @@ mod tests {
                 let n_dot_l: [f64; LANES] = std::array::from_fn(|j| n[j].dot(l[j]));
                 let own = with_lanes!(V => {
                     let s = surfaces_at::<V>(p, n);
-                    let (o, r) = shadow_rays(bias, &s, lanes(n_dot_l), lanes(d));
-                    (o.map(V::to_array), r.to_array())
+                    let (o, r, b) = shadow_rays(bias, &s, lanes(n_dot_l), lanes(d));
+                    (o.map(V::to_array), r.to_array(), b.to_array())
                 });
                 let s = surfaces_at::<Wide>(p, n);
-                let (o, r) = shadow_rays(bias, &s, lanes(n_dot_l), lanes(d));
-                let wide = (o.map(Wide::to_array), r.to_array());
-                for (origin, reach) in [own, wide] {
+                let (o, r, b) = shadow_rays(bias, &s, lanes(n_dot_l), lanes(d));
+                let wide = (o.map(Wide::to_array), r.to_array(), b.to_array());
+                for (origin, reach, moved_by) in [own, wide] {
                     for j in 0..LANES {
                         let si = Interaction {
                             point: p[j],
@@ -669,6 +691,7 @@ mod tests {
                         };
                         let (from, moved) = scene.offset(&si, l[j], si.point);
                         assert_eq!(bits(lane(origin, j)), bits(from), "{bias:?} {}", p[j]);
+                        assert_eq!(moved_by[j].to_bits(), moved.to_bits(), "{bias:?}");
                         let expected = shadow_reach(d[j], moved);
                         assert_eq!(reach[j].to_bits(), expected.to_bits(), "{bias:?}");
                     }

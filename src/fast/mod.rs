@@ -37,6 +37,7 @@ mod packet_search;
 mod packet_trace;
 mod probe;
 mod search;
+mod shadow_cones;
 pub mod simd;
 mod span_lanes;
 mod sphere_group;

@@ -14,6 +14,7 @@ use super::lanes::{
 };
 use super::probe::Probe;
 use super::search::FastScene;
+use super::shadow_cones::TowardLight;
 use super::simd::{with_lanes, F64x4};
 use super::sphere_group::sphere_against_lanes;
 use crate::geometry::{Ray, Sphere, Surface};
@@ -507,12 +508,13 @@ impl FastScene<'_> {
         let reach = |i: usize| t_max.get(i).copied().unwrap_or(0.0);
         let reach = V::setr(reach(0), reach(1), reach(2), reach(3));
         let all = (1u32 << rays.len()) - 1;
-        self.occluded_lanes(&lanes, rays, reach, all, stats)
+        self.occluded_lanes(&lanes, rays, reach, all, None, stats)
     }
 
     /// The lanes of `open` whose ray is blocked before `reach`, for rays already in lanes
-    /// (`rays` are the same rays one by one, for the objects tested ray by ray: they are read
-    /// only where `needs_rays`).
+    /// (`rays` are the same rays one by one, read only for the objects tested ray by ray).
+    /// Shadow rays `toward` a point light skip the boxes their
+    /// directions alone say they miss (`shadow_cones`).
     #[inline(always)]
     pub(super) fn occluded_lanes<V: F64x4>(
         &self,
@@ -520,13 +522,15 @@ impl FastScene<'_> {
         rays: &[Ray],
         reach: V,
         all: u32,
+        toward: Option<&TowardLight<V>>,
         stats: &mut Stats,
     ) -> u32 {
-        let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(lanes));
+        // The rays' 1/d, found for the first box a ray may pass through.
+        let mut slabs = None;
         let mut open = all;
         // The lanes whose t (NaN for none) lies in 0 < t < t_max.
         let within = |t: V| (t.simd_gt(V::ZERO) & t.simd_lt(reach)).to_bitmask();
-        for p in &self.unbounded {
+        for (k, p) in self.unbounded.iter().enumerate() {
             if open == 0 {
                 break;
             }
@@ -558,8 +562,21 @@ impl FastScene<'_> {
                     }
                 }
                 Probe::Object(o) | Probe::Box { object: o, .. } => {
-                    let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
-                    open &= !self.object_blocks_lanes(*o, rays, slabs, reach, open, stats);
+                    // The rays whose direction alone says they miss the box are counted as
+                    // its slab test would count them.
+                    let missed = match toward {
+                        Some(toward) => toward.missed(k) & open,
+                        None => 0,
+                    };
+                    stats.bounds_skipped += missed.count_ones() as u64;
+                    let tested = open & !missed;
+                    if tested != 0 {
+                        let slabs = match &slabs {
+                            Some(slabs) => slabs,
+                            None => slabs.insert(SlabLanes::new(lanes)),
+                        };
+                        open &= !self.object_blocks_lanes(*o, rays, slabs, reach, tested, stats);
+                    }
                 }
             }
         }

@@ -12,12 +12,15 @@ use super::bvh4::Bvh4;
 use super::checker_lanes::checker_colors;
 use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
+use super::light_lanes::lanes_light;
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
+use super::shadow_cones::{Cone, ShadowCones};
 use super::simd::{with_lanes, F64x4};
 use crate::accel::Aabb;
 use crate::geometry::csg::CsgWork;
 use crate::geometry::{first_crossing, Aabox, Ray, Shape, Span, Surface};
 use crate::scene::{Geometry, Hit, Scene, Search};
+use crate::shading::Light;
 use crate::stats::Stats;
 
 /// A compiled scene with what the fast search needs beside it.
@@ -47,6 +50,8 @@ pub struct FastScene<'s> {
     pub(super) in_lanes: bool,
     /// Per material: the colours of its checker, when the lanes paint it (`checker_lanes`).
     checkers: Vec<Option<[DVec3; 2]>>,
+    /// Per light: the cones of the boxes its shadow rays test in lanes (`shadow_cones`).
+    pub(super) shadow_cones: Vec<ShadowCones>,
 }
 
 impl LeafSpans for Scene {
@@ -83,6 +88,7 @@ impl<'s> FastScene<'s> {
             boxed_objects: false,
             in_lanes: false,
             checkers: scene.materials.iter().map(checker_colors).collect(),
+            shadow_cones: vec![],
         };
         fast.bounded = index.bounded.iter().map(|&o| fast.probe(o)).collect();
         fast.unbounded = grouped(index.unbounded.iter().map(|&o| fast.probe(o)).collect());
@@ -95,7 +101,25 @@ impl<'s> FastScene<'s> {
         fast.boxes_outside_bvh = boxed(&fast.unbounded);
         fast.boxed_objects = fast.boxes_outside_bvh || boxed(&fast.bounded);
         fast.in_lanes = fast.bounded.is_empty();
+        if fast.in_lanes && fast.boxes_outside_bvh {
+            fast.shadow_cones = scene.lights.iter().map(|l| fast.cones_from(l)).collect();
+        }
         fast
+    }
+
+    /// The cones of the boxes tested behind them, seen from `light` where the lanes light it
+    /// (`lanes_light`).
+    fn cones_from(&self, light: &Light) -> ShadowCones {
+        let Some((position, _)) = lanes_light(light) else {
+            return ShadowCones::default();
+        };
+        let cone = |p: &Probe| {
+            let o = p.boxed_object().filter(|&o| self.tested_behind_box(o))?;
+            Cone::new(position, &self.scene.objects[o as usize].bounds)
+        };
+        ShadowCones {
+            by_probe: self.unbounded.iter().map(cone).collect(),
+        }
     }
 
     /// The flat CSG object in the form `csg_in_lanes` tests, if it is one: two operands, each a
