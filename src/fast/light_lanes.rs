@@ -649,8 +649,8 @@ mod tests {
     }
 
     /// The shadow rays' origins, reach and bias are `Tracer::shadow_ray`'s (`Scene::offset`
-    /// from the point itself, and `shadow_reach`) to the bit, with the automatic bias at every scale and
-    /// with a scene's fixed one.
+    /// from the point itself, and `shadow_reach`) to the bit, with the automatic bias at every
+    /// scale and with a scene's fixed one.
     #[test]
     fn the_shadow_rays_in_lanes_are_the_cores() {
         let yaml = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nobjects: []\n";

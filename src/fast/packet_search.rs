@@ -513,8 +513,8 @@ impl FastScene<'_> {
 
     /// The lanes of `open` whose ray is blocked before `reach`, for rays already in lanes
     /// (`rays` are the same rays one by one, read only for the objects tested ray by ray).
-    /// Shadow rays `toward` a point light skip the boxes their
-    /// directions alone say they miss (`shadow_cones`).
+    /// Shadow rays `toward` a point light skip the boxes their directions alone say they miss
+    /// (`shadow_cones`).
     #[inline(always)]
     pub(super) fn occluded_lanes<V: F64x4>(
         &self,

@@ -65,9 +65,9 @@ impl Cone {
         )
     }
 
-    /// The lanes whose shadow ray, of unit direction l (axis by axis in lanes) and straying by
-    /// up to `slack` (`slack`) from the line back from the light, cannot meet the ball. A lane
-    /// whose l or slack is NaN is never among them.
+    /// The lanes whose shadow ray, of unit direction l (axis by axis in lanes), strays by up to
+    /// `slack` (as the function `slack` finds it) from the line back from the light and cannot
+    /// meet the ball. A lane whose l or slack is NaN is never among them.
     #[inline(always)]
     pub fn missed_by<V: F64x4>(&self, [lx, ly, lz]: &[V; 3], slack: V) -> u32 {
         let dot = *lx * V::splat(self.w.x) + *ly * V::splat(self.w.y) + *lz * V::splat(self.w.z);
@@ -119,23 +119,32 @@ mod tests {
     use super::*;
     use crate::accel::SlabRay;
     use crate::fast::simd::{level, Level, Wide};
+    use crate::scene::{parse, Interaction, Limits, Scene};
+    use crate::shading::Material;
+    use crate::trace::whitted::shadow_reach;
     use rand::{Rng, SeedableRng};
     use rand_pcg::Pcg64;
 
-    /// A shadow ray built as `light_lanes` builds it (`Tracer::shadow_ray`'s arithmetic): from
-    /// p, whose surface faces along n, toward the light, with the scene's bias or the
-    /// automatic one. Returns the ray's origin, l, reach, and its slack.
-    fn shadow_ray(p: DVec3, n: DVec3, light: DVec3, bias: Option<f64>) -> (DVec3, DVec3, f64, f64) {
+    /// The shadow ray from p, whose surface faces along n, toward the light, as the core casts
+    /// it (`Scene::offset` from the point itself, `shadow_reach`) with the scene's bias, and l
+    /// and d found as `light_lanes::toward` finds them. Returns the ray's origin, l, reach,
+    /// and its slack.
+    fn shadow_ray(scene: &Scene, p: DVec3, n: DVec3, light: DVec3) -> (DVec3, DVec3, f64, f64) {
         let t = light - p;
         let d = (t.x * t.x + t.y * t.y + t.z * t.z).sqrt();
         let l = DVec3::new(t.x / d, t.y / d, t.z / d);
-        let b = bias.unwrap_or_else(|| {
-            let largest = p.abs().max_element();
-            (1e-10 * (largest + largest)).max(1e-300)
-        });
-        let side = if l.dot(n) >= 0.0 { b } else { -b };
-        let origin = p + side * n;
-        let reach = (d - b).max(0.0);
+        let si = Interaction {
+            point: p,
+            normal: n,
+            inside: false,
+            leaf: 0,
+            face: 0,
+            object: 0,
+            material: 0,
+            paint: Material::matte("m", DVec3::ONE).paint(),
+        };
+        let (origin, b) = scene.offset(&si, l, p);
+        let reach = shadow_reach(d, b);
         let slack = slack(
             Wide::splat(b),
             &p.to_array().map(Wide::splat),
@@ -199,6 +208,8 @@ mod tests {
     /// from the origin, flat ones among them, with the scene's bias or the automatic one.
     #[test]
     fn a_cone_misses_only_where_the_slab_test_misses() {
+        let yaml = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nobjects: []\n";
+        let mut scene = parse(yaml, "cones.yaml", None, &Limits::default()).unwrap();
         let mut rng = Pcg64::seed_from_u64(31);
         let (mut culled, mut hit, mut rays) = (0, 0, 0);
         for _ in 0..4000 {
@@ -213,7 +224,7 @@ mod tests {
             let Some(cone) = Cone::new(light, &bounds) else {
                 continue;
             };
-            let bias = match rng.random_range(0..3) {
+            scene.shadow_bias = match rng.random_range(0..3) {
                 0 => None,
                 1 => Some(size * 10f64.powi(rng.random_range(-12..=-3))),
                 _ => Some(0.0),
@@ -225,7 +236,7 @@ mod tests {
                     along_the_cone(&mut rng, &bounds, light)
                 };
                 let p = light + (q - light) * rng.random_range(1.001..4.0);
-                let (origin, l, reach, slack) = shadow_ray(p, unit(&mut rng), light, bias);
+                let (origin, l, reach, slack) = shadow_ray(&scene, p, unit(&mut rng), light);
                 let slabs = SlabRay::new(origin, l.recip());
                 let through = bounds.hit_slabs(&slabs, 0.0, reach);
                 let wide = missed::<Wide>(&cone, l, slack);
