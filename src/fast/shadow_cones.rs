@@ -120,7 +120,6 @@ mod tests {
     use crate::accel::SlabRay;
     use crate::fast::simd::{level, Level, Wide};
     use crate::scene::{parse, Interaction, Limits, Scene};
-    use crate::shading::Material;
     use crate::trace::whitted::shadow_reach;
     use rand::{Rng, SeedableRng};
     use rand_pcg::Pcg64;
@@ -136,12 +135,7 @@ mod tests {
         let si = Interaction {
             point: p,
             normal: n,
-            inside: false,
-            leaf: 0,
-            face: 0,
-            object: 0,
-            material: 0,
-            paint: Material::matte("m", DVec3::ONE).paint(),
+            ..Interaction::default()
         };
         let (origin, b) = scene.offset(&si, l, p);
         let reach = shadow_reach(d, b);
