@@ -4,7 +4,8 @@
 //! is the definition of what raytree computes. This wing is an optimisation of it and nothing
 //! else: a pixel's primary rays made four at a time (`camera_rays`), packets of rays traced
 //! together (`packet_trace`), searched together through the BVH folded to four children a node
-//! (`bvh4`, `bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`), plain
+//! (`bvh4`, `bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`;
+//! the boxes a pixel's rays cannot meet known from where each box can appear, `footprint`), plain
 //! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
 //! the usual point lights' terms and shadow rays four surfaces at a time (`light_lanes`), and
 //! the usual checkers' colours (`checker_lanes`), flat CSG objects read off their primitives'
@@ -26,6 +27,7 @@ mod checker_lanes;
 mod csg_crossing;
 mod csg_lanes;
 mod diffuse_paths;
+mod footprint;
 #[cfg(target_os = "linux")]
 pub mod huge_pages;
 mod hull;
@@ -45,6 +47,7 @@ mod sphere_group;
 pub use bvh_packet::PACKET;
 pub use camera_rays::ImagePlane;
 pub use diffuse_paths::DiffusePaths;
+pub use footprint::Footprints;
 pub use packet_trace::{trace_packet, SHADED};
 pub use probe::{plane_hit, sphere_hit};
 pub use search::FastScene;

@@ -98,18 +98,35 @@ impl FastScene<'_> {
     /// that share the first one's direction signs go through the BVH as a packet (if there are
     /// at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
-        with_lanes!(V => self.intersect_packet_in::<V>(rays, hits, stats))
+        self.intersect_packet_knowing(rays, None, hits, stats)
+    }
+
+    /// `intersect_packet` for rays that are known to miss the boxes of `missed` (bit k for
+    /// the object of `unbounded[k]`, as the film's `Footprints` find them), every one of
+    /// them; None: the packet's hull finds them (`boxes_missed_by_all`).
+    pub fn intersect_packet_knowing(
+        &self,
+        rays: &[Ray],
+        missed: Option<u64>,
+        hits: &mut [Option<Hit>],
+        stats: &mut Stats,
+    ) {
+        with_lanes!(V => self.intersect_packet_in::<V>(rays, missed, hits, stats))
     }
 
     #[inline(always)]
     fn intersect_packet_in<V: F64x4>(
         &self,
         rays: &[Ray],
+        missed: Option<u64>,
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
         if self.in_lanes {
-            let missed = self.boxes_missed_by_all::<V>(rays);
+            let missed = match missed {
+                Some(missed) => missed,
+                None => self.boxes_missed_by_all::<V>(rays),
+            };
             for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
                 self.intersect_in_lanes::<V>(rays, &RayLanes::new(rays), hits, missed, stats);
             }

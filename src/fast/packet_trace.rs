@@ -133,9 +133,16 @@ impl<const N: usize> ShadowPacket<N> {
 /// BVH scene): `out[i]` is exactly what `Tracer::radiance` gives ray i, and the counters of
 /// rays and the random numbers drawn are those of tracing the rays one after another. They are
 /// searched as one packet, then shaded together through a BVH, else `SHADED` at a time, in
-/// order.
-pub fn trace_packet(t: &mut Tracer, fast: &FastScene, rays: &[Ray], out: &mut [DVec3]) {
-    with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, out))
+/// order. `missed`: the boxes every ray is known to miss, if the film knows them
+/// (`FastScene::intersect_packet_knowing`).
+pub fn trace_packet(
+    t: &mut Tracer,
+    fast: &FastScene,
+    rays: &[Ray],
+    missed: Option<u64>,
+    out: &mut [DVec3],
+) {
+    with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, missed, out))
 }
 
 #[inline(always)]
@@ -143,6 +150,7 @@ fn trace_packet_inline<V: F64x4>(
     t: &mut Tracer,
     fast: &FastScene,
     rays: &[Ray],
+    missed: Option<u64>,
     out: &mut [DVec3],
 ) {
     let n = rays.len();
@@ -156,7 +164,7 @@ fn trace_packet_inline<V: F64x4>(
         return;
     }
     let mut hits = [None; PACKET];
-    fast.intersect_packet(rays, &mut hits[..n], &mut t.stats);
+    fast.intersect_packet_knowing(rays, missed, &mut hits[..n], &mut t.stats);
     if !fast.tests_in_lanes() {
         shade_packet::<V, _, PACKET>(t, fast, rays, &hits[..n], out);
         return;

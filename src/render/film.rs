@@ -14,7 +14,7 @@ use super::antialias::{
     GAUSS_RADIUS,
 };
 use super::Image;
-use crate::fast::{trace_packet, DiffusePaths, FastScene, ImagePlane, PACKET, SHADED};
+use crate::fast::{trace_packet, DiffusePaths, FastScene, Footprints, ImagePlane, PACKET, SHADED};
 use crate::geometry::Ray;
 use crate::sampling::{pixel_key, Rng, SamplePoint};
 use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
@@ -92,6 +92,9 @@ pub struct Film<'s> {
     /// The look-at camera's image plane at the grid samples, where the fast wing traces
     /// them in packets.
     plane: Option<ImagePlane>,
+    /// Where on that plane each boxed object can appear, so that a packet of primary rays
+    /// skips the boxes it cannot meet without asking its rays.
+    footprints: Option<Footprints>,
 }
 
 impl<'s> Film<'s> {
@@ -115,9 +118,14 @@ impl<'s> Film<'s> {
             diffuse_paths: path.filter(|_| fast).and_then(DiffusePaths::new),
             offsets: grid_offsets(options.spp.max(1)),
             plane: None,
+            footprints: None,
         };
         if fast && film.antialias() == Antialias::Grid {
             film.plane = ImagePlane::new(&film.camera, &film.offsets);
+            film.footprints = film
+                .fast
+                .as_ref()
+                .and_then(|fast| Footprints::new(&film.camera, &film.offsets, fast));
         }
         film
     }
@@ -259,7 +267,8 @@ impl<'s> Film<'s> {
             let first = c * SHADED;
             self.grid_rays(x, y, first..first + chunk.len(), &mut rays);
             let mut values = [DVec3::ZERO; SHADED];
-            trace_packet(t, fast, &rays, &mut values[..rays.len()]);
+            let missed = self.footprints.as_ref().map(|f| f.missed(x, x, y));
+            trace_packet(t, fast, &rays, missed, &mut values[..rays.len()]);
             for (o, value) in chunk.iter().zip(values) {
                 visit(Sample { uv: *o, value });
             }
@@ -318,7 +327,9 @@ impl<'s> Film<'s> {
             self.grid_rays(x + k as u32, y, 0..n, &mut rays);
         }
         let mut values = [DVec3::ZERO; PACKET];
-        trace_packet(t, fast, &rays, &mut values[..rays.len()]);
+        let last = x + out.len() as u32 - 1;
+        let missed = self.footprints.as_ref().map(|f| f.missed(x, last, y));
+        trace_packet(t, fast, &rays, missed, &mut values[..rays.len()]);
         for (px, samples) in out.iter_mut().zip(values.chunks(n)) {
             *px = samples.iter().fold(DVec3::ZERO, |sum, v| sum + *v) / n as f64;
         }
