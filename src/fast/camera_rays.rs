@@ -31,10 +31,20 @@ pub struct ImagePlane {
     rows: [Vec<f64>; 3],
 }
 
-impl ImagePlane {
-    /// The image plane of `camera` at the samples (c + o.x, r + o.y) of every pixel (c, r), for
-    /// each offset o; None for the window model.
-    pub fn new(camera: &Camera, offsets: &[DVec2]) -> Option<ImagePlane> {
+/// A look-at camera's frame and its image's size in pixels: what its image plane is made of.
+pub(super) struct LookAt {
+    pub eye: DVec3,
+    pub forward: DVec3,
+    pub right: DVec3,
+    pub up: DVec3,
+    pub tan_half_fov: f64,
+    /// Width and height.
+    pub size: (f64, f64),
+}
+
+impl LookAt {
+    /// The frame of `camera`; None for the window model.
+    pub(super) fn of(camera: &Camera) -> Option<LookAt> {
         let Projection::LookAt {
             eye,
             forward,
@@ -45,7 +55,29 @@ impl ImagePlane {
         else {
             return None;
         };
-        let (w, h) = (camera.width as f64, camera.height as f64);
+        Some(LookAt {
+            eye,
+            forward,
+            right,
+            up,
+            tan_half_fov,
+            size: (camera.width as f64, camera.height as f64),
+        })
+    }
+}
+
+impl ImagePlane {
+    /// The image plane of `camera` at the samples (c + o.x, r + o.y) of every pixel (c, r), for
+    /// each offset o; None for the window model.
+    pub fn new(camera: &Camera, offsets: &[DVec2]) -> Option<ImagePlane> {
+        let LookAt {
+            eye,
+            forward,
+            right,
+            up,
+            tan_half_fov,
+            size: (w, h),
+        } = LookAt::of(camera)?;
         let n = offsets.len();
         let mut columns = [(); 3].map(|_| Vec::with_capacity(camera.width as usize * n));
         for c in 0..camera.width {

@@ -18,9 +18,10 @@
 
 use glam::{DVec2, DVec3};
 
+use super::camera_rays::LookAt;
 use super::search::FastScene;
 use crate::accel::Aabb;
-use crate::scene::{Camera, Projection};
+use crate::scene::Camera;
 
 /// The pixels of a row whose grid samples may meet a box: those whose corner (x, y) has
 /// `x_min ≤ x ≤ x_max` and `y_min ≤ y ≤ y_max`.
@@ -91,15 +92,7 @@ impl Footprints {
 
 /// The look-at camera's image plane, to project points onto.
 struct Plane {
-    eye: DVec3,
-    forward: DVec3,
-    right: DVec3,
-    up: DVec3,
-    /// The plane's x and y per unit of image column and row: sx = (x/x_scale + 1)·w/2 and
-    /// sy = (1 − y/y_scale)·h/2.
-    x_scale: f64,
-    y_scale: f64,
-    size: (f64, f64),
+    frame: LookAt,
 }
 
 impl Plane {
@@ -107,39 +100,26 @@ impl Plane {
     /// projection solves for x and y by dot products) and whose pixels are not too small to
     /// project to within a millionth of one.
     fn of(camera: &Camera) -> Option<Plane> {
-        let Projection::LookAt {
-            eye,
-            forward,
-            right,
-            up,
-            tan_half_fov,
-        } = camera.projection
-        else {
-            return None;
-        };
-        let (w, h) = (camera.width as f64, camera.height as f64);
+        let frame = LookAt::of(camera)?;
+        let (forward, right, up) = (frame.forward, frame.right, frame.up);
         let unit = |v: DVec3| (v.length() - 1.0).abs() < 1e-12;
         let square = |a: DVec3, b: DVec3| a.dot(b).abs() < 1e-12;
         let orthonormal = unit(forward) && unit(right) && unit(up);
         let orthonormal = orthonormal && square(forward, right) && square(forward, up);
-        let plane = Plane {
-            eye,
-            forward,
-            right,
-            up,
-            x_scale: tan_half_fov * (w / h),
-            y_scale: tan_half_fov,
-            size: (w, h),
-        };
-        let fine = (tan_half_fov / h).is_finite() && tan_half_fov / h > 1e-9;
-        (orthonormal && square(right, up) && fine && eye.is_finite()).then_some(plane)
+        let orthonormal = orthonormal && square(right, up);
+        let per_row = frame.tan_half_fov / frame.size.1;
+        let fine = per_row.is_finite() && per_row > 1e-9;
+        (orthonormal && fine && frame.eye.is_finite()).then_some(Plane { frame })
     }
 
     /// The image coordinates (sx, sy) of the bounding rectangle of the box's projection, as
     /// (sx_min, sx_max), (sy_min, sy_max); None where a corner is not well in front of the eye
     /// (within 89.9° of forward), or its projection is not found to within 10⁻⁶ of a pixel.
     fn shadow(&self, bounds: &Aabb) -> Option<((f64, f64), (f64, f64))> {
-        let (w, h) = self.size;
+        let f = &self.frame;
+        let (w, h) = f.size;
+        // The plane's x and y per unit of image column and row (`plane_x`, `plane_y`).
+        let (x_scale, y_scale) = (f.tan_half_fov * (w / h), f.tan_half_fov);
         let (mut sx, mut sy) = (
             (f64::INFINITY, f64::NEG_INFINITY),
             (f64::INFINITY, f64::NEG_INFINITY),
@@ -152,28 +132,25 @@ impl Plane {
                     bounds.max[axis]
                 }
             };
-            let q = DVec3::new(pick(0), pick(1), pick(2)) - self.eye;
-            let depth = q.dot(self.forward);
+            let q = DVec3::new(pick(0), pick(1), pick(2)) - f.eye;
+            let depth = q.dot(f.forward);
             // False for NaN too.
             let well_ahead = depth > 1e-3 * q.length();
             if !well_ahead {
                 return None;
             }
-            let (x, y) = (q.dot(self.right) / depth, q.dot(self.up) / depth);
+            let (x, y) = (q.dot(f.right) / depth, q.dot(f.up) / depth);
             // What rounding can move, on the plane: a ray's direction (e + forward + x·right
             // + y·up − e), a corner's (x, y) and a point the slab test puts on the box, each by
             // a few ulps of the coordinates that make it, seen from `depth` away.
-            let size = 1.0 + self.eye.abs().element_sum();
-            let far = (q + self.eye).abs().element_sum() + self.eye.abs().element_sum();
+            let size = 1.0 + f.eye.abs().element_sum();
+            let far = (q + f.eye).abs().element_sum() + f.eye.abs().element_sum();
             let error = 1e-14 * (1.0 + x.abs() + y.abs()) * (size + far / depth);
-            let precise = error <= 1e-6 * 2.0 * self.y_scale / h;
+            let precise = error <= 1e-6 * 2.0 * y_scale / h;
             if !precise {
                 return None;
             }
-            let (cx, cy) = (
-                (x / self.x_scale + 1.0) * w / 2.0,
-                (1.0 - y / self.y_scale) * h / 2.0,
-            );
+            let (cx, cy) = ((x / x_scale + 1.0) * w / 2.0, (1.0 - y / y_scale) * h / 2.0);
             sx = (sx.0.min(cx), sx.1.max(cx));
             sy = (sy.0.min(cy), sy.1.max(cy));
         }
