@@ -23,7 +23,7 @@ use super::search::FastScene;
 use crate::accel::Aabb;
 use crate::scene::Camera;
 
-/// The pixels of a row whose grid samples may meet a box: those whose corner (x, y) has
+/// The pixels whose grid samples may meet a box: those whose corner (x, y) has
 /// `x_min ≤ x ≤ x_max` and `y_min ≤ y ≤ y_max`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Pixels {
@@ -45,20 +45,28 @@ impl Footprints {
     /// The footprints of `fast`'s boxed objects seen through `camera`, at the grid samples
     /// (c + o.x, r + o.y) of each pixel (c, r), for each offset o. None where the primary rays
     /// are not searched in lanes with boxes outside a BVH (the hull is not used there either),
-    /// for the window model, or where some box has no footprint (it reaches behind the eye, or
-    /// its corners are not found precisely enough): the packets' hull then decides, as before.
+    /// for the window model, without finite offsets, or where some box has no footprint (it
+    /// reaches behind the eye, or its corners are not found precisely enough): the packets'
+    /// hull then decides.
     pub fn new(camera: &Camera, offsets: &[DVec2], fast: &FastScene) -> Option<Footprints> {
         if !(fast.tests_in_lanes() && fast.boxes_outside_bvh) {
             return None;
         }
         let plane = Plane::of(camera)?;
-        let first = |f: fn(f64, f64) -> f64, pick: fn(&DVec2) -> f64| {
-            offsets.iter().map(pick).fold(pick(&offsets[0]), f)
-        };
-        let (ox, oy) = (
-            (first(f64::min, |o| o.x), first(f64::max, |o| o.x)),
-            (first(f64::min, |o| o.y), first(f64::max, |o| o.y)),
+        // The offsets' least and greatest x and y.
+        let (mut ox, mut oy) = (
+            (f64::INFINITY, f64::NEG_INFINITY),
+            (f64::INFINITY, f64::NEG_INFINITY),
         );
+        for o in offsets {
+            (ox, oy) = (
+                (ox.0.min(o.x), ox.1.max(o.x)),
+                (oy.0.min(o.y), oy.1.max(o.y)),
+            );
+        }
+        if !(ox.0.is_finite() && ox.1.is_finite() && oy.0.is_finite() && oy.1.is_finite()) {
+            return None;
+        }
         let mut boxes = vec![];
         for (k, probe) in fast.unbounded.iter().enumerate().take(u64::BITS as usize) {
             let Some(o) = probe.boxed_object().filter(|&o| fast.tested_behind_box(o)) else {
@@ -210,7 +218,7 @@ objects:
     }
 
     /// No footprints where the packets' hull is not used (no boxes, or a BVH), for the window
-    /// model, or where a box reaches behind the eye.
+    /// model, without samples, or where a box reaches behind the eye.
     #[test]
     fn footprints_only_where_they_hold() {
         let offsets = grid_offsets(4);
@@ -243,6 +251,10 @@ objects: [ { box: { min: [-1, -1, 1], max: [1, 1, 3] }, material: m } ]
 ",
         );
         assert!(footprints(&window, &offsets).is_none());
+        let ahead = scene(&format!(
+            "{camera}\nobjects: [ {{ box: {{ min: [-1, -1, 1], max: [1, 1, 3] }}, material: m }} ]"
+        ));
+        assert!(footprints(&ahead, &[]).is_none(), "no samples");
     }
 
     /// Wherever a footprint says a pixel's samples miss a box, each of its primary rays
