@@ -327,7 +327,7 @@ impl<'s> Film<'s> {
             self.grid_rays(x + k as u32, y, 0..n, &mut rays);
         }
         let mut values = [DVec3::ZERO; PACKET];
-        let last = x + out.len() as u32 - 1;
+        let last = x + out.len().saturating_sub(1) as u32;
         let missed = self.footprints.as_ref().map(|f| f.missed(x, last, y));
         trace_packet(t, fast, &rays, missed, &mut values[..rays.len()]);
         for (px, samples) in out.iter_mut().zip(values.chunks(n)) {
