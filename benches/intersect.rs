@@ -2,15 +2,15 @@
 //! paths of the path tracer, and a small render.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 use raytree::accel::{Aabb, Bvh};
 use raytree::bench;
 use raytree::fast::simd::Wide;
-use raytree::fast::{sphere_hit, DiffusePaths, FastScene, SphereGroup, PACKET};
+use raytree::fast::{sphere_hit, DiffusePaths, FastScene, Footprints, SphereGroup, PACKET};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
 use raytree::render::{render_simple, Engine, RenderOptions};
 use raytree::sampling::{pixel_key, SamplePoint};
-use raytree::scene::{parse, Accel, Limits, Scene, Search};
+use raytree::scene::{parse, Accel, Hit, Limits, Scene, Search};
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
 use std::hint::black_box;
@@ -407,12 +407,7 @@ fn render(c: &mut Criterion) {
     });
     // The Whitted peer scene at 16 samples per pixel: the core's recursion ray by ray, and the
     // wing's packets (the lights' terms and shadow rays of four surfaces at a time among them).
-    let yaml = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/peers/whitted.yaml"),
-    )
-    .unwrap()
-    .replace("width: 800, height: 600", "width: 160, height: 120");
-    let whitted = parse(&yaml, "whitted.yaml", None, &Limits::default()).unwrap();
+    let whitted = peer_scene_160x120("whitted");
     let mut g = c.benchmark_group("render the Whitted peer scene 160×120, 16 spp");
     for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
         let options = RenderOptions {
@@ -431,6 +426,18 @@ fn render(c: &mut Criterion) {
         &Limits::default(),
     )
     .unwrap();
+    // The CSG peer scene: the wing tests its flat CSG objects four rays at a time and rules
+    // out the boxes a packet of primary rays cannot meet by the pixels' place on the film.
+    let csg = peer_scene_160x120("csg");
+    let mut g = c.benchmark_group("render the CSG peer scene 160×120, 16 spp");
+    for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
+        let options = RenderOptions {
+            engine,
+            ..RenderOptions::of(&csg)
+        };
+        g.bench_function(name, |b| b.iter(|| render_simple(&csg, options)));
+    }
+    g.finish();
     let mut g = c.benchmark_group("render 10 000 spheres 160×120, 16 spp");
     g.sample_size(20);
     for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
@@ -442,6 +449,19 @@ fn render(c: &mut Criterion) {
         g.bench_function(name, |b| b.iter(|| render_simple(&many, options)));
     }
     g.finish();
+}
+
+/// A peer scene of `benches/peers/` at 160×120.
+fn peer_scene_160x120(name: &str) -> Scene {
+    let file = format!("{name}.yaml");
+    let yaml = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("benches/peers")
+            .join(&file),
+    )
+    .unwrap()
+    .replace("width: 800, height: 600", "width: 160, height: 120");
+    parse(&yaml, &file, None, &Limits::default()).unwrap()
 }
 
 /// A scene of one object (given as YAML) in front of the eye.
@@ -486,6 +506,68 @@ fn csg(c: &mut Criterion) {
     for (name, scene) in [("sphere", &sphere), ("lens", &lens)] {
         g.bench_function(name, |b| b.iter(|| nearest_hits(scene, &rs)));
     }
+    g.finish();
+}
+
+/// The CSG peer scene's primary rays at 160×120, 16 samples a pixel (a 4×4 grid), two pixels'
+/// samples a packet as the film traces them: the boxes a packet cannot meet ruled out by the
+/// packet's hull (`boxes_missed_by_all`, from its rays) or by the film's footprints
+/// (`Footprints::missed`, from the pixels' place alone).
+fn footprints(c: &mut Criterion) {
+    let scene = peer_scene_160x120("csg");
+    let fast = FastScene::new(&scene);
+    let offsets: Vec<DVec2> = (0..16)
+        .map(|k| DVec2::new((k % 4) as f64 + 0.5, (k / 4) as f64 + 0.5) / 4.0)
+        .collect();
+    let footprints = Footprints::new(&scene.camera, &offsets, &fast)
+        .expect("the CSG scene's boxes lie ahead of the eye");
+    let cam = &scene.camera;
+    let (width, height) = (cam.width, cam.height);
+    // Each packet: its first pixel, its last and its row, and its rays.
+    let packets: Vec<((u32, u32, u32), Vec<Ray>)> = (0..height)
+        .flat_map(|y| {
+            (0..width)
+                .step_by(2)
+                .map(move |x| (x, (x + 1).min(width - 1), y))
+        })
+        .map(|(x, last, y)| {
+            let rays = (x..=last)
+                .flat_map(|px| offsets.iter().map(move |o| (px, o)))
+                .map(|(px, o)| cam.ray(px as f64 + o.x, y as f64 + o.y))
+                .collect();
+            ((x, last, y), rays)
+        })
+        .collect();
+    // Every packet's hits, with the boxes ruled out by the footprints or by the hull.
+    let search = |knowing: bool, found: &mut Vec<Option<Hit>>, stats: &mut Stats| {
+        let mut hits = [None; PACKET];
+        for ((x, last, y), rays) in &packets {
+            let missed = knowing.then(|| footprints.missed(*x, *last, *y));
+            let hits = &mut hits[..rays.len()];
+            fast.intersect_packet_knowing(rays, missed, hits, stats);
+            found.extend_from_slice(hits);
+        }
+    };
+    // Before timing: both find every ray's very hit (t, object, surface), and the footprints
+    // rule out boxes.
+    let (mut by_hull, mut by_footprints) = (vec![], vec![]);
+    let (mut hull_stats, mut footprint_stats) = (Stats::default(), Stats::default());
+    search(false, &mut by_hull, &mut hull_stats);
+    search(true, &mut by_footprints, &mut footprint_stats);
+    assert!(by_hull == by_footprints, "other hits with the footprints");
+    assert!(footprint_stats.bounds_skipped > 0);
+    let timed = |knowing: bool| {
+        let mut found = Vec::with_capacity(by_hull.len());
+        search(knowing, &mut found, &mut Stats::default());
+        found.len()
+    };
+    let mut g = c.benchmark_group("the CSG peer scene's primary packets at 160×120, 16 spp");
+    g.bench_function("boxes ruled out by the packets' hull", |b| {
+        b.iter(|| timed(false))
+    });
+    g.bench_function("boxes ruled out by the footprints", |b| {
+        b.iter(|| timed(true))
+    });
     g.finish();
 }
 
@@ -581,6 +663,6 @@ fn paths(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = shapes, sphere_group, bvh, bvh_build, lanes, primary_packets, shadow_packets, csg, boxes, room, paths, render
+    targets = shapes, sphere_group, bvh, bvh_build, lanes, primary_packets, shadow_packets, csg, footprints, boxes, room, paths, render
 }
 criterion_main!(benches);
