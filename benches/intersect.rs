@@ -408,45 +408,33 @@ fn render(c: &mut Criterion) {
     // The Whitted peer scene at 16 samples per pixel: the core's recursion ray by ray, and the
     // wing's packets (the lights' terms and shadow rays of four surfaces at a time among them).
     let whitted = peer_scene_160x120("whitted");
-    let mut g = c.benchmark_group("render the Whitted peer scene 160×120, 16 spp");
-    for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
-        let options = RenderOptions {
-            engine,
-            ..RenderOptions::of(&whitted)
-        };
-        g.bench_function(name, |b| b.iter(|| render_simple(&whitted, options)));
-    }
-    g.finish();
+    core_against_wing(c, "render the Whitted peer scene 160×120, 16 spp", &whitted);
+    // The CSG peer scene: the wing tests its flat CSG objects four rays at a time and rules
+    // out the boxes a packet of primary rays cannot meet by the pixels' place on the film.
+    let csg = peer_scene_160x120("csg");
+    core_against_wing(c, "render the CSG peer scene 160×120, 16 spp", &csg);
     // 10 000 spheres through the BVH, at 16 samples per pixel: the wing searches two pixels'
     // samples as one packet and lights four surfaces at a time, their shadow rays one packet.
-    let many = parse(
+    let mut many = parse(
         &bench::spheres(10_000),
         "spheres.yaml",
         None,
         &Limits::default(),
     )
     .unwrap();
-    // The CSG peer scene: the wing tests its flat CSG objects four rays at a time and rules
-    // out the boxes a packet of primary rays cannot meet by the pixels' place on the film.
-    let csg = peer_scene_160x120("csg");
-    let mut g = c.benchmark_group("render the CSG peer scene 160×120, 16 spp");
+    many.spp = 16;
+    core_against_wing(c, "render 10 000 spheres 160×120, 16 spp", &many);
+}
+
+/// The whole render of `scene` by the core and by the fast wing, with the scene's own options.
+fn core_against_wing(c: &mut Criterion, title: &str, scene: &Scene) {
+    let mut g = c.benchmark_group(title);
     for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
         let options = RenderOptions {
             engine,
-            ..RenderOptions::of(&csg)
+            ..RenderOptions::of(scene)
         };
-        g.bench_function(name, |b| b.iter(|| render_simple(&csg, options)));
-    }
-    g.finish();
-    let mut g = c.benchmark_group("render 10 000 spheres 160×120, 16 spp");
-    g.sample_size(20);
-    for (name, engine) in [("core", Engine::Core), ("wing", Engine::Fast)] {
-        let options = RenderOptions {
-            engine,
-            spp: 16,
-            ..RenderOptions::of(&many)
-        };
-        g.bench_function(name, |b| b.iter(|| render_simple(&many, options)));
+        g.bench_function(name, |b| b.iter(|| render_simple(scene, options)));
     }
     g.finish();
 }
