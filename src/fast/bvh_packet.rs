@@ -286,31 +286,32 @@ pub fn closest_packet<V: F64x4>(
 /// `any` for a packet of up to `PACKET` rays, given as their groups of four (`RayLanes::new` of
 /// each four in order) and their count, ray i searching [t_min, t_max[i]]: bit i of the
 /// answer is set when ray i met a blocker. The rays of `blocked` are answered already (a
-/// blocker found before the walk): they take no part. At a leaf, `visit(item, rays)` runs
-/// for each item with the set of rays still searching that reached it and answers those it
-/// blocks. Each other ray meets the leaves in the order `any` takes it, visits the items of
-/// the leaves `any` visits, and leaves the packet at its first blocker; the directions may
-/// point anywhere (the order does not depend on them).
+/// blocker found before the walk): they take no part. At a leaf, `visit(item, rays, t_max)`
+/// runs for each item with the set of rays still searching that reached it and answers those
+/// it blocks. Each other ray meets the leaves in the order `any` takes it, visits the items
+/// of the leaves `any` visits, and leaves the packet at its first blocker; the directions may
+/// point anywhere (the order does not depend on them). The walk takes `t_max` as its own and
+/// hands it to `visit` as it is (a blocker lowers no ray's t_max): the caller's array, not a
+/// copy of it (256 bytes through memcpy, for every packet).
 #[inline(always)]
 pub fn any_packet<V: F64x4>(
     bvh: &Bvh4,
     rays: (&[RayLanes<V>; PACKET / 4], usize),
     t_min: f64,
-    t_max: &[f64; PACKET],
+    t_max: &mut [f64; PACKET],
     blocked: RaySet,
-    mut visit: impl FnMut(u32, RaySet) -> RaySet,
+    mut visit: impl FnMut(u32, RaySet, &[f64; PACKET]) -> RaySet,
 ) -> (RaySet, Visits) {
-    let mut t_max = *t_max;
     walk_packet::<V>(
         bvh,
         rays,
         t_min,
-        &mut t_max,
+        t_max,
         None,
         blocked,
         #[inline(always)]
-        |item, rays, _| Reached {
-            done: visit(item, rays),
+        |item, rays, t_max| Reached {
+            done: visit(item, rays, t_max),
             lowered: 0,
         },
     )

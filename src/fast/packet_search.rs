@@ -187,7 +187,9 @@ impl FastScene<'_> {
                 {
                     let found = spheres_in_quads(sphere, &quads, reached, limits, stats);
                     let mut nearer = 0;
-                    for (q, QuadHits { within, t, limit }) in found.into_iter().enumerate() {
+                    // Read where they lie: `into_iter` would move the eight groups' answers
+                    // (768 bytes) into the iterator, through a call to memcpy, twice.
+                    for (q, &QuadHits { within, t, limit }) in found.iter().enumerate() {
                         if within == 0 {
                             continue;
                         }
@@ -332,11 +334,11 @@ impl FastScene<'_> {
                 &self.bvh4,
                 (packet.2, n),
                 0.0,
-                &reach,
+                &mut reach,
                 first,
                 #[inline(always)]
-                |item, reached| {
-                    let blocked = self.blocked_by::<V>(item, reached, packet, &reach, stats);
+                |item, reached, reach| {
+                    let blocked = self.blocked_by::<V>(item, reached, packet, reach, stats);
                     if blocked != 0 {
                         *last_blocker = Some(item);
                     }
@@ -370,7 +372,7 @@ impl FastScene<'_> {
         let mut blocked: RaySet = 0;
         if let Probe::Sphere { sphere, .. } = probe {
             let found = spheres_in_quads(sphere, quads, reached, t_max, stats);
-            for (q, quad) in found.into_iter().enumerate() {
+            for (q, quad) in found.iter().enumerate() {
                 blocked |= quad.within << (4 * q);
             }
             return blocked;
