@@ -4,14 +4,13 @@
 //! object is tested against four rays at a time in four lanes (`F64x4`). Every ray finds the hit,
 //! and counts the work, that the one-ray search finds for it.
 
+use arrayvec::ArrayVec;
 use glam::DVec3;
 
 use super::bvh_packet::{any_packet, closest_packet, first_rays, quad_bits, signs, RaySet, PACKET};
 use super::csg_lanes::{CsgLanes, LanesHits};
 use super::hull::{Hull, Verdict};
-use super::lanes::{
-    box_hit_lanes, lane_mask, plane_hits_of_lanes, RayLanes, SlabLanes, LANES, UNUSED,
-};
+use super::lanes::{box_hit_lanes, lane_mask, plane_hits_of_lanes, RayLanes, SlabLanes, LANES};
 use super::probe::Probe;
 use super::search::FastScene;
 use super::shadow_cones::TowardLight;
@@ -140,18 +139,20 @@ impl FastScene<'_> {
             *a = signs(ray) == first;
         }
         let one_by_one = alike.iter().filter(|&&a| a).count() < PACKET_MIN;
-        let mut packet = [rays[0]; PACKET];
-        let mut packet_inv = [DVec3::NAN; PACKET];
-        let mut lanes = [0usize; PACKET];
-        let mut n = 0;
+        // The rays that take part, pushed where they stay (no array of stand-ins written first).
+        let mut packet: ArrayVec<Ray, PACKET> = ArrayVec::new();
+        let mut packet_inv: ArrayVec<DVec3, PACKET> = ArrayVec::new();
+        let mut lanes: ArrayVec<usize, PACKET> = ArrayVec::new();
         for (i, ray) in rays.iter().enumerate() {
             if !one_by_one && alike[i] {
-                (packet[n], packet_inv[n], lanes[n]) = (*ray, self.inv_dir(ray), i);
-                n += 1;
+                packet.push(*ray);
+                packet_inv.push(self.inv_dir(ray));
+                lanes.push(i);
             } else {
                 hits[i] = self.nearest(ray, 0.0, f64::INFINITY, stats);
             }
         }
+        let n = packet.len();
         if n == 0 {
             return;
         }
@@ -289,11 +290,10 @@ impl FastScene<'_> {
             return blocked;
         }
         let mut blocked = 0u32;
-        let mut packet = [UNUSED; PACKET];
-        let mut packet_inv = [DVec3::NAN; PACKET];
+        let mut packet: ArrayVec<Ray, PACKET> = ArrayVec::new();
+        let mut packet_inv: ArrayVec<DVec3, PACKET> = ArrayVec::new();
         let mut reach = [0.0; PACKET];
-        let mut lanes = [0usize; PACKET];
-        let mut n = 0;
+        let mut lanes: ArrayVec<usize, PACKET> = ArrayVec::new();
         for (i, ray) in rays.iter().enumerate() {
             let inv_dir = self.inv_dir(ray);
             if self.unbounded.iter().any(|p| {
@@ -302,10 +302,13 @@ impl FastScene<'_> {
             }) {
                 blocked |= 1 << i;
             } else if !self.bounded.is_empty() {
-                (packet[n], packet_inv[n], reach[n], lanes[n]) = (*ray, inv_dir, t_max[i], i);
-                n += 1;
+                reach[packet.len()] = t_max[i];
+                packet.push(*ray);
+                packet_inv.push(inv_dir);
+                lanes.push(i);
             }
         }
+        let n = packet.len();
         if n == 0 {
             return blocked;
         }
@@ -320,7 +323,7 @@ impl FastScene<'_> {
         }
         let mut quads = [RayLanes::new(&[]); PACKET / LANES];
         ray_quads::<V>(&packet[..n], &mut quads);
-        let packet = (&packet, &packet_inv, &quads);
+        let packet = (&packet[..], &packet_inv[..], &quads);
         // The last blocker first: where it blocks every ray, the BVH is not walked at all.
         let all = first_rays(n);
         let first = match *last_blocker {
@@ -364,7 +367,7 @@ impl FastScene<'_> {
         &self,
         item: u32,
         reached: RaySet,
-        (rays, inv_dirs, quads): (&[Ray; PACKET], &[DVec3; PACKET], &[RayLanes<V>; PACKET / 4]),
+        (rays, inv_dirs, quads): (&[Ray], &[DVec3], &[RayLanes<V>; PACKET / 4]),
         t_max: &[f64; PACKET],
         stats: &mut Stats,
     ) -> RaySet {
