@@ -2,12 +2,13 @@
 //! paths of the path tracer, and a small render.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use raytree::accel::{Aabb, Bvh};
 use raytree::bench;
 use raytree::fast::simd::Wide;
 use raytree::fast::{sphere_hit, DiffusePaths, FastScene, Footprints, SphereGroup, PACKET};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
+use raytree::render::antialias::grid_offsets;
 use raytree::render::{render_simple, Engine, RenderOptions};
 use raytree::sampling::{pixel_key, SamplePoint};
 use raytree::scene::{parse, Accel, Hit, Limits, Scene, Search};
@@ -504,9 +505,7 @@ fn csg(c: &mut Criterion) {
 fn footprints(c: &mut Criterion) {
     let scene = peer_scene_160x120("csg");
     let fast = FastScene::new(&scene);
-    let offsets: Vec<DVec2> = (0..16)
-        .map(|k| DVec2::new((k % 4) as f64 + 0.5, (k / 4) as f64 + 0.5) / 4.0)
-        .collect();
+    let offsets = grid_offsets(16);
     let footprints = Footprints::new(&scene.camera, &offsets, &fast)
         .expect("the CSG scene's boxes lie ahead of the eye");
     let cam = &scene.camera;
