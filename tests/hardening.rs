@@ -6,8 +6,9 @@
 //! `RAYTREE_BIN=path` runs these checks against another build of raytree (how they were seen
 //! to fail before the fixes).
 
+mod common;
+
 use std::ffi::OsStr;
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitStatus, Stdio};
 use std::time::{Duration, Instant};
@@ -68,27 +69,7 @@ fn excerpt(s: &str) -> String {
 /// Waits for a child, killing it after `limit`.
 fn finish(mut child: Child, limit: Duration) -> Run {
     let start = Instant::now();
-    let drain = |pipe: Option<Box<dyn Read + Send>>| {
-        std::thread::spawn(move || {
-            let mut bytes = Vec::new();
-            if let Some(mut p) = pipe {
-                let _ = p.read_to_end(&mut bytes);
-            }
-            String::from_utf8_lossy(&bytes).into_owned()
-        })
-    };
-    let out = drain(
-        child
-            .stdout
-            .take()
-            .map(|p| Box::new(p) as Box<dyn Read + Send>),
-    );
-    let err = drain(
-        child
-            .stderr
-            .take()
-            .map(|p| Box::new(p) as Box<dyn Read + Send>),
-    );
+    let (out, err) = common::drain_output(&mut child);
     let status = loop {
         if let Some(status) = child.try_wait().unwrap() {
             break status;

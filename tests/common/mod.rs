@@ -3,7 +3,10 @@
 
 pub mod tmux;
 
+use std::io::Read;
 use std::path::{Path, PathBuf};
+use std::process::Child;
+use std::thread::JoinHandle;
 
 use proptest::prelude::*;
 use raytree::scene::{parse, Limits, Scene};
@@ -131,4 +134,20 @@ pub fn objects() -> impl Strategy<Value = Vec<(u8, [f64; 3], f64)>> {
         ),
         8..120,
     )
+}
+
+/// The child's standard output and error, each read to its end on a thread of its own (so that
+/// a chatty child cannot block on a full pipe while the test waits for it to exit); join them
+/// once it has. A pipe that was not captured reads as "".
+pub fn drain_output(child: &mut Child) -> (JoinHandle<String>, JoinHandle<String>) {
+    fn drain(pipe: Option<impl Read + Send + 'static>) -> JoinHandle<String> {
+        std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            if let Some(mut p) = pipe {
+                let _ = p.read_to_end(&mut bytes);
+            }
+            String::from_utf8_lossy(&bytes).into_owned()
+        })
+    }
+    (drain(child.stdout.take()), drain(child.stderr.take()))
 }
