@@ -6,7 +6,7 @@ use glam::DVec3;
 use raytree::accel::{Aabb, Bvh};
 use raytree::bench;
 use raytree::fast::simd::Wide;
-use raytree::fast::{sphere_hit, DiffusePaths, FastScene, Footprints, SphereGroup, PACKET};
+use raytree::fast::{sphere_hit, DiffusePaths, FastScene, Footprints, Missed, SphereGroup, PACKET};
 use raytree::geometry::{Aabox, Cone, Cylinder, Ray, Sphere, Triangle};
 use raytree::render::antialias::grid_offsets;
 use raytree::render::{render_simple, Engine, RenderOptions};
@@ -498,16 +498,23 @@ fn csg(c: &mut Criterion) {
     g.finish();
 }
 
-/// The CSG peer scene's primary rays at 160×120, 16 samples a pixel (a 4×4 grid), two pixels'
-/// samples a packet as the film traces them: the boxes a packet cannot meet ruled out by the
-/// packet's hull (`boxes_missed_by_all`, from its rays) or by the film's footprints
-/// (`Footprints::missed`, from the pixels' place alone).
+/// The CSG and Whitted peer scenes' primary rays at 160×120, 16 samples a pixel (a 4×4 grid),
+/// two pixels' samples a packet as the film traces them: every box and sphere tested but the
+/// boxes the packet's hull rules out (`boxes_missed_by_all`, from its rays), or the boxes and
+/// plain spheres the film's footprints rule out skipped (`Footprints::missed`, from the
+/// pixels' place alone).
 fn footprints(c: &mut Criterion) {
-    let scene = peer_scene_160x120("csg");
+    for name in ["csg", "whitted"] {
+        primary_packets_knowing(c, name);
+    }
+}
+
+fn primary_packets_knowing(c: &mut Criterion, name: &str) {
+    let scene = peer_scene_160x120(name);
     let fast = FastScene::new(&scene);
     let offsets = grid_offsets(16);
     let footprints = Footprints::new(&scene.camera, &offsets, &fast)
-        .expect("the CSG scene's boxes lie ahead of the eye");
+        .expect("the scene's boxes and spheres lie ahead of the eye");
     let cam = &scene.camera;
     let (width, height) = (cam.width, cam.height);
     // Each packet: its first pixel, its last and its row, and its rays.
@@ -529,30 +536,37 @@ fn footprints(c: &mut Criterion) {
     let search = |knowing: bool, found: &mut Vec<Option<Hit>>, stats: &mut Stats| {
         let mut hits = [None; PACKET];
         for ((x, last, y), rays) in &packets {
-            let missed = knowing.then(|| footprints.missed(*x, *last, *y));
+            let missed = if knowing {
+                footprints.missed(*x, *last, *y)
+            } else {
+                Missed::UNKNOWN
+            };
             let hits = &mut hits[..rays.len()];
             fast.intersect_packet_knowing(rays, missed, hits, stats);
             found.extend_from_slice(hits);
         }
     };
     // Before timing: both find every ray's very hit (t, object, surface), and the footprints
-    // rule out boxes.
+    // rule out boxes or spheres.
     let (mut by_hull, mut by_footprints) = (vec![], vec![]);
-    let (mut hull_stats, mut footprint_stats) = (Stats::default(), Stats::default());
-    search(false, &mut by_hull, &mut hull_stats);
-    search(true, &mut by_footprints, &mut footprint_stats);
+    search(false, &mut by_hull, &mut Stats::default());
+    search(true, &mut by_footprints, &mut Stats::default());
     assert!(by_hull == by_footprints, "other hits with the footprints");
-    assert!(footprint_stats.bounds_skipped > 0);
+    assert!(packets.iter().any(|((x, last, y), _)| {
+        let missed = footprints.missed(*x, *last, *y);
+        missed.boxes.is_some_and(|b| b != 0) || missed.spheres != 0
+    }));
     let timed = |knowing: bool| {
         let mut found = Vec::with_capacity(by_hull.len());
         search(knowing, &mut found, &mut Stats::default());
         found.len()
     };
-    let mut g = c.benchmark_group("the CSG peer scene's primary packets at 160×120, 16 spp");
+    let title = format!("the {name} peer scene's primary packets at 160×120, 16 spp");
+    let mut g = c.benchmark_group(title);
     g.bench_function("boxes ruled out by the packets' hull", |b| {
         b.iter(|| timed(false))
     });
-    g.bench_function("boxes ruled out by the footprints", |b| {
+    g.bench_function("boxes and spheres ruled out by the footprints", |b| {
         b.iter(|| timed(true))
     });
     g.finish();

@@ -5,12 +5,12 @@
 //! else: a pixel's primary rays made four at a time (`camera_rays`), packets of rays traced
 //! together (`packet_trace`), searched together through the BVH folded to four children a node
 //! (`bvh4`, `bvh_packet`, `hull`) or four at a time in SIMD lanes (`lanes`, `packet_search`;
-//! the boxes a pixel's rays cannot meet known from where each box can appear, `footprint`), plain
-//! spheres and planes tested without spans and in groups of four (`probe`, `sphere_group`),
-//! the usual point lights' terms and shadow rays four surfaces at a time (`light_lanes`), and
-//! the usual checkers' colours (`checker_lanes`), flat CSG objects read off their primitives'
-//! spans (`csg_crossing`) or in lanes (`csg_lanes`, `span_lanes`), and the path tracer for
-//! scenes of diffuse surfaces (`diffuse_paths`). The binary's allocator maps large blocks in
+//! the boxes and spheres a pixel's rays cannot meet known from where each can appear,
+//! `footprint`), plain spheres and planes tested without spans and in groups of four (`probe`,
+//! `sphere_group`), the usual point lights' terms and shadow rays four surfaces at a time
+//! (`light_lanes`), and the usual checkers' colours (`checker_lanes`), flat CSG objects read
+//! off their primitives' spans (`csg_crossing`) or in lanes (`csg_lanes`, `span_lanes`), and
+//! the path tracer for scenes of diffuse surfaces (`diffuse_paths`). The binary's allocator maps large blocks in
 //! huge pages (`huge_pages`).
 //!
 //! The contract: every image the wing renders equals, bit for bit, the image of the core's
@@ -47,7 +47,7 @@ mod sphere_group;
 pub use bvh_packet::PACKET;
 pub use camera_rays::ImagePlane;
 pub use diffuse_paths::DiffusePaths;
-pub use footprint::Footprints;
+pub use footprint::{Footprints, Missed};
 pub use packet_trace::{trace_packet, SHADED};
 pub use probe::{plane_hit, sphere_hit};
 pub use search::FastScene;

@@ -9,6 +9,7 @@ use glam::DVec3;
 
 use super::bvh_packet::{any_packet, closest_packet, first_rays, quad_bits, signs, RaySet, PACKET};
 use super::csg_lanes::{CsgLanes, LanesHits};
+use super::footprint::Missed;
 use super::hull::{Hull, Verdict};
 use super::lanes::{box_hit_lanes, lane_mask, plane_hits_of_lanes, RayLanes, SlabLanes, LANES};
 use super::probe::Probe;
@@ -97,16 +98,15 @@ impl FastScene<'_> {
     /// that share the first one's direction signs go through the BVH as a packet (if there are
     /// at least `PACKET_MIN` of them); any others, one by one.
     pub fn intersect_packet(&self, rays: &[Ray], hits: &mut [Option<Hit>], stats: &mut Stats) {
-        self.intersect_packet_knowing(rays, None, hits, stats)
+        self.intersect_packet_knowing(rays, Missed::UNKNOWN, hits, stats)
     }
 
-    /// `intersect_packet` for rays that are known to miss the boxes of `missed` (bit k for
-    /// the object of `unbounded[k]`, as the film's `Footprints` find them), every one of
-    /// them; None: the packet's hull finds them (`boxes_missed_by_all`).
+    /// `intersect_packet` for rays that are known to miss the boxes and plain spheres of
+    /// `missed` (as the film's `Footprints` find them), every one of them.
     pub fn intersect_packet_knowing(
         &self,
         rays: &[Ray],
-        missed: Option<u64>,
+        missed: Missed,
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
@@ -117,14 +117,17 @@ impl FastScene<'_> {
     fn intersect_packet_in<V: F64x4>(
         &self,
         rays: &[Ray],
-        missed: Option<u64>,
+        missed: Missed,
         hits: &mut [Option<Hit>],
         stats: &mut Stats,
     ) {
         if self.in_lanes {
-            let missed = match missed {
-                Some(missed) => missed,
-                None => self.boxes_missed_by_all::<V>(rays),
+            let missed = Missed {
+                boxes: Some(match missed.boxes {
+                    Some(boxes) => boxes,
+                    None => self.boxes_missed_by_all::<V>(rays),
+                }),
+                ..missed
             };
             for (rays, hits) in rays.chunks(LANES).zip(hits.chunks_mut(LANES)) {
                 self.intersect_in_lanes::<V>(rays, &RayLanes::new(rays), hits, missed, stats);
@@ -163,8 +166,9 @@ impl FastScene<'_> {
         let mut limits = [f64::INFINITY; PACKET];
         for (q, rays) in packet[..n].chunks(LANES).enumerate() {
             let mut found = [None; LANES];
-            self.intersect_in_lanes::<V>(rays, &quads[q], &mut found[..rays.len()], 0, stats);
-            for (k, hit) in found[..rays.len()].iter().enumerate() {
+            let found = &mut found[..rays.len()];
+            self.intersect_in_lanes::<V>(rays, &quads[q], found, Missed::NOTHING, stats);
+            for (k, hit) in found.iter().enumerate() {
                 let lane = LANES * q + k;
                 hits[lanes[lane]] = *hit;
                 limits[lane] = hit.map_or(f64::INFINITY, |h| h.t);
@@ -403,15 +407,15 @@ impl FastScene<'_> {
     /// other object ray by ray, behind its box (tested against all the rays at once). Each
     /// ray meets the objects in the same order as in `intersect`, with the same arithmetic and
     /// the same shrinking limit, so it finds the same hit and counts the same tests. `lanes`
-    /// holds `rays` (`RayLanes::new`); the objects whose bits are set in `missed`
-    /// (`boxes_missed_by_all`) are missed by every ray, box and all.
+    /// holds `rays` (`RayLanes::new`); the objects and plain spheres of `missed` are missed
+    /// by every ray (a box, by its box too; `missed.boxes` is known).
     #[inline(always)]
     fn intersect_in_lanes<V: F64x4>(
         &self,
         rays: &[Ray],
         lanes: &RayLanes<V>,
         hits: &mut [Option<Hit>],
-        missed: u64,
+        missed: Missed,
         stats: &mut Stats,
     ) {
         let lanes = *lanes;
@@ -441,6 +445,9 @@ impl FastScene<'_> {
             };
         let within = |t: V, limit: V| (t.simd_gt(V::ZERO) & t.simd_lt(limit)).to_bitmask();
         let n = rays.len() as u64;
+        let boxes_missed = missed.boxes.unwrap_or(0);
+        // The number of the next plain sphere (`plain_spheres`).
+        let mut spheres_before = 0;
         for (k, p) in self.unbounded.iter().enumerate() {
             match p {
                 Probe::Plane {
@@ -457,7 +464,12 @@ impl FastScene<'_> {
                     object,
                     leaf,
                 } => {
+                    spheres_before += 1;
+                    // A sphere ruled out is counted as the core's test of it counts.
                     stats.primitives_tested += n;
+                    if ruled_out(missed.spheres, spheres_before - 1) {
+                        continue;
+                    }
                     let r2 = sphere.radius * sphere.radius;
                     if let Some(t) = sphere_against_lanes(sphere.center, r2, &lanes, all, 0.0) {
                         take(hits, t, within(t, limit), *object, *leaf, &mut limit);
@@ -470,12 +482,16 @@ impl FastScene<'_> {
                 } => {
                     stats.primitives_tested += group.len() as u64 * n;
                     for k in 0..group.len() {
+                        if ruled_out(missed.spheres, spheres_before + k) {
+                            continue;
+                        }
                         if let Some(t) = group.sphere_against(k, &lanes, all, 0.0) {
                             take(hits, t, within(t, limit), objects[k], leaves[k], &mut limit);
                         }
                     }
+                    spheres_before += group.len();
                 }
-                Probe::Object(_) | Probe::Box { .. } if ruled_out(missed, k) => {
+                Probe::Object(_) | Probe::Box { .. } if ruled_out(boxes_missed, k) => {
                     // Counted as each ray's own test of the box counts its miss.
                     stats.bounds_skipped += n;
                 }
@@ -732,8 +748,8 @@ impl FastScene<'_> {
     }
 }
 
-/// Whether `missed` (`boxes_missed_by_all`) rules out the object of probe k: it holds a bit
-/// for each of the first 64 probes only, and says nothing of the rest.
+/// Whether a mask of `Missed` rules out box or sphere k: it holds a bit for each of the first
+/// 64 only, and says nothing of the rest.
 fn ruled_out(missed: u64, k: usize) -> bool {
     k < u64::BITS as usize && missed >> k & 1 != 0
 }

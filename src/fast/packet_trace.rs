@@ -17,6 +17,7 @@ use glam::DVec3;
 
 use super::bvh_packet::PACKET;
 use super::checker_lanes;
+use super::footprint::Missed;
 use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
 use super::outgoing::{outgoing, send, Children, Outgoing};
@@ -133,13 +134,13 @@ impl<const N: usize> ShadowPacket<N> {
 /// BVH scene): `out[i]` is exactly what `Tracer::radiance` gives ray i, and the counters of
 /// rays and the random numbers drawn are those of tracing the rays one after another. They are
 /// searched as one packet, then shaded together through a BVH, else `SHADED` at a time, in
-/// order. `missed`: the boxes every ray is known to miss, if the film knows them
+/// order. `missed`: the boxes and spheres every ray is known to miss, as the film knows them
 /// (`FastScene::intersect_packet_knowing`).
 pub fn trace_packet(
     t: &mut Tracer,
     fast: &FastScene,
     rays: &[Ray],
-    missed: Option<u64>,
+    missed: Missed,
     out: &mut [DVec3],
 ) {
     with_lanes!(V => trace_packet_inline::<V>(t, fast, rays, missed, out))
@@ -150,7 +151,7 @@ fn trace_packet_inline<V: F64x4>(
     t: &mut Tracer,
     fast: &FastScene,
     rays: &[Ray],
-    missed: Option<u64>,
+    missed: Missed,
     out: &mut [DVec3],
 ) {
     let n = rays.len();

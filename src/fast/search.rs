@@ -6,12 +6,14 @@
 //! reads the nearest hit of a flat CSG object off its primitives' spans (`csg_crossing.rs`)
 //! instead of building segment lists, and answers packets of rays (`packet_search.rs`).
 
+use arrayvec::ArrayVec;
 use glam::DVec3;
 
 use super::bvh4::Bvh4;
 use super::checker_lanes::checker_colors;
 use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
+use super::lanes::LANES;
 use super::light_lanes::lanes_light;
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
 use super::shadow_cones::{Cone, ShadowCones};
@@ -153,6 +155,24 @@ impl<'s> FastScene<'s> {
     /// Whether packets of rays go four at a time through the objects (no BVH: `intersect_in_lanes`).
     pub fn tests_in_lanes(&self) -> bool {
         self.in_lanes
+    }
+
+    /// The plain spheres tested outside a BVH, as centre and r², in the order the searches
+    /// meet them (a group's in its order): sphere s is bit s of `Missed::spheres`.
+    pub(super) fn plain_spheres(&self) -> impl Iterator<Item = (DVec3, f64)> + '_ {
+        self.unbounded.iter().flat_map(|probe| {
+            let mut spheres = ArrayVec::<(DVec3, f64), LANES>::new();
+            match probe {
+                Probe::Sphere { sphere, .. } => {
+                    spheres.push((sphere.center, sphere.radius * sphere.radius))
+                }
+                Probe::Spheres { group, .. } => {
+                    spheres.extend((0..group.len()).map(|k| group.sphere(k)))
+                }
+                Probe::Plane { .. } | Probe::Box { .. } | Probe::Object(_) => {}
+            }
+            spheres
+        })
     }
 
     /// How the hit searches test an object: directly for a plain sphere or plane.

@@ -58,6 +58,11 @@ impl SphereGroup {
         self.len == 0
     }
 
+    /// Sphere k's centre and r², as the group tests it.
+    pub fn sphere(&self, k: usize) -> (DVec3, f64) {
+        (DVec3::new(self.cx[k], self.cy[k], self.cz[k]), self.r2[k])
+    }
+
     /// The nearest crossing with t_min < t < t_max and the sphere it belongs to: the first of
     /// the nearest, as testing the spheres in order with a shrinking limit finds it.
     #[inline(always)]

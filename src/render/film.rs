@@ -14,7 +14,9 @@ use super::antialias::{
     GAUSS_RADIUS,
 };
 use super::Image;
-use crate::fast::{trace_packet, DiffusePaths, FastScene, Footprints, ImagePlane, PACKET, SHADED};
+use crate::fast::{
+    trace_packet, DiffusePaths, FastScene, Footprints, ImagePlane, Missed, PACKET, SHADED,
+};
 use crate::geometry::Ray;
 use crate::sampling::{pixel_key, Rng, SamplePoint};
 use crate::scene::{Antialias, Camera, Filter, Integrator, Scene, Search};
@@ -267,7 +269,10 @@ impl<'s> Film<'s> {
             let first = c * SHADED;
             self.grid_rays(x, y, first..first + chunk.len(), &mut rays);
             let mut values = [DVec3::ZERO; SHADED];
-            let missed = self.footprints.as_ref().map(|f| f.missed(x, x, y));
+            let missed = self
+                .footprints
+                .as_ref()
+                .map_or(Missed::UNKNOWN, |f| f.missed(x, x, y));
             trace_packet(t, fast, &rays, missed, &mut values[..rays.len()]);
             for (o, value) in chunk.iter().zip(values) {
                 visit(Sample { uv: *o, value });
@@ -328,7 +333,10 @@ impl<'s> Film<'s> {
         }
         let mut values = [DVec3::ZERO; PACKET];
         let last = x + out.len().saturating_sub(1) as u32;
-        let missed = self.footprints.as_ref().map(|f| f.missed(x, last, y));
+        let missed = self
+            .footprints
+            .as_ref()
+            .map_or(Missed::UNKNOWN, |f| f.missed(x, last, y));
         trace_packet(t, fast, &rays, missed, &mut values[..rays.len()]);
         for (px, samples) in out.iter_mut().zip(values.chunks(n)) {
             *px = samples.iter().fold(DVec3::ZERO, |sum, v| sum + *v) / n as f64;
