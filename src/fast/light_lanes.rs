@@ -326,16 +326,27 @@ impl<V: F64x4> Surfaces<V> {
         let n_dot_l = nx * lx + ny * ly + nz * lz;
         let highlight = self.ks.simd_gt(V::ZERO) & n_dot_l.simd_gt(V::ZERO);
         let power = if highlight.any() {
-            // h·n with h = (l + v)/|l + v|, where positive; r·v with r = 2(n·l)n − l.
-            let (hx, hy, hz) = (lx + vx, ly + vy, lz + vz);
-            let hn = hx * nx + hy * ny + hz * nz;
-            let blinn = hn
-                .simd_gt(V::ZERO)
-                .bitselect(hn / (hx * hx + hy * hy + hz * hz).sqrt(), V::ZERO);
-            let twice = V::splat(2.0) * n_dot_l;
-            let (rx, ry, rz) = (twice * nx - lx, twice * ny - ly, twice * nz - lz);
-            let rv = rx * vx + ry * vy + rz * vz;
-            let phong = rv.simd_gt(V::ZERO).bitselect(rv, V::ZERO);
+            // h·n with h = (l + v)/|l + v|, where positive; r·v with r = 2(n·l)n − l. Each only
+            // where some lit highlight is of its kind (a group's surfaces are mostly of one
+            // material): the other lanes' cos^m is not used.
+            let blinn_lit = (self.blinn & highlight).any();
+            let phong_lit = (!self.blinn & highlight).any();
+            let blinn = if blinn_lit {
+                let (hx, hy, hz) = (lx + vx, ly + vy, lz + vz);
+                let hn = hx * nx + hy * ny + hz * nz;
+                hn.simd_gt(V::ZERO)
+                    .bitselect(hn / (hx * hx + hy * hy + hz * hz).sqrt(), V::ZERO)
+            } else {
+                V::ZERO
+            };
+            let phong = if phong_lit {
+                let twice = V::splat(2.0) * n_dot_l;
+                let (rx, ry, rz) = (twice * nx - lx, twice * ny - ly, twice * nz - lz);
+                let rv = rx * vx + ry * vy + rz * vz;
+                rv.simd_gt(V::ZERO).bitselect(rv, V::ZERO)
+            } else {
+                V::ZERO
+            };
             power(self.blinn.bitselect(blinn, phong), self.exponent)
         } else {
             V::ZERO
@@ -365,7 +376,7 @@ impl<V: F64x4> Surfaces<V> {
 }
 
 /// `Light::sample` for a point light at `position` that does not fade, seen from the points
-/// p: l = (position − p)/d with d = |position − p|, d, and the lanes where d is 0 or not finite
+/// p: l = (position − p)·(1/d) with d = |position − p| (`DVec3::normalize`), d, and the lanes where d is 0 or not finite
 /// (bits 0–3), which the core answers otherwise.
 #[inline(always)]
 fn toward<V: F64x4>(position: DVec3, [px, py, pz]: [V; 3]) -> ([V; 3], V, u32) {
@@ -376,7 +387,8 @@ fn toward<V: F64x4>(position: DVec3, [px, py, pz]: [V; 3]) -> ([V; 3], V, u32) {
     );
     let d = (tx * tx + ty * ty + tz * tz).sqrt();
     let far = (d.simd_eq(V::ZERO) | !d.is_finite()).to_bitmask();
-    ([tx / d, ty / d, tz / d], d, far)
+    let recip = V::ONE / d;
+    ([tx * recip, ty * recip, tz * recip], d, far)
 }
 
 /// `Tracer::shadow_ray` toward a light at distance d: each origin is the point moved off its
@@ -582,13 +594,20 @@ mod tests {
 
     /// Four surfaces at a time, with their exponents, highlights and lights mixed in the lanes,
     /// get `light_terms`' diffuse plus specular term and n·l to the bit (the processor's copy
-    /// and the portable lanes').
+    /// and the portable lanes'). Every other round the four share one kind of highlight,
+    /// Phong's or Blinn's, as one material's surfaces do.
     #[test]
     fn the_terms_in_lanes_are_light_terms() {
         let mut rng = Rng::for_pixel(7, 1, 2);
         let intensity = DVec3::new(0.8, 0.5, 0.3);
         for round in 0..3000 {
-            let cases: Vec<Case> = (0..LANES).map(|j| case(&mut rng, round * 5 + j)).collect();
+            let mut cases: Vec<Case> = (0..LANES).map(|j| case(&mut rng, round * 5 + j)).collect();
+            let shared = [Some(Highlight::Phong), None, Some(Highlight::Blinn), None][round % 4];
+            if let Some(highlight) = shared {
+                cases
+                    .iter_mut()
+                    .for_each(|c| c.material.highlight = highlight);
+            }
             let own = with_lanes!(V => terms_of::<V>(&cases, intensity));
             let wide = terms_of::<Wide>(&cases, intensity);
             for (j, c) in cases.iter().enumerate() {

@@ -8,7 +8,6 @@ use std::borrow::Cow;
 
 use glam::DVec3;
 
-use super::simd::F64x4;
 use crate::geometry::Ray;
 use crate::scene::Interaction;
 use crate::shading::local::light_terms;
@@ -19,7 +18,7 @@ use crate::trace::{Task, Tracer};
 /// and whether its shadow ray is skipped (then s = 0). The ray's whole task is asked for only
 /// where Hall's highlight needs its media (a primary ray's task is built on demand).
 #[inline(always)]
-pub(super) fn light_share<'a, V: F64x4>(
+pub(super) fn light_share<'a>(
     t: &mut Tracer,
     m: &Material,
     si: &Interaction,
@@ -32,19 +31,19 @@ pub(super) fn light_share<'a, V: F64x4>(
         return (sample, lit.diffuse + lit.specular, skipped.is_some());
     }
     let light = &t.scene.lights[k];
-    let sample = sample::<V>(light, si.point);
+    let sample = sample(light, si.point);
     let strength = sample.attenuation * light.intensity;
     let lit = light_terms(m, &si.paint, si.normal, -ray.dir, sample.l, strength, false);
     let skipped = t.no_shadow_ray(si, k, lit.n_dot_l, false).is_some();
     (sample, lit.diffuse + lit.specular, skipped)
 }
 
-/// `Light::sample`, to the bit, with one division fewer for a point light that does not fade
+/// `Light::sample`, to the bit (l as `normalize` finds it), with one division fewer for a point light that does not fade
 /// (c0, c1, c2 = 1, 0, 0, the default): there fatt = 1/(1 + 0·d + 0·d·d) is exactly 1 wherever
 /// d is finite. Where d is not (a point beyond f64's range, or NaN), fatt is NaN and the core
 /// answers `AT_THE_POINT`, as this does.
 #[inline(always)]
-fn sample<V: F64x4>(light: &Light, p: DVec3) -> LightSample {
+fn sample(light: &Light, p: DVec3) -> LightSample {
     match &light.kind {
         LightKind::Point {
             position,
@@ -56,7 +55,7 @@ fn sample<V: F64x4>(light: &Light, p: DVec3) -> LightSample {
                 return LightSample::AT_THE_POINT;
             }
             LightSample {
-                l: quotient::<V>(to_light, d),
+                l: to_light * (1.0 / d),
                 distance: d,
                 attenuation: 1.0,
             }
@@ -65,23 +64,13 @@ fn sample<V: F64x4>(light: &Light, p: DVec3) -> LightSample {
     }
 }
 
-/// v / d: the three quotients as one division of four lanes, each rounded as alone, where the
-/// compiler makes `DVec3 / f64` two divisions (of two lanes and of one) on the shading's path.
-#[inline(always)]
-fn quotient<V: F64x4>(v: DVec3, d: f64) -> DVec3 {
-    let [x, y, z, _] = (V::setr(v.x, v.y, v.z, 0.0) / V::splat(d)).to_array();
-    DVec3::new(x, y, z)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fast::simd::{with_lanes, Wide};
     use crate::sampling::Rng;
 
     /// The shortcut gives `Light::sample`'s answer to the bit, for lights that fade and lights
-    /// that do not, at points near, far, on the light and beyond f64's range of distances (the
-    /// processor's copy and the portable lanes').
+    /// that do not, at points near, far, on the light and beyond f64's range of distances.
     #[test]
     fn a_point_lights_sample_is_the_cores() {
         let mut rng = Rng::for_pixel(31, 0, 0);
@@ -110,10 +99,7 @@ mod tests {
             }
             for p in points {
                 let core = light.sample(p);
-                let (own, wide) = (
-                    with_lanes!(V => sample::<V>(&light, p)),
-                    sample::<Wide>(&light, p),
-                );
+                let own = sample(&light, p);
                 let bits = |s: &LightSample| {
                     (
                         s.l.to_array().map(f64::to_bits),
@@ -122,7 +108,6 @@ mod tests {
                     )
                 };
                 assert_eq!(bits(&own), bits(&core), "{attenuation:?} at {p}");
-                assert_eq!(bits(&wide), bits(&core), "{attenuation:?} at {p}");
             }
         }
     }

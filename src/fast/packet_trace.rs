@@ -263,7 +263,7 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized, const N: usize>(
                 }
                 let m = scene.material(si.material);
                 let (sample, term, skipped) =
-                    light_share::<V>(t, m, si, tasks.ray(i), || tasks.task(i), k);
+                    light_share(t, m, si, tasks.ray(i), || tasks.task(i), k);
                 if skipped {
                     // As `color += s · terms` with s = 0, to the bit.
                     out[i] += 0.0 * term;

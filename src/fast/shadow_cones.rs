@@ -131,7 +131,7 @@ mod tests {
     fn shadow_ray(scene: &Scene, p: DVec3, n: DVec3, light: DVec3) -> (DVec3, DVec3, f64, f64) {
         let t = light - p;
         let d = (t.x * t.x + t.y * t.y + t.z * t.z).sqrt();
-        let l = DVec3::new(t.x / d, t.y / d, t.z / d);
+        let l = t * (1.0 / d);
         let si = Interaction {
             point: p,
             normal: n,

@@ -129,7 +129,8 @@ impl Light {
                     return LightSample::AT_THE_POINT;
                 }
                 LightSample {
-                    l: to_light / d,
+                    // l = (light − p)/d, as `normalize` finds it: d·(1/d), one division.
+                    l: to_light.normalize(),
                     distance: d,
                     attenuation,
                 }
@@ -146,7 +147,7 @@ impl Light {
                     return LightSample::AT_THE_POINT;
                 }
                 LightSample {
-                    l: to_light / d,
+                    l: to_light.normalize(),
                     distance: d,
                     attenuation: 1.0,
                 }
