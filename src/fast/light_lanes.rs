@@ -376,7 +376,7 @@ impl<V: F64x4> Surfaces<V> {
 }
 
 /// `Light::sample` for a point light at `position` that does not fade, seen from the points
-/// p: l = (position − p)·(1/d) with d = |position − p| (as `DVec3::normalize` finds it), d,
+/// p: l = (position − p)·(1/d) with d = |position − p| (as the core finds it), d,
 /// and the lanes where d is 0 or not finite (bits 0–3), which the core answers otherwise.
 #[inline(always)]
 fn toward<V: F64x4>(position: DVec3, [px, py, pz]: [V; 3]) -> ([V; 3], V, u32) {

@@ -38,7 +38,7 @@ pub(super) fn light_share<'a>(
     (sample, lit.diffuse + lit.specular, skipped)
 }
 
-/// `Light::sample`, to the bit (l as `normalize` finds it), with one division fewer for a
+/// `Light::sample`, to the bit (l = (light − p)·(1/d)), with one division fewer for a
 /// point light that does not fade (c0, c1, c2 = 1, 0, 0, the default): there
 /// fatt = 1/(1 + 0·d + 0·d·d) is exactly 1 wherever d is finite. Where d is not (a point
 /// beyond f64's range, or NaN), fatt is NaN and the core answers `AT_THE_POINT`, as this does.
