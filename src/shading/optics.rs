@@ -10,7 +10,9 @@ pub fn reflect(v: DVec3, n: DVec3) -> DVec3 {
 }
 
 /// Snell's law in vector form, with n facing the incoming direction d (both unit):
-/// η = n1/n2, c1 = −d·n, c2 = √(1 − η²(1 − c1²)), t = η·d + (η·c1 − c2)·n.
+/// η = n1/n2, c1 = −d·n, c2 = √(1 − η²(1 − c1²)), t = η·d + (η·c1 − c2)·n. t is a unit
+/// vector as it stands (|t|² = η²|d|² − η²c1² + c2² = 1), like the mirror direction: a
+/// rounding error in |d| comes out scaled by η², not compounded.
 /// `None` is total internal reflection (the square root's argument is negative: beyond the
 /// limiting angle sin θ = n2/n1).
 pub fn refract(d: DVec3, n: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
@@ -20,7 +22,7 @@ pub fn refract(d: DVec3, n: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
     if k < 0.0 {
         return None;
     }
-    Some((eta * d + (eta * c1 - k.sqrt()) * n).normalize())
+    Some(eta * d + (eta * c1 - k.sqrt()) * n)
 }
 
 /// Schlick's approximation of the Fresnel reflectance: R0 = ((n1 − n2)/(n1 + n2))²,
@@ -88,6 +90,26 @@ mod tests {
         assert!((t - DVec3::X).length() < 1e-15, "{t}");
         // Equal indices never reflect totally, even at grazing incidence (c1 = 0, η = 1).
         assert_eq!(refract(DVec3::X, DVec3::Y, 1.5, 1.5), Some(DVec3::X));
+    }
+
+    #[test]
+    fn the_refracted_direction_is_unit_without_normalising() {
+        // Every incidence below the limiting angle, both ways across glass and water: |t| = 1
+        // to a few ulps, as |t|² = η²|d|² − η²c1² + c2² = 1 says.
+        for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.0, 1.33), (1.33, 1.5)] {
+            for step in 0..=1000 {
+                let angle = step as f64 / 1000.0 * std::f64::consts::FRAC_PI_2;
+                let d = DVec3::new(angle.sin(), -angle.cos(), 0.3 * angle.sin()).normalize();
+                let Some(t) = refract(d, DVec3::Y, n1, n2) else {
+                    continue;
+                };
+                assert!(
+                    (t.length() - 1.0).abs() < 4.0 * f64::EPSILON,
+                    "{n1}→{n2}: |t| = {}",
+                    t.length()
+                );
+            }
+        }
     }
 
     #[test]
