@@ -23,6 +23,7 @@ machine's load, but not the same as time (docs/performance.md, "How to measure")
 """
 import argparse
 import filecmp
+import re
 import resource
 import shutil
 import statistics
@@ -52,9 +53,9 @@ def instructions(binary: Path, scene: Path, out: Path) -> int:
          str(binary), "render", str(scene), "-o", str(out), "--width", "400", "--height", "300",
          "--threads", "1"],
         check=True, capture_output=True, text=True)
-    for line in done.stderr.splitlines():
-        if "I refs:" in line or "I   refs:" in line:
-            return int(line.split(":")[1].replace(",", "").strip())
+    found = re.search(r"I\s+refs:\s+([\d,]+)", done.stderr)
+    if found:
+        return int(found.group(1).replace(",", ""))
     sys.exit(f"no instruction count from valgrind for {binary}:\n{done.stderr}")
 
 

@@ -11,8 +11,8 @@ pub fn reflect(v: DVec3, n: DVec3) -> DVec3 {
 
 /// Snell's law in vector form, with n facing the incoming direction d (both unit):
 /// η = n1/n2, c1 = −d·n, c2 = √(1 − η²(1 − c1²)), t = η·d + (η·c1 − c2)·n. t is a unit
-/// vector as it stands (|t|² = η²|d|² − η²c1² + c2² = 1), like the mirror direction: a
-/// rounding error in |d| comes out scaled by η², not compounded.
+/// vector as it stands, like the mirror direction: |t|² = η²|d|² − η²c1² + c2², so
+/// |t|² − 1 = η²(|d|² − 1), and a rounding error in d's length is scaled, not compounded.
 /// `None` is total internal reflection (the square root's argument is negative: beyond the
 /// limiting angle sin θ = n2/n1).
 pub fn refract(d: DVec3, n: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
