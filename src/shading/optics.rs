@@ -94,21 +94,31 @@ mod tests {
 
     #[test]
     fn the_refracted_direction_is_unit_without_normalising() {
-        // Every incidence below the limiting angle, both ways across glass and water: |t| = 1
-        // to a few ulps, as |t|² = η²|d|² − η²c1² + c2² = 1 says.
+        // Incidences from head-on to grazing, into and out of glass and water: |t| = 1 to a
+        // few ulps wherever the ray refracts, as |t|² = η²|d|² − η²c1² + c2² = 1 says. It
+        // refracts where Snell's sin θt = η·sin θi is at most 1, with sin θi = |d × n|.
         for (n1, n2) in [(1.0, 1.5), (1.5, 1.0), (1.0, 1.33), (1.33, 1.5)] {
+            let (mut refracted, mut expected) = (0, 0);
             for step in 0..=1000 {
                 let angle = step as f64 / 1000.0 * std::f64::consts::FRAC_PI_2;
                 let d = DVec3::new(angle.sin(), -angle.cos(), 0.3 * angle.sin()).normalize();
+                // Away from the limiting angle by more than rounding can blur.
+                let sin_t = n1 / n2 * d.cross(DVec3::Y).length();
+                if (sin_t - 1.0).abs() < 1e-9 {
+                    continue;
+                }
+                expected += (sin_t < 1.0) as u32;
                 let Some(t) = refract(d, DVec3::Y, n1, n2) else {
                     continue;
                 };
+                refracted += 1;
                 assert!(
                     (t.length() - 1.0).abs() < 4.0 * f64::EPSILON,
                     "{n1}→{n2}: |t| = {}",
                     t.length()
                 );
             }
+            assert_eq!(refracted, expected, "{n1}→{n2}: rays refracted");
         }
     }
 
