@@ -188,3 +188,44 @@ fn a_teachers_folder_replaces_the_built_in_lessons() {
         .unwrap();
     assert_eq!(ids(&by_env), ids(&by_flag));
 }
+
+/// Away from the sources, the commands that take a LESSON take its name too: `homework`
+/// writes the same folder as from the lesson's path in the sources, `grade` grades a class
+/// against the same values, and `lessons validate` checks that one lesson.
+#[test]
+fn away_from_the_sources_a_lesson_is_named_for_homework_grading_and_validation() {
+    let tmp = tempfile::tempdir().unwrap();
+    let source = source_lessons().join("03-local-illumination");
+    let source = source.to_str().unwrap();
+    for (lesson, out) in [("03-local-illumination", "by-name"), (source, "by-path")] {
+        let o = raytree_in(
+            tmp.path(),
+            &["homework", lesson, "--student", "alice", "-o", out],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    let by_name = tree(&tmp.path().join("by-name"));
+    assert!(by_name.iter().any(|(f, _)| f == Path::new("scene.yaml")));
+    assert!(by_name == tree(&tmp.path().join("by-path")));
+
+    std::fs::write(
+        tmp.path().join("class.csv"),
+        "alice,diffuse,0.5\nbob,diffuse,0.3\n",
+    )
+    .unwrap();
+    let graded = |lesson: &str| {
+        let o = raytree_in(
+            tmp.path(),
+            &["grade", lesson, "--answers", "class.csv", "--format", "csv"],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        stdout(&o)
+    };
+    let by_name = graded("03-local-illumination");
+    assert_eq!(by_name.lines().filter(|l| l.contains("diffuse")).count(), 2);
+    assert_eq!(by_name, graded(source));
+
+    let o = raytree_in(tmp.path(), &["lessons", "validate", "01-camera"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(stdout(&o).starts_with("ok: 1 lesson,"), "{}", stdout(&o));
+}

@@ -16,7 +16,7 @@ use crate::lessons::{check, explain, Lesson};
   raytree check lessons/10-csg --exercise b-difference --answer \"13, 16; 22, 23\" --explain
   raytree check lessons/08-pixel-intensity --exercise pixel-p --answer 0.87 --format json")]
 pub struct Args {
-    /// The lesson folder (e.g. lessons/08-pixel-intensity).
+    /// The lesson: its folder (lessons/08-pixel-intensity) or its name (08-pixel-intensity).
     lesson: PathBuf,
     /// The exercise id (see `raytree lessons`).
     #[arg(long)]

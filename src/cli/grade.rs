@@ -9,7 +9,7 @@ use serde_json::json;
 
 use super::Failure;
 use crate::lessons::grade::{grade, read_answers, Report};
-use crate::lessons::Lesson;
+use crate::lessons::{find_lesson, Lesson};
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GradeFormat {
@@ -27,7 +27,7 @@ pub enum GradeFormat {
   raytree grade lessons/03-local-illumination --answers class.csv
   raytree grade lessons/03-local-illumination --answers class.csv --format json")]
 pub struct Args {
-    /// The lesson folder the homework was made from.
+    /// The lesson the homework was made from: its folder, or its name (`03-local-illumination`).
     lesson: PathBuf,
     /// The answers: CSV with the columns student,exercise,answer (a header line is optional;
     /// quote an answer with commas, "0.6, -0.8, 0").
@@ -39,7 +39,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let lesson = Lesson::load(&a.lesson)?;
+    let lesson = Lesson::load(&find_lesson(&a.lesson))?;
     let text = std::fs::read_to_string(&a.answers)
         .map_err(|e| Failure(format!("{}: cannot read: {e}", a.answers.display())))?;
     let (rows, problems) = read_answers(&text);

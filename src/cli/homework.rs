@@ -4,14 +4,14 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::Failure;
-use crate::lessons::{homework, Lesson};
+use crate::lessons::{find_lesson, homework, Lesson};
 
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:
   raytree homework lessons/03-local-illumination --student s1234 -o hw/s1234
   raytree check lessons/03-local-illumination --student s1234 --exercise diffuse --answer 0.5")]
 pub struct Args {
-    /// The lesson folder (its exercises.yaml may declare `vary:` values).
+    /// The lesson: its folder, or its name (its exercises.yaml may declare `vary:` values).
     lesson: PathBuf,
     /// The student's ID: the same ID always gets the same values.
     #[arg(long)]
@@ -22,14 +22,14 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let lesson = Lesson::load(&a.lesson)?;
+    let lesson = Lesson::load(&find_lesson(&a.lesson))?;
     let hw = homework::write(&lesson, &a.student, &a.output)?;
     super::output::println(&format!(
         "{}: homework of {} ({} exercises) from {}",
         a.output.display(),
         a.student.trim(),
         hw.exercises.len(),
-        a.lesson.display()
+        lesson.dir.display()
     ))?;
     match &hw.variant {
         Some(v) => {

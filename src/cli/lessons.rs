@@ -53,7 +53,7 @@ enum Action {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.action {
-        Some(Action::Validate { dir }) => return run_validate(&dir),
+        Some(Action::Validate { dir }) => return run_validate(&find_lesson(&dir)),
         Some(Action::Export { dir }) => {
             crate::lessons::builtin::export(&dir)?;
             super::output::println(&format!("wrote the lessons to {}", dir.display()))?;
