@@ -350,6 +350,22 @@ fn preview_and_lessons_list() {
     let text = stdout(&o);
     assert!(text.lines().all(|l| l.chars().count() == 40));
     assert!(text.lines().count() >= 10);
+    // The narrowest and widest previews are drawn as asked; beyond them, a usage error.
+    for columns in ["4", "1000"] {
+        let o = raytree(&["preview", LESSON_SCENE, "--columns", columns, "--ascii"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let widths: Vec<String> = stdout(&o)
+            .lines()
+            .map(|l| l.chars().count().to_string())
+            .collect();
+        assert!(widths.iter().all(|w| w == columns), "{widths:?}");
+    }
+    for columns in ["0", "3", "1001"] {
+        let o = raytree(&["preview", LESSON_SCENE, "--columns", columns, "--ascii"]);
+        assert_eq!(o.status.code(), Some(2), "--columns {columns}");
+        assert!(stdout(&o).is_empty());
+        assert!(stderr(&o).contains("--columns"), "{}", stderr(&o));
+    }
     let o = raytree(&["lessons"]);
     assert!(o.status.success());
     let text = stdout(&o);

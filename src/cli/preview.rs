@@ -16,8 +16,8 @@ use crate::render::{render_simple, RenderOptions};
 pub struct Args {
     #[command(flatten)]
     scene: SceneArgs,
-    /// Width in characters (default: the terminal's, or 80).
-    #[arg(long)]
+    /// Width in characters, 4 to 1000 (default: the terminal's, or 80).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(4..=1000))]
     columns: Option<u32>,
     /// Plain ASCII intensity ramp instead of colour.
     #[arg(long)]
@@ -79,6 +79,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         .columns
         .or_else(|| crossterm::terminal::size().ok().map(|(c, _)| c as u32))
         .unwrap_or(80)
+        // A terminal's own width, which no flag checked.
         .clamp(4, 1000);
     let (w, h) = (scene.camera.width as f64, scene.camera.height as f64);
     // Two pixels per character cell vertically; cells are about twice as tall as wide.
