@@ -340,14 +340,16 @@ fn a_depth_strip_labels_each_frame_with_its_depth() {
     }
 }
 
+/// The number an SVG tag's attribute `name` holds.
+fn attr(tag: &str, name: &str) -> f64 {
+    let from = tag.find(&format!(" {name}=\"")).expect("attribute") + name.len() + 3;
+    let to = from + tag[from..].find('"').unwrap();
+    tag[from..to].parse().unwrap()
+}
+
 /// The names of objects (italic, in the outlines' grey; the normals' `n` are green) and of
 /// lights (bold) in an SVG figure, each with the box it covers at about 0.6 em a character.
 fn names_drawn(svg: &str) -> Vec<(String, (DVec2, DVec2))> {
-    let attr = |tag: &str, name: &str| -> f64 {
-        let from = tag.find(&format!(" {name}=\"")).expect("attribute") + name.len() + 3;
-        let to = from + tag[from..].find('"').unwrap();
-        tag[from..to].parse().unwrap()
-    };
     let object = |t: &str| t.contains("font-style=\"italic\"") && t.contains("fill=\"#555555\"");
     let light = |t: &str| t.contains("font-weight=\"bold\"") && t.contains("font-size=\"14\"");
     svg.split("<text ")
@@ -423,4 +425,143 @@ fn an_objects_name_makes_way_for_a_lights() {
         "{labels:?}"
     );
     assert_apart(&labels);
+}
+
+/// A deep tree's graph (lesson 6's slab: eight rows, two total internal reflections on the
+/// way) keeps every edge's coefficient in the gap between the boxes it joins: no label is
+/// drawn over a box.
+#[test]
+fn the_graphs_coefficients_lie_between_its_boxes() {
+    let svg = figure_svg("lessons/06-refraction", "125,95", "l06-graph.svg");
+    // The nodes are the rounded white boxes.
+    let boxes: Vec<(DVec2, DVec2)> = svg
+        .split("<rect ")
+        .skip(1)
+        .map(|t| t.split_once('>').unwrap().0)
+        .filter(|t| t.contains(" rx=") && t.contains("fill=\"white\""))
+        .map(|t| {
+            let at = DVec2::new(attr(t, "x"), attr(t, "y"));
+            (at, at + DVec2::new(attr(t, "width"), attr(t, "height")))
+        })
+        .collect();
+    let labels: Vec<(String, (DVec2, DVec2))> = svg
+        .split("<text ")
+        .skip(1)
+        .filter(|t| t.contains("fill=\"#444444\""))
+        .map(|t| {
+            let (tag, rest) = t.split_once('>').unwrap();
+            let label = rest.split("</text>").next().unwrap().trim().to_string();
+            let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
+            let width = 0.6 * size * label.chars().count() as f64;
+            let bx = (DVec2::new(x, y - size), DVec2::new(x + width, y + 2.0));
+            (label, bx)
+        })
+        .collect();
+    assert!(boxes.len() >= 8, "{boxes:?}");
+    assert_eq!(labels.len(), boxes.len() - 1, "a label on every edge");
+    assert!(labels.iter().any(|(l, _)| l == "kt = 0.9"), "{labels:?}");
+    let nodes: Vec<(String, (DVec2, DVec2))> =
+        boxes.iter().map(|b| ("a node".to_string(), *b)).collect();
+    for label in &labels {
+        for node in &nodes {
+            assert_apart(&[label.clone(), node.clone()]);
+        }
+    }
+}
+
+/// Lesson 7's mirror sends the ray straight back past the eye: in the side view the rays run
+/// through the eye's dot, so its name goes above it, where no line is drawn through it.
+#[test]
+fn the_eyes_name_keeps_off_a_ray_that_comes_back_through_the_eye() {
+    let svg = diagram_svg(
+        &[
+            "lessons/07-recursion-depth/scene.yaml",
+            "--pixel",
+            "80,60",
+            "--depth",
+            "3",
+        ],
+        "l07-eye.svg",
+    );
+    let (tag, _) = svg
+        .split("<text ")
+        .skip(1)
+        .find_map(|t| {
+            t.split_once('>')
+                .filter(|(_, rest)| rest.trim().starts_with("eye\n"))
+        })
+        .expect("the eye is named");
+    let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
+    let half = 0.6 * size * 3.0 / 2.0;
+    let (min, max) = (
+        DVec2::new(x - half, y - size),
+        DVec2::new(x + half, y + 2.0),
+    );
+    let lines: Vec<(DVec2, DVec2)> = svg
+        .split("<line ")
+        .skip(1)
+        .map(|t| t.split_once('>').unwrap().0)
+        .map(|t| {
+            (
+                DVec2::new(attr(t, "x1"), attr(t, "y1")),
+                DVec2::new(attr(t, "x2"), attr(t, "y2")),
+            )
+        })
+        .collect();
+    // Some lines pass the eye's dot, level with it: those are the rays drawn through it.
+    let eye_y = y;
+    assert!(
+        lines
+            .iter()
+            .filter(|(a, b)| (a.y - b.y).abs() < 1.0 && (a.y - eye_y).abs() < 20.0)
+            .count()
+            >= 2,
+        "{lines:?}"
+    );
+    for &(a, b) in &lines {
+        let through = (0..=400).any(|k| {
+            let q = a + (b - a) * (k as f64 / 400.0);
+            q.x > min.x && q.x < max.x && q.y > min.y && q.y < max.y
+        });
+        assert!(
+            !through,
+            "the line {a} → {b} runs through the eye's name at {min}–{max}"
+        );
+    }
+}
+
+/// The figures lessons 7 and 8 show are what the commands their READMEs give draw: after a
+/// change to the figures, `raytree diagram` writes them again.
+#[test]
+fn the_lessons_figures_are_what_raytree_draws() {
+    for (args, figure) in [
+        (
+            &["lessons/08-pixel-intensity/scene.yaml", "--pixel", "30,30"][..],
+            "lessons/08-pixel-intensity/figure.svg",
+        ),
+        (
+            &[
+                "lessons/07-recursion-depth/scene.yaml",
+                "--pixel",
+                "80,60",
+                "--depth",
+                "3",
+            ][..],
+            "lessons/07-recursion-depth/figure-depth-3.svg",
+        ),
+    ] {
+        let drawn = diagram_svg(args, "lesson-figure.svg");
+        let name = Path::new(figure).file_name().unwrap().to_str().unwrap();
+        let readme = Path::new(figure).with_file_name("README.md");
+        let readme = std::fs::read_to_string(readme).unwrap();
+        assert!(
+            readme.contains(&format!("({name})")),
+            "{figure}: shown in its README"
+        );
+        assert!(
+            drawn == std::fs::read_to_string(figure).unwrap(),
+            "{figure} is not what `raytree diagram {}` draws now: write it again",
+            args.join(" ")
+        );
+    }
 }

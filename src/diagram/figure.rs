@@ -136,15 +136,16 @@ fn label_box(p: &Panel, at: DVec2, s: &str, size: f64) -> (DVec2, DVec2) {
 }
 
 /// A ray's label near `at`: the box it covers, reading on from `at` or, where that would lay
-/// it across one of the rays `paths` (each from one end to the other), up to `at` (its end
-/// anchored there), whichever keeps it off those rays and inside the panel; None where neither
-/// does.
+/// it across one of the rays `paths` (each from one end to the other) or over one of the
+/// boxes `taken`, up to `at` (its end anchored there), whichever keeps it off those and inside
+/// the panel; None where neither does.
 fn beside_rays(
     p: &Panel,
     at: DVec2,
     s: &str,
     size: f64,
     paths: &[(DVec2, DVec2)],
+    taken: &[(DVec2, DVec2)],
 ) -> Option<((DVec2, DVec2), bool)> {
     let width = text_width(s, size);
     let (left, right) = (p.origin.x + 4.0, p.origin.x + p.size.x - 4.0);
@@ -154,7 +155,8 @@ fn beside_rays(
             DVec2::new(x0, at.y - size),
             DVec2::new(x0 + width, at.y + 2.0),
         );
-        let clear = !paths.iter().any(|&(a, b)| crosses(&bx, a, b));
+        let clear = !paths.iter().any(|&(a, b)| crosses(&bx, a, b))
+            && !taken.iter().any(|t| overlap(t, &bx));
         (x0 >= left && x0 + width <= right && clear).then_some((bx, end))
     })
 }
@@ -162,6 +164,25 @@ fn beside_rays(
 /// Whether the segment from `a` to `b` passes through the box.
 fn crosses(&(min, max): &(DVec2, DVec2), a: DVec2, b: DVec2) -> bool {
     Frame { min, max }.clip(a, b).is_some()
+}
+
+/// Where the eye's name goes (the baseline's middle), and the box it covers: on the side away
+/// from the image plane, clear of the dot also when it sits beside it; where a ray passes
+/// there (one that comes straight back through the eye), above the dot, else below it.
+fn eye_label(eye: DVec2, pix: DVec2, paths: &[(DVec2, DVec2)]) -> (DVec2, (DVec2, DVec2)) {
+    let (size, half) = (13.0, text_width("eye", 13.0) / 2.0);
+    let back = (eye - pix).normalize_or(DVec2::NEG_Y);
+    let behind = eye + back * (16.0 + 8.0 * back.x.abs()) + DVec2::new(0.0, 4.0);
+    let spots = [
+        behind,
+        eye - DVec2::new(0.0, 12.0),
+        eye + DVec2::new(0.0, 22.0),
+    ];
+    let covers = |at: DVec2| (at - DVec2::new(half, size), at + DVec2::new(half, 2.0));
+    let spot = (spots.iter().copied())
+        .find(|&at| !paths.iter().any(|&(a, b)| crosses(&covers(at), a, b)))
+        .unwrap_or(behind);
+    (spot, covers(spot))
 }
 
 fn overlap(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
@@ -357,6 +378,8 @@ impl Figure<'_> {
             g = g.add(name);
         }
         // The eye, the image plane and the pixel on it.
+        // The eye's dot and its pixel's, on the page: the eye is named once the rays are known.
+        let mut eye_dot = None;
         if let Some(e) = &d.eye {
             let corners: Vec<DVec2> = e.image_plane.iter().map(|q| p.px(d.at(*q))).collect();
             let hull = super::outline::hull(corners);
@@ -376,22 +399,14 @@ impl Figure<'_> {
             let pix = p.px(d.at(e.pixel));
             let (at, anchor) = image_plane_label(&hull, eye, pix);
             g = g.add(text(at, "image plane", 12.0, "#666666").set("text-anchor", anchor));
-            // The label on the side away from the image plane, clear of the dot also when it
-            // sits beside it.
-            let back = (eye - pix).normalize_or(DVec2::NEG_Y);
-            let away = back * (16.0 + 8.0 * back.x.abs());
-            g = g
-                .add(
-                    Circle::new()
-                        .set("cx", r(eye.x))
-                        .set("cy", r(eye.y))
-                        .set("r", 5)
-                        .set("fill", INK),
-                )
-                .add(
-                    text(eye + away + DVec2::new(0.0, 4.0), "eye", 13.0, INK)
-                        .set("text-anchor", "middle"),
-                );
+            eye_dot = Some((eye, pix));
+            g = g.add(
+                Circle::new()
+                    .set("cx", r(eye.x))
+                    .set("cy", r(eye.y))
+                    .set("r", 5)
+                    .set("fill", INK),
+            );
             g = g.add(
                 Rectangle::new()
                     .set("x", r(pix.x - 3.0))
@@ -424,6 +439,11 @@ impl Figure<'_> {
                 (p.px(a), p.px(b))
             })
             .collect();
+        if let Some((eye, pix)) = eye_dot {
+            let (at, bx) = eye_label(eye, pix, &paths);
+            taken.push(bx);
+            labels.push(text(at, "eye", 13.0, INK).set("text-anchor", "middle"));
+        }
         for i in order {
             let s = &d.segments[i];
             let (pa, pb) = paths[i];
@@ -505,8 +525,8 @@ impl Figure<'_> {
                 let spots = [mid + above, mid - above + DVec2::new(0.0, 10.0)];
                 let free = |paths: &[(DVec2, DVec2)]| {
                     spots.iter().find_map(|&at| {
-                        let (bx, end) = beside_rays(p, at, &label, 12.0, paths)?;
-                        (!taken.iter().any(|b| overlap(b, &bx))).then_some((at, bx, end))
+                        let (bx, end) = beside_rays(p, at, &label, 12.0, paths, &taken)?;
+                        Some((at, bx, end))
                     })
                 };
                 let anywhere = || {
@@ -639,9 +659,10 @@ impl Figure<'_> {
             })
             .max()
             .unwrap_or(1) as f64;
-        // Small enough that the widest node fits its column, and three lines its row.
+        // Small enough that the widest node fits its column, and that a row holds a node's
+        // three lines (3.75 em and 6 px of box) and, in the gap below, an edge's label.
         let font = (0.92 * col_w / (0.62 * chars))
-            .min(0.28 * row_h)
+            .min((row_h - 6.0) / 5.1)
             .clamp(6.0, 13.0);
         let box_w = |n: &GraphNode| {
             let c = node_lines(n)
@@ -669,8 +690,10 @@ impl Figure<'_> {
             let color = node_color(self.tree, n);
             g = g.add(line(a, b, &color, 1.4));
             if let Some(e) = &n.edge {
-                let mid = a + (b - a) * 0.55;
-                g = g.add(text(mid + DVec2::new(3.0, 0.0), e, font * 0.95, "#444444"));
+                // Centred in the gap between the boxes (a baseline 0.35 em below the middle).
+                let size = font * 0.95;
+                let mid = (a + b) / 2.0 + DVec2::new(3.0, 0.35 * size);
+                g = g.add(text(mid, e, size, "#444444"));
             }
         }
         for n in &nodes {
@@ -789,7 +812,8 @@ mod tests {
             let above = if off.y > 0.0 { -off } else { off };
             let naive = label_box(&p, mid + above, label, 12.0);
             assert_eq!(sampled_through(naive, a, b), turned, "{a} → {b}");
-            let (bx, end) = beside_rays(&p, mid + above, label, 12.0, &[(a, b)]).expect("room");
+            let (bx, end) =
+                beside_rays(&p, mid + above, label, 12.0, &[(a, b)], &[]).expect("room");
             assert_eq!(end, turned, "{a} → {b}");
             assert!(!sampled_through(bx, a, b), "{a} → {b}: {bx:?}");
         }
