@@ -102,6 +102,15 @@ fn text(at: DVec2, s: &str, size: f64, color: &str) -> Text {
         .set("paint-order", "stroke")
 }
 
+/// A filled circle of `radius` at `at`.
+fn dot(at: DVec2, radius: f64, fill: &str) -> Circle {
+    Circle::new()
+        .set("cx", r(at.x))
+        .set("cy", r(at.y))
+        .set("r", radius)
+        .set("fill", fill)
+}
+
 /// About how wide a label is drawn: 0.6 em a character (DejaVu Sans and its kin).
 fn text_width(s: &str, size: f64) -> f64 {
     0.6 * size * s.chars().count() as f64
@@ -400,13 +409,7 @@ impl Figure<'_> {
             let (at, anchor) = image_plane_label(&hull, eye, pix);
             g = g.add(text(at, "image plane", 12.0, "#666666").set("text-anchor", anchor));
             eye_dot = Some((eye, pix));
-            g = g.add(
-                Circle::new()
-                    .set("cx", r(eye.x))
-                    .set("cy", r(eye.y))
-                    .set("r", 5)
-                    .set("fill", INK),
-            );
+            g = g.add(dot(eye, 5.0, INK));
             g = g.add(
                 Rectangle::new()
                     .set("x", r(pix.x - 3.0))
@@ -494,13 +497,7 @@ impl Figure<'_> {
                                 .set("font-style", "italic"),
                         );
                 }
-                g = g.add(
-                    Circle::new()
-                        .set("cx", r(ph.x))
-                        .set("cy", r(ph.y))
-                        .set("r", 3.2)
-                        .set("fill", INK),
-                );
+                g = g.add(dot(ph, 3.2, INK));
             }
             let room = if s.kind == SegKind::Primary {
                 30.0
@@ -573,14 +570,7 @@ impl Figure<'_> {
                 g = g.add(line(c + u * 9.0, c + u * 14.0, sun, 2.0));
             }
             return g
-                .add(
-                    Circle::new()
-                        .set("cx", r(c.x))
-                        .set("cy", r(c.y))
-                        .set("r", 7)
-                        .set("fill", sun)
-                        .set("stroke", "#b07d00"),
-                )
+                .add(dot(c, 7.0, sun).set("stroke", "#b07d00"))
                 .add(label_in(p, c + LIGHT_LABEL, &name, 14.0, INK).set("font-weight", "bold"));
         }
         let Some(dir) = l.direction else {
