@@ -358,6 +358,7 @@ fn preview_and_lessons_list() {
             .lines()
             .map(|l| l.chars().count().to_string())
             .collect();
+        assert!(widths.len() >= 2, "{widths:?}");
         assert!(widths.iter().all(|w| w == columns), "{widths:?}");
     }
     for columns in ["0", "3", "1001"] {

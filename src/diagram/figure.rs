@@ -386,8 +386,8 @@ impl Figure<'_> {
         for name in names {
             g = g.add(name);
         }
-        // The eye, the image plane and the pixel on it.
-        // The eye's dot and its pixel's, on the page: the eye is named once the rays are known.
+        // The eye, the image plane and the pixel on it; the eye's name waits for the rays
+        // (`eye_label` keeps it off them).
         let mut eye_dot = None;
         if let Some(e) = &d.eye {
             let corners: Vec<DVec2> = e.image_plane.iter().map(|q| p.px(d.at(*q))).collect();
