@@ -342,6 +342,8 @@ fn a_depth_strip_labels_each_frame_with_its_depth() {
 
 /// The number an SVG tag's attribute `name` holds.
 fn attr(tag: &str, name: &str) -> f64 {
+    // (The tag's first attribute follows the element's name and its space.)
+    let tag = &format!(" {tag}");
     let from = tag.find(&format!(" {name}=\"")).expect("attribute") + name.len() + 3;
     let to = from + tag[from..].find('"').unwrap();
     tag[from..to].parse().unwrap()
@@ -352,33 +354,50 @@ fn attr(tag: &str, name: &str) -> f64 {
 fn names_drawn(svg: &str) -> Vec<(String, (DVec2, DVec2))> {
     let object = |t: &str| t.contains("font-style=\"italic\"") && t.contains("fill=\"#555555\"");
     let light = |t: &str| t.contains("font-weight=\"bold\"") && t.contains("font-size=\"14\"");
-    svg.split("<text ")
-        .skip(1)
-        .filter(|t| object(t) || light(t))
+    texts(svg)
+        .filter(|(tag, _)| object(tag) || light(tag))
         // The graph's heading is bold too.
-        .filter(|t| !t.contains(">\nray tree\n<") && !t.contains(">ray tree<"))
-        .map(|t| {
-            let (tag, rest) = t.split_once('>').unwrap();
-            let name = rest.split("</text>").next().unwrap().trim().to_string();
-            let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
-            let width = 0.6 * size * name.chars().count() as f64;
-            let x0 = if tag.contains("text-anchor=\"end\"") {
-                x - width
-            } else {
-                x
-            };
-            let bx = (DVec2::new(x0, y - size), DVec2::new(x0 + width, y + 2.0));
+        .filter(|(_, name)| name != "ray tree")
+        .map(|(tag, name)| {
+            let bx = text_box(tag, &name);
             (name, bx)
         })
         .collect()
 }
 
+/// Every `<text>` of an SVG figure: its tag (the attributes) and what it says.
+fn texts(svg: &str) -> impl Iterator<Item = (&str, String)> {
+    svg.split("<text ").skip(1).map(|t| {
+        let (tag, rest) = t.split_once('>').unwrap();
+        (
+            tag,
+            rest.split("</text>").next().unwrap().trim().to_string(),
+        )
+    })
+}
+
+/// The box a text covers, at about 0.6 em a character, placed by its anchor.
+fn text_box(tag: &str, s: &str) -> (DVec2, DVec2) {
+    let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
+    let width = 0.6 * size * s.chars().count() as f64;
+    let x0 = if tag.contains("text-anchor=\"end\"") {
+        x - width
+    } else if tag.contains("text-anchor=\"middle\"") {
+        x - width / 2.0
+    } else {
+        x
+    };
+    (DVec2::new(x0, y - size), DVec2::new(x0 + width, y + 2.0))
+}
+
+fn apart(a: &(DVec2, DVec2), b: &(DVec2, DVec2)) -> bool {
+    a.1.x <= b.0.x || b.1.x <= a.0.x || a.1.y <= b.0.y || b.1.y <= a.0.y
+}
+
 fn assert_apart(labels: &[(String, (DVec2, DVec2))]) {
     for (i, (a, ba)) in labels.iter().enumerate() {
         for (b, bb) in &labels[i + 1..] {
-            let apart =
-                ba.1.x <= bb.0.x || bb.1.x <= ba.0.x || ba.1.y <= bb.0.y || bb.1.y <= ba.0.y;
-            assert!(apart, "{a} at {ba:?} covers {b} at {bb:?}");
+            assert!(apart(ba, bb), "{a} at {ba:?} covers {b} at {bb:?}");
         }
     }
 }
@@ -444,27 +463,20 @@ fn the_graphs_coefficients_lie_between_its_boxes() {
             (at, at + DVec2::new(attr(t, "width"), attr(t, "height")))
         })
         .collect();
-    let labels: Vec<(String, (DVec2, DVec2))> = svg
-        .split("<text ")
-        .skip(1)
-        .filter(|t| t.contains("fill=\"#444444\""))
-        .map(|t| {
-            let (tag, rest) = t.split_once('>').unwrap();
-            let label = rest.split("</text>").next().unwrap().trim().to_string();
-            let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
-            let width = 0.6 * size * label.chars().count() as f64;
-            let bx = (DVec2::new(x, y - size), DVec2::new(x + width, y + 2.0));
-            (label, bx)
-        })
+    let labels: Vec<(String, (DVec2, DVec2))> = texts(&svg)
+        .filter(|(tag, _)| tag.contains("fill=\"#444444\""))
+        .map(|(tag, label)| (text_box(tag, &label), label))
+        .map(|(bx, label)| (label, bx))
         .collect();
     assert!(boxes.len() >= 8, "{boxes:?}");
     assert_eq!(labels.len(), boxes.len() - 1, "a label on every edge");
     assert!(labels.iter().any(|(l, _)| l == "kt = 0.9"), "{labels:?}");
-    let nodes: Vec<(String, (DVec2, DVec2))> =
-        boxes.iter().map(|b| ("a node".to_string(), *b)).collect();
-    for label in &labels {
-        for node in &nodes {
-            assert_apart(&[label.clone(), node.clone()]);
+    for (label, bx) in &labels {
+        for node in &boxes {
+            assert!(
+                apart(bx, node),
+                "{label} at {bx:?} covers a node at {node:?}"
+            );
         }
     }
 }
@@ -483,20 +495,10 @@ fn the_eyes_name_keeps_off_a_ray_that_comes_back_through_the_eye() {
         ],
         "l07-eye.svg",
     );
-    let (tag, _) = svg
-        .split("<text ")
-        .skip(1)
-        .find_map(|t| {
-            t.split_once('>')
-                .filter(|(_, rest)| rest.trim().starts_with("eye\n"))
-        })
+    let (tag, _) = texts(&svg)
+        .find(|(_, s)| s == "eye")
         .expect("the eye is named");
-    let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
-    let half = 0.6 * size * 3.0 / 2.0;
-    let (min, max) = (
-        DVec2::new(x - half, y - size),
-        DVec2::new(x + half, y + 2.0),
-    );
+    let (min, max) = text_box(tag, "eye");
     let lines: Vec<(DVec2, DVec2)> = svg
         .split("<line ")
         .skip(1)
@@ -508,15 +510,23 @@ fn the_eyes_name_keeps_off_a_ray_that_comes_back_through_the_eye() {
             )
         })
         .collect();
-    // Some lines pass the eye's dot, level with it: those are the rays drawn through it.
-    let eye_y = y;
+    // The eye's dot (r = 5) has rays drawn through it, level with it, on both sides.
+    let dot = svg
+        .split("<circle ")
+        .skip(1)
+        .map(|t| t.split_once('>').unwrap().0)
+        .find(|t| attr(t, "r") == 5.0)
+        .map(|t| DVec2::new(attr(t, "cx"), attr(t, "cy")))
+        .expect("the eye's dot");
+    let through_dot = |&&(a, b): &&(DVec2, DVec2)| {
+        (a.y - dot.y).abs() < 1.0
+            && (b.y - dot.y).abs() < 1.0
+            && a.x.min(b.x) <= dot.x
+            && a.x.max(b.x) >= dot.x
+    };
     assert!(
-        lines
-            .iter()
-            .filter(|(a, b)| (a.y - b.y).abs() < 1.0 && (a.y - eye_y).abs() < 20.0)
-            .count()
-            >= 2,
-        "{lines:?}"
+        lines.iter().filter(through_dot).count() >= 2,
+        "{dot} {lines:?}"
     );
     for &(a, b) in &lines {
         let through = (0..=400).any(|k| {

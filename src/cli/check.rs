@@ -36,7 +36,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let mut lesson = Lesson::load(&crate::lessons::find_lesson(&a.lesson))?;
+    let mut lesson = Lesson::named(&a.lesson)?;
     if let Some(student) = &a.student {
         lesson = lesson.variant(student)?;
     }

@@ -9,7 +9,7 @@ use serde_json::json;
 
 use super::Failure;
 use crate::lessons::grade::{grade, read_answers, Report};
-use crate::lessons::{find_lesson, Lesson};
+use crate::lessons::Lesson;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum GradeFormat {
@@ -39,7 +39,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let lesson = Lesson::load(&find_lesson(&a.lesson))?;
+    let lesson = Lesson::named(&a.lesson)?;
     let text = std::fs::read_to_string(&a.answers)
         .map_err(|e| Failure(format!("{}: cannot read: {e}", a.answers.display())))?;
     let (rows, problems) = read_answers(&text);

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::Failure;
-use crate::lessons::{find_lesson, homework, Lesson};
+use crate::lessons::{homework, Lesson};
 
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:
@@ -22,7 +22,7 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let lesson = Lesson::load(&find_lesson(&a.lesson))?;
+    let lesson = Lesson::named(&a.lesson)?;
     let hw = homework::write(&lesson, &a.student, &a.output)?;
     super::output::println(&format!(
         "{}: homework of {} ({} exercises) from {}",

@@ -189,6 +189,11 @@ pub struct Lesson {
 }
 
 impl Lesson {
+    /// The lesson a user names: its folder, or its name in the lessons folder (`find_lesson`).
+    pub fn named(folder_or_name: &Path) -> Result<Lesson, LessonError> {
+        Lesson::load(&find_lesson(folder_or_name))
+    }
+
     /// Loads the lesson of a folder: its exercises.yaml and README.md.
     pub fn load(dir: &Path) -> Result<Lesson, LessonError> {
         let id = dir
