@@ -192,6 +192,46 @@ fn a_teachers_folder_replaces_the_built_in_lessons() {
 /// Away from the sources, the commands that take a LESSON take its name too: `homework`
 /// writes the same folder as from the lesson's path in the sources, `grade` grades a class
 /// against the same values, and `lessons validate` checks that one lesson.
+/// README: "Wherever a command takes a SCENE, a lesson's folder or name stands for its
+/// scene.yaml". Every such command, run by a lesson's name away from the sources, does what it
+/// does with the scene's path; `bench sweep` once read the name as a file for its reference.
+#[test]
+fn away_from_the_sources_every_command_that_takes_a_scene_takes_a_lessons_name() {
+    let tmp = tempfile::tempdir().unwrap();
+    let source = source_lessons().join("01-camera/scene.yaml");
+    let source = source.to_str().unwrap();
+    let commands: [&[&str]; 7] = [
+        &["render", "SCENE", "-o", "out.ppm"],
+        &["inspect", "SCENE", "--pixel", "2,1"],
+        &["csg", "SCENE", "--pixel", "2,1"],
+        &["diagram", "SCENE", "--pixel", "2,1", "-o", "fig.svg"],
+        &["preview", "SCENE", "--ascii"],
+        &[
+            "bench", "sweep", "SCENE", "--knob", "depth", "--values", "1,2",
+        ],
+        &["bench", "threads", "SCENE", "--runs", "1"],
+    ];
+    for command in commands {
+        let runs = ["01-camera", source].map(|scene| {
+            let args: Vec<&str> = command
+                .iter()
+                .map(|&a| if a == "SCENE" { scene } else { a })
+                .collect();
+            let o = raytree_in(tmp.path(), &args);
+            assert!(
+                o.status.success(),
+                "{args:?}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+            o
+        });
+        // What does not depend on the clock is the same either way.
+        if command[0] != "bench" {
+            assert_eq!(stdout(&runs[0]), stdout(&runs[1]), "{command:?}");
+        }
+    }
+}
+
 #[test]
 fn away_from_the_sources_a_lesson_is_named_for_homework_grading_and_validation() {
     let tmp = tempfile::tempdir().unwrap();

@@ -373,6 +373,53 @@ fn preview_and_lessons_list() {
     assert!(text.contains("08-pixel-intensity") && text.contains("pixel-p"));
 }
 
+/// A path that leaves lesson 15's box meets no surface: its last vertex says where it left
+/// from (its last bounce) and in which direction, and that direction goes out through the
+/// box's open front (z = 1, |x| and |y| at most 1), the only way out. Text and JSON agree.
+#[test]
+fn a_path_that_leaves_the_scene_is_shown_leaving_toward_a_direction() {
+    let args = ["inspect", "lessons/15-path-tracing", "--pixel", "10,10"];
+    let o = raytree(&[&args[..], &["--format", "json"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let vec3 = |x: &serde_json::Value| -> [f64; 3] {
+        std::array::from_fn(|i| x[i].as_f64().expect("a number"))
+    };
+    let mut escapes = 0;
+    for p in v["paths"].as_array().unwrap() {
+        let vertices = p["vertices"].as_array().unwrap();
+        for (k, x) in vertices.iter().enumerate() {
+            if x["event"] != "background" {
+                assert!(x["toward"].is_null(), "{x}");
+                continue;
+            }
+            escapes += 1;
+            let [o, d] = [vec3(&x["point"]), vec3(&x["toward"])];
+            let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            assert!((length - 1.0).abs() < 1e-6, "{x}");
+            let last = vec3(&vertices[k - 1]["point"]);
+            assert!((0..3).all(|i| (o[i] - last[i]).abs() < 1e-6), "{x}");
+            assert!(d[2] > 0.0, "{x}");
+            let t = (1.0 - o[2]) / d[2];
+            let (ex, ey) = (o[0] + t * d[0], o[1] + t * d[1]);
+            assert!(
+                ex.abs() <= 1.0 && ey.abs() <= 1.0,
+                "leaves at ({ex}, {ey}): {x}"
+            );
+        }
+    }
+    assert!(escapes > 0, "no path of pixel (10, 10) leaves the box: {v}");
+    let text = stdout(&raytree(&args));
+    let leaving: Vec<&str> = text.lines().filter(|l| l.contains("background")).collect();
+    assert_eq!(leaving.len(), escapes, "{text}");
+    assert!(
+        leaving
+            .iter()
+            .all(|l| l.contains(" toward (") && !l.contains(" at (")),
+        "{text}"
+    );
+}
+
 #[test]
 fn inspect_a_path_traced_pixel_shows_sampled_paths_and_the_estimate() {
     let o = raytree(&[

@@ -273,6 +273,8 @@ fn every_json_document_parses_and_carries_the_version() {
     ])));
     assert_eq!(doc["threads"], 2);
     assert_eq!(doc["runs"].as_array().unwrap().len(), 1);
+    // A render of 16 × 12 pixels is far shorter than a measurement: it is repeated.
+    assert!(doc["renders_per_figure"].as_u64().unwrap() >= 2, "{doc}");
 }
 
 #[test]

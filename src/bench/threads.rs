@@ -48,37 +48,66 @@ fn control(pool: &rayon::ThreadPool, iterations: u64) -> f64 {
     start.elapsed().as_secs_f64()
 }
 
-/// Seconds to render the scene (loading excluded) on the threads of `pool`, and its rays.
-fn render(pool: &rayon::ThreadPool, scene: &Scene) -> (f64, u64) {
+/// Seconds per render of the scene (loading excluded) on the threads of `pool`, rendered
+/// `repeats` times over, and its rays.
+fn render(pool: &rayon::ThreadPool, scene: &Scene, repeats: u32) -> (f64, u64) {
     let start = Instant::now();
-    let (_, stats) = pool.install(|| render_simple(scene, RenderOptions::of(scene)));
-    (start.elapsed().as_secs_f64(), stats.rays())
+    let mut rays = 0;
+    for _ in 0..repeats {
+        let (_, stats) = pool.install(|| render_simple(scene, RenderOptions::of(scene)));
+        rays = stats.rays();
+    }
+    (start.elapsed().as_secs_f64() / repeats as f64, rays)
+}
+
+/// How long one measurement lasts at least: a render of a few milliseconds measures little
+/// more than waking the pool's threads and the timer's own jitter, so a small scene is rendered
+/// again and again for that long.
+const MEASURED_SECONDS: f64 = 0.2;
+
+/// The threads' rounds of a scene.
+pub struct ThreadRounds {
+    /// The rounds, in the order they ran.
+    pub runs: Vec<ThreadRun>,
+    /// The scene's rays (one render).
+    pub rays: u64,
+    /// Renders per measurement (each figure is their mean).
+    pub repeats: u32,
 }
 
 /// `runs` rounds of: the scene on one thread, on `n`, then the control job on one and on `n`.
-/// The control is sized to take about as long as the one-thread render, so both meet the
-/// machine in the same state. Also returns the scene's ray count.
+/// Each figure is the mean over `repeats` renders (or the control's share of that), enough to
+/// last `MEASURED_SECONDS` on one thread. The control is sized to take about as long as a
+/// one-thread render, so both meet the machine in the same state.
 pub fn thread_rounds(
     scene: &Scene,
     n: usize,
     runs: usize,
-) -> Result<(Vec<ThreadRun>, u64), rayon::ThreadPoolBuildError> {
+) -> Result<ThreadRounds, rayon::ThreadPoolBuildError> {
     let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
     let many = rayon::ThreadPoolBuilder::new().num_threads(n).build()?;
-    // Warm-up (caches, page faults, the pools' threads), and the size of the control job.
-    let (seconds, rays) = render(&one, scene);
+    // Warm-up (caches, page faults, the pools' threads), and the size of the measurements.
+    let (seconds, rays) = render(&one, scene, 1);
+    let repeats = (MEASURED_SECONDS / seconds.max(1e-6))
+        .ceil()
+        .clamp(1.0, 10_000.0) as u32;
     let probe = 1 << 22;
     let rate = probe as f64 / control(&one, probe).max(1e-9);
-    let iterations = ((rate * seconds) as u64).max(n as u64);
-    let rounds = (0..runs)
+    let iterations = ((rate * seconds * repeats as f64) as u64).max(n as u64);
+    let per_render = |s: f64| s / repeats as f64;
+    let runs = (0..runs)
         .map(|_| ThreadRun {
-            render_one: render(&one, scene).0,
-            render_many: render(&many, scene).0,
-            control_one: control(&one, iterations),
-            control_many: control(&many, iterations),
+            render_one: render(&one, scene, repeats).0,
+            render_many: render(&many, scene, repeats).0,
+            control_one: per_render(control(&one, iterations)),
+            control_many: per_render(control(&many, iterations)),
         })
         .collect();
-    Ok((rounds, rays))
+    Ok(ThreadRounds {
+        runs,
+        rays,
+        repeats,
+    })
 }
 
 /// The middle value (the mean of the two middle ones for an even count).
@@ -95,7 +124,8 @@ fn median(mut values: Vec<f64>) -> f64 {
 /// The table of medians: seconds on one thread and on N, and the speed-up (median of the
 /// rounds' own ratios, with their range) for the scene and the control, then the scene's
 /// speed-up as a share of the control's.
-pub fn threads_table(runs: &[ThreadRun], threads: usize, rays: u64) -> String {
+pub fn threads_table(rounds: &ThreadRounds, threads: usize) -> String {
+    let (runs, rays) = (&rounds.runs, rounds.rays);
     let speedups = |f: fn(&ThreadRun) -> (f64, f64)| {
         let ratios: Vec<f64> = runs
             .iter()
@@ -125,8 +155,12 @@ pub fn threads_table(runs: &[ThreadRun], threads: usize, rays: u64) -> String {
         let range = format!("{mid:.2}× ({lo:.2}–{hi:.2})");
         s.push_str(&format!("{name:<11} {one:>12.3} {n:>12.3} {range:>24}\n"));
     }
+    let each = match rounds.repeats {
+        1 => String::new(),
+        k => format!(", each the mean of {k} renders"),
+    };
     s.push_str(&format!(
-        "rays per second: {:.1} M on 1 thread, {:.1} M on {threads} ({} runs, medians)\n",
+        "rays per second: {:.1} M on 1 thread, {:.1} M on {threads} ({} runs, medians{each})\n",
         mrays(r1),
         mrays(rn),
         runs.len()
@@ -161,12 +195,16 @@ mod tests {
             control_one,
             control_many,
         };
-        let runs = [
-            run(2.0, 1.0, 1.9, 1.0),
-            run(2.2, 1.25, 2.0, 1.0),
-            run(1.8, 1.0, 1.6, 1.0),
-        ];
-        let table = threads_table(&runs, 2, 40_000_000);
+        let rounds = ThreadRounds {
+            runs: vec![
+                run(2.0, 1.0, 1.9, 1.0),
+                run(2.2, 1.25, 2.0, 1.0),
+                run(1.8, 1.0, 1.6, 1.0),
+            ],
+            rays: 40_000_000,
+            repeats: 1,
+        };
+        let table = threads_table(&rounds, 2);
         let lines: Vec<&str> = table.lines().collect();
         assert!(lines[1].starts_with("scene"), "{table}");
         assert!(lines[1].contains("2.000"), "{table}");
@@ -179,6 +217,20 @@ mod tests {
             "{table}"
         );
         assert!(lines[4].contains("is 95 % of"), "{table}");
+        // Measurements of several renders say so; the figures are per render all the same.
+        let table = threads_table(
+            &ThreadRounds {
+                repeats: 40,
+                ..rounds
+            },
+            2,
+        );
+        assert!(
+            table.contains(
+                "20.0 M on 1 thread, 40.0 M on 2 (3 runs, medians, each the mean of 40 renders)"
+            ),
+            "{table}"
+        );
     }
 
     /// The control job computes what its chains say, split over the threads: each thread's

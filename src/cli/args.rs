@@ -130,7 +130,7 @@ pub fn scene_path(arg: &str) -> Result<PathBuf, String> {
 
 /// The scene.yaml of the lesson named `path` where no file or folder `path` exists (the
 /// lessons folder is known only once the command line is read: `--lessons`), else `path`.
-fn named_lesson_scene(path: &Path) -> PathBuf {
+pub fn named_lesson_scene(path: &Path) -> PathBuf {
     if path.exists() {
         return path.to_path_buf();
     }

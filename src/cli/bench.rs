@@ -270,6 +270,8 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             }
             let plot_kind = plot.as_deref().map(PlotKind::of).transpose()?;
             let pool = super::args::thread_pool(threads)?;
+            // The file itself, also for the reference's cache key.
+            let scene_path = super::args::named_lesson_scene(&scene_path);
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
             let (w, h) = (scene.camera.width, scene.camera.height);
             let reference = match reference {
@@ -408,6 +410,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             runs,
             format,
         } => {
+            let scene_path = super::args::named_lesson_scene(&scene_path);
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
             let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
             let n = n.map_or(cores.max(2), |n| n as usize);
@@ -415,14 +418,15 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 "{}: {runs} rounds of 1 and {n} threads, scene and control alternating",
                 scene_path.display()
             ));
-            let (rounds, rays) = thread_rounds(&scene, n, runs as usize)?;
+            let rounds = thread_rounds(&scene, n, runs as usize)?;
             match format {
-                Format::Text => print(&threads_table(&rounds, n, rays))?,
+                Format::Text => print(&threads_table(&rounds, n))?,
                 Format::Json => print_json(serde_json::json!({
                     "scene": scene_path.display().to_string(),
                     "threads": n,
-                    "rays": rays,
-                    "runs": rounds.iter().map(|r| serde_json::json!({
+                    "rays": rounds.rays,
+                    "renders_per_figure": rounds.repeats,
+                    "runs": rounds.runs.iter().map(|r| serde_json::json!({
                         "render_one_thread_seconds": r.render_one,
                         "render_seconds": r.render_many,
                         "control_one_thread_seconds": r.control_one,

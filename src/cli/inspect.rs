@@ -101,11 +101,15 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
             for (k, (value, log)) in shown.iter().enumerate() {
                 out += &format!("sample {}: {}\n", k + 1, text::color(*value));
                 for v in log {
+                    // A path that leaves the scene meets no point: it goes off in a direction.
+                    let place = match v.toward {
+                        Some(d) => format!("toward {}", text::vec3(d)),
+                        None => format!("at {}", text::vec3(v.point)),
+                    };
                     out += &format!(
-                        "  {:<10} {:<14} at {}  throughput {}  adds {}\n",
+                        "  {:<10} {:<14} {place}  throughput {}  adds {}\n",
                         v.event,
                         v.object.as_deref().unwrap_or("-"),
-                        text::vec3(v.point),
                         text::color(v.throughput),
                         text::color(v.added)
                     );

@@ -49,8 +49,11 @@ pub struct PathVertex {
     pub event: &'static str,
     /// The object (or light) met.
     pub object: Option<String>,
-    /// Where the path met the surface (world space).
+    /// Where the path met the surface (world space); for the background, where the ray that
+    /// left the scene started.
     pub point: DVec3,
+    /// The direction in which the path left the scene (the background only).
+    pub toward: Option<DVec3>,
     /// The path's throughput after this vertex.
     pub throughput: DVec3,
     /// Radiance this vertex added to the estimate (emission, next-event estimation, a light or
@@ -168,12 +171,14 @@ impl<'s> PathTracer<'s> {
                         object: Option<&str>,
                         point: DVec3,
                         throughput: DVec3,
-                        added: DVec3| {
+                        added: DVec3,
+                        toward: Option<DVec3>| {
             if let Some(log) = log.as_deref_mut() {
                 log.push(PathVertex {
                     event,
                     object: object.map(str::to_string),
                     point,
+                    toward,
                     throughput,
                     added,
                 });
@@ -206,6 +211,7 @@ impl<'s> PathTracer<'s> {
                     point,
                     throughput,
                     sum - before,
+                    None,
                 );
                 let Some(material) = lh.light.surface else {
                     break;
@@ -225,7 +231,14 @@ impl<'s> PathTracer<'s> {
             } else {
                 let Some(hit) = hit else {
                     sum += throughput * scene.background;
-                    note("background", None, ray.at(1.0), throughput, sum - before);
+                    note(
+                        "background",
+                        None,
+                        ray.origin,
+                        throughput,
+                        sum - before,
+                        Some(ray.dir),
+                    );
                     break;
                 };
                 let si = scene.interaction(&ray, &hit);
@@ -250,7 +263,7 @@ impl<'s> PathTracer<'s> {
                     let p = si.point + scene.bias(ray.origin, si.point) * si.normal;
                     sum += throughput * diffuse * self.local(p, si.normal, bounce, stats);
                 }
-                note(why, Some(object), si.point, throughput, sum - before);
+                note(why, Some(object), si.point, throughput, sum - before, None);
                 break;
             }
             // The lobe pair only where it decides something: between lobes, or for roulette.
@@ -275,7 +288,14 @@ impl<'s> PathTracer<'s> {
                 let dir = cosine_hemisphere(n, u1, u2);
                 bsdf_pdf = Some(cosine_pdf(n, dir));
                 throughput = lobe;
-                note("diffuse", Some(object), si.point, throughput, sum - before);
+                note(
+                    "diffuse",
+                    Some(object),
+                    si.point,
+                    throughput,
+                    sum - before,
+                    None,
+                );
                 ray = Ray {
                     origin: si.point + offset * n,
                     dir,
@@ -295,7 +315,14 @@ impl<'s> PathTracer<'s> {
                 } else {
                     "mirror"
                 };
-                note(event, Some(object), si.point, throughput, sum - before);
+                note(
+                    event,
+                    Some(object),
+                    si.point,
+                    throughput,
+                    sum - before,
+                    None,
+                );
                 ray = Ray {
                     origin: si.point + offset * n,
                     dir,
@@ -317,7 +344,14 @@ impl<'s> PathTracer<'s> {
                 } else {
                     "reflection"
                 };
-                note(event, Some(object), si.point, throughput, sum - before);
+                note(
+                    event,
+                    Some(object),
+                    si.point,
+                    throughput,
+                    sum - before,
+                    None,
+                );
                 ray = match refracted {
                     Some(dir) => {
                         stats.refraction_rays += 1;
@@ -343,7 +377,7 @@ impl<'s> PathTracer<'s> {
             if roulette {
                 let q = throughput.max_element().clamp(0.05, 0.95);
                 if survive >= q {
-                    note("roulette", None, ray.origin, DVec3::ZERO, DVec3::ZERO);
+                    note("roulette", None, ray.origin, DVec3::ZERO, DVec3::ZERO, None);
                     break;
                 }
                 throughput /= q;
