@@ -321,6 +321,9 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
         E::UnsupportedTag { tag, .. } | E::TaggedStructFieldName { tag, .. } => format!(
             "YAML tags such as `{tag}` are not part of the scene format: remove it (a shape is given by its key, e.g. `sphere: {{ … }}`)"
         ),
+        E::NonFiniteFloat { value, .. } => format!(
+            "non-finite number `{value}`: every number in a scene must be finite"
+        ),
         E::Unexpected {
             expected: "string scalar",
             ..
