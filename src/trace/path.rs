@@ -61,6 +61,56 @@ pub struct PathVertex {
     pub added: DVec3,
 }
 
+/// The vertices of a path as `PathTracer::sample` meets them, when they are asked for.
+struct PathLog<'a>(Option<&'a mut Vec<PathVertex>>);
+
+impl PathLog<'_> {
+    /// A vertex on a surface (or a light), or where the path ended there.
+    fn at(
+        &mut self,
+        event: &'static str,
+        object: Option<&str>,
+        point: DVec3,
+        throughput: DVec3,
+        added: DVec3,
+    ) {
+        self.push(event, object, point, None, throughput, added);
+    }
+
+    /// The path leaving the scene along `ray`: it meets no point.
+    fn leaving(&mut self, ray: &Ray, throughput: DVec3, added: DVec3) {
+        self.push(
+            "background",
+            None,
+            ray.origin,
+            Some(ray.dir),
+            throughput,
+            added,
+        );
+    }
+
+    fn push(
+        &mut self,
+        event: &'static str,
+        object: Option<&str>,
+        point: DVec3,
+        toward: Option<DVec3>,
+        throughput: DVec3,
+        added: DVec3,
+    ) {
+        if let Some(log) = self.0.as_deref_mut() {
+            log.push(PathVertex {
+                event,
+                object: object.map(str::to_string),
+                point,
+                toward,
+                throughput,
+                added,
+            });
+        }
+    }
+}
+
 /// Where a ray meets an emitter: distance, the light, and the density light sampling would
 /// have given that direction.
 struct LightHit<'a> {
@@ -165,25 +215,9 @@ impl<'s> PathTracer<'s> {
         primary: &Ray,
         point: &SamplePoint,
         stats: &mut Stats,
-        mut log: Option<&mut Vec<PathVertex>>,
+        log: Option<&mut Vec<PathVertex>>,
     ) -> DVec3 {
-        let mut note = |event: &'static str,
-                        object: Option<&str>,
-                        point: DVec3,
-                        throughput: DVec3,
-                        added: DVec3,
-                        toward: Option<DVec3>| {
-            if let Some(log) = log.as_deref_mut() {
-                log.push(PathVertex {
-                    event,
-                    object: object.map(str::to_string),
-                    point,
-                    toward,
-                    throughput,
-                    added,
-                });
-            }
-        };
+        let mut log = PathLog(log);
         let scene = self.scene;
         let mut ray = *primary;
         let mut throughput = DVec3::ONE;
@@ -205,13 +239,12 @@ impl<'s> PathTracer<'s> {
                 };
                 sum += throughput * lh.light.intensity * weight;
                 let point = ray.at(lh.t);
-                note(
+                log.at(
                     "light",
                     Some(&lh.light.name),
                     point,
                     throughput,
                     sum - before,
-                    None,
                 );
                 let Some(material) = lh.light.surface else {
                     break;
@@ -231,14 +264,7 @@ impl<'s> PathTracer<'s> {
             } else {
                 let Some(hit) = hit else {
                     sum += throughput * scene.background;
-                    note(
-                        "background",
-                        None,
-                        ray.origin,
-                        throughput,
-                        sum - before,
-                        Some(ray.dir),
-                    );
+                    log.leaving(&ray, throughput, sum - before);
                     break;
                 };
                 let si = scene.interaction(&ray, &hit);
@@ -263,7 +289,7 @@ impl<'s> PathTracer<'s> {
                     let p = si.point + scene.bias(ray.origin, si.point) * si.normal;
                     sum += throughput * diffuse * self.local(p, si.normal, bounce, stats);
                 }
-                note(why, Some(object), si.point, throughput, sum - before, None);
+                log.at(why, Some(object), si.point, throughput, sum - before);
                 break;
             }
             // The lobe pair only where it decides something: between lobes, or for roulette.
@@ -288,14 +314,7 @@ impl<'s> PathTracer<'s> {
                 let dir = cosine_hemisphere(n, u1, u2);
                 bsdf_pdf = Some(cosine_pdf(n, dir));
                 throughput = lobe;
-                note(
-                    "diffuse",
-                    Some(object),
-                    si.point,
-                    throughput,
-                    sum - before,
-                    None,
-                );
+                log.at("diffuse", Some(object), si.point, throughput, sum - before);
                 ray = Ray {
                     origin: si.point + offset * n,
                     dir,
@@ -315,14 +334,7 @@ impl<'s> PathTracer<'s> {
                 } else {
                     "mirror"
                 };
-                note(
-                    event,
-                    Some(object),
-                    si.point,
-                    throughput,
-                    sum - before,
-                    None,
-                );
+                log.at(event, Some(object), si.point, throughput, sum - before);
                 ray = Ray {
                     origin: si.point + offset * n,
                     dir,
@@ -344,14 +356,7 @@ impl<'s> PathTracer<'s> {
                 } else {
                     "reflection"
                 };
-                note(
-                    event,
-                    Some(object),
-                    si.point,
-                    throughput,
-                    sum - before,
-                    None,
-                );
+                log.at(event, Some(object), si.point, throughput, sum - before);
                 ray = match refracted {
                     Some(dir) => {
                         stats.refraction_rays += 1;
@@ -377,7 +382,7 @@ impl<'s> PathTracer<'s> {
             if roulette {
                 let q = throughput.max_element().clamp(0.05, 0.95);
                 if survive >= q {
-                    note("roulette", None, ray.origin, DVec3::ZERO, DVec3::ZERO, None);
+                    log.at("roulette", None, ray.origin, DVec3::ZERO, DVec3::ZERO);
                     break;
                 }
                 throughput /= q;
