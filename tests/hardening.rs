@@ -599,6 +599,48 @@ fn long_output_names_symlinks_and_read_only_outputs() {
         assert!(r.stderr.contains("read-only"), "{}", r.stderr);
         assert_eq!(std::fs::read(&locked).unwrap(), b"keep");
     }
+    // An output in a folder that is not there, or of a format raytree does not write, is
+    // refused before the render, not after it: here a render of some 12 G samples, which would
+    // outlast `run`'s 60 s and fail it as hung.
+    let missing = dir.join("not-there");
+    for (out, says) in [
+        (missing.join("out.png"), "there is no folder"),
+        (dir.join("out.jpg"), "must end in .png, .ppm or .exr"),
+    ] {
+        let r = run(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+            OsStr::new("--width"),
+            OsStr::new("2000"),
+            OsStr::new("--height"),
+            OsStr::new("1500"),
+            OsStr::new("--spp"),
+            OsStr::new("4096"),
+        ]);
+        assert_eq!(r.code(), Some(2), "{}", r.stderr);
+        assert!(r.stderr.contains(says), "{}", r.stderr);
+        assert!(!r.stderr.contains(".raytree-"), "{}", r.stderr);
+    }
+    // So is a sweep's table or plot, written after all its renders.
+    for flag in ["--csv", "--plot"] {
+        let out = missing.join("sweep.svg");
+        let r = run(&[
+            OsStr::new("bench"),
+            OsStr::new("sweep"),
+            scene.as_os_str(),
+            OsStr::new("--knob"),
+            OsStr::new("spp"),
+            OsStr::new("--values"),
+            OsStr::new("65536"),
+            OsStr::new(flag),
+            out.as_os_str(),
+        ]);
+        assert_eq!(r.code(), Some(2), "{flag}: {}", r.stderr);
+        assert!(r.stderr.contains("there is no folder"), "{}", r.stderr);
+    }
+    assert!(!missing.exists());
     assert!(temporaries(&dir).is_empty(), "{:?}", temporaries(&dir));
 }
 

@@ -269,6 +269,10 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 knob.check(v)?;
             }
             let plot_kind = plot.as_deref().map(PlotKind::of).transpose()?;
+            // The outputs are written after the sweep: found wrong before it.
+            for path in csv.iter().chain(&plot) {
+                crate::render::check_output(path)?;
+            }
             let pool = super::args::thread_pool(threads)?;
             // The file itself, also for the reference's cache key.
             let scene_path = super::args::named_lesson_scene(&scene_path);

@@ -23,6 +23,14 @@ pub enum WriteError {
         /// The output as given.
         path: PathBuf,
     },
+    /// The folder the output would go in does not exist.
+    #[error("{}: cannot write: there is no folder {}", path.display(), folder.display())]
+    NoFolder {
+        /// The output as given.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+    },
     /// The symbolic links of the output cannot be followed (a loop, or one that cannot be read).
     #[error("{}: {source}", path.display())]
     Links {
@@ -54,6 +62,7 @@ impl WriteError {
             WriteError::Directory { path }
             | WriteError::NotRegular { path }
             | WriteError::ReadOnly { path }
+            | WriteError::NoFolder { path, .. }
             | WriteError::Links { path, .. }
             | WriteError::Io { path, .. }
             | WriteError::Cancelled { path } => path,

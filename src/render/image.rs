@@ -2,7 +2,7 @@
 
 use std::fs::File;
 use std::io::{self, BufWriter, Seek, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::DVec3;
@@ -85,20 +85,7 @@ impl Image {
         encoding: Encoding,
         cancel: &AtomicBool,
     ) -> Result<(), ImageError> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        let format = match ext.as_deref() {
-            Some("png") => Format::Png,
-            Some("ppm") => Format::Ppm,
-            Some("exr") => Format::Exr,
-            _ => {
-                return Err(ImageError::UnknownFormat {
-                    path: path.to_path_buf(),
-                })
-            }
-        };
+        let format = Format::of(path)?;
         Ok(write_atomically_with(path, cancel, |out| {
             self.encode_to(format, encoding, out)
         })?)
@@ -174,6 +161,24 @@ pub enum Format {
     Ppm,
     /// OpenEXR, 32-bit float linear intensities, not encoded.
     Exr,
+}
+
+impl Format {
+    /// The format an output's extension names.
+    pub fn of(path: &Path) -> Result<Format, ImageError> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("png") => Ok(Format::Png),
+            Some("ppm") => Ok(Format::Ppm),
+            Some("exr") => Ok(Format::Exr),
+            _ => Err(ImageError::UnknownFormat {
+                path: path.to_path_buf(),
+            }),
+        }
+    }
 }
 
 /// One channel to 8 bits; NaN becomes 0. The sRGB curve is read from a table that gives
@@ -292,30 +297,15 @@ pub fn write_atomically_with(
     write: impl FnOnce(&mut Cancellable<BufWriter<File>>) -> io::Result<()>,
 ) -> Result<(), WriteError> {
     let path_buf = || path.to_path_buf();
-    let target = through_links(path).map_err(|source| WriteError::Links {
-        path: path_buf(),
-        source,
-    })?;
-    let existing = std::fs::metadata(&target).ok();
-    if let Some(meta) = &existing {
-        if meta.is_dir() {
-            return Err(WriteError::Directory { path: path_buf() });
-        }
-        if !meta.is_file() {
-            return Err(WriteError::NotRegular { path: path_buf() });
-        }
-        if meta.permissions().readonly() {
-            return Err(WriteError::ReadOnly { path: path_buf() });
-        }
-    }
+    let Place {
+        target,
+        existing,
+        dir,
+    } = place(path)?;
     let failed = |source| WriteError::Io {
         path: path_buf(),
         source,
     };
-    let dir = target
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
     let mut builder = tempfile::Builder::new();
     builder.prefix(".raytree-").suffix(".tmp");
     // A new file gets the permissions any new file would (0666 less the umask), not the
@@ -325,7 +315,11 @@ pub fn write_atomically_with(
         use std::os::unix::fs::PermissionsExt;
         builder.permissions(std::fs::Permissions::from_mode(0o666));
     }
-    let tmp = builder.tempfile_in(dir).map_err(failed)?;
+    // The system's reason alone: tempfile adds the temporary file's name, which the user never
+    // asked for.
+    let tmp = builder
+        .tempfile_in(&dir)
+        .map_err(|e| failed(e.raw_os_error().map_or(e, io::Error::from_raw_os_error)))?;
     let result = (|| {
         if let Some(meta) = &existing {
             tmp.as_file().set_permissions(meta.permissions())?;
@@ -355,6 +349,59 @@ pub fn write_atomically_with(
     tmp.persist(&target)
         .map(|_| ())
         .map_err(|e| failed(e.error))
+}
+
+/// Where a write to `path` goes, checked as far as it can be before writing.
+struct Place {
+    /// The file written (through the output's symbolic links).
+    target: PathBuf,
+    /// What is there now.
+    existing: Option<std::fs::Metadata>,
+    /// The folder of the target, which holds the temporary file.
+    dir: PathBuf,
+}
+
+/// The refusals of `write_atomically_with` that need no writing: an output that is a folder, a
+/// device or read-only, whose links cannot be followed, or whose folder is not there. A
+/// command checks them before a long render, so as not to find out after it.
+pub fn check_output(path: &Path) -> Result<(), WriteError> {
+    place(path).map(|_| ())
+}
+
+fn place(path: &Path) -> Result<Place, WriteError> {
+    let path_buf = || path.to_path_buf();
+    let target = through_links(path).map_err(|source| WriteError::Links {
+        path: path_buf(),
+        source,
+    })?;
+    let existing = std::fs::metadata(&target).ok();
+    if let Some(meta) = &existing {
+        if meta.is_dir() {
+            return Err(WriteError::Directory { path: path_buf() });
+        }
+        if !meta.is_file() {
+            return Err(WriteError::NotRegular { path: path_buf() });
+        }
+        if meta.permissions().readonly() {
+            return Err(WriteError::ReadOnly { path: path_buf() });
+        }
+    }
+    let dir = target
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+        .to_path_buf();
+    if !dir.is_dir() {
+        return Err(WriteError::NoFolder {
+            path: path_buf(),
+            folder: dir,
+        });
+    }
+    Ok(Place {
+        target,
+        existing,
+        dir,
+    })
 }
 
 /// The file a path names, following symbolic links (also one that points to a file not yet
@@ -481,19 +528,25 @@ mod tests {
             .is_char_device());
     }
 
-    /// A program using the library learns which output failed and why, not only a message.
+    /// A program using the library learns which output failed and why, not only a message;
+    /// a person reads the folder that is missing, and nothing of the temporary file the write
+    /// would have gone through (neither its name nor a file left behind).
     #[test]
     fn a_failed_save_names_the_output_and_its_cause() {
-        let missing = scratch("missing", "")
-            .join("no-such-folder")
-            .join("out.png");
-        match Image::new(1, 1).save(&missing, Encoding::Srgb) {
-            Err(ImageError::Write(WriteError::Io { path, source })) => {
-                assert_eq!(path, missing);
-                assert_eq!(source.kind(), io::ErrorKind::NotFound);
-            }
-            other => panic!("{other:?}"),
-        }
+        let folder = scratch("missing", "").join("no-such-folder");
+        let missing = folder.join("out.png");
+        let e = Image::new(1, 1).save(&missing, Encoding::Srgb).unwrap_err();
+        let ImageError::Write(WriteError::NoFolder { path, folder: f }) = &e else {
+            panic!("{e:?}")
+        };
+        assert_eq!((path, f), (&missing, &folder));
+        let message = format!(
+            "{}: cannot write: there is no folder {}",
+            missing.display(),
+            folder.display()
+        );
+        assert_eq!(e.to_string(), message);
+        assert!(!folder.exists());
         let odd = scratch("missing", "out.jpg");
         match Image::new(1, 1).save(&odd, Encoding::Srgb) {
             Err(e @ ImageError::UnknownFormat { .. }) => {
