@@ -603,39 +603,24 @@ fn long_output_names_symlinks_and_read_only_outputs() {
     // refused before the render, not after it: here a render of some 12 G samples, which would
     // outlast `run`'s 60 s and fail it as hung.
     let missing = dir.join("not-there");
+    let path = |p: &Path| p.to_str().expect("a UTF-8 temporary path").to_string();
+    let (scene, missing_png) = (path(&scene), path(&missing.join("out.png")));
+    let jpg = path(&dir.join("out.jpg"));
+    let big = ["--width", "2000", "--height", "1500", "--spp", "4096"];
     for (out, says) in [
-        (missing.join("out.png"), "there is no folder"),
-        (dir.join("out.jpg"), "must end in .png, .ppm or .exr"),
+        (&missing_png, "there is no folder"),
+        (&jpg, "must end in .png, .ppm or .exr"),
     ] {
-        let r = run(&[
-            OsStr::new("render"),
-            scene.as_os_str(),
-            OsStr::new("-o"),
-            out.as_os_str(),
-            OsStr::new("--width"),
-            OsStr::new("2000"),
-            OsStr::new("--height"),
-            OsStr::new("1500"),
-            OsStr::new("--spp"),
-            OsStr::new("4096"),
-        ]);
+        let r = run(&[&["render", &scene, "-o", out][..], &big].concat());
         assert_eq!(r.code(), Some(2), "{}", r.stderr);
         assert!(r.stderr.contains(says), "{}", r.stderr);
         assert!(!r.stderr.contains(".raytree-"), "{}", r.stderr);
     }
     // So is a sweep's table or plot, written after all its renders.
+    let sweep = path(&missing.join("sweep.svg"));
     for flag in ["--csv", "--plot"] {
-        let out = missing.join("sweep.svg");
         let r = run(&[
-            OsStr::new("bench"),
-            OsStr::new("sweep"),
-            scene.as_os_str(),
-            OsStr::new("--knob"),
-            OsStr::new("spp"),
-            OsStr::new("--values"),
-            OsStr::new("65536"),
-            OsStr::new(flag),
-            out.as_os_str(),
+            "bench", "sweep", &scene, "--knob", "spp", "--values", "65536", flag, &sweep,
         ]);
         assert_eq!(r.code(), Some(2), "{flag}: {}", r.stderr);
         assert!(r.stderr.contains("there is no folder"), "{}", r.stderr);

@@ -242,8 +242,8 @@ fn destination(a: &Args) -> Result<Destination, Failure> {
             ));
         }
         // Before the render, not after it: a wrong name or a missing folder is found at once.
-        ImageFormat::of(&a.output).map_err(|e| Failure(e.to_string()))?;
-        crate::render::check_output(&a.output).map_err(|e| Failure(e.to_string()))?;
+        ImageFormat::of(&a.output)?;
+        crate::render::check_output(&a.output)?;
         return Ok(Destination::File);
     }
     if a.stats && a.format == Format::Json {
