@@ -373,6 +373,56 @@ fn preview_and_lessons_list() {
     assert!(text.contains("08-pixel-intensity") && text.contains("pixel-p"));
 }
 
+/// `--sample K` on a path-traced pixel shows sample K's path: the sixteen samples of lesson
+/// 15's pixel, asked for one by one, are sixteen paths whose mean is the pixel's estimate (a
+/// box filter), the first four those shown without `--sample`; a K beyond the samples is
+/// refused as it is on a Whitted scene.
+#[test]
+fn a_path_traced_pixel_shows_the_sample_asked_for() {
+    let json = |extra: &[&str]| -> serde_json::Value {
+        let args = ["inspect", "lessons/15-path-tracing", "--pixel", "10,10"];
+        let o = raytree(&[&args[..], extra, &["--format", "json"]].concat());
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_str(&stdout(&o)).unwrap()
+    };
+    let rgb = |x: &serde_json::Value| -> [f64; 3] {
+        std::array::from_fn(|i| x[i].as_f64().expect("a number"))
+    };
+    let all = json(&[]);
+    assert_eq!(all["samples"], 16);
+    let mut sum = [0.0; 3];
+    for k in 1..=16 {
+        let one = json(&["--sample", &k.to_string()]);
+        let paths = one["paths"].as_array().unwrap();
+        assert_eq!(paths.len(), 1, "{one}");
+        assert_eq!(paths[0]["sample"], k);
+        if k <= 4 {
+            assert_eq!(paths[0], all["paths"][k - 1], "sample {k}");
+        }
+        let value = rgb(&paths[0]["value"]);
+        (0..3).for_each(|c| sum[c] += value[c] / 16.0);
+    }
+    let estimate = rgb(&all["color"]);
+    assert!(
+        (0..3).all(|c| (sum[c] - estimate[c]).abs() < 1e-9),
+        "mean of the samples {sum:?}, estimate {estimate:?}"
+    );
+    let o = raytree(&[
+        "inspect",
+        "15-path-tracing",
+        "--pixel",
+        "10,10",
+        "--sample",
+        "17",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("--sample must be between 1 and 16"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 /// A path that leaves lesson 15's box meets no surface: its last vertex says where it left
 /// from (its last bounce, or the eye) and in which direction, and that direction goes out through the
 /// box's open front (z = 1, |x| and |y| at most 1), the only way out. Text and JSON agree.

@@ -575,3 +575,35 @@ fn the_lessons_figures_are_what_raytree_draws() {
         );
     }
 }
+
+/// The title's I is the tree's, the centre ray's: the pixel's value only where the pixel is
+/// that one ray. Lesson 08's pixel p (one sample) is the lecture's 0.870161; lesson 13's
+/// pixels average a grid of samples, and lesson 15's are path traced, and their titles say
+/// that the figure shows the centre ray.
+#[test]
+fn the_title_says_when_the_centre_ray_is_not_the_pixels_value() {
+    let title = |svg: &str| {
+        let (_, text) = texts(svg).next().expect("a title");
+        text
+    };
+    let t08 = title(&figure_svg(L08, "30,30", "title-08.svg"));
+    assert!(t08.contains("pixel (30, 30) · I = 0.870161"), "{t08}");
+    let t13 = title(&figure_svg(
+        "lessons/13-antialiasing",
+        "1,1",
+        "title-13.svg",
+    ));
+    assert!(
+        t13.contains("pixel (1, 1): its centre ray, not the pixel's antialiased value"),
+        "{t13}"
+    );
+    let t15 = title(&figure_svg(
+        "lessons/15-path-tracing",
+        "10,10",
+        "title-15.svg",
+    ));
+    assert!(
+        t15.contains("the Whitted reading of its centre ray, not the path-traced estimate"),
+        "{t15}"
+    );
+}

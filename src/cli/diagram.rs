@@ -5,11 +5,13 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use super::args::{depth, SceneArgs, Target};
+use super::inspect::centre_ray_is_the_pixel;
 use super::Failure;
 use crate::diagram::figure::Figure;
 use crate::diagram::{raster, Drawing, ViewChoice};
-use crate::render::write_atomically;
+use crate::render::{write_atomically, RenderOptions};
 use crate::sampling::Rng;
+use crate::scene::Integrator;
 use crate::trace::{text, Tracer};
 
 #[derive(clap::Args, Debug)]
@@ -82,7 +84,14 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         .map(|s| s.to_string_lossy().into_owned())
         .collect::<Vec<_>>()
         .join("/");
+    let options = RenderOptions::of(&scene);
     let at = match pixel {
+        Some((x, y)) if scene.integrator == Integrator::Path => format!(
+            "pixel ({x}, {y}): the Whitted reading of its centre ray, not the path-traced estimate"
+        ),
+        Some((x, y)) if !centre_ray_is_the_pixel(&options, scene.filter) => {
+            format!("pixel ({x}, {y}): its centre ray, not the pixel's antialiased value")
+        }
         Some((x, y)) => format!("pixel ({x}, {y})"),
         None => format!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir)),
     };

@@ -36,7 +36,8 @@ pub struct Args {
     /// Seed of the random numbers, as for `render` (jittered samples, glossy rays, paths).
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Show the tree of the pixel's K-th sample (1 … spp) instead of its centre ray.
+    /// Show the tree of the pixel's K-th sample (1 … spp) instead of its centre ray (on a
+    /// path-traced scene: sample K's path instead of the first four).
     #[arg(long, value_name = "K", requires = "pixel")]
     sample: Option<u32>,
     /// Output: text to read, JSON for programs, or Graphviz (dot).
@@ -58,7 +59,7 @@ pub enum Format {
 
 /// A path-traced pixel: its estimate over the scene's samples, and the first few paths.
 fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
-    const SHOWN: usize = 4;
+    const SHOWN: u32 = 4;
     let [x, y] = a
         .target
         .pixel
@@ -75,7 +76,12 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
     let film = Film::new(scene, options);
     let estimate = film.lone_pixel(&mut film.tracer(), x, y);
     let spp = options.spp.max(1);
-    let shown = film.replay_paths(x, y, SHOWN);
+    let which = match a.sample {
+        Some(k) if (1..=spp).contains(&k) => k - 1..k,
+        Some(k) => return Err(sample_out_of_range(k, spp)),
+        None => 0..SHOWN,
+    };
+    let shown = film.replay_paths(x, y, which.clone());
     if a.format == Format::Dot {
         return Err(Failure(
             "--format dot draws a Whitted ray tree; a path-traced pixel has sampled paths (use text or json)".into(),
@@ -89,7 +95,7 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
                 "samples": spp,
                 "seed": options.seed,
                 "color": estimate.to_array(),
-                "paths": shown.iter().map(|(v, log)| serde_json::json!({ "value": v.to_array(), "vertices": log })).collect::<Vec<_>>(),
+                "paths": which.zip(&shown).map(|(i, (v, log))| serde_json::json!({ "sample": i + 1, "value": v.to_array(), "vertices": log })).collect::<Vec<_>>(),
             });
             super::output::print_json(doc)?;
         }
@@ -98,8 +104,8 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
                 "pixel ({x}, {y}), path traced: estimate {} from {spp} samples\n",
                 text::color(estimate)
             );
-            for (k, (value, log)) in shown.iter().enumerate() {
-                out += &format!("sample {}: {}\n", k + 1, text::color(*value));
+            for (i, (value, log)) in which.zip(&shown) {
+                out += &format!("sample {}: {}\n", i + 1, text::color(*value));
                 for v in log {
                     // A path that leaves the scene meets no point: it goes off in a direction.
                     let place = match v.toward {
@@ -140,9 +146,7 @@ impl Rendered {
     /// A pixel whose one sample is its centre ray, through a box: the tree's value is the
     /// pixel's, and nothing more needs saying.
     fn is_centre_ray(&self) -> bool {
-        self.options.spp <= 1
-            && self.options.antialias == Antialias::Grid
-            && self.filter == Filter::Box
+        centre_ray_is_the_pixel(&self.options, self.filter)
     }
 
     fn describe(&self) -> String {
@@ -158,6 +162,18 @@ impl Rendered {
             self.options.seed
         )
     }
+}
+
+/// Whether a Whitted scene renders each pixel as its one centre ray through a box filter, so
+/// that the tree of that ray gives the pixel's value.
+pub(super) fn centre_ray_is_the_pixel(options: &RenderOptions, filter: Filter) -> bool {
+    options.spp <= 1 && options.antialias == Antialias::Grid && filter == Filter::Box
+}
+
+fn sample_out_of_range(k: u32, spp: u32) -> Failure {
+    Failure(format!(
+        "--sample must be between 1 and {spp} (the pixel's samples), got {k}"
+    ))
 }
 
 /// The ray of pixel (x, y) the tree follows, and the random numbers it starts with: those the
@@ -181,9 +197,7 @@ fn pixel_ray(
         ));
     }
     if !(1..=spp).contains(&k) {
-        return Err(Failure(format!(
-            "--sample must be between 1 and {spp} (the pixel's samples), got {k}"
-        )));
+        return Err(sample_out_of_range(k, spp));
     }
     let offsets = grid_offsets(spp);
     let cell = cell(offsets.len());

@@ -261,6 +261,14 @@ impl Figure<'_> {
         )
     }
 
+    /// The title's font size: 16 px, or smaller where a long title would run off the figure
+    /// (a bold sans-serif character is about 0.64 of its size wide).
+    fn title_size(&self) -> f64 {
+        let room = self.width as f64 - 24.0;
+        let wide = 0.64 * self.title.chars().count() as f64;
+        (room / wide).clamp(8.0, 16.0)
+    }
+
     /// Where a world point is drawn in the figure, in pixels.
     pub fn pixel_of(&self, p: DVec3) -> DVec2 {
         self.scene_panel().px(self.drawing.at(p))
@@ -294,7 +302,10 @@ impl Figure<'_> {
                     ),
                 ),
             )
-            .add(text(DVec2::new(12.0, 26.0), &self.title, 16.0, INK).set("font-weight", "bold"))
+            .add(
+                text(DVec2::new(12.0, 26.0), &self.title, self.title_size(), INK)
+                    .set("font-weight", "bold"),
+            )
             .add(
                 Rectangle::new()
                     .set("x", scene_origin.x)

@@ -188,15 +188,16 @@ impl<'s> Film<'s> {
         self.sample(t, i as f64, j as f64, point)
     }
 
-    /// The first `n` samples of pixel (x, y) of a path-traced film, traced again with the
-    /// random numbers the film gives them, each with its path's vertices: the paths that went
-    /// into the pixel (none when the film traces no paths).
-    pub fn replay_paths(&self, x: u32, y: u32, n: usize) -> Vec<(DVec3, Vec<PathVertex>)> {
+    /// The samples numbered `which` (from 0; those beyond the pixel's samples left out) of
+    /// pixel (x, y) of a path-traced film, traced again with the random numbers the film gives
+    /// them, each with its path's vertices: the paths that went into the pixel (none when the
+    /// film traces no paths).
+    pub fn replay_paths(&self, x: u32, y: u32, which: Range<u32>) -> Vec<(DVec3, Vec<PathVertex>)> {
         let Some(pt) = &self.path else {
             return vec![];
         };
         let mut paths = vec![];
-        for i in 0..n.min(self.offsets.len()) as u32 {
+        for i in which.start..which.end.min(self.offsets.len() as u32) {
             let point = self.sample_point(x, y, i);
             let [u, v] = point.pair(0);
             let ray = self.camera.ray(x as f64 + u, y as f64 + v);

@@ -61,7 +61,7 @@ pub struct Paths {
 }
 
 /// Sampled paths shown above a path-traced pixel's tree.
-pub const PATHS_SHOWN: usize = 3;
+pub const PATHS_SHOWN: u32 = 3;
 
 impl Default for RayTree {
     fn default() -> RayTree {
@@ -499,7 +499,7 @@ fn sampled_paths(scene: &Scene, depth: u32, x: u32, y: u32) -> Paths {
     let estimate = film.lone_pixel(&mut film.tracer(), x, y);
     let spp = options.spp.max(1);
     let shown = film
-        .replay_paths(x, y, PATHS_SHOWN)
+        .replay_paths(x, y, 0..PATHS_SHOWN)
         .into_iter()
         .map(|(value, log)| {
             // Each vertex as the surface met (the light named as such), or what ended the path.
