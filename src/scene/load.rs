@@ -216,7 +216,7 @@ fn from_yaml_sized<T: serde::de::DeserializeOwned>(
 ) -> Result<T, SceneError> {
     serde_saphyr::from_str_with_options(text, parse_options(file_len)).map_err(|e| {
         let mut pos = e.location().map_or(error::Pos::default(), |l| error::Pos::of(&l));
-        let mut message = parser_message(&e);
+        let mut message = invalid_scalar(&e, text, pos).unwrap_or_else(|| parser_message(&e));
         // The parser points at the node after a tag: point at the tag itself.
         if let Some(tag) = tag_of(&e) {
             if let Some(line) = text.lines().nth(pos.line.saturating_sub(1) as usize) {
@@ -245,6 +245,58 @@ fn from_yaml_sized<T: serde::de::DeserializeOwned>(
             }
         }
         SceneError::new(file, pos, message)
+    })
+}
+
+/// A value of the wrong kind (`width: 20.5`, `spp: four`, `max_depth: 99999999999999999999`),
+/// said with the key and the value as written: the parser knows only the type it wanted.
+fn invalid_scalar(e: &serde_saphyr::Error, text: &str, pos: error::Pos) -> Option<String> {
+    use serde_saphyr::Error as E;
+    let ty = match e {
+        E::WithSnippet { error, .. } => return invalid_scalar(error, text, pos),
+        E::InvalidScalar { ty, .. } => *ty,
+        _ => return None,
+    };
+    let line = text.lines().nth(pos.line.checked_sub(1)? as usize)?;
+    let at = line
+        .char_indices()
+        .nth(pos.column.checked_sub(1)? as usize)
+        .map_or(line.len(), |(i, _)| i);
+    let (before, after) = line.split_at(at);
+    let value = after
+        .split([',', '}', ']', '#'])
+        .next()
+        .unwrap_or("")
+        .trim()
+        .trim_matches(['"', '\''])
+        .to_string();
+    // The key the value belongs to, when it follows the key directly.
+    let key = before
+        .trim_end()
+        .strip_suffix(':')
+        .map(|k| {
+            k.trim_end()
+                .rsplit([' ', '{', ',', '-'])
+                .next()
+                .unwrap_or("")
+        })
+        .filter(|k| !k.is_empty());
+    let whole = ty.starts_with('i') || ty.starts_with('u');
+    let digits = value.trim_start_matches(['-', '+']);
+    let wanted = if whole && !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+        "a whole number of a usable size"
+    } else if whole {
+        "a whole number"
+    } else if ty == "bool" {
+        "true or false"
+    } else if value.parse::<f64>().is_ok() {
+        "a number within floating point's range"
+    } else {
+        "a number"
+    };
+    Some(match key {
+        Some(k) => format!("`{k}` must be {wanted}, got `{value}`"),
+        None => format!("expected {wanted} here, got `{value}`"),
     })
 }
 
