@@ -269,3 +269,32 @@ fn away_from_the_sources_a_lesson_is_named_for_homework_grading_and_validation()
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(stdout(&o).starts_with("ok: 1 lesson,"), "{}", stdout(&o));
 }
+
+/// The examples every command's `--help` shows name scenes as `lessons/…` paths, as a user
+/// reads them in the sources; away from the sources they name the built-in lessons' files.
+#[test]
+fn away_from_the_sources_the_help_examples_find_their_scenes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut ran = 0;
+    for command in ["render", "inspect", "csg", "diagram", "preview"] {
+        let help = stdout(&raytree_in(tmp.path(), &[command, "--help"]));
+        let examples = help
+            .lines()
+            .map(str::trim)
+            .filter(|l| l.starts_with(&format!("raytree {command} lessons/")))
+            // A pipe's other side is not raytree's.
+            .map(|l| l.split(" | ").next().unwrap())
+            .map(|l| l.split_whitespace().skip(1).collect::<Vec<_>>());
+        for args in examples {
+            let args: Vec<&str> = args.iter().map(|a| a.trim_matches('"')).collect();
+            let o = raytree_in(tmp.path(), &args);
+            assert!(
+                o.status.success(),
+                "{args:?}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+            ran += 1;
+        }
+    }
+    assert!(ran >= 10, "only {ran} examples found");
+}

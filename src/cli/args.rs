@@ -128,13 +128,18 @@ pub fn scene_path(arg: &str) -> Result<PathBuf, String> {
     })
 }
 
-/// The scene.yaml of the lesson named `path` where no file or folder `path` exists (the
-/// lessons folder is known only once the command line is read: `--lessons`), else `path`.
+/// Where no file or folder `path` exists, the lessons' file it names (`08-pixel-intensity/
+/// scene.yaml`, `lessons/examples/cornell.yaml`) or the scene.yaml of the lesson it names (the
+/// lessons folder is known only once the command line is read: `--lessons`); else `path`.
 pub fn named_lesson_scene(path: &Path) -> PathBuf {
     if path.exists() {
         return path.to_path_buf();
     }
-    let scene = crate::lessons::find_lesson(path).join("scene.yaml");
+    let found = crate::lessons::find_lesson(path);
+    if found.is_file() {
+        return found;
+    }
+    let scene = found.join("scene.yaml");
     if scene.is_file() {
         scene
     } else {
