@@ -510,3 +510,60 @@ fn hidden_solutions_are_not_explained() {
     let o = raytree(&["check", d, "--exercise", "mirror-local", "--answer", "0.23"]);
     assert!(o.status.success());
 }
+
+/// The rows a new user got wrong: a missing answer field, a quote never closed, an answer with
+/// unquoted commas. Each is named under "rows not graded" with its line and why, and none is
+/// graded; the row after the open quote still is.
+#[test]
+fn rows_that_do_not_read_are_not_graded() {
+    let dir = scratch("malformed");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("c.csv");
+    std::fs::write(
+        &file,
+        "s1,pixel-p\ns5,pixel-p,\"0.87\ns6,pixel-p,0.6,0.8\ns7,pixel-p,0.87\n",
+    )
+    .unwrap();
+    let f = file.to_str().unwrap();
+    let o = raytree(&[
+        "grade",
+        "08-pixel-intensity",
+        "--answers",
+        f,
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", err(&o));
+    let report: Value = serde_json::from_str(&out(&o)).unwrap();
+    let students: Vec<&str> = report["students"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["student"].as_str().unwrap())
+        .collect();
+    assert_eq!(students, ["s7"]);
+    let problems: Vec<(u64, &str)> = report["problems"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p["line"].as_u64().unwrap(), p["message"].as_str().unwrap()))
+        .collect();
+    assert_eq!(problems.len(), 3, "{problems:?}");
+    let why: Vec<u64> = problems.iter().map(|(l, _)| *l).collect();
+    assert_eq!(why, [1, 2, 3]);
+    assert!(problems[0].1.contains("2 fields"), "{problems:?}");
+    assert!(problems[1].1.contains("never closed"), "{problems:?}");
+    assert!(problems[2].1.contains("4 fields"), "{problems:?}");
+
+    let text = out(&raytree(&["grade", "08-pixel-intensity", "--answers", f]));
+    let (_, not_graded) = text.split_once("rows not graded:").expect(&text);
+    for line in 1..=3 {
+        assert!(not_graded.contains(&format!("c.csv:{line}: ")), "{text}");
+    }
+    for student in ["s1", "s5", "s6"] {
+        assert!(
+            !text.lines().any(|l| l.starts_with(student)),
+            "{student} graded: {text}"
+        );
+    }
+}

@@ -22,15 +22,14 @@ pub struct Row {
     pub student: String,
     /// The exercise's id.
     pub exercise: String,
-    /// The answer as written; the fields after the third are joined back with ", ".
+    /// The answer as written, without its quotes.
     pub answer: String,
 }
 
 /// A row not graded, and why.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Problem {
-    /// The row's line in the file (1 is the first; 0 when a row that does not read has no
-    /// known line).
+    /// The row's line in the file (1 is the first).
     pub line: u64,
     /// What is wrong with the row, in words.
     pub message: String,
@@ -77,64 +76,115 @@ pub struct Report {
     pub problems: Vec<Problem>,
 }
 
-/// The rows of an answers file, and the lines that are not rows. A first line
-/// `student,exercise,answer` is a header; an answer with commas (a vector written without
-/// quotes) keeps its parts.
+/// The rows of an answers file, and the lines that are not rows. A row is one line of three
+/// fields, `student,exercise,answer`; an answer with commas is quoted (`"0.6, -0.8, 0"`). A
+/// first line `student,exercise,answer` is a header. A line with fewer or more fields, or with a
+/// quote left open, is a problem: guessing what it meant could grade an answer the student did
+/// not give.
 pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
     let mut rows = Vec::new();
     let mut problems = Vec::new();
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    for (k, record) in reader.records().enumerate() {
-        let record = match record {
-            Ok(r) => r,
-            Err(e) => {
-                let line = e.position().map_or(0, |p| p.line());
-                problems.push(Problem {
-                    line,
-                    message: format!("not a CSV row: {e}"),
-                });
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let mut first = true;
+    // Line by line, so that a quote left open costs its own row and not every row after it.
+    for (k, raw) in text.lines().enumerate() {
+        let line = k as u64 + 1;
+        let fields = match split_row(raw) {
+            Ok(fields) => fields,
+            Err(message) => {
+                problems.push(Problem { line, message });
+                first = false;
                 continue;
             }
         };
-        let line = record.position().map_or(k as u64 + 1, |p| p.line());
-        let fields: Vec<&str> = record.iter().collect();
+        // Spreadsheets write empty rows as `,,`.
         if fields.iter().all(|f| f.is_empty()) {
             continue;
         }
-        let header = fields.len() == 3
-            && fields[0].eq_ignore_ascii_case("student")
-            && fields[1].eq_ignore_ascii_case("exercise")
-            && fields[2].eq_ignore_ascii_case("answer");
+        let header = std::mem::replace(&mut first, false)
+            && fields.len() == 3
+            && ["student", "exercise", "answer"]
+                .iter()
+                .zip(&fields)
+                .all(|(name, f)| f.eq_ignore_ascii_case(name));
         if header {
             continue;
         }
-        match fields.as_slice() {
-            [student, exercise, answer @ ..] if !student.is_empty() && !exercise.is_empty() => rows
+        match <[String; 3]>::try_from(fields) {
+            Ok([student, exercise, answer]) if !student.is_empty() && !exercise.is_empty() => rows
                 .push(Row {
                     line,
-                    student: student.to_string(),
-                    exercise: exercise.to_string(),
-                    answer: answer.join(", "),
+                    student,
+                    exercise,
+                    answer,
                 }),
-            [_, _, ..] => problems.push(Problem {
+            Ok(_) => problems.push(Problem {
                 line,
                 message: "the student or the exercise is empty".into(),
             }),
-            _ => problems.push(Problem {
+            Err(fields) => problems.push(Problem {
                 line,
                 message: format!(
-                    "expected student,exercise,answer; got {} field{}",
+                    "{} field{}, expected 3: student,exercise,answer{}",
                     fields.len(),
-                    if fields.len() == 1 { "" } else { "s" }
+                    if fields.len() == 1 { "" } else { "s" },
+                    if fields.len() > 3 {
+                        " (quote an answer with commas: \"0.6, -0.8, 0\")"
+                    } else {
+                        ""
+                    }
                 ),
             }),
         }
     }
     (rows, problems)
+}
+
+/// The fields of one line of CSV, each trimmed: separated by commas; a field in double quotes
+/// may hold commas, and `""` in it stands for one quote.
+fn split_row(line: &str) -> Result<Vec<String>, String> {
+    let mut fields = Vec::new();
+    let mut rest = line;
+    loop {
+        let field = rest.trim_start();
+        let Some(quoted) = field.strip_prefix('"') else {
+            match field.split_once(',') {
+                Some((value, next)) => {
+                    fields.push(value.trim().to_string());
+                    rest = next;
+                    continue;
+                }
+                None => {
+                    fields.push(field.trim().to_string());
+                    return Ok(fields);
+                }
+            }
+        };
+        let column = line[..line.len() - field.len()].chars().count() + 1;
+        let mut value = String::new();
+        let mut chars = quoted.char_indices().peekable();
+        let after = loop {
+            match chars.next() {
+                Some((_, '"')) if chars.peek().is_some_and(|&(_, c)| c == '"') => {
+                    chars.next();
+                    value.push('"');
+                }
+                Some((i, '"')) => break quoted[i + 1..].trim_start(),
+                Some((_, c)) => value.push(c),
+                None => return Err(format!("the quote at column {column} is never closed")),
+            }
+        };
+        fields.push(value.trim().to_string());
+        match after.strip_prefix(',') {
+            Some(next) => rest = next,
+            None if after.is_empty() => return Ok(fields),
+            None => {
+                return Err(format!(
+                    "text after the quoted field at column {column}: a comma should follow its closing quote"
+                ))
+            }
+        }
+    }
 }
 
 /// Grades every student's rows: students in the order they first appear, every exercise of
@@ -288,5 +338,83 @@ impl Report {
                 (g.exercise.clone(), right, self.students.len())
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lines(problems: &[Problem]) -> Vec<u64> {
+        problems.iter().map(|p| p.line).collect()
+    }
+
+    #[test]
+    fn a_row_of_three_fields_is_read_and_a_quoted_answer_keeps_its_commas() {
+        let (rows, problems) = read_answers(
+            "student,exercise,answer\ns1,pixel-p, 0.87\n\ns2,dir,\" 0.6, -0.8, 0 \"\n",
+        );
+        assert_eq!(problems, vec![]);
+        let read: Vec<_> = rows
+            .iter()
+            .map(|r| {
+                (
+                    r.line,
+                    r.student.as_str(),
+                    r.exercise.as_str(),
+                    r.answer.as_str(),
+                )
+            })
+            .collect();
+        assert_eq!(
+            read,
+            vec![
+                (2, "s1", "pixel-p", "0.87"),
+                (4, "s2", "dir", "0.6, -0.8, 0")
+            ]
+        );
+    }
+
+    #[test]
+    fn a_row_missing_a_field_is_reported_not_graded_as_unanswered() {
+        let (rows, problems) = read_answers("s1,pixel-p\ns2,pixel-p,0.87\n");
+        assert_eq!(rows.len(), 1);
+        assert_eq!(lines(&problems), vec![1]);
+        assert!(problems[0].message.contains("2 fields"), "{problems:?}");
+    }
+
+    #[test]
+    fn a_row_with_too_many_fields_is_reported() {
+        let (rows, problems) = read_answers("s1,dir,0.6,-0.8,0\n");
+        assert_eq!(rows, vec![]);
+        assert_eq!(lines(&problems), vec![1]);
+        assert!(problems[0].message.contains("5 fields"), "{problems:?}");
+        assert!(problems[0].message.contains("quote"), "{problems:?}");
+    }
+
+    #[test]
+    fn a_quote_left_open_is_reported_and_the_next_rows_are_read() {
+        let (rows, problems) = read_answers("s5,pixel-p,\"0.87\ns6,pixel-p,0.87\n");
+        assert_eq!(lines(&problems), vec![1]);
+        assert!(problems[0].message.contains("never closed"), "{problems:?}");
+        assert_eq!(rows.len(), 1);
+        assert_eq!((rows[0].line, rows[0].student.as_str()), (2, "s6"));
+    }
+
+    #[test]
+    fn text_after_a_closing_quote_is_reported() {
+        let (rows, problems) = read_answers("s1,dir,\"0.6, -0.8\", 0\"\n");
+        assert_eq!(rows, vec![]);
+        assert_eq!(lines(&problems), vec![1]);
+    }
+
+    #[test]
+    fn a_doubled_quote_is_one_quote_and_only_the_first_line_is_a_header() {
+        let (rows, problems) =
+            read_answers("\u{feff}s1,\"a\"\"b\",1\r\nstudent,exercise,answer\r\n");
+        assert_eq!(problems, vec![]);
+        assert_eq!(rows.len(), 2);
+        assert_eq!(rows[0].exercise, "a\"b");
+        assert_eq!(rows[1].student, "student");
     }
 }
