@@ -509,6 +509,43 @@ fn hidden_solutions_are_not_explained() {
     assert!(err(&o).contains("hidden"), "{}", err(&o));
     let o = raytree(&["check", d, "--exercise", "mirror-local", "--answer", "0.23"]);
     assert!(o.status.success());
+    let plain = out(&o);
+
+    // With an answer, --explain checks it as without, then says why no derivation follows.
+    let o = raytree(&[
+        "check",
+        d,
+        "--exercise",
+        "mirror-local",
+        "--answer",
+        "0.23",
+        "--explain",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}{}", out(&o), err(&o));
+    let text = out(&o);
+    assert!(text.starts_with(&plain), "{text}");
+    let last = text.lines().last().unwrap();
+    assert!(last.contains("worked solution is hidden"), "{text}");
+    let o = raytree(&[
+        "check",
+        d,
+        "--exercise",
+        "mirror-local",
+        "--answer",
+        "0.5",
+        "--explain",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    let wrong = out(&raytree(&[
+        "check",
+        d,
+        "--exercise",
+        "mirror-local",
+        "--answer",
+        "0.5",
+    ]));
+    assert!(out(&o).starts_with(&wrong), "{}", out(&o));
+    assert!(out(&o).contains("worked solution is hidden"), "{}", out(&o));
 }
 
 /// The rows a new user got wrong: a missing answer field, a quote never closed, an answer with

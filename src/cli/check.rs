@@ -8,7 +8,7 @@ use serde_json::json;
 use super::args::Format;
 use super::Failure;
 use crate::lessons::progress::Progress;
-use crate::lessons::{check, explain, Lesson};
+use crate::lessons::{check, explain, CheckError, Lesson};
 
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:
@@ -24,7 +24,8 @@ pub struct Args {
     /// Your answer: a number, a vector `x,y,z`, a segment list `a,b; c,d`, `none` or `tir`.
     #[arg(long, allow_hyphen_values = true, required_unless_present = "explain")]
     answer: Option<String>,
-    /// Show the worked derivation, step by step (not for lessons whose solutions are hidden).
+    /// Show the worked derivation, step by step (a lesson whose solutions are hidden only
+    /// checks the answer).
     #[arg(long)]
     explain: bool,
     /// Check against this student's own variant of the lesson (see `raytree homework`).
@@ -45,8 +46,18 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         Some(answer) => Some(check(&lesson, ex, answer)?),
         None => None,
     };
+    // A lesson that hides its solutions still checks an answer given with --explain, and says
+    // that no derivation follows; --explain alone is refused.
+    let mut hidden = false;
     let explanation = if a.explain {
-        Some(explain(&lesson, ex)?)
+        match explain(&lesson, ex) {
+            Ok(lines) => Some(lines),
+            Err(CheckError::Hidden { .. }) if verdict.is_some() => {
+                hidden = true;
+                None
+            }
+            Err(e) => return Err(e.into()),
+        }
     } else {
         None
     };
@@ -77,6 +88,9 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             if let Some(lines) = &explanation {
                 doc["explanation"] = json!(lines);
             }
+            if hidden {
+                doc["explanation_hidden"] = json!(true);
+            }
             super::output::print_json(doc)?;
         }
         Format::Text => {
@@ -88,6 +102,12 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 for line in lines {
                     super::output::println(&line.to_string())?;
                 }
+            }
+            if hidden {
+                super::output::println(&format!(
+                    "the worked solution is hidden for lesson {} (solutions: hidden)",
+                    lesson.id
+                ))?;
             }
         }
     }
