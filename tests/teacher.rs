@@ -604,3 +604,44 @@ fn rows_that_do_not_read_are_not_graded() {
         );
     }
 }
+
+/// A lesson whose exercises.yaml does not read is named once by file:line:column, and the
+/// summary says that it could not be read, not that it disagrees.
+#[test]
+fn a_lesson_that_does_not_read_is_reported_as_such() {
+    let root = scratch("unreadable");
+    for name in ["01-camera", "02-broken"] {
+        let dir = root.join(name);
+        std::fs::create_dir_all(&dir).unwrap();
+        for f in std::fs::read_dir("lessons/01-camera").unwrap() {
+            let f = f.unwrap();
+            std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+        }
+    }
+    let broken = root.join("02-broken/exercises.yaml");
+    let text = std::fs::read_to_string(&broken).unwrap();
+    let at = text.find("ask: window_point").unwrap();
+    let line = text[..at].matches('\n').count() + 1;
+    let column = at - text[..at].rfind('\n').unwrap() + "ask: ".len();
+    std::fs::write(
+        &broken,
+        text.replacen("ask: window_point", "ask: colour", 1),
+    )
+    .unwrap();
+
+    let o = raytree(&["lessons", "validate", root.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", out(&o));
+    let report = out(&o);
+    let problems: Vec<&str> = report.lines().filter(|l| l.starts_with('✗')).collect();
+    assert_eq!(problems.len(), 1, "{report}");
+    let location = format!("02-broken/exercises.yaml:{line}:{column}: ");
+    assert!(problems[0].contains(&location), "{report}");
+    assert!(problems[0].contains("colour"), "{report}");
+    assert!(!problems[0].contains("column"), "{report}");
+    let summary = report.lines().last().unwrap();
+    assert!(
+        summary.starts_with("1 lesson could not be read; 1 lesson checked"),
+        "{report}"
+    );
+    assert!(!summary.contains("disagreement"), "{report}");
+}

@@ -204,26 +204,49 @@ fn run_validate(dir: &Path) -> Result<ExitCode, Failure> {
     for p in &v.problems {
         super::output::println(&format!("✗ {p}"))?;
     }
-    let summary = format!(
-        "{} lesson{}, {} exercise{}, {} README answer{} compared",
-        v.lessons,
-        if v.lessons == 1 { "" } else { "s" },
+    let checked = format!(
+        "{} exercise{}, {} README answer{} compared",
         v.exercises,
-        if v.exercises == 1 { "" } else { "s" },
+        plural(v.exercises),
         v.answers,
-        if v.answers == 1 { "" } else { "s" }
+        plural(v.answers)
     );
     if v.problems.is_empty() {
         super::output::println(&format!(
-            "ok: {summary}; every exercise computable, every answer equal to raytree's"
+            "ok: {} lesson{}, {checked}; every exercise computable, every answer equal to raytree's",
+            v.lessons,
+            plural(v.lessons)
         ))?;
-        Ok(ExitCode::SUCCESS)
+        return Ok(ExitCode::SUCCESS);
+    }
+    let mut found = vec![];
+    if v.unreadable > 0 {
+        found.push(format!(
+            "{} lesson{} could not be read",
+            v.unreadable,
+            plural(v.unreadable)
+        ));
+    }
+    if v.disagreements() > 0 {
+        found.push(format!(
+            "{} disagreement{}",
+            v.disagreements(),
+            plural(v.disagreements())
+        ));
+    }
+    super::output::println(&format!(
+        "{}; {} lesson{} checked: {checked}",
+        found.join(", "),
+        v.lessons,
+        plural(v.lessons)
+    ))?;
+    Ok(ExitCode::from(1))
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
     } else {
-        super::output::println(&format!(
-            "{} disagreement{} in {summary}",
-            v.problems.len(),
-            if v.problems.len() == 1 { "" } else { "s" }
-        ))?;
-        Ok(ExitCode::from(1))
+        "s"
     }
 }

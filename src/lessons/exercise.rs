@@ -203,13 +203,16 @@ impl Lesson {
         let path = dir.join("exercises.yaml");
         let text = std::fs::read_to_string(&path).map_err(|e| LessonError::io(&path, "read", e))?;
         let file: ExerciseFile = serde_saphyr::from_str(&text).map_err(|e| {
+            use serde_saphyr::MessageFormatter;
             let (line, column) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
-            let msg = e.to_string();
+            // The message alone: the error's own text repeats the line and column.
+            let text = serde_saphyr::DefaultMessageFormatter.format_message(&e);
+            let first = text.lines().next().unwrap_or("").trim();
             LessonError::Format {
                 file: path.clone(),
                 line,
                 column,
-                message: msg.lines().next().unwrap_or("").to_string(),
+                message: first.strip_prefix("error: ").unwrap_or(first).to_string(),
             }
         })?;
         let readme = std::fs::read_to_string(dir.join("README.md")).unwrap_or_default();

@@ -17,8 +17,19 @@ pub struct Validation {
     pub exercises: usize,
     /// README answers compared.
     pub answers: usize,
-    /// One line per disagreement, naming the lesson and the exercise.
+    /// Lesson folders whose files could not be read (each is one of the problems).
+    pub unreadable: usize,
+    /// One line per problem: a lesson that could not be read, naming its file, or a
+    /// disagreement, naming the lesson and the exercise.
     pub problems: Vec<String>,
+}
+
+impl Validation {
+    /// The problems found in the lessons that were read: exercises that cannot be worked out
+    /// and README answers that are missing or differ from raytree's.
+    pub fn disagreements(&self) -> usize {
+        self.problems.len() - self.unreadable
+    }
 }
 
 /// Validates a lesson folder, or every lesson folder in a folder.
@@ -36,7 +47,10 @@ pub fn validate(dir: &Path) -> Result<Validation, LessonError> {
     for lesson in lessons {
         match lesson {
             Ok(l) => validate_lesson(&l, &mut v),
-            Err(e) => v.problems.push(e),
+            Err(e) => {
+                v.unreadable += 1;
+                v.problems.push(e);
+            }
         }
     }
     Ok(v)
