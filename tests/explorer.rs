@@ -1555,3 +1555,22 @@ fn the_diagram_names_coinciding_objects_by_the_first() {
         assert!(!words.contains(&name), "{name} in\n{inside}");
     }
 }
+
+/// Below 30 × 8 the explorer draws no panes but says so, the whole message wrapped to the
+/// screen, down to 20 × 6; q still quits.
+#[test]
+fn a_terminal_too_small_is_told_so_in_full() {
+    for (w, h) in [(29, 24), (40, 6), (20, 6)] {
+        let mut app = open(MIRROR, ColorMode::TrueColor, (w, h));
+        let text = screen(&app);
+        let words = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        assert!(
+            words.contains(&format!(
+                "The terminal is {w} × {h}: the explorer needs 30 × 8 at least. Enlarge it, or press q."
+            )),
+            "{w} × {h}:\n{text}"
+        );
+        press(&mut app, KeyCode::Char('q'));
+        assert!(app.quit);
+    }
+}

@@ -16,7 +16,7 @@ use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, BorderType};
+use ratatui::widgets::{Block, BorderType, Paragraph, Wrap};
 use ratatui::{Frame, Terminal};
 
 pub(crate) use super::layout::inner;
@@ -26,12 +26,19 @@ use crate::render::preview::{ansi256, ramp_char, rgb8, ColorMode};
 
 pub use help::KEYS;
 
+/// The smallest terminal (columns, rows) the explorer draws its panes in.
+const MIN_SIZE: (u16, u16) = (30, 8);
+
 /// Draws the whole screen.
 pub fn draw(f: &mut Frame, app: &App) {
     let area = f.area();
-    if area.width < 30 || area.height < 8 {
-        let msg = Line::from("raytree explore: the terminal is too small (30 × 8 at least)");
-        f.buffer_mut().set_line(0, 0, &msg, area.width);
+    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+        // Wrapped, so that the sizes are read on the smallest screen too.
+        let msg = format!(
+            "The terminal is {} × {}: the explorer needs {} × {} at least. Enlarge it, or press q.",
+            area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
+        );
+        f.render_widget(Paragraph::new(msg).wrap(Wrap { trim: true }), area);
         return;
     }
     match app.screen {
