@@ -1232,3 +1232,23 @@ fn on_a_terminal_a_scene_error_shows_its_line_and_a_caret() {
     assert_eq!(lines[1], "  2 | background: [0.4, 0.4");
     assert_eq!(lines[2], "    |             ^");
 }
+
+/// An explicit ray is held to the numbers a scene file may hold (finite, within ±1e100), and
+/// a large coordinate is printed with an exponent, not as hundreds of digits.
+#[test]
+fn an_explicit_ray_takes_the_numbers_a_scene_takes() {
+    for ray in ["-1e200,0,0:1,0,0", "0,0,-5:1e101,0,1", "nan,0,0:0,0,1"] {
+        let o = run(&["inspect", "lessons/08-pixel-intensity", "--ray", ray]);
+        assert_eq!(o.code(), Some(2), "{ray}");
+        assert!(o.stderr.contains("within ±1e100"), "{ray}: {}", o.stderr);
+    }
+    let o = run(&[
+        "inspect",
+        "lessons/08-pixel-intensity",
+        "--ray",
+        "-1e100,3,0:1,0,0",
+    ]);
+    assert_eq!(o.code(), Some(0), "{}", o.stderr);
+    assert!(o.stdout.contains("(-1e100, 3, 0)"), "{}", o.stdout);
+    assert!(o.stdout.lines().all(|l| l.len() < 200), "{}", o.stdout);
+}

@@ -6,6 +6,7 @@ use glam::DVec3;
 
 use super::Failure;
 use crate::geometry::Ray;
+use crate::scene::format::MAX_MAGNITUDE;
 use crate::scene::{Accel, Limits, Scene};
 
 /// `X,Y`
@@ -25,10 +26,12 @@ pub fn parse_pixel(s: &str) -> Result<[u32; 2], String> {
 fn parse_vec3(s: &str) -> Result<DVec3, String> {
     let v: Result<Vec<f64>, _> = s.split(',').map(|p| p.trim().parse::<f64>()).collect();
     match v {
-        Ok(v) if v.len() == 3 && v.iter().all(|x| x.is_finite()) => {
+        Ok(v) if v.len() == 3 && v.iter().all(|x| x.abs() <= MAX_MAGNITUDE) => {
             Ok(DVec3::new(v[0], v[1], v[2]))
         }
-        _ => Err(format!("expected three finite numbers x,y,z, got `{s}`")),
+        _ => Err(format!(
+            "expected three numbers x,y,z within ±{MAX_MAGNITUDE:e} (as in a scene file), got `{s}`"
+        )),
     }
 }
 

@@ -19,6 +19,13 @@ pub fn num(x: f64) -> String {
     if x.is_nan() {
         return "NaN".into();
     }
+    if x.abs() >= 1e15 {
+        // Beyond 10¹⁵ the digits of a fixed-point number run to hundreds (±1e100 is allowed).
+        let s = format!("{x:.6e}");
+        let (mantissa, exponent) = s.split_once('e').expect("`e` formatting has an exponent");
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
+    }
     let s = format!("{x:.6}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {
@@ -442,4 +449,29 @@ pub fn pattern(p: &PatternLookup) -> String {
         None => format!("p = {}", vec3(p.point)),
     };
     format!("{} = {}  ({} at {at})", p.varies, color(p.value), p.pattern)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::num;
+
+    /// Six decimals at most, trailing zeros dropped; beyond 10¹⁵ six significant decimals and
+    /// an exponent, so the largest coordinates a scene allows stay one short number.
+    #[test]
+    fn numbers_are_short_at_every_scale() {
+        let cases = [
+            (0.870161, "0.870161"),
+            (2.5, "2.5"),
+            (-0.0, "0"),
+            (1e-9, "0"),
+            (123456789012345.0, "123456789012345"),
+            (1e15, "1e15"),
+            (-99999999999999997e183, "-1e200"),
+            (1.2345678e100, "1.234568e100"),
+            (f64::INFINITY, "∞"),
+        ];
+        for (x, shown) in cases {
+            assert_eq!(num(x), shown, "{x:e}");
+        }
+    }
 }
