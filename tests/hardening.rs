@@ -1105,6 +1105,35 @@ fn bench_sweep_takes_the_median_of_its_runs() {
     assert!(refused.stderr.contains("--runs"), "{}", refused.stderr);
 }
 
+/// An icosphere has at most 8 subdivisions and the table's mesh rows start at 3 (1 280
+/// triangles): any other `--max-subdivisions` is a usage error before anything is measured,
+/// naming the flag and the levels it takes, not an internal scene's error half a minute on.
+#[test]
+fn bench_scaling_refuses_subdivisions_it_cannot_measure_at_once() {
+    for k in ["9", "2", "0"] {
+        let r = run(&[
+            "bench",
+            "scaling",
+            "--max-spheres",
+            "10",
+            "--max-brute",
+            "10",
+            "--max-subdivisions",
+            k,
+        ]);
+        assert!(r.sane().is_empty(), "{k}: {:?}", r.sane());
+        assert_eq!(r.code(), Some(2), "{k}: {}", r.stderr);
+        assert!(
+            r.stderr.contains("--max-subdivisions") && r.stderr.contains("3..=8"),
+            "{k}: {}",
+            r.stderr
+        );
+        assert!(!r.stderr.contains("mesh:"), "{k}: {}", r.stderr);
+        assert!(r.stdout.is_empty(), "{k}: {}", r.stdout);
+        assert!(r.elapsed < Duration::from_secs(10), "{k}: {:?}", r.elapsed);
+    }
+}
+
 /// On a terminal both streams show: each row of the scaling table must be printed once.
 #[test]
 fn bench_scaling_prints_each_row_once() {

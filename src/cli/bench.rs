@@ -83,8 +83,10 @@ enum Measure {
         /// Largest N to test without the BVH (brute force is O(N) per ray).
         #[arg(long, default_value_t = 100_000)]
         max_brute: usize,
-        /// Largest icosphere subdivision level (20·4^k triangles; 8 is 1.3 million).
-        #[arg(long, default_value_t = 8)]
+        /// Mesh rows are icospheres of 20·4^k triangles at levels k = 3 (1 280 triangles) up
+        /// to K; 8 (1.3 million) is the most an icosphere has.
+        #[arg(long, value_name = "K", default_value_t = 8,
+              value_parser = clap::value_parser!(u32).range(MIN_SUBDIVISIONS as i64..=8))]
         max_subdivisions: u32,
         /// Output: the table to read (a row as each is measured), or JSON at the end.
         #[arg(long, value_enum, default_value_t = Format::Text)]
@@ -132,6 +134,9 @@ enum Measure {
         format: Format,
     },
 }
+
+/// The first mesh row's icosphere level: 1 280 triangles, the ≈10³ the mesh rows start from.
+const MIN_SUBDIVISIONS: u32 = 3;
 
 /// A terminal size, `COLUMNSxROWS`.
 fn parse_size(s: &str) -> Result<(u16, u16), String> {
@@ -387,7 +392,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 for n in sizes.into_iter().filter(|&n| n <= max_spheres.max(10)) {
                     show(measure("spheres", n, &spheres(n), n <= max_brute)?)?;
                 }
-                for k in 3..=max_subdivisions {
+                for k in MIN_SUBDIVISIONS..=max_subdivisions {
                     let n = 20 * 4usize.pow(k);
                     show(measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?)?;
                 }
