@@ -457,6 +457,56 @@ fn images_beyond_the_budget_or_memory_are_refused_at_once() {
     assert!(!Path::new(out).exists());
 }
 
+/// A depth strip keeps its frames and the strip they are joined into: the refusal counts both
+/// and says so, with the strip's own size (the frames, 4-pixel gaps and a label band).
+#[test]
+fn a_depth_strip_over_the_budget_says_what_it_counts() {
+    let out = scratch("strip.png");
+    let out = out.to_str().unwrap();
+    let r = run(&[
+        "render",
+        L08,
+        "-o",
+        out,
+        "--depth-strip",
+        "3",
+        "--width",
+        "4000",
+        "--height",
+        "4000",
+    ]);
+    assert!(r.sane().is_empty(), "{:?}", r.sane());
+    assert_eq!(r.code(), Some(2), "{}", r.stderr);
+    assert_eq!(r.stderr.lines().count(), 1, "{}", r.stderr);
+    // 3 · 4000 · 4000 = 48 000 000 in the frames, 12 008 · 4 022 = 48 296 176 in the strip.
+    for says in [
+        "3 frames of 4000 × 4000",
+        "their 12008 × 4022 strip",
+        "96296176 pixels",
+        "budget of 64000000 pixels",
+    ] {
+        assert!(r.stderr.contains(says), "{says}: {}", r.stderr);
+    }
+    assert!(!Path::new(out).exists());
+    // The strip's size in the message is the size of the strip written.
+    let r = run(&[
+        "render",
+        L08,
+        "-o",
+        out,
+        "--depth-strip",
+        "3",
+        "--width",
+        "100",
+        "--height",
+        "50",
+    ]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let strip = image::open(out).unwrap();
+    assert_eq!((strip.width(), strip.height()), (3 * 100 + 2 * 4, 50 + 22));
+    std::fs::remove_file(out).unwrap();
+}
+
 #[test]
 fn more_threads_than_can_be_started_is_a_clear_error_at_once() {
     let out = scratch("threads.png");

@@ -101,15 +101,33 @@ enum EngineArg {
     Core,
 }
 
+/// White pixels between two frames of a strip.
+const GAP: u32 = 4;
+
+/// The font size of a strip's labels over frames `w` pixels wide.
+fn label_font(w: u32) -> u32 {
+    if w >= 60 {
+        14
+    } else {
+        9
+    }
+}
+
+/// The width and height of a strip of `n` frames of `w` × `h`: the frames, the gaps between
+/// them and the band of labels above.
+fn strip_size(n: u32, w: u32, h: u32) -> (u32, u32) {
+    (n * w + (n - 1) * GAP, h + label_font(w) + 8)
+}
+
 /// The frames side by side, 4 white pixels apart, each under a label "depth k" (frame k is
 /// depth k; just "k" where the frame is too narrow for the word).
 fn strip(frames: &[crate::render::Image]) -> Result<crate::render::Image, Failure> {
-    const GAP: u32 = 4;
     let (w, h) = (frames[0].width, frames[0].height);
     let n = frames.len() as u32;
-    let font = if w >= 60 { 14 } else { 9 };
+    let font = label_font(w);
     let band = font + 8;
-    let mut out = crate::render::Image::new(n * w + (n - 1) * GAP, h + band);
+    let (strip_w, strip_h) = strip_size(n, w, h);
+    let mut out = crate::render::Image::new(strip_w, strip_h);
     out.pixels.iter_mut().for_each(|p| *p = glam::DVec3::ONE);
     for (k, f) in frames.iter().enumerate() {
         let left = k as u32 * (w + GAP);
@@ -163,8 +181,9 @@ fn strip(frames: &[crate::render::Image]) -> Result<crate::render::Image, Failur
     Ok(out)
 }
 
-/// Checks that an image of `pixels` pixels fits the budget and that memory for it can be had
-/// (`bytes_per_pixel` of it at once): a clear error instead of an abort when it cannot.
+/// Checks that images of `pixels` pixels in all fit the budget and that memory for them can be
+/// had (`bytes_per_pixel` of it at once): a clear error instead of an abort when it cannot.
+/// `what` says what holds them, ending in its verb ("a 10 × 10 image holds").
 fn budget_pixels(
     pixels: u64,
     what: &str,
@@ -173,7 +192,7 @@ fn budget_pixels(
 ) -> Result<(), Failure> {
     if pixels > limits.max_pixels {
         return Err(Failure(format!(
-            "{what} of {pixels} pixels exceeds the budget of {} pixels ({})",
+            "{what} {pixels} pixels, over the budget of {} pixels ({})",
             limits.max_pixels,
             crate::scene::Limits::RAISE
         )));
@@ -185,7 +204,7 @@ fn budget_pixels(
         .and_then(|n| probe.try_reserve_exact(n).ok())
         .ok_or_else(|| {
             Failure(format!(
-                "{what} of {pixels} pixels needs {} of memory, more than can be had",
+                "{what} {pixels} pixels, which need {} of memory, more than can be had",
                 crate::files::bytes(bytes)
             ))
         })
@@ -301,13 +320,19 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             )))
         }
     };
+    let frame = w as u64 * h as u64;
     if frames == 1 {
-        budget_pixels(w as u64 * h as u64, "the image", &limits, BYTES_PER_PIXEL)?;
-    } else {
-        let strip = (frames * w as u64 + (frames - 1) * 4) * h as u64;
         budget_pixels(
-            strip + frames * w as u64 * h as u64,
-            &format!("a strip of {frames} images of {w} × {h}"),
+            frame,
+            &format!("an image of {w} × {h} holds"),
+            &limits,
+            BYTES_PER_PIXEL,
+        )?;
+    } else {
+        let (sw, sh) = strip_size(frames as u32, w, h);
+        budget_pixels(
+            frames * frame + sw as u64 * sh as u64,
+            &format!("{frames} frames of {w} × {h} and their {sw} × {sh} strip hold"),
             &limits,
             BYTES_PER_PIXEL,
         )?;
