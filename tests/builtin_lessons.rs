@@ -207,7 +207,7 @@ fn away_from_the_sources_every_command_that_takes_a_scene_takes_a_lessons_name()
         &["diagram", "SCENE", "--pixel", "2,1", "-o", "fig.svg"],
         &["preview", "SCENE", "--ascii"],
         &[
-            "bench", "sweep", "SCENE", "--knob", "depth", "--values", "1,2",
+            "bench", "sweep", "SCENE", "--knob", "spp", "--values", "1,4",
         ],
         &["bench", "threads", "SCENE", "--runs", "1"],
     ];

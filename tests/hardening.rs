@@ -1068,6 +1068,29 @@ fn bench_sweep_caches_its_reference_in_the_users_cache_folder() {
     assert_eq!(first.stdout.lines().count(), second.stdout.lines().count());
 }
 
+/// A knob that cannot change the scene's image is refused before any render, naming the knob
+/// and why: every row would read "exact" and say nothing of the knob.
+#[test]
+fn bench_sweep_refuses_a_knob_the_scene_does_not_have() {
+    let small = write("idle-knobs.yaml", SMALL);
+    let small = small.to_str().unwrap();
+    for (scene, knob, values, says) in [
+        (L08, "glossy", "1,2", "no glossy or frosted"),
+        (small, "glossy", "1,2", "no glossy or frosted"),
+        (small, "depth", "1,2", "nothing reflects or refracts"),
+        (small, "adaptive", "0,0.1", "nothing reflects or refracts"),
+    ] {
+        let r = run(&["bench", "sweep", scene, "--knob", knob, "--values", values]);
+        assert!(r.sane().is_empty(), "{knob}: {:?}", r.sane());
+        assert_eq!(r.code(), Some(2), "{knob}: {}", r.stderr);
+        assert_eq!(r.stderr.lines().count(), 1, "{knob}: {}", r.stderr);
+        assert!(r.stderr.contains(&format!("--knob {knob}")), "{}", r.stderr);
+        assert!(r.stderr.contains(says), "{knob}: {}", r.stderr);
+        assert!(r.stdout.is_empty(), "{knob}: {}", r.stdout);
+        assert!(r.elapsed < Duration::from_secs(10));
+    }
+}
+
 #[test]
 fn bench_sweep_refuses_what_render_refuses() {
     let small = write("sweep.yaml", SMALL);

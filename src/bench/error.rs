@@ -34,6 +34,14 @@ pub enum BenchError {
         /// The setting whose bounds these are.
         what: &'static str,
     },
+    /// A knob that cannot change the scene's image: every row would equal the reference.
+    #[error("--knob {} changes nothing in this scene: {why}", knob.name())]
+    Idle {
+        /// The knob turned.
+        knob: Knob,
+        /// What the scene lacks for the knob to matter.
+        why: &'static str,
+    },
     /// A generated scene that does not compile.
     #[error(transparent)]
     Scene(#[from] SceneError),

@@ -101,6 +101,10 @@ fn padded(values: impl Iterator<Item = f64> + Clone) -> (f64, f64) {
     (lo / pad, hi * pad)
 }
 
+/// The slope −½ line's dashes and the gaps between them, in pixels.
+const DASH: i32 = 8;
+const GAP: i32 = 6;
+
 /// The sweep as an SVG plot: RMSE against seconds on log-log axes numbered even within a
 /// decade, one point per row labelled with the knob's value and joined in order, a dashed line
 /// of slope −½ (error ∝ 1/√time, Monte Carlo's rate) through the first point, axis titles and
@@ -163,12 +167,20 @@ fn draw(knob: Knob, rows: &[SweepRow], svg: &mut String) -> Result<(), Box<dyn s
                 let t = (x0.ln() + (x1 / x0).ln() * k as f64 / 40.0).exp();
                 (t, guide(t))
             }),
-            8,
-            6,
+            DASH,
+            GAP,
             grey.stroke_width(2),
         ))?
         .label("slope -1/2 (error ∝ 1/√time)")
-        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], grey.stroke_width(2)));
+        // The legend's sample: two dashes of the line it stands for.
+        .legend(move |(x, y)| {
+            EmptyElement::at((x, y))
+                + PathElement::new(vec![(0, 0), (DASH, 0)], grey.stroke_width(2))
+                + PathElement::new(
+                    vec![(DASH + GAP, 0), (2 * DASH + GAP, 0)],
+                    grey.stroke_width(2),
+                )
+        });
 
     let blue = RGBColor(30, 80, 220);
     chart
@@ -250,6 +262,43 @@ mod tests {
         for point in ["adaptive 0", "adaptive 0.01", "adaptive 0.1"] {
             assert!(has(point), "point label {point} in {t:?}");
         }
+    }
+
+    /// The slope −½ line is dashed in the plot and in its legend alike: every grey stroke is
+    /// one dash, and the legend's sample (the horizontal ones) has more than one.
+    #[test]
+    fn the_legend_draws_the_slope_line_dashed_as_the_plot_does() {
+        let rows = [
+            row(1.0, 0.01, 0.2),
+            row(4.0, 0.04, 0.1),
+            row(16.0, 0.16, 0.05),
+        ];
+        let svg = sweep_plot_svg(Knob::Spp, &rows).unwrap();
+        let doc = resvg::usvg::roxmltree::Document::parse(&svg).expect("well-formed SVG");
+        let strokes: Vec<Vec<(f64, f64)>> = doc
+            .descendants()
+            .filter(|n| n.has_tag_name("polyline") && n.attribute("stroke") == Some("#828282"))
+            .map(|n| {
+                let points = n.attribute("points").unwrap_or("");
+                points
+                    .split_whitespace()
+                    .map(|p| {
+                        let (x, y) = p.split_once(',').unwrap();
+                        (x.parse().unwrap(), y.parse().unwrap())
+                    })
+                    .collect()
+            })
+            .collect();
+        assert!(strokes.len() > 2, "{svg}");
+        for stroke in &strokes {
+            let length: f64 = stroke
+                .windows(2)
+                .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+                .sum();
+            assert!(length <= 9.0, "a grey stroke of {length} px: {stroke:?}");
+        }
+        let level = |s: &&Vec<(f64, f64)>| s.iter().all(|p| p.1 == s[0].1);
+        assert!(strokes.iter().filter(level).count() >= 2, "{strokes:?}");
     }
 
     #[test]

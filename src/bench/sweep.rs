@@ -5,7 +5,7 @@ use std::time::Instant;
 use super::error::BenchError;
 use crate::render::{render_simple, Image, RenderOptions};
 use crate::scene::Antialias;
-use crate::scene::Scene;
+use crate::scene::{Integrator, Scene};
 use crate::stats::Stats;
 
 /// The knob a run-time-against-error sweep turns.
@@ -61,6 +61,40 @@ impl Knob {
             Knob::Adaptive => within(0.0, 1.0, "as the scene's adaptive_threshold"),
             Knob::Glossy => whole(1, 1024, "as a lobe's samples"),
             Knob::AaThreshold => within(0.0, 3.0, "as render's --aa-threshold"),
+        }
+    }
+
+    /// Whether turning the knob can change `scene`'s image: an error saying what the scene
+    /// lacks when it cannot (a sweep of it would measure nothing). Samples per pixel and the
+    /// antialiasing threshold move every image's primary rays; the others act only on rays
+    /// after the first hit.
+    pub fn acts_on(self, scene: &Scene) -> Result<(), BenchError> {
+        let path = scene.integrator == Integrator::Path;
+        let features = &scene.features;
+        let recursion = features.reflective || features.transparent;
+        let why = match self {
+            Knob::Spp | Knob::AaThreshold => None,
+            // The path tracer's paths bounce off anything.
+            Knob::Depth if path => None,
+            Knob::Adaptive if path => Some("the path tracer (integrator: path) has no adaptive depth control"),
+            Knob::Glossy if path => Some(
+                "the path tracer (integrator: path) follows one ray per bounce, whatever a lobe's samples",
+            ),
+            Knob::Depth | Knob::Adaptive if !recursion => Some(
+                "nothing reflects or refracts (no material with kr > 0 or kt > 0), so no ray is traced past the first hit",
+            ),
+            Knob::Depth | Knob::Adaptive => None,
+            Knob::Glossy => (!scene.leaves.iter().any(|leaf| {
+                let m = &scene.materials[leaf.material as usize];
+                (m.glossy.is_some() && m.reflective()) || (m.frosted.is_some() && m.transparent())
+            }))
+            .then_some(
+                "it has no glossy or frosted material (a glossy lobe with kr > 0, or a frosted one with kt > 0)",
+            ),
+        };
+        match why {
+            Some(why) => Err(BenchError::Idle { knob: self, why }),
+            None => Ok(()),
         }
     }
 
@@ -276,6 +310,73 @@ pub fn sweep_csv(knob: Knob, rows: &[SweepRow]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn scene(materials: &str, integrator: &str) -> Scene {
+        let yaml = format!(
+            "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }}\n\
+             {integrator}lights: [ {{ point: [2, 3, -4] }} ]\nmaterials: {{ {materials} }}\n\
+             objects: [ {{ sphere: {{ center: [0, 0, 0], radius: 1 }}, material: m }} ]\n"
+        );
+        crate::scene::parse(&yaml, "test", None, &crate::scene::Limits::default()).unwrap()
+    }
+
+    /// Which knobs can change which scenes: depth and adaptive need a ray past the first hit,
+    /// glossy a lobe on a material that reflects or refracts; the path tracer bounces off
+    /// anything but has neither adaptive control nor lobe samples.
+    #[test]
+    fn a_knob_acts_only_on_a_scene_that_has_what_it_turns() {
+        use Knob::*;
+        let cases = [
+            ("m: { kd: 1 }", "", [Spp, AaThreshold].as_slice()),
+            (
+                "m: { kd: 0.5, kr: 0.5 }",
+                "",
+                &[Spp, AaThreshold, Depth, Adaptive],
+            ),
+            (
+                "m: { kd: 0.5, kt: 0.5 }",
+                "",
+                &[Spp, AaThreshold, Depth, Adaptive],
+            ),
+            // A lobe on a material that neither reflects nor refracts sends no rays.
+            (
+                "m: { kd: 1, glossy: { spread: 5 } }",
+                "",
+                &[Spp, AaThreshold],
+            ),
+            (
+                "m: { kd: 0.5, kr: 0.5, glossy: { spread: 5 } }",
+                "",
+                &[Spp, AaThreshold, Depth, Adaptive, Glossy],
+            ),
+            (
+                "m: { kt: 0.5, frosted: { spread: 5 } }",
+                "",
+                &[Spp, AaThreshold, Depth, Adaptive, Glossy],
+            ),
+            (
+                "m: { kd: 0.5, kr: 0.5, glossy: { spread: 5 } }",
+                "integrator: path\n",
+                &[Spp, AaThreshold, Depth],
+            ),
+        ];
+        for (materials, integrator, acting) in cases {
+            let s = scene(materials, integrator);
+            for knob in [Spp, Depth, Adaptive, Glossy, AaThreshold] {
+                let acts = knob.acts_on(&s);
+                assert_eq!(
+                    acts.is_ok(),
+                    acting.contains(&knob),
+                    "{knob:?} on {integrator}{materials}: {acts:?}"
+                );
+                if let Err(e) = acts {
+                    assert!(e
+                        .to_string()
+                        .starts_with(&format!("--knob {} ", knob.name())));
+                }
+            }
+        }
+    }
 
     /// One run is timed as it is; three are timed after a fourth, untimed.
     #[test]

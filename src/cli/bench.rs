@@ -35,7 +35,10 @@ enum Measure {
         /// The scene file (YAML), or a lesson's folder or name for its scene.yaml.
         #[arg(value_parser = super::args::scene_path)]
         scene: std::path::PathBuf,
-        /// The setting turned from one render to the next.
+        /// The setting turned from one render to the next. A knob that cannot change the
+        /// scene's image is refused: depth and adaptive where nothing reflects or refracts
+        /// (adaptive and glossy also under the path tracer), glossy without a glossy or
+        /// frosted material.
         #[arg(long, value_enum)]
         knob: crate::bench::Knob,
         /// Comma-separated values, e.g. 1,4,16,64.
@@ -282,6 +285,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             // The file itself, also for the reference's cache key.
             let scene_path = super::args::named_lesson_scene(&scene_path);
             let scene = super::args::load_scene(&scene_path, false, super::args::AccelArg::Bvh)?;
+            knob.acts_on(&scene)?;
             let (w, h) = (scene.camera.width, scene.camera.height);
             let reference = match reference {
                 Some(path) => load_reference(&path, w, h)?,
