@@ -69,48 +69,86 @@ impl Stats {
 
     /// A human-readable report, one counter per line.
     pub fn report(&self) -> String {
+        table(&self.rows())
+    }
+
+    /// The report's rows: a label and its value, each counter and the per-ray averages.
+    pub fn rows(&self) -> Vec<(&'static str, String)> {
         let rays = self.rays().max(1) as f64;
-        let mut s = String::new();
-        let mut line = |k: &str, v: u64| s.push_str(&format!("{k:<40} {v:>14}\n"));
-        line("rays traced", self.rays());
-        line("  primary", self.primary_rays);
-        line("  shadow", self.shadow_rays);
-        line("  reflection", self.reflection_rays);
-        line("  refraction", self.refraction_rays);
-        line("  of which glossy/frosted samples", self.glossy_rays);
-        line(
-            "skipped: shadow rays, light behind (n·l ≤ 0)",
-            self.shadow_skipped_backfacing,
-        );
-        line("skipped: shadow rays, dark light", self.shadow_skipped_dark);
-        line(
-            "skipped: shadow rays inside convex solids",
-            self.shadow_skipped_inside,
-        );
-        line(
-            "skipped: secondary rays at max depth",
-            self.max_depth_cutoffs,
-        );
-        line(
-            "skipped: secondary rays, adaptive depth",
-            self.adaptive_cutoffs,
-        );
-        line(
-            "total internal reflections",
-            self.total_internal_reflections,
-        );
-        line("skipped: CSG subtrees pruned", self.csg_pruned);
-        line("BVH nodes visited", self.bvh_nodes_visited);
-        line("skipped: objects, bounding box missed", self.bounds_skipped);
-        line("objects/primitives tested", self.primitives_tested);
-        line("adaptive antialiasing: squares split", self.aa_splits);
-        s.push_str(&format!(
-            "{:<40} {:>14.2}\n{:<40} {:>14.2}\n",
-            "BVH nodes per ray",
-            self.bvh_nodes_visited as f64 / rays,
-            "primitives tested per ray",
-            self.primitives_tested as f64 / rays
-        ));
-        s
+        let count = |label, n: u64| (label, n.to_string());
+        vec![
+            count("rays traced", self.rays()),
+            count("  primary", self.primary_rays),
+            count("  shadow", self.shadow_rays),
+            count("  reflection", self.reflection_rays),
+            count("  refraction", self.refraction_rays),
+            count("  of which glossy/frosted samples", self.glossy_rays),
+            count(
+                "skipped: shadow rays, light behind (n·l ≤ 0)",
+                self.shadow_skipped_backfacing,
+            ),
+            count("skipped: shadow rays, dark light", self.shadow_skipped_dark),
+            count(
+                "skipped: shadow rays inside convex solids",
+                self.shadow_skipped_inside,
+            ),
+            count(
+                "skipped: secondary rays at max depth",
+                self.max_depth_cutoffs,
+            ),
+            count(
+                "skipped: secondary rays, adaptive depth",
+                self.adaptive_cutoffs,
+            ),
+            count(
+                "total internal reflections",
+                self.total_internal_reflections,
+            ),
+            count("skipped: CSG subtrees pruned", self.csg_pruned),
+            count("BVH nodes visited", self.bvh_nodes_visited),
+            count("skipped: objects, bounding box missed", self.bounds_skipped),
+            count("objects/primitives tested", self.primitives_tested),
+            count("adaptive antialiasing: squares split", self.aa_splits),
+            (
+                "BVH nodes per ray",
+                format!("{:.2}", self.bvh_nodes_visited as f64 / rays),
+            ),
+            (
+                "primitives tested per ray",
+                format!("{:.2}", self.primitives_tested as f64 / rays),
+            ),
+        ]
+    }
+}
+
+/// Rows of a label and a value as lines ending in the same column: the labels padded to the
+/// longest, the values right-aligned. Widths are counted in characters, not bytes (`n·l ≤ 0`
+/// is 7 characters of 11 bytes); every label is of characters one column wide.
+pub fn table(rows: &[(&str, String)]) -> String {
+    let chars = |s: &str| s.chars().count();
+    let label = rows.iter().map(|r| chars(r.0)).max().unwrap_or(0);
+    let value = rows.iter().map(|r| chars(&r.1)).max().unwrap_or(0).max(14);
+    rows.iter()
+        .map(|(k, v)| format!("{k:<label$} {v:>value$}\n"))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every line of the report ends in the same column, the longest label and the largest
+    /// count included.
+    #[test]
+    fn every_row_of_the_report_ends_in_the_same_column() {
+        let stats = Stats {
+            primary_rays: u64::MAX / 4,
+            shadow_skipped_backfacing: 7,
+            ..Stats::default()
+        };
+        let report = stats.report();
+        let ends: Vec<usize> = report.lines().map(|l| l.chars().count()).collect();
+        assert_eq!(ends.len(), stats.rows().len());
+        assert!(ends.iter().all(|&e| e == ends[0]), "{report}");
     }
 }

@@ -622,3 +622,33 @@ fn render_goes_64_levels_deep() {
     assert_eq!(v["stats"]["shadow_rays"], 64 * samples);
     assert_eq!(v["stats"]["max_depth_cutoffs"], samples);
 }
+
+/// Every row of `render --stats` ends in the same column, whatever characters its label has
+/// (`n·l ≤ 0` is 7 characters of 11 bytes) and however long it is.
+#[test]
+fn the_stats_table_ends_every_row_in_the_same_column() {
+    let out = temp("stats.png");
+    let o = raytree(&[
+        "render",
+        "lessons/06-refraction",
+        "-o",
+        out.to_str().unwrap(),
+        "--stats",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    // The first line says what was rendered; the table follows.
+    let rows: Vec<&str> = err.lines().skip(1).collect();
+    for label in [
+        "skipped: shadow rays, light behind (n·l ≤ 0)",
+        "skipped: shadow rays inside convex solids",
+        "rays per second",
+        "primitives tested per ray",
+    ] {
+        assert!(rows.iter().any(|r| r.starts_with(label)), "{label}:\n{err}");
+    }
+    let end = rows[0].chars().count();
+    for row in &rows {
+        assert_eq!(row.chars().count(), end, "{row:?}:\n{err}");
+    }
+}

@@ -447,24 +447,25 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             options.max_depth,
             elapsed.as_secs_f64()
         ));
-        eprintln(&format!(
-            "{:<40} {:>14.0}",
+        let mut rows = vec![(
             "rays per second",
-            stats.rays() as f64 / elapsed.as_secs_f64().max(1e-9)
-        ));
+            format!(
+                "{:.0}",
+                stats.rays() as f64 / elapsed.as_secs_f64().max(1e-9)
+            ),
+        )];
         if let Some(peak) = super::peak_memory::peak_resident_bytes() {
-            eprintln(&format!(
-                "{:<40} {:>11.1} MB",
+            rows.push((
                 "peak memory (the whole process)",
-                peak as f64 / 1e6
+                format!("{:.1} MB", peak as f64 / 1e6),
             ));
         }
-        eprintln(&format!(
-            "{:<40} {:>14}",
+        rows.push((
             "instructions of the fast wing",
-            crate::render::instruction_level()
+            crate::render::instruction_level().to_string(),
         ));
-        for line in stats.report().lines() {
+        rows.extend(stats.rows());
+        for line in crate::stats::table(&rows).lines() {
             eprintln(line);
         }
     }
