@@ -645,3 +645,23 @@ fn a_lesson_that_does_not_read_is_reported_as_such() {
     );
     assert!(!summary.contains("disagreement"), "{report}");
 }
+
+/// Names and answers come from the class's file: the report shows their control characters
+/// escaped, so a name cannot clear the teacher's terminal or fake a line of the report.
+#[test]
+fn the_grade_report_shows_control_characters_escaped() {
+    let dir = scratch("control");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("c.csv");
+    std::fs::write(&file, "s1\u{1b}[2J,pixel-p,0.5\u{7}\n").unwrap();
+    let o = raytree(&[
+        "grade",
+        "08-pixel-intensity",
+        "--answers",
+        file.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(!out.contains('\u{1b}') && !out.contains('\u{7}'), "{out:?}");
+    assert!(out.contains("s1\\u{1b}[2J"), "{out}");
+}

@@ -1,7 +1,7 @@
 //! `raytree grade LESSON --answers FILE.csv`: a class's answers graded, each student against
 //! their own variant of the lesson; a report per student and per exercise.
 
-use std::io::Write;
+use std::fmt::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -48,7 +48,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.format {
         GradeFormat::Json => super::output::print_json(json_report(&report))?,
         GradeFormat::Csv => write_csv(&report)?,
-        GradeFormat::Text => print_text(&report, &file),
+        GradeFormat::Text => print_text(&report, &file)?,
     }
     // Whatever the format, the rows not graded are said on stderr too.
     if a.format != GradeFormat::Text {
@@ -90,8 +90,10 @@ fn write_csv(r: &Report) -> Result<(), Failure> {
     Ok(())
 }
 
-fn print_text(r: &Report, file: &str) {
-    let mut out = std::io::stdout().lock();
+/// The report for a teacher to read. Names and answers come from the class's file: `print`
+/// shows their control characters escaped.
+fn print_text(r: &Report, file: &str) -> Result<(), Failure> {
+    let mut out = String::new();
     let width = r
         .students
         .iter()
@@ -136,4 +138,5 @@ fn print_text(r: &Report, file: &str) {
             let _ = writeln!(out, "  {file}:{}: {}", p.line, p.message);
         }
     }
+    super::output::print(&out)
 }

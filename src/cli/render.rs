@@ -113,10 +113,15 @@ fn label_font(w: u32) -> u32 {
     }
 }
 
+/// The height of the band of labels above frames `w` pixels wide.
+fn label_band(w: u32) -> u32 {
+    label_font(w) + 8
+}
+
 /// The width and height of a strip of `n` frames of `w` × `h`: the frames, the gaps between
 /// them and the band of labels above.
 fn strip_size(n: u32, w: u32, h: u32) -> (u32, u32) {
-    (n * w + (n - 1) * GAP, h + label_font(w) + 8)
+    (n * w + (n - 1) * GAP, h + label_band(w))
 }
 
 /// The frames side by side, 4 white pixels apart, each under a label "depth k" (frame k is
@@ -125,7 +130,7 @@ fn strip(frames: &[crate::render::Image]) -> Result<crate::render::Image, Failur
     let (w, h) = (frames[0].width, frames[0].height);
     let n = frames.len() as u32;
     let font = label_font(w);
-    let band = font + 8;
+    let band = label_band(w);
     let (strip_w, strip_h) = strip_size(n, w, h);
     let mut out = crate::render::Image::new(strip_w, strip_h);
     out.pixels.iter_mut().for_each(|p| *p = glam::DVec3::ONE);
