@@ -1335,15 +1335,24 @@ fn on_a_terminal_a_scene_error_shows_its_line_and_a_caret() {
     assert_eq!(lines[2], "    |             ^");
 }
 
-/// An explicit ray is held to the numbers a scene file may hold (finite, within ±1e100), and
-/// a large coordinate is printed with an exponent, not as hundreds of digits.
+/// An explicit ray's origin is held to the numbers a scene file may hold (finite, within
+/// ±1e100), and a large coordinate is printed with an exponent, not as hundreds of digits.
 #[test]
 fn an_explicit_ray_takes_the_numbers_a_scene_takes() {
-    for ray in ["-1e200,0,0:1,0,0", "0,0,-5:1e101,0,1", "nan,0,0:0,0,1"] {
+    for ray in ["-1e200,0,0:1,0,0", "0,1e101,-5:0,0,1", "nan,0,0:0,0,1"] {
         let o = run(&["inspect", "lessons/08-pixel-intensity", "--ray", ray]);
         assert_eq!(o.code(), Some(2), "{ray}");
         assert!(o.stderr.contains("within ±1e100"), "{ray}: {}", o.stderr);
     }
+    // A direction is only a direction: `ray_directions_are_normalised_safely` takes any size.
+    let o = run(&[
+        "inspect",
+        "lessons/08-pixel-intensity",
+        "--ray",
+        "0,0,-5:0,0,inf",
+    ]);
+    assert_eq!(o.code(), Some(2));
+    assert!(o.stderr.contains("three finite numbers"), "{}", o.stderr);
     let o = run(&[
         "inspect",
         "lessons/08-pixel-intensity",

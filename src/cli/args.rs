@@ -23,14 +23,16 @@ pub fn parse_pixel(s: &str) -> Result<[u32; 2], String> {
     }
 }
 
-fn parse_vec3(s: &str) -> Result<DVec3, String> {
+/// `X,Y,Z`, three numbers within ±`limit`.
+fn parse_vec3(s: &str, limit: f64) -> Result<DVec3, String> {
     let v: Result<Vec<f64>, _> = s.split(',').map(|p| p.trim().parse::<f64>()).collect();
     match v {
-        Ok(v) if v.len() == 3 && v.iter().all(|x| x.abs() <= MAX_MAGNITUDE) => {
+        Ok(v) if v.len() == 3 && v.iter().all(|x| x.abs() <= limit) => {
             Ok(DVec3::new(v[0], v[1], v[2]))
         }
+        _ if limit == f64::MAX => Err(format!("expected three finite numbers x,y,z, got `{s}`")),
         _ => Err(format!(
-            "expected three numbers x,y,z within ±{MAX_MAGNITUDE:e} (as in a scene file), got `{s}`"
+            "expected three numbers x,y,z within ±{limit:e} (as in a scene file), got `{s}`"
         )),
     }
 }
@@ -40,7 +42,9 @@ pub fn parse_ray(s: &str) -> Result<Ray, String> {
     let (o, d) = s
         .split_once(':')
         .ok_or_else(|| format!("expected a ray OX,OY,OZ:DX,DY,DZ, got `{s}`"))?;
-    let (o, d) = (parse_vec3(o)?, parse_vec3(d)?);
+    // The origin is a point of the scene, held to the scene file's bounds; the direction is
+    // only a direction, normalised below whatever its size.
+    let (o, d) = (parse_vec3(o, MAX_MAGNITUDE)?, parse_vec3(d, f64::MAX)?);
     if d == DVec3::ZERO {
         return Err("the ray direction must not be zero".into());
     }
