@@ -14,6 +14,7 @@ use arrayvec::ArrayVec;
 use glam::{DVec2, DVec3};
 
 use super::bvh_packet::PACKET;
+use super::lanes::LANES;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
 use crate::scene::{plane_x, plane_y, Camera, Projection};
@@ -79,7 +80,7 @@ impl ImagePlane {
             size: (w, h),
         } = LookAt::of(camera)?;
         let n = offsets.len();
-        let mut columns = [(); 3].map(|_| Vec::with_capacity(camera.width as usize * n));
+        let mut columns = [(); 3].map(|_| Vec::with_capacity(camera.width as usize * n + LANES));
         for c in 0..camera.width {
             for o in offsets {
                 // `image_point`'s x, and its sum's first terms.
@@ -90,7 +91,7 @@ impl ImagePlane {
                 }
             }
         }
-        let mut rows = [(); 3].map(|_| Vec::with_capacity(camera.height as usize * n));
+        let mut rows = [(); 3].map(|_| Vec::with_capacity(camera.height as usize * n + LANES));
         for r in 0..camera.height {
             for o in offsets {
                 let part = plane_y(r as f64 + o.y, h, tan_half_fov) * up;
@@ -98,6 +99,11 @@ impl ImagePlane {
                     row.push(part[axis]);
                 }
             }
+        }
+        // Three more values at the end of each, so that four are read from any place.
+        for v in columns.iter_mut().chain(rows.iter_mut()) {
+            let last = v.last().copied().unwrap_or(0.0);
+            v.extend([last; LANES - 1]);
         }
         Some(ImagePlane {
             eye,
@@ -132,15 +138,13 @@ impl ImagePlane {
     ) {
         let column = x as usize * self.offsets;
         let row = y as usize * self.offsets;
-        for first in which.clone().step_by(4) {
-            let count = (which.end - first).min(4);
-            // Unused lanes repeat the group's last offset; their rays are not kept.
+        for first in which.clone().step_by(LANES) {
+            let count = (which.end - first).min(LANES);
+            // Unused lanes take the values that follow (the next pixel's, or the padding);
+            // their rays are not kept.
             let lanes = |v: &[f64], at: usize| {
                 let at = at + first;
-                match v.get(at..at + 4) {
-                    Some(four) if count == 4 => V::new(four.try_into().unwrap()),
-                    _ => V::new(std::array::from_fn(|k| v[at + k.min(count - 1)])),
-                }
+                V::new(v[at..at + LANES].try_into().unwrap())
             };
             // p = (e + forward + x·right) + y·up, and d = p − e, one axis at a time.
             let mut d = [V::ZERO; 3];

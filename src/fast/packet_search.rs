@@ -419,7 +419,9 @@ impl FastScene<'_> {
         stats: &mut Stats,
     ) {
         let lanes = *lanes;
-        let slabs = self.boxes_outside_bvh.then(|| SlabLanes::new(&lanes));
+        // 1/d of each ray, found at the first box not ruled out: a packet whose footprint or
+        // hull rules out every box (most of the film's primary rays) does without.
+        let mut slabs = None;
         let used = (1u32 << rays.len()) - 1;
         let all = lane_mask::<V>(used);
         let mut limit = V::splat(f64::INFINITY);
@@ -496,7 +498,10 @@ impl FastScene<'_> {
                     stats.bounds_skipped += n;
                 }
                 Probe::Object(o) | Probe::Box { object: o, .. } => {
-                    let slabs = slabs.as_ref().expect("boxed objects get slab lanes");
+                    let slabs = match &slabs {
+                        Some(slabs) => slabs,
+                        None => slabs.insert(SlabLanes::new(&lanes)),
+                    };
                     let mut t_max = limit.to_array();
                     self.object_in_lanes(*o, rays, slabs, &mut t_max, hits, stats);
                     limit = V::new(t_max);
