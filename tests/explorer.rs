@@ -1574,3 +1574,73 @@ fn a_terminal_too_small_is_told_so_in_full() {
         assert!(app.quit);
     }
 }
+
+/// A scene that asks for more than 16 levels is explored at its own depth while its tree stays
+/// small: lesson 07's `depth-deep` exercise, whose worked answer (the README's geometric series
+/// of the mirror's bounces, 0.570874 / 0.68) is 0.839520.
+#[test]
+fn a_deep_scene_with_a_small_tree_is_explored_at_its_own_depth() {
+    let dir = scratch("deep-mirror");
+    let lesson = std::fs::read_to_string("lessons/07-recursion-depth/scene.yaml").unwrap();
+    let deep = dir.join("deep.yaml");
+    std::fs::write(&deep, lesson.replace("max_depth: 5", "max_depth: 40")).unwrap();
+    let mut app = open(deep.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(80, 60));
+    assert_eq!(app.tree.depth(), 40);
+    assert_eq!(app.tree.depth_cut_from(), None);
+    assert_eq!(app.preview.depth, Some(40));
+    let intensity = root_color(&app).x;
+    assert!((intensity - 0.839520).abs() < 5e-7, "{intensity}");
+    assert!(screen(&app).contains("depth 40 "));
+}
+
+/// Where each level doubles the tree (a glass ball inside a mirrored sphere: every ray comes
+/// back to the ball and splits again), the tree is traced as deep as it stays within the
+/// budget, and the screen says so: the deepest depth whose tree holds at most `TREE_BUDGET`
+/// rays, counted by the tracer itself.
+#[test]
+fn a_tree_that_doubles_each_level_stops_at_the_budget_and_says_so() {
+    use raytree::tui::{FREE_DEPTH, TREE_BUDGET};
+    let dir = scratch("doubling");
+    let scene = dir.join("doubling.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 40, width: 40, height: 30 }\n\
+         max_depth: 40\n\
+         adaptive_threshold: 0\n\
+         lights: [ { point: [0, 5, -5], intensity: 1 } ]\n\
+         materials:\n  \
+           glass: { color: 1, kr: 0.5, kt: 0.5, ior: 1.5 }\n  \
+           mirror: { color: 1, kr: 1 }\n\
+         objects:\n  \
+           - { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: glass }\n  \
+           - { name: shell, sphere: { center: [0, 0, 0], radius: 10 }, material: mirror }\n",
+    )
+    .unwrap();
+    let mut app = open(scene.to_str().unwrap(), ColorMode::TrueColor, (160, 48));
+    update(&mut app, Msg::Pick(20, 15));
+    let depth = app.tree.depth();
+    let rays = |d: u32| {
+        let scene = app.file.scene.as_ref().unwrap();
+        let ray = scene.camera.pixel_ray(20, 15);
+        let mut tracer = Tracer::new(scene).with_depth(d);
+        tracer.radiance(&ray);
+        tracer.stats.rays()
+    };
+    assert!((FREE_DEPTH..40).contains(&depth), "depth {depth}");
+    assert!(depth == FREE_DEPTH || rays(depth) <= TREE_BUDGET);
+    assert!(rays(depth + 1) > TREE_BUDGET);
+    assert_eq!(app.tree.depth_cut_from(), Some(40));
+    assert_eq!(app.tree.stats().rays(), rays(depth));
+    assert!(screen(&app).contains(&format!("depth {depth} of 40 (preview {FREE_DEPTH})")));
+    // The preview traces every pixel: it stays at FREE_DEPTH, where a pixel's tree has some
+    // thousands of rays, not the picked tree's hundred thousand.
+    assert_eq!(app.preview.depth, Some(FREE_DEPTH));
+    press(&mut app, KeyCode::Char('+'));
+    assert_eq!(app.tree.depth(), depth);
+    assert!(screen(&app).contains(&format!("over {TREE_BUDGET} rays")));
+    // One level shallower is one level up from the tree shown.
+    press(&mut app, KeyCode::Char('-'));
+    assert_eq!(app.tree.depth(), depth - 1);
+    assert_eq!(app.tree.depth_cut_from(), None);
+}

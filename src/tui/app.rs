@@ -384,7 +384,7 @@ impl App {
     /// Asks for a new preview at the current size and depth.
     fn request_render(&mut self) {
         if let Some(scene) = &self.file.scene {
-            self.preview.request(scene, self.tree.depth());
+            self.preview.request(scene, self.tree.preview_depth());
         }
     }
 

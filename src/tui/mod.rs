@@ -29,6 +29,7 @@ use std::time::{Duration, Instant};
 
 pub use app::{update, App};
 pub use msg::Msg;
+pub use state::ray_tree::{FREE_DEPTH, TREE_BUDGET};
 
 use crate::render::preview::ColorMode;
 use state::ray_tree::MAX_DEPTH;

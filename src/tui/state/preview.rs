@@ -24,6 +24,8 @@ pub struct Preview {
     pub running: bool,
     /// Rows done and rows in the pass running.
     pub rows: (u32, u32),
+    /// The maximum depth of the last preview asked for.
+    pub depth: Option<u32>,
     /// Statistics of the image shown.
     pub stats: Option<Stats>,
     pub elapsed: Option<Duration>,
@@ -39,6 +41,7 @@ impl Preview {
             return;
         }
         self.generation += 1;
+        self.depth = Some(depth);
         self.job = Some(Job {
             generation: self.generation,
             scene: Arc::clone(scene),

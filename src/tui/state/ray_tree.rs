@@ -22,15 +22,31 @@ use crate::tui::layout::inner;
 use crate::tui::msg::Msg;
 use crate::tui::tree::{self, Row};
 
-/// The deepest recursion the explorer traces (each level can double the tree).
-pub const MAX_DEPTH: u32 = 16;
+/// The deepest recursion the explorer is asked for: the scene format's own limit
+/// (`Limits::max_depth`), so a scene is explored at the depth it renders at.
+pub const MAX_DEPTH: u32 = 64;
+
+/// Depths up to this are always traced. Deeper, each level can double the tree, so the tree is
+/// traced only as deep as it stays within `TREE_BUDGET` rays: a corridor of mirrors goes to
+/// its scene's depth, a glass sphere's tree of 2ᵈ rays stops in time.
+pub const FREE_DEPTH: u32 = 16;
+
+/// The most rays a tree deeper than `FREE_DEPTH` may hold.
+pub const TREE_BUDGET: u64 = 100_000;
+
+/// The most rays the picked pixel's tree may hold for the preview to go deeper than
+/// `FREE_DEPTH` with it: the preview traces thousands of pixels, each about as deep.
+pub const PREVIEW_RAYS: u64 = 1_000;
 
 pub struct RayTree {
     pixel: (u32, u32),
     /// An exercise's ray, traced instead of the picked pixel's.
     ray: Option<Ray>,
-    /// The maximum depth the tree and the preview are traced with.
-    depth: u32,
+    /// The maximum depth asked for (by the scene, the keys or an exercise).
+    asked: u32,
+    /// The maximum depth the tree and the preview are traced with: `depth`, unless a tree that
+    /// deep would pass `TREE_BUDGET` rays.
+    traced: u32,
     /// The depth was chosen (keys, an exercise), so a reloaded scene does not reset it.
     depth_from_user: bool,
     /// Level stepping: the tree shown is traced with this maximum depth.
@@ -68,7 +84,8 @@ impl Default for RayTree {
         RayTree {
             pixel: (0, 0),
             ray: None,
-            depth: 1,
+            asked: 1,
+            traced: 1,
             depth_from_user: false,
             level: None,
             partials: vec![],
@@ -117,8 +134,37 @@ impl RayTree {
         paths + self.level.is_some() as usize + self.pixel_value.is_some() as usize
     }
 
+    /// The maximum depth the tree is traced with.
     pub fn depth(&self) -> u32 {
-        self.depth
+        self.traced
+    }
+
+    /// The maximum depth asked for, where the tree stops short of it (`TREE_BUDGET`).
+    pub fn depth_cut_from(&self) -> Option<u32> {
+        (self.traced < self.asked).then_some(self.asked)
+    }
+
+    /// The maximum depth the preview renders at: the tree's, or `FREE_DEPTH` where the tree
+    /// goes deeper and holds more than `PREVIEW_RAYS` rays.
+    pub fn preview_depth(&self) -> u32 {
+        if self.traced > FREE_DEPTH && self.stats.rays() > PREVIEW_RAYS {
+            FREE_DEPTH
+        } else {
+            self.traced
+        }
+    }
+
+    /// "depth 5", or "depth 23 of 40" where the tree stops short of the depth asked for, and
+    /// the preview's depth where it is not the tree's.
+    pub fn depth_label(&self) -> String {
+        let mut label = format!("depth {}", self.traced);
+        if let Some(asked) = self.depth_cut_from() {
+            label += &format!(" of {asked}");
+        }
+        if self.preview_depth() != self.traced {
+            label += &format!(" (preview {})", self.preview_depth());
+        }
+        label
     }
 
     pub fn level(&self) -> Option<u32> {
@@ -180,8 +226,9 @@ impl RayTree {
 
     /// The selected ray's details at a width.
     pub fn detail_rows(&self, width: usize) -> Vec<DetailRow> {
-        self.selected_node()
-            .map_or(vec![], |n| details::rows(n, self.depth, width, self.hidden))
+        self.selected_node().map_or(vec![], |n| {
+            details::rows(n, self.traced, width, self.hidden)
+        })
     }
 
     /// How far the details can scroll in the lower pane (none without the pane).
@@ -209,7 +256,7 @@ impl RayTree {
     /// picked pixel kept inside the image. Needs a retrace.
     pub fn adopt(&mut self, scene: &Scene) {
         if !self.depth_from_user {
-            self.depth = scene.max_depth.clamp(1, MAX_DEPTH);
+            self.asked = scene.max_depth.clamp(1, MAX_DEPTH);
         }
         let (w, h) = (scene.camera.width, scene.camera.height);
         self.pixel = (
@@ -260,7 +307,7 @@ impl RayTree {
 
     fn aim_depth(&mut self, depth: Option<u32>) {
         if let Some(d) = depth {
-            self.depth = d.clamp(1, MAX_DEPTH);
+            self.asked = d.clamp(1, MAX_DEPTH);
             self.depth_from_user = true;
         }
     }
@@ -268,41 +315,45 @@ impl RayTree {
     /// Sets the maximum depth as the user would; true when it changed (retrace and render).
     pub fn set_depth(&mut self, depth: u32) -> bool {
         let depth = depth.clamp(1, MAX_DEPTH);
-        if depth == self.depth {
+        if depth == self.asked {
             return false;
         }
-        self.depth = depth;
+        self.asked = depth;
         self.depth_from_user = true;
         true
     }
 
     /// + and -: one level deeper or shallower. Ok: the depth changed; Err: why it cannot.
     pub fn step_depth(&mut self, deeper: bool) -> Result<Note, Note> {
-        if deeper && self.depth >= MAX_DEPTH {
+        if deeper && self.asked >= MAX_DEPTH {
             return Err((
-                format!("the explorer traces at most {MAX_DEPTH} levels"),
+                format!("scenes go at most {MAX_DEPTH} levels deep"),
                 Tone::Bad,
             ));
         }
-        if !deeper && self.depth <= 1 {
+        if deeper && self.traced < self.asked {
+            return Err((budget_note(self.traced), Tone::Bad));
+        }
+        // Shallower goes one level up from the depth the tree has, not from the depth asked.
+        if !deeper && self.traced <= 1 {
             return Err((
                 "depth 1 traces primary rays only (and their shadow rays)".into(),
                 Tone::Bad,
             ));
         }
         self.set_depth(if deeper {
-            self.depth + 1
+            self.asked + 1
         } else {
-            self.depth - 1
+            self.traced - 1
         });
-        Ok((format!("maximum depth {}", self.depth), Tone::Info))
+        Ok((format!("maximum depth {}", self.asked), Tone::Info))
     }
 
     /// n: the next level; past the last, the whole tree again (true). Needs a retrace.
     pub fn level_next(&mut self) -> bool {
         match self.level {
             None => self.level = Some(1),
-            Some(k) if k >= self.depth => {
+            Some(k) if k >= self.traced => {
                 self.level = None;
                 return true;
             }
@@ -314,7 +365,7 @@ impl RayTree {
     /// p: the previous level (the last but one when not stepping). Needs a retrace.
     pub fn level_prev(&mut self) {
         self.level = Some(match self.level {
-            None => self.depth.saturating_sub(1).max(1),
+            None => self.traced.saturating_sub(1).max(1),
             Some(k) => k.saturating_sub(1).max(1),
         });
     }
@@ -323,14 +374,14 @@ impl RayTree {
     pub fn level_note(&self) -> Option<Note> {
         let k = self.level?;
         if self.hidden {
-            return Some((format!("level {k} of {}", self.depth), Tone::Info));
+            return Some((format!("level {k} of {}", self.traced), Tone::Info));
         }
         let i = self
             .partials
             .get(k as usize - 1)
             .copied()
             .unwrap_or_default();
-        let mut s = format!("level {k} of {}: I = {}", self.depth, text::color(i));
+        let mut s = format!("level {k} of {}: I = {}", self.traced, text::color(i));
         if k > 1 {
             let before = self.partials[k as usize - 2];
             s.push_str(&format!(
@@ -347,7 +398,7 @@ impl RayTree {
     pub fn collected_note(&self) -> Note {
         if self.hidden {
             return (
-                format!("all {} levels collected (n steps again)", self.depth),
+                format!("all {} levels collected (n steps again)", self.traced),
                 Tone::Info,
             );
         }
@@ -355,7 +406,7 @@ impl RayTree {
         (
             format!(
                 "all {} levels collected: I = {} (n steps again)",
-                self.depth,
+                self.traced,
                 text::color(i)
             ),
             Tone::Info,
@@ -376,21 +427,23 @@ impl RayTree {
                 Rng::for_pixel(0, x, y)
             }
         };
-        let mut tracer = Tracer::new(scene).with_depth(self.depth).with_rng(rng());
+        self.traced = affordable_depth(scene, &ray, self.asked, &rng);
+        let depth = self.traced;
+        let mut tracer = Tracer::new(scene).with_depth(depth).with_rng(rng());
         let full = tracer.inspect(&ray);
         self.stats = tracer.stats;
         let path = scene.integrator == crate::scene::Integrator::Path;
-        self.paths = (path && !aimed).then(|| sampled_paths(scene, self.depth, x, y));
+        self.paths = (path && !aimed).then(|| sampled_paths(scene, depth, x, y));
         self.pixel_value = if aimed || path {
             None
         } else {
-            pixel_value(scene, self.depth, x, y)
+            pixel_value(scene, depth, x, y)
         };
         self.full = Some(full);
         if let Some(k) = self.level {
-            let k = k.clamp(1, self.depth);
+            let k = k.clamp(1, depth);
             self.level = Some(k);
-            self.partials = (1..=self.depth)
+            self.partials = (1..=depth)
                 .map(|d| {
                     Tracer::new(scene)
                         .with_depth(d)
@@ -462,6 +515,30 @@ impl RayTree {
 
 /// The rendered value of pixel (x, y) and how it was sampled, when the pixel is more than its
 /// centre ray: several samples or corners.
+/// The deepest depth up to `asked` whose tree from `ray` holds at most `TREE_BUDGET` rays, or
+/// `asked` itself up to `FREE_DEPTH`. A tree one level deeper holds at most a few times the
+/// rays of the last (two rays on per surface, a shadow ray per light), so finding where the
+/// budget is passed costs a few budgets' worth of rays, however deep the scene asks to go.
+fn affordable_depth(scene: &Scene, ray: &Ray, asked: u32, rng: &dyn Fn() -> Rng) -> u32 {
+    let mut depth = asked.min(FREE_DEPTH);
+    while depth < asked {
+        let mut tracer = Tracer::new(scene).with_depth(depth + 1).with_rng(rng());
+        tracer.radiance(ray);
+        if tracer.stats.rays() > TREE_BUDGET {
+            break;
+        }
+        depth += 1;
+    }
+    depth
+}
+
+/// Why the tree stops at `depth`.
+pub fn budget_note(depth: u32) -> String {
+    format!(
+        "a tree deeper than {depth} holds over {TREE_BUDGET} rays: the explorer traces to depth {depth}"
+    )
+}
+
 fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
     use crate::render::film::Film;
     use crate::render::{Engine, RenderOptions};

@@ -30,8 +30,8 @@ pub fn status_text(app: &App) -> String {
     let (w, h) = app.image_size();
     let (x, y) = app.tree.pixel();
     let depth = match app.tree.level() {
-        Some(k) => format!("depth {} (level {k})", app.tree.depth()),
-        None => format!("depth {}", app.tree.depth()),
+        Some(k) => format!("{} (level {k})", app.tree.depth_label()),
+        None => app.tree.depth_label(),
     };
     let p = &app.preview;
     let progress = if p.running {

@@ -21,7 +21,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     };
     let title = match t.level() {
         Some(k) => format!(" ray tree · {at} · level {k} of {} ", t.depth()),
-        None => format!(" ray tree · {at} · depth {} ", t.depth()),
+        None => format!(" ray tree · {at} · {} ", t.depth_label()),
     };
     let Some(root) = t.shown_tree() else {
         f.render_widget(
