@@ -419,6 +419,51 @@ fn two_students_homework_differ_and_grade_against_their_own_values() {
         .unwrap()
         .to_string();
     assert!(carol.contains("alice's answer"), "{carol}");
+
+    // Alice's folder holds alice's values only: asked for its own student it checks as
+    // before; asked for bob's (check, grade or another homework) it refuses and names the
+    // lesson to give instead, where it graded every student against alice's numbers.
+    let in_folder = |student: &str, answer: &str| {
+        raytree(&[
+            "check",
+            alice.to_str().unwrap(),
+            "--student",
+            student,
+            "--exercise",
+            "diffuse",
+            "--answer",
+            answer,
+        ])
+    };
+    assert_eq!(in_folder("alice", &da).status.code(), Some(0));
+    let refused = [
+        in_folder("bob", &da),
+        raytree(&[
+            "grade",
+            alice.to_str().unwrap(),
+            "--answers",
+            csv.to_str().unwrap(),
+        ]),
+        raytree(&[
+            "homework",
+            alice.to_str().unwrap(),
+            "--student",
+            "bob",
+            "-o",
+            root.join("nested").to_str().unwrap(),
+        ]),
+    ];
+    for o in refused {
+        assert_eq!(o.status.code(), Some(2), "{}", out(&o));
+        let e = err(&o);
+        assert!(
+            e.contains("alice's homework of lesson 03-local-illumination")
+                && e.contains("bob's values")
+                && e.contains("give `03-local-illumination`"),
+            "{e}"
+        );
+    }
+    assert!(!root.join("nested").exists());
 }
 
 /// `check --format json` carries the contract's fields, and a right answer is remembered:

@@ -62,6 +62,19 @@ pub enum LessonError {
     /// A variant asked for a student whose ID is empty (or blank).
     #[error("a student ID must not be empty")]
     EmptyStudent,
+    /// A student's variant asked of another student's homework folder, which holds only the
+    /// values drawn for its owner.
+    #[error(
+        "this folder is {owner}'s homework of lesson {lesson}: {student}'s values are drawn from the lesson itself (give `{lesson}` instead of the folder)"
+    )]
+    OtherStudentsHomework {
+        /// The lesson the folder was made from.
+        lesson: String,
+        /// The student whose homework the folder is.
+        owner: String,
+        /// The student asked for.
+        student: String,
+    },
     /// A homework folder would be written over a folder that has files in it.
     #[error("{}: already exists (remove it, or choose another folder)", .0.display())]
     Exists(PathBuf),

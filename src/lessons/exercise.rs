@@ -294,6 +294,16 @@ impl Lesson {
         if student.is_empty() {
             return Err(LessonError::EmptyStudent);
         }
+        // A homework folder is one student's variant already: its values are its owner's.
+        if let Some(of) = &self.variant {
+            if of.student != student {
+                return Err(LessonError::OtherStudentsHomework {
+                    lesson: of.lesson.clone(),
+                    owner: of.student.clone(),
+                    student: student.to_string(),
+                });
+            }
+        }
         let mut out = self.clone();
         if self.vary.is_empty() {
             return Ok(out);
