@@ -1207,6 +1207,34 @@ fn bench_scaling_refuses_subdivisions_it_cannot_measure_at_once() {
     }
 }
 
+/// The sphere rows are 10, 100, … 100 000 spheres: a `--max-spheres` outside that range would
+/// measure no row it names (below 10) or none it adds (above 100 000), so it is a usage error
+/// naming the flag and the range, before anything is measured.
+#[test]
+fn bench_scaling_refuses_sphere_counts_outside_its_rows_at_once() {
+    for n in ["5", "0", "9", "100001"] {
+        let r = run(&[
+            "bench",
+            "scaling",
+            "--max-spheres",
+            n,
+            "--max-brute",
+            "10",
+            "--max-subdivisions",
+            "3",
+        ]);
+        assert!(r.sane().is_empty(), "{n}: {:?}", r.sane());
+        assert_eq!(r.code(), Some(2), "{n}: {}", r.stderr);
+        assert!(
+            r.stderr.contains("--max-spheres") && r.stderr.contains("10..=100000"),
+            "{n}: {}",
+            r.stderr
+        );
+        assert!(r.stdout.is_empty(), "{n}: {}", r.stdout);
+        assert!(r.elapsed < Duration::from_secs(10), "{n}: {:?}", r.elapsed);
+    }
+}
+
 /// On a terminal both streams show: each row of the scaling table must be printed once.
 #[test]
 fn bench_scaling_prints_each_row_once() {

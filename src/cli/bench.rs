@@ -80,9 +80,11 @@ enum Measure {
   raytree bench scaling
   raytree bench scaling --max-spheres 10000 --max-subdivisions 6 --format json")]
     Scaling {
-        /// Largest number of spheres (10, 100, … up to this).
-        #[arg(long, default_value_t = 100_000)]
-        max_spheres: usize,
+        /// Sphere rows are N = 10, 100, … 100 000 spheres, up to this N; a smaller value would
+        /// leave no row to measure, and a larger one no row to add.
+        #[arg(long, value_name = "N", default_value_t = MAX_SPHERES,
+              value_parser = clap::value_parser!(u64).range(MIN_SPHERES..=MAX_SPHERES))]
+        max_spheres: u64,
         /// Largest N to test without the BVH (brute force is O(N) per ray).
         #[arg(long, default_value_t = 100_000)]
         max_brute: usize,
@@ -140,6 +142,9 @@ enum Measure {
 
 /// The first mesh row's icosphere level: 1 280 triangles, the ≈10³ the mesh rows start from.
 const MIN_SUBDIVISIONS: u32 = 3;
+/// The scaling table's fewest and most spheres: its first and last sphere rows.
+const MIN_SPHERES: u64 = 10;
+const MAX_SPHERES: u64 = 100_000;
 
 /// A terminal size, `COLUMNSxROWS`.
 fn parse_size(s: &str) -> Result<(u16, u16), String> {
@@ -392,8 +397,8 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                     rows.push(row);
                     Ok(())
                 };
-                let sizes = [10, 100, 1_000, 10_000, 100_000];
-                for n in sizes.into_iter().filter(|&n| n <= max_spheres.max(10)) {
+                let sizes = [MIN_SPHERES, 100, 1_000, 10_000, MAX_SPHERES].map(|n| n as usize);
+                for n in sizes.into_iter().filter(|&n| n as u64 <= max_spheres) {
                     show(measure("spheres", n, &spheres(n), n <= max_brute)?)?;
                 }
                 for k in MIN_SUBDIVISIONS..=max_subdivisions {
