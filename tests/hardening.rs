@@ -1126,6 +1126,87 @@ fn bench_sweep_refuses_what_render_refuses() {
     }
 }
 
+/// `--csv FILE` saves the table: the same columns in the same order, the efficiency
+/// 1/(seconds·MSE) included, and on each line the values the table printed (rounded there).
+#[test]
+fn bench_sweep_csv_has_the_printed_tables_columns() {
+    let small = write("csv-sweep.yaml", SMALL);
+    let small = small.to_str().unwrap();
+    let reference = scratch("csv-reference.exr");
+    let reference = reference.to_str().unwrap();
+    let r = run(&["render", small, "-o", reference, "--spp", "64"]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let csv = scratch("sweep.csv");
+    let r = run(&[
+        "bench",
+        "sweep",
+        small,
+        "--knob",
+        "spp",
+        "--values",
+        "1,4",
+        "--reference",
+        reference,
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let table: Vec<Vec<&str>> = r
+        .stdout
+        .lines()
+        .map(|l| l.split_whitespace().collect())
+        .collect();
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<Vec<&str>> = text.lines().map(|l| l.split(',').collect()).collect();
+    assert_eq!(
+        lines[0],
+        [
+            "spp",
+            "seconds",
+            "rays",
+            "rmse",
+            "rel_mse",
+            "max_abs",
+            "psnr",
+            "efficiency"
+        ]
+    );
+    assert_eq!(
+        table[0],
+        [
+            "spp",
+            "seconds",
+            "rays",
+            "RMSE",
+            "rel",
+            "MSE",
+            "max",
+            "|err|",
+            "PSNR",
+            "1/(s·MSE)"
+        ],
+        "{}",
+        r.stdout
+    );
+    assert_eq!(lines.len(), 3, "{text}");
+    assert_eq!(table.len(), 3, "{}", r.stdout);
+    for (printed, saved) in table[1..].iter().zip(&lines[1..]) {
+        assert_eq!(printed.len(), saved.len(), "{printed:?} {saved:?}");
+        // The value, rays and efficiency are printed whole; the others to a few decimals.
+        for column in [0, 2, 7] {
+            assert_eq!(printed[column], saved[column], "{printed:?} {saved:?}");
+        }
+        for (column, decimals) in [(1, 3), (3, 5), (4, 5), (5, 4), (6, 2)] {
+            let x: f64 = saved[column].parse().unwrap();
+            assert_eq!(
+                format!("{x:.decimals$}"),
+                printed[column],
+                "{printed:?} {saved:?}"
+            );
+        }
+    }
+}
+
 /// `--runs 3` times three renders (after an untimed one) and reports their median: the error
 /// and the rays counted are those of a single render, since every render is the same image;
 /// `--runs 0` is refused with a usage message.
