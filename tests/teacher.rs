@@ -710,3 +710,62 @@ fn the_grade_report_shows_control_characters_escaped() {
     assert!(!out.contains('\u{1b}') && !out.contains('\u{7}'), "{out:?}");
     assert!(out.contains("s1\\u{1b}[2J"), "{out}");
 }
+
+/// A homework folder holds the student's values, never the lesson's answers: lesson 08 ships a
+/// figure drawn from its own scene (its title quotes the pixel's intensity), and no file of a
+/// student's folder may contain an answer the lesson's README works out by hand.
+/// Every file the homework README names is in the folder.
+#[test]
+fn a_homework_folder_holds_none_of_the_lessons_answers_and_every_file_its_readme_names() {
+    let root = scratch("homework-answers");
+    for lesson in ["08-pixel-intensity"] {
+        let dir = root.join(lesson);
+        let o = raytree(&[
+            "homework",
+            lesson,
+            "--student",
+            "s1234",
+            "-o",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", err(&o));
+        let readme = std::fs::read_to_string(format!("lessons/{lesson}/README.md")).unwrap();
+        // The hand-worked answers' numbers with enough digits to be telling (not a "0" of a
+        // direction or a small figure a scene may hold for another reason).
+        let answers: Vec<&str> = readme
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix("**Answer (")?.split_once("):**"))
+            .flat_map(|(_, value)| value.split(','))
+            .map(str::trim)
+            .filter(|v| v.len() >= 7)
+            .collect();
+        assert!(answers.len() >= 5, "{lesson}: {answers:?}");
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            let text = String::from_utf8_lossy(&std::fs::read(&path).unwrap()).into_owned();
+            for a in &answers {
+                assert!(
+                    !text.contains(a),
+                    "{}: holds the lesson's answer {a}",
+                    path.display()
+                );
+            }
+        }
+        let homework = std::fs::read_to_string(dir.join("README.md")).unwrap();
+        let links = homework
+            .split("](")
+            .skip(1)
+            .filter_map(|s| s.split(')').next());
+        let quoted = homework.split('`').skip(1).step_by(2).filter(|s| {
+            [".yaml", ".svg", ".png", ".obj", ".exr"]
+                .iter()
+                .any(|e| s.ends_with(e))
+        });
+        for name in links.chain(quoted) {
+            assert!(
+                dir.join(name).is_file(),
+                "{lesson}: the homework README names {name}, not in the folder"
+            );
+        }
+    }
+}

@@ -47,13 +47,18 @@ pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, Lesso
 /// Everything of the homework folder, written into `dir`.
 fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), LessonError> {
     std::fs::create_dir_all(dir).map_err(|e| LessonError::io(dir, "create the folder", e))?;
-    // The lesson's other files (meshes, textures, extra scenes) as they are.
+    // The lesson's other files (meshes, textures, extra scenes) as they are. Its figures (SVG,
+    // drawn by `raytree diagram` from the lesson's own scene) are left out: they show the
+    // lesson's values and answers, not the student's, and the homework README cites none.
     let entries = std::fs::read_dir(&lesson.dir)
         .map_err(|e| LessonError::io(&lesson.dir, "list the lesson's files", e))?;
     for entry in entries.flatten() {
         let from: PathBuf = entry.path();
         let file = entry.file_name();
-        let skip = file == "README.md" || file == "exercises.yaml" || !from.is_file();
+        let figure = from
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        let skip = file == "README.md" || file == "exercises.yaml" || figure || !from.is_file();
         if !skip {
             std::fs::copy(&from, dir.join(&file)).map_err(|e| LessonError::io(&from, "copy", e))?;
         }
