@@ -652,3 +652,88 @@ fn the_stats_table_ends_every_row_in_the_same_column() {
         assert_eq!(row.chars().count(), end, "{row:?}:\n{err}");
     }
 }
+
+/// A figure `--stats` prints, as a number: the value at the end of the line `name` begins.
+fn stat(stats: &str, name: &str) -> f64 {
+    let line = stats
+        .lines()
+        .find(|l| l.starts_with(name))
+        .unwrap_or_else(|| panic!("no {name} in {stats}"));
+    line.split_whitespace().last().unwrap().parse().unwrap()
+}
+
+/// A number as a README writes it, thin groups of thousands apart: "120 311" is 120311.
+fn quoted(s: &str) -> f64 {
+    s.replace([' ', '\u{a0}'], "").parse().unwrap()
+}
+
+/// The text of `readme` between `before` and `after`.
+fn between<'a>(readme: &'a str, before: &str, after: &str) -> &'a str {
+    let rest =
+        &readme[readme.find(before).unwrap_or_else(|| panic!("no {before}")) + before.len()..];
+    rest[..rest.find(after).unwrap_or_else(|| panic!("no {after}"))].trim()
+}
+
+/// The `--stats` of the first `raytree render … --stats` command of `readme` that does not
+/// turn the BVH off, run as the student is told to run it.
+fn stats_of_readme_command(readme: &str) -> String {
+    let command = readme
+        .lines()
+        .map(str::trim)
+        .find(|l| {
+            l.starts_with("raytree render") && l.contains("--stats") && !l.contains("--accel none")
+        })
+        .expect("a render command");
+    let out = temp("readme-stats.png");
+    let mut args: Vec<&str> = command.split_whitespace().skip(1).collect();
+    let o = args.iter().position(|a| *a == "-o").unwrap();
+    let out = out.to_str().unwrap().to_string();
+    args[o + 1] = &out;
+    let r = raytree(&args);
+    assert!(r.status.success(), "{command}: {}", stderr(&r));
+    stderr(&r)
+}
+
+/// The work a BVH saves, as lessons 11 and 12 quote it, is what the command they give prints:
+/// the counts are exact, so each figure in the text must equal the printed one.
+#[test]
+fn the_lessons_bvh_counts_are_what_their_commands_print() {
+    let readme = std::fs::read_to_string("lessons/12-acceleration/README.md").unwrap();
+    let stats = stats_of_readme_command(&readme);
+    let per_ray = between(&readme, "| spheres tested per ray |", "|");
+    let in_all = between(&readme, "| spheres tested in all |", "|");
+    let nodes = between(&readme, "| BVH nodes visited per ray |", "|");
+    assert_eq!(
+        quoted(per_ray),
+        stat(&stats, "primitives tested per ray"),
+        "{stats}"
+    );
+    assert_eq!(
+        quoted(in_all),
+        stat(&stats, "objects/primitives tested"),
+        "{stats}"
+    );
+    assert_eq!(quoted(nodes), stat(&stats, "BVH nodes per ray"), "{stats}");
+
+    let readme = std::fs::read_to_string("lessons/11-triangles/README.md").unwrap();
+    let stats = stats_of_readme_command(&readme);
+    let search = between(&readme, "| search |", "\n");
+    let tests = between(search, "| ", " ray-primitive tests");
+    let nodes = between(search, "ray-primitive tests and", "BVH nodes");
+    let per_ray = between(
+        &readme,
+        "pays a search per ray (",
+        "\nprimitives tested per ray",
+    );
+    assert_eq!(
+        quoted(tests),
+        stat(&stats, "objects/primitives tested"),
+        "{stats}"
+    );
+    assert_eq!(quoted(nodes), stat(&stats, "BVH nodes visited"), "{stats}");
+    assert_eq!(
+        quoted(per_ray),
+        stat(&stats, "primitives tested per ray"),
+        "{stats}"
+    );
+}
