@@ -516,6 +516,32 @@ fn goto_typed_coordinates() {
 }
 
 #[test]
+fn a_good_pick_clears_the_error_of_a_bad_one() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "10,abc");
+    press(&mut app, KeyCode::Enter);
+    let error = "expected a pixel x,y (two whole numbers), got `10,abc`";
+    assert!(screen(&app).contains(error));
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "10,20");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.tree.pixel(), (10, 20));
+    assert!(!screen(&app).contains(error), "{}", screen(&app));
+    // So does one outside the image.
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "48,2");
+    press(&mut app, KeyCode::Enter);
+    let outside = "pixel 48,2 is outside the 48 × 36 image";
+    assert!(screen(&app).contains(outside));
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "3,4");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.tree.pixel(), (3, 4));
+    assert!(!screen(&app).contains(outside), "{}", screen(&app));
+}
+
+#[test]
 fn depth_keys_retrace_at_that_depth() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));
     update(&mut app, Msg::Pick(20, 15));

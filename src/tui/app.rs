@@ -424,7 +424,14 @@ impl App {
 
     fn pick(&mut self, x: u32, y: u32) {
         match self.tree.pick(x, y, self.image_size()) {
-            Ok(()) => self.retrace(),
+            Ok(()) => {
+                // The refusal of an earlier pick (a mistyped or outside pixel) is stale now;
+                // the keys' hint is not.
+                if matches!(self.message, Some((_, Tone::Bad))) {
+                    self.message = None;
+                }
+                self.retrace();
+            }
             Err(note) => self.message = Some(note),
         }
     }
