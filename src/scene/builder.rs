@@ -191,7 +191,7 @@ impl SceneBuilder {
         let fov = self.num(fov_degrees, "camera fov");
         let c = self.camera_spec();
         c.eye = Some(eye);
-        c.look_at = Some(look_at);
+        c.look_at = Some(at(look_at));
         c.up = Some(at(up));
         c.fov = Some(at(fov));
         self

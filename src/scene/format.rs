@@ -231,16 +231,16 @@ pub struct SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct CameraSpec {
     pub eye: Option<V3>,
-    pub look_at: Option<V3>,
+    pub look_at: Option<Spanned<V3>>,
     pub up: Option<Spanned<V3>>,
     pub fov: Option<Spanned<Num>>,
     /// `left` (default: +x on the right looking down +z, as the lecture's window model and
     /// POV-Ray) or `right` (+x on the right looking down −z, as Mitsuba).
-    pub handedness: Option<Handedness>,
+    pub handedness: Option<Spanned<Handedness>>,
     pub u: Option<Spanned<V3>>,
     pub v: Option<Spanned<V3>>,
     pub w: Option<Spanned<V3>>,
-    pub f: Option<Num>,
+    pub f: Option<Spanned<Num>>,
     pub window: Option<Spanned<[Num; 4]>>,
     pub width: Option<Spanned<i64>>,
     pub height: Option<Spanned<i64>>,

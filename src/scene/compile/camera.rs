@@ -5,7 +5,7 @@ use glam::DVec3;
 use serde_saphyr::Spanned;
 
 use super::{invalid, nonzero, pos, Invalid, Limits, Pos, TOP};
-use crate::scene::format::{CameraSpec, SceneFile};
+use crate::scene::format::{CameraSpec, Num, SceneFile};
 use crate::scene::{Camera, Projection};
 
 /// The file's camera, which every scene needs.
@@ -60,7 +60,7 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
     let Some(eye) = c.eye.map(|v| v.0) else {
         return invalid(p, "camera needs an `eye`");
     };
-    if let Some(window) = &c.window {
+    if let Some(window) = model(c, p)? {
         let need = |v: Option<DVec3>, k: &str| {
             v.map_or_else(|| invalid(p, format!("window camera needs `{k}`")), Ok)
         };
@@ -69,7 +69,7 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
             need(c.v.as_ref().map(|x| x.value.0), "v")?,
             need(c.w.as_ref().map(|x| x.value.0), "w")?,
         );
-        let f = c.f.map(|n| n.0).map_or_else(
+        let f = c.f.as_ref().map(|n| n.value.0).map_or_else(
             || invalid(p, "window camera needs the focal distance `f`"),
             Ok,
         )?;
@@ -100,12 +100,6 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
                 "camera window has zero width or height (wl = wr or wt = wb)",
             );
         }
-        if c.look_at.is_some() || c.fov.is_some() {
-            return invalid(
-                p,
-                "camera mixes the window model (window, u, v, w, f) with look_at/fov: use one",
-            );
-        }
         return Ok(Camera {
             projection: Projection::Window {
                 eye,
@@ -119,7 +113,7 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
             height,
         });
     }
-    let Some(target) = c.look_at.map(|v| v.0) else {
+    let Some(target) = c.look_at.as_ref().map(|v| v.value.0) else {
         return invalid(
             p,
             "camera needs `look_at` (or the window model: u, v, w, f, window)",
@@ -147,12 +141,68 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
         }
         Some(f) => f.value.0,
     };
-    Ok(match c.handedness.unwrap_or_default() {
-        crate::scene::format::Handedness::Left => {
-            Camera::look_at(eye, target, up, fov, width, height)
-        }
-        crate::scene::format::Handedness::Right => {
-            Camera::look_at_right_handed(eye, target, up, fov, width, height)
-        }
-    })
+    Ok(
+        match c.handedness.as_ref().map(|h| h.value).unwrap_or_default() {
+            crate::scene::format::Handedness::Left => {
+                Camera::look_at(eye, target, up, fov, width, height)
+            }
+            crate::scene::format::Handedness::Right => {
+                Camera::look_at_right_handed(eye, target, up, fov, width, height)
+            }
+        },
+    )
+}
+
+/// Which model the camera's keys describe: the window model (its `window`, once the other
+/// window keys are known to be there) or the look-at model (None). A key of one model beside
+/// a key of the other is refused at the first key of the model that came second, since the
+/// camera built would silently drop the other model's keys.
+fn model(c: &CameraSpec, p: Pos) -> Result<Option<&Spanned<[Num; 4]>>, Invalid> {
+    let at = |s: Option<Pos>, key: &'static str| s.map(|at| (at, key));
+    let look_at_keys: Vec<(Pos, &str)> = [
+        at(c.look_at.as_ref().map(pos), "look_at"),
+        at(c.up.as_ref().map(pos), "up"),
+        at(c.fov.as_ref().map(pos), "fov"),
+        at(c.handedness.as_ref().map(pos), "handedness"),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    let window_keys: Vec<(Pos, &str)> = [
+        at(c.u.as_ref().map(pos), "u"),
+        at(c.v.as_ref().map(pos), "v"),
+        at(c.w.as_ref().map(pos), "w"),
+        at(c.f.as_ref().map(pos), "f"),
+        at(c.window.as_ref().map(pos), "window"),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    let first = |keys: &[(Pos, &'static str)]| {
+        keys.iter()
+            .copied()
+            .min_by_key(|(at, _)| (at.line, at.column))
+    };
+    if let (Some(look), Some(window)) = (first(&look_at_keys), first(&window_keys)) {
+        let ((at, key), (_, before)) =
+            if (look.0.line, look.0.column) < (window.0.line, window.0.column) {
+                (window, look)
+            } else {
+                (look, window)
+            };
+        return invalid(
+            at,
+            format!(
+                "camera mixes the look-at model's keys with the window model's: `{key}` here, `{before}` earlier; \
+                 use look_at, up, fov and handedness, or u, v, w, f and window, not both"
+            ),
+        );
+    }
+    if window_keys.is_empty() {
+        return Ok(None);
+    }
+    match &c.window {
+        Some(window) => Ok(Some(window)),
+        None => invalid(p, "window camera needs the `window` [wl, wr, wt, wb]"),
+    }
 }
