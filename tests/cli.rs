@@ -737,3 +737,59 @@ fn the_lessons_bvh_counts_are_what_their_commands_print() {
         "{stats}"
     );
 }
+
+#[test]
+fn a_path_traced_render_refuses_grid_and_jittered_and_names_its_sampling() {
+    const PATH: &str = "lessons/15-path-tracing";
+    let out = temp("path.png");
+    let small = ["--width", "8", "--height", "8", "--spp", "4"];
+    for aa in ["grid", "jittered"] {
+        let mut args = vec!["render", PATH, "-o", out.to_str().unwrap(), "--aa", aa];
+        args.extend(small);
+        let o = raytree(&args);
+        assert_eq!(o.status.code(), Some(2), "{aa}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(
+            err.contains(&format!("--aa {aa} is not for a path-traced scene"))
+                && err.contains("Sobol net"),
+            "{err}"
+        );
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+    // The header names the samples' actual placement: a Sobol net, or adaptive when asked.
+    let mut args = vec!["render", PATH, "-o", out.to_str().unwrap(), "--stats"];
+    args.extend(small);
+    let o = raytree(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let header = stderr(&o).lines().next().unwrap_or_default().to_string();
+    assert!(header.contains("4 spp (sobol)"), "{header}");
+    args.extend(["--format", "json"]);
+    let o = raytree(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["antialias"], "sobol");
+    let mut args = vec!["render", PATH, "-o", out.to_str().unwrap(), "--stats"];
+    args.extend(small);
+    args.extend(["--aa", "adaptive"]);
+    let o = raytree(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("4 spp (adaptive)"), "{}", stderr(&o));
+    // A Whitted scene still takes jittered sampling, and says so.
+    let o = raytree(&[
+        "render",
+        LESSON_SCENE,
+        "-o",
+        out.to_str().unwrap(),
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--spp",
+        "4",
+        "--aa",
+        "jittered",
+        "--stats",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("4 spp (jittered)"), "{}", stderr(&o));
+}

@@ -55,7 +55,8 @@ pub struct Args {
     /// Seed of the random numbers (jittered antialiasing, glossy and frosted rays, paths).
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Where a pixel's primary rays go: grid, jittered or adaptive (default: the scene's).
+    /// Where a pixel's primary rays go: grid, jittered or adaptive (default: the scene's); a
+    /// path-traced scene takes adaptive only (else its samples form a Sobol net).
     #[arg(long, value_enum)]
     aa: Option<AaArg>,
     /// Adaptive antialiasing: split a square whose corners differ by more than this (sum of
@@ -433,7 +434,7 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             "width": w,
             "height": h,
             "spp": spp,
-            "antialias": options.antialias.name(),
+            "antialias": sampling_name(&scene, options.antialias),
             "max_depth": options.max_depth,
             "seconds": seconds,
             "rays": stats.rays(),
@@ -448,7 +449,7 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             w,
             h,
             spp,
-            options.antialias.name(),
+            sampling_name(&scene, options.antialias),
             options.max_depth,
             elapsed.as_secs_f64()
         ));
@@ -479,6 +480,19 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
     std::mem::forget(scene);
     std::mem::forget(image);
     Ok(ExitCode::SUCCESS)
+}
+
+/// The name of the sampling a render of `scene` uses with `antialias`: the path tracer
+/// places a pixel's samples as a Sobol net unless they are adaptive (`Film::antialias`).
+fn sampling_name(scene: &crate::scene::Scene, antialias: Antialias) -> &'static str {
+    match antialias {
+        Antialias::Grid | Antialias::Jittered
+            if scene.integrator == crate::scene::Integrator::Path =>
+        {
+            "sobol"
+        }
+        a => a.name(),
+    }
 }
 
 /// `--aa`: the antialiasing modes.
@@ -521,6 +535,18 @@ pub fn antialias(
         Some(AaArg::Jittered) => Antialias::Jittered,
         Some(AaArg::Adaptive) => Antialias::Adaptive { threshold },
     };
+    if scene.integrator == crate::scene::Integrator::Path {
+        if let Some(mode @ (AaArg::Grid | AaArg::Jittered)) = mode {
+            let name = if matches!(mode, AaArg::Grid) {
+                "grid"
+            } else {
+                "jittered"
+            };
+            return Err(Failure(format!(
+                "--aa {name} is not for a path-traced scene: the path tracer spreads a pixel's samples as a scrambled Sobol net (only --aa adaptive changes how it samples)"
+            )));
+        }
+    }
     if threshold_given && !matches!(chosen, Antialias::Adaptive { .. }) {
         return Err(Failure(
             "--aa-threshold is for adaptive antialiasing: add --aa adaptive".into(),
