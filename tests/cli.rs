@@ -793,3 +793,71 @@ fn a_path_traced_render_refuses_grid_and_jittered_and_names_its_sampling() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("4 spp (jittered)"), "{}", stderr(&o));
 }
+
+#[test]
+fn flags_that_would_be_ignored_are_refused() {
+    let strip = temp("strip.png");
+    let o = raytree(&[
+        "render",
+        "lessons/07-recursion-depth",
+        "-o",
+        strip.to_str().unwrap(),
+        "--depth-strip",
+        "3",
+        "--depth",
+        "2",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--depth does not go with --depth-strip"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!strip.exists());
+    let exr = temp("linear.exr");
+    for gamma in ["linear", "srgb"] {
+        let o = raytree(&[
+            "render",
+            LESSON_SCENE,
+            "-o",
+            exr.to_str().unwrap(),
+            "--gamma",
+            gamma,
+        ]);
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("--gamma is for 8-bit images (PNG, PPM): an EXR holds linear"),
+            "{}",
+            stderr(&o)
+        );
+        assert!(!exr.exists());
+    }
+    // Where they mean something, both are taken.
+    let png = temp("linear.png");
+    let o = raytree(&[
+        "render",
+        LESSON_SCENE,
+        "-o",
+        png.to_str().unwrap(),
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--gamma",
+        "linear",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = raytree(&[
+        "render",
+        LESSON_SCENE,
+        "-o",
+        exr.to_str().unwrap(),
+        "--width",
+        "8",
+        "--height",
+        "8",
+        "--depth",
+        "2",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}

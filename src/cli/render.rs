@@ -63,7 +63,8 @@ pub struct Args {
     /// |Δr| + |Δg| + |Δb|; default the scene's aa_threshold, else 0.3 as POV-Ray).
     #[arg(long, value_name = "T")]
     aa_threshold: Option<f64>,
-    /// Render depths 1, 2, …, N side by side into one strip image (the recursion lesson).
+    /// Render depths 1, 2, …, N side by side into one strip image (the recursion lesson); the
+    /// frames set their own depths, so --depth does not go with it.
     #[arg(long, value_name = "N")]
     depth_strip: Option<u32>,
     /// Turn off CSG bounding boxes and pruning (to measure what they save).
@@ -75,9 +76,10 @@ pub struct Args {
     /// The statistics of --stats: lines to read, or one JSON document for programs.
     #[arg(long, value_enum, default_value_t = Format::Text, requires = "stats")]
     format: Format,
-    /// Encoding of the output: sRGB, or the lecture's raw linear values.
-    #[arg(long, value_enum, default_value_t = Gamma::Srgb)]
-    gamma: Gamma,
+    /// Encoding of an 8-bit output (PNG, PPM): sRGB, or the lecture's raw linear values
+    /// (default: srgb). An EXR holds linear radiance and takes no --gamma.
+    #[arg(long, value_enum)]
+    gamma: Option<Gamma>,
     /// Which code renders: the fast wing, or the textbook core alone (`src/trace/whitted.rs`,
     /// one ray at a time). The image is the same bit for bit; the core is slower.
     #[arg(long, value_enum, default_value_t = EngineArg::Fast)]
@@ -290,6 +292,21 @@ fn destination(a: &Args) -> Result<Destination, Failure> {
 
 fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
     let destination = destination(a)?;
+    if a.depth_strip.is_some() && a.depth.is_some() {
+        return Err(Failure(
+            "--depth does not go with --depth-strip: the strip's frames are depths 1 to N, each its own".into(),
+        ));
+    }
+    let format = match destination {
+        Destination::File => ImageFormat::of(&a.output)?,
+        Destination::Stdout(format) => format,
+    };
+    if a.gamma.is_some() && format == ImageFormat::Exr {
+        return Err(Failure(
+            "--gamma is for 8-bit images (PNG, PPM): an EXR holds linear radiance, unencoded"
+                .into(),
+        ));
+    }
     let pool = super::args::thread_pool(a.threads)?;
     // Large scene files parse on the pool's threads too (and only on those).
     let mut scene = pool.install(|| a.scene.load())?;
@@ -406,7 +423,7 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    let encoding = if a.gamma == Gamma::Linear {
+    let encoding = if a.gamma == Some(Gamma::Linear) {
         Encoding::Linear
     } else {
         Encoding::Srgb
