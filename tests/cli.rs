@@ -861,3 +861,57 @@ fn flags_that_would_be_ignored_are_refused() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+#[test]
+fn a_lesson_that_is_none_is_said_to_be_none() {
+    let expected = "raytree: no lesson `99-nope`: not a folder here and not a lesson in lessons (`raytree lessons` lists them)\n";
+    let answers = temp("answers.csv");
+    std::fs::write(&answers, "s1,x,1\n").unwrap();
+    let hw = temp("hw-none");
+    for args in [
+        vec!["check", "99-nope", "--exercise", "x", "--answer", "1"],
+        vec!["grade", "99-nope", "--answers", answers.to_str().unwrap()],
+        vec![
+            "homework",
+            "99-nope",
+            "--student",
+            "s1",
+            "-o",
+            hw.to_str().unwrap(),
+        ],
+        vec!["explore", "99-nope"],
+    ] {
+        let o = raytree(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert_eq!(stderr(&o), expected, "{args:?}");
+    }
+    // With no lessons folder to look in, the built-in lessons are where the name is sought.
+    let nowhere = temp("nowhere");
+    std::fs::create_dir_all(&nowhere).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(["check", "99-nope", "--exercise", "x", "--answer", "1"])
+        .current_dir(&nowhere)
+        .env_remove("RAYTREE_LESSONS")
+        .env("XDG_CACHE_HOME", temp("cache"))
+        .env("RAYTREE_DATA", temp("data"))
+        .output()
+        .expect("runs");
+    assert_eq!(
+        stderr(&o),
+        "raytree: no lesson `99-nope`: not a folder here and not a built-in lesson (`raytree lessons` lists them)\n"
+    );
+    // A lesson that exists is still found by its name.
+    let o = raytree(&[
+        "check",
+        "08-pixel-intensity",
+        "--exercise",
+        "nope",
+        "--answer",
+        "1",
+    ]);
+    assert!(
+        stderr(&o).contains("has no exercise `nope`"),
+        "{}",
+        stderr(&o)
+    );
+}

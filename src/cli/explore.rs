@@ -26,8 +26,15 @@ pub struct Args {
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
+    let target = match a.target.as_deref() {
+        None => None,
+        // A name without an extension is taken for a lesson's: one that is neither a folder
+        // nor a lesson is said to be no lesson (a missing scene file is the loader's to report).
+        Some(t) if t.extension().is_none() => Some(crate::lessons::lesson_dir(t)?),
+        Some(t) => Some(crate::lessons::find_lesson(t)),
+    };
     crate::tui::run(crate::tui::Options {
-        target: a.target.as_deref().map(crate::lessons::find_lesson),
+        target,
         ascii: a.ascii,
         pixel: a.pixel,
         depth: a.depth,

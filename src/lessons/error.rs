@@ -84,6 +84,14 @@ pub enum LessonError {
     /// A folder validated holds no lesson, and is not one.
     #[error("{}: no lessons (folders with an exercises.yaml)", .0.display())]
     NoLessons(PathBuf),
+    /// A lesson named on the command line that is neither a folder nor a lesson's name.
+    #[error("no lesson `{}`: not a folder here and {among} (`raytree lessons` lists them)", name.display())]
+    NoLesson {
+        /// The name as given.
+        name: PathBuf,
+        /// Where it was looked for, as a phrase ("not a built-in lesson").
+        among: String,
+    },
     /// The platform gives no data folder to keep a student's progress in.
     #[error("no data folder (set RAYTREE_DATA)")]
     NoDataDir,

@@ -191,7 +191,7 @@ pub struct Lesson {
 impl Lesson {
     /// The lesson a user names: its folder, or its name in the lessons folder (`find_lesson`).
     pub fn named(folder_or_name: &Path) -> Result<Lesson, LessonError> {
-        Lesson::load(&find_lesson(folder_or_name))
+        Lesson::load(&lesson_dir(folder_or_name)?)
     }
 
     /// Loads the lesson of a folder: its exercises.yaml and README.md.
@@ -398,6 +398,29 @@ pub fn find_lesson(path: &Path) -> PathBuf {
         Ok(root) if !name.as_os_str().is_empty() && root.join(name).exists() => root.join(name),
         _ => path.to_path_buf(),
     }
+}
+
+/// The lesson folder a user names, as `find_lesson` finds it; a name that is neither a path
+/// nor a lesson of the lessons folder is an error that says so, rather than a complaint about
+/// an exercises.yaml the user never named.
+pub fn lesson_dir(path: &Path) -> Result<PathBuf, LessonError> {
+    let found = find_lesson(path);
+    if found.exists() {
+        return Ok(found);
+    }
+    // Where the name was looked for, as `lessons_root` chooses it.
+    let root = CHOSEN_ROOT
+        .get()
+        .cloned()
+        .or_else(|| std::env::var_os("RAYTREE_LESSONS").map(PathBuf::from))
+        .or_else(|| Some(PathBuf::from("lessons")).filter(|p| p.is_dir()));
+    Err(LessonError::NoLesson {
+        name: path.to_path_buf(),
+        among: match root {
+            Some(root) => format!("not a lesson in {}", root.display()),
+            None => "not a built-in lesson".into(),
+        },
+    })
 }
 
 /// All lessons, in folder order.
