@@ -553,14 +553,10 @@ pub fn antialias(
         Some(AaArg::Adaptive) => Antialias::Adaptive { threshold },
     };
     if scene.integrator == crate::scene::Integrator::Path {
-        if let Some(mode @ (AaArg::Grid | AaArg::Jittered)) = mode {
-            let name = if matches!(mode, AaArg::Grid) {
-                "grid"
-            } else {
-                "jittered"
-            };
+        if let Some(AaArg::Grid | AaArg::Jittered) = mode {
             return Err(Failure(format!(
-                "--aa {name} is not for a path-traced scene: the path tracer spreads a pixel's samples as a scrambled Sobol net (only --aa adaptive changes how it samples)"
+                "--aa {} is not for a path-traced scene: the path tracer spreads a pixel's samples as a scrambled Sobol net (only --aa adaptive changes how it samples)",
+                chosen.name()
             )));
         }
     }

@@ -373,17 +373,20 @@ pub fn use_lessons_root(dir: PathBuf) {
 /// The lessons folder: `--lessons DIR`, else `RAYTREE_LESSONS`, else `./lessons`, else the
 /// built-in lessons (written to the user's cache folder on first use).
 pub fn lessons_root() -> Result<PathBuf, LessonError> {
-    if let Some(p) = CHOSEN_ROOT.get() {
-        return Ok(p.clone());
+    match named_root() {
+        Some(root) => Ok(root),
+        None => super::builtin::cached(),
     }
-    if let Some(p) = std::env::var_os("RAYTREE_LESSONS") {
-        return Ok(PathBuf::from(p));
-    }
-    let local = PathBuf::from("lessons");
-    if local.is_dir() {
-        return Ok(local);
-    }
-    super::builtin::cached()
+}
+
+/// The lessons folder when one is named (`--lessons DIR`, `RAYTREE_LESSONS`) or at hand
+/// (`./lessons`); None where the built-in lessons are used.
+fn named_root() -> Option<PathBuf> {
+    CHOSEN_ROOT
+        .get()
+        .cloned()
+        .or_else(|| std::env::var_os("RAYTREE_LESSONS").map(PathBuf::from))
+        .or_else(|| Some(PathBuf::from("lessons")).filter(|p| p.is_dir()))
 }
 
 /// The lesson folder a user names: the path itself when it exists, else the lesson of that
@@ -408,15 +411,9 @@ pub fn lesson_dir(path: &Path) -> Result<PathBuf, LessonError> {
     if found.exists() {
         return Ok(found);
     }
-    // Where the name was looked for, as `lessons_root` chooses it.
-    let root = CHOSEN_ROOT
-        .get()
-        .cloned()
-        .or_else(|| std::env::var_os("RAYTREE_LESSONS").map(PathBuf::from))
-        .or_else(|| Some(PathBuf::from("lessons")).filter(|p| p.is_dir()));
     Err(LessonError::NoLesson {
         name: path.to_path_buf(),
-        among: match root {
+        among: match named_root() {
             Some(root) => format!("not a lesson in {}", root.display()),
             None => "not a built-in lesson".into(),
         },

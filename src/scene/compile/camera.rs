@@ -158,51 +158,45 @@ fn camera(c: &CameraSpec, p: Pos, limits: &Limits) -> Result<Camera, Invalid> {
 /// a key of the other is refused at the first key of the model that came second, since the
 /// camera built would silently drop the other model's keys.
 fn model(c: &CameraSpec, p: Pos) -> Result<Option<&Spanned<[Num; 4]>>, Invalid> {
-    let at = |s: Option<Pos>, key: &'static str| s.map(|at| (at, key));
-    let look_at_keys: Vec<(Pos, &str)> = [
-        at(c.look_at.as_ref().map(pos), "look_at"),
-        at(c.up.as_ref().map(pos), "up"),
-        at(c.fov.as_ref().map(pos), "fov"),
-        at(c.handedness.as_ref().map(pos), "handedness"),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    let window_keys: Vec<(Pos, &str)> = [
-        at(c.u.as_ref().map(pos), "u"),
-        at(c.v.as_ref().map(pos), "v"),
-        at(c.w.as_ref().map(pos), "w"),
-        at(c.f.as_ref().map(pos), "f"),
-        at(c.window.as_ref().map(pos), "window"),
-    ]
-    .into_iter()
-    .flatten()
-    .collect();
-    let first = |keys: &[(Pos, &'static str)]| {
+    // The first of the keys written, in the file's order.
+    let first = |keys: &[(Option<Pos>, &'static str)]| {
         keys.iter()
-            .copied()
+            .filter_map(|&(at, key)| Some((at?, key)))
             .min_by_key(|(at, _)| (at.line, at.column))
     };
-    if let (Some(look), Some(window)) = (first(&look_at_keys), first(&window_keys)) {
-        let ((at, key), (_, before)) =
-            if (look.0.line, look.0.column) < (window.0.line, window.0.column) {
-                (window, look)
-            } else {
-                (look, window)
-            };
-        return invalid(
-            at,
-            format!(
-                "camera mixes the look-at model's keys with the window model's: `{key}` here, `{before}` earlier; \
-                 use look_at, up, fov and handedness, or u, v, w, f and window, not both"
-            ),
-        );
-    }
-    if window_keys.is_empty() {
-        return Ok(None);
-    }
-    match &c.window {
-        Some(window) => Ok(Some(window)),
-        None => invalid(p, "window camera needs the `window` [wl, wr, wt, wb]"),
+    let look_at = first(&[
+        (c.look_at.as_ref().map(pos), "look_at"),
+        (c.up.as_ref().map(pos), "up"),
+        (c.fov.as_ref().map(pos), "fov"),
+        (c.handedness.as_ref().map(pos), "handedness"),
+    ]);
+    let window = first(&[
+        (c.u.as_ref().map(pos), "u"),
+        (c.v.as_ref().map(pos), "v"),
+        (c.w.as_ref().map(pos), "w"),
+        (c.f.as_ref().map(pos), "f"),
+        (c.window.as_ref().map(pos), "window"),
+    ]);
+    match (look_at, window) {
+        (Some(look), Some(win)) => {
+            let ((at, key), (_, before)) =
+                if (look.0.line, look.0.column) < (win.0.line, win.0.column) {
+                    (win, look)
+                } else {
+                    (look, win)
+                };
+            invalid(
+                at,
+                format!(
+                    "camera mixes the look-at model's keys with the window model's: `{key}` here, `{before}` earlier; \
+                     use look_at, up, fov and handedness, or u, v, w, f and window, not both"
+                ),
+            )
+        }
+        (_, None) => Ok(None),
+        (None, Some(_)) => match &c.window {
+            Some(window) => Ok(Some(window)),
+            None => invalid(p, "window camera needs the `window` [wl, wr, wt, wb]"),
+        },
     }
 }
