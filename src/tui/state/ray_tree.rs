@@ -44,8 +44,8 @@ pub struct RayTree {
     ray: Option<Ray>,
     /// The maximum depth asked for (by the scene, the keys or an exercise).
     asked: u32,
-    /// The maximum depth the tree and the preview are traced with: `depth`, unless a tree that
-    /// deep would pass `TREE_BUDGET` rays.
+    /// The maximum depth the tree is traced with: `asked`, unless a tree that deep would pass
+    /// `TREE_BUDGET` rays (`affordable_depth`).
     traced: u32,
     /// The depth was chosen (keys, an exercise), so a reloaded scene does not reset it.
     depth_from_user: bool,
