@@ -245,6 +245,44 @@ objects:
     assert!((light.l - toward_centre).length() < E, "{}", light.l);
 }
 
+/// A rectangle emits on the side of u × v only. The panel at height 2 with u = x, v = z faces
+/// down (x × z = −y): the floor under it gets I = kd·Iℓ·(n·l) = 1 straight below its centre.
+/// With u and v swapped it faces up, so the floor sees its back: fatt = 0, no shadow ray,
+/// I = 0, and a point above the panel then sees its front and is lit, s = 1.
+#[test]
+fn a_rectangle_light_lights_only_the_side_of_u_cross_v() {
+    let panel = |u: &str, v: &str| {
+        common::scene(&format!(
+            "camera: {{ eye: [0, 1, -3], look_at: [0, 0, 0] }}
+lights: [ {{ name: panel, rect: {{ corner: [-1, 2, -1], u: {u}, v: {v} }}, samples: 2 }} ]
+materials: {{ matte: {{ ka: 0, kd: 1 }} }}
+objects:
+  - {{ name: floor, plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: matte }}
+  - {{ name: roof, plane: {{ point: [0, 4, 0], normal: [0, -1, 0] }}, material: matte }}
+"
+        ))
+    };
+    let down_to_floor = Ray::new(DVec3::new(0.0, 1.0, 0.0), -DVec3::Y);
+    let up_to_roof = Ray::new(DVec3::new(0.0, 3.0, 0.0), DVec3::Y);
+
+    let facing_down = panel("[2, 0, 0]", "[0, 0, 2]");
+    let floor = Tracer::new(&facing_down).inspect(&down_to_floor);
+    let light = &floor.local.as_ref().unwrap().lights[0];
+    assert_eq!((light.attenuation, light.shadow), (1.0, 1.0));
+    assert!((floor.color - DVec3::ONE).length() < E, "{}", floor.color);
+    let roof = Tracer::new(&facing_down).inspect(&up_to_roof);
+    assert_eq!(roof.color, DVec3::ZERO);
+
+    let facing_up = panel("[0, 0, 2]", "[2, 0, 0]");
+    let floor = Tracer::new(&facing_up).inspect(&down_to_floor);
+    let light = &floor.local.as_ref().unwrap().lights[0];
+    assert_eq!((light.attenuation, floor.color), (0.0, DVec3::ZERO));
+    assert!(light.skipped.as_deref().unwrap().contains("u × v"));
+    assert_eq!(floor.children.len(), 0, "no shadow ray is cast");
+    let roof = Tracer::new(&facing_up).inspect(&up_to_roof);
+    assert!((roof.color - DVec3::ONE).length() < E, "{}", roof.color);
+}
+
 /// Adaptive depth control at its boundary: mirrors with kr = ½ facing each other, threshold
 /// ¼. The first reflection weighs ½, the second exactly ¼: a ray whose weight equals the
 /// threshold is still traced; the third, ⅛, is cut.

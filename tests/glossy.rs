@@ -12,7 +12,7 @@ use raytree::sampling::{pixel_key, Rng, SamplePoint};
 use raytree::scene::Scene;
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
-use raytree::trace::tree::{RayKind, RayNode};
+use raytree::trace::tree::{RayKind, RayNode, Termination};
 use raytree::trace::Tracer;
 
 const CAMERA: &str =
@@ -162,8 +162,7 @@ fn the_tree_shows_the_cone_as_the_mean_of_its_sampled_rays() {
 fn frosted_glass_blurs_but_keeps_the_light_it_lets_through() {
     // A frosted slab (no reflection, kt = 1) between the eye and a uniform glowing wall:
     // every refracted ray ends on the wall or the background, both of radiance 1. (The lobe
-    // is narrow enough that no sampled ray meets the back face beyond the critical angle,
-    // where it would be trapped between the parallel faces by total internal reflection.)
+    // is narrow enough that no sampled ray meets the back face beyond the critical angle.)
     let s = scene(
         "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 30, width: 12, height: 12 }\n\
          background: 1\nambient: 1\n\
@@ -176,6 +175,105 @@ fn frosted_glass_blurs_but_keeps_the_light_it_lets_through() {
     for p in &image.pixels {
         assert!((*p - DVec3::ONE).abs().max_element() < 1e-12, "{p}");
     }
+}
+
+/// The furnace test of frosted glass: a clear sphere (kt = 1, nothing absorbed) under a uniform
+/// sky of 0.5 shows 0.5 wherever it is seen, every ray ending in the sky. Frosted, a ray
+/// drawn into the sphere may meet its far side beyond the limiting angle; turned back by a
+/// perfect mirror it would keep that angle and bounce inside until the depth limit (a sphere's
+/// chords all meet it at one angle), darkening the ball. The frosted face spreads that
+/// reflection too, so the ray leaves within a few bounces. Whitted: every sample ends in the
+/// sky, 0.5 to the last bit but for rays cut at the depth limit; path traced (no roulette, so
+/// a path brings 0.5 or, cut at the depth limit, 0) the same.
+#[test]
+fn frosted_glass_passes_the_furnace_test() {
+    let furnace = |integrator: &str| {
+        scene(&format!(
+            "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], fov: 30, width: 21, height: 21 }}
+integrator: {integrator}
+background: 0.5
+max_depth: 64
+spp: 16
+materials: {{ frost: {{ color: 1, kt: 1, ior: 1.5, frosted: {{ spread: 20, samples: 1 }} }} }}
+objects: [ {{ name: ball, sphere: {{ center: [0, 0, 0], radius: 1 }}, material: frost }} ]
+"
+        ))
+    };
+    let whitted = furnace("whitted");
+    let (image, stats) = render_simple(&whitted, RenderOptions::of(&whitted));
+    assert!(stats.total_internal_reflections > 1000, "{stats:?}");
+    let dark = image
+        .pixels
+        .iter()
+        .filter(|p| (**p - DVec3::splat(0.5)).abs().max_element() > 1e-12);
+    assert_eq!(
+        dark.count(),
+        0,
+        "max-depth cut-offs: {}",
+        stats.max_depth_cutoffs
+    );
+
+    let path = furnace("path");
+    let tracer = PathTracer {
+        roulette: false,
+        ..PathTracer::new(&path, path.max_depth)
+    };
+    let cam = &path.camera;
+    let (mut sum, mut n) = (0.0, 0);
+    for (x, y) in [(4, 10), (10, 10), (7, 6), (10, 4), (13, 13)] {
+        for i in 0..256 {
+            let point = SamplePoint::new(pixel_key(1, x, y), i);
+            let [u, v] = point.pair(0);
+            let ray = cam.ray(x as f64 + u, y as f64 + v);
+            let l = tracer.radiance(&ray, &point, &mut Stats::default());
+            assert!(l == DVec3::splat(0.5) || l == DVec3::ZERO, "{l}");
+            (sum, n) = (sum + l.x, n + 1);
+        }
+    }
+    assert!(sum / n as f64 > 0.4995, "mean {}", sum / n as f64);
+}
+
+/// Inside a frosted glass ball, a ray from (0, 0.9, 0) along +z meets the surface at
+/// (0, 0.9, √0.19) with cos θ = √0.19 ≈ 0.436: θ ≈ 64°, past the limiting angle asin(1/1.5) ≈
+/// 41.8°. The refraction ray ends in total internal reflection, and the ray that stays inside
+/// is a cone of the frosted lobe's 4 samples, named for what it is.
+#[test]
+fn frosted_total_internal_reflection_is_a_frosted_reflection_cone() {
+    let s = scene(
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }
+materials: { frost: { kt: 1, ior: 1.5, frosted: { spread: 5, samples: 4 } } }
+objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: frost } ]
+",
+    );
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 0.9, 0.0), DVec3::Z));
+    assert!(tree.hit.as_ref().unwrap().inside);
+    let refraction = &tree.children[0];
+    assert_eq!(refraction.kind, RayKind::Refraction);
+    assert_eq!(refraction.terminated, Some(Termination::TotalInternalReflection));
+    let inside = &refraction.children[0];
+    assert_eq!(inside.kind, RayKind::Reflection);
+    assert_eq!(inside.cone(), Some(("frosted reflection", 4)));
+    assert_eq!(inside.children.len(), 4);
+}
+
+/// Between two glossy planes every secondary ray is a glossy sample, so the samples counted
+/// are the reflection rays traced: a sample cut off at the maximum depth is counted as skipped,
+/// not as traced. 40 × 30 primary rays, each followed by one sample a bounce to depth 3.
+#[test]
+fn glossy_samples_are_counted_only_when_traced() {
+    let s = scene(
+        "camera: { eye: [0, 1, -5], look_at: [0, 0, 0], width: 40, height: 30 }
+max_depth: 4
+materials: { g: { color: 1, kd: 0.2, kr: 0.5, glossy: { exponent: 50, samples: 1 } } }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: g }
+  - { name: ceiling, plane: { point: [0, 3, 0], normal: [0, -1, 0] }, material: g }
+",
+    );
+    let (_, stats) = render_simple(&s, RenderOptions::of(&s));
+    assert_eq!(stats.reflection_rays, 1200 * 3);
+    assert_eq!(stats.glossy_rays, stats.reflection_rays);
+    assert_eq!(stats.max_depth_cutoffs, 1200);
 }
 
 /// A sphere light right above a point, and a blocker whose edge plane contains the line from

@@ -34,7 +34,9 @@ pub(super) fn light_share<'a>(
     let sample = sample(light, si.point);
     let strength = sample.attenuation * light.intensity;
     let lit = light_terms(m, &si.paint, si.normal, -ray.dir, sample.l, strength, false);
-    let skipped = t.no_shadow_ray(si, k, lit.n_dot_l, false).is_some();
+    let skipped = t
+        .no_shadow_ray(si, k, &sample, lit.n_dot_l, false)
+        .is_some();
     (sample, lit.diffuse + lit.specular, skipped)
 }
 

@@ -146,10 +146,13 @@ impl Light {
                 if d == 0.0 {
                     return LightSample::AT_THE_POINT;
                 }
+                // A rectangle emits on the side of u × v only: seen from behind, or edge on,
+                // it sends the point nothing (fatt = 0).
+                let in_front = (p - *corner).dot(u.cross(*v)) > 0.0;
                 LightSample {
                     l: to_light * (1.0 / d),
                     distance: d,
-                    attenuation: 1.0,
+                    attenuation: if in_front { 1.0 } else { 0.0 },
                 }
             }
         }

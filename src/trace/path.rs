@@ -357,24 +357,28 @@ impl<'s> PathTracer<'s> {
                     "reflection"
                 };
                 log.at(event, Some(object), si.point, throughput, sum - before);
+                // A frosted face spreads the light it turns back (Fresnel's share, or all of
+                // it past the limiting angle) as it spreads the light it lets through.
+                let frosted = |principal: DVec3| match m.frosted {
+                    None => principal,
+                    Some(l) => {
+                        let [u1, u2] = self.draw(bounce, Draw::Direction);
+                        spread(l.shape, principal, n, u1, u2)
+                    }
+                };
                 ray = match refracted {
                     Some(dir) => {
                         stats.refraction_rays += 1;
-                        let [u1, u2] = self.draw(bounce, Draw::Direction);
-                        let dir = match m.frosted {
-                            None => dir,
-                            Some(l) => spread(l.shape, dir, n, u1, u2),
-                        };
                         Ray {
                             origin: si.point - offset * n,
-                            dir,
+                            dir: frosted(dir),
                         }
                     }
                     None => {
                         stats.reflection_rays += 1;
                         Ray {
                             origin: si.point + offset * n,
-                            dir: reflect(ray.dir, n),
+                            dir: frosted(reflect(ray.dir, n)),
                         }
                     }
                 };

@@ -2,7 +2,7 @@
 //! the inspector uses `TreeRecorder`, which builds the ray tree from the same calls. There is
 //! one tracer, so the tree shown *is* the computation that coloured the pixel.
 
-use super::tree::{HitInfo, Indices, Local, RayKind, RayNode, Termination};
+use super::tree::{HitInfo, Indices, LobeKind, Local, RayKind, RayNode, Termination};
 use glam::DVec3;
 
 /// The start of a ray, as the tracer announces it.
@@ -38,8 +38,8 @@ pub trait Recorder {
     /// The open node is the shadow test of `light`: s is the fraction of its `rays` shadow
     /// rays that got through.
     fn shadow(&mut self, light: &str, t_max: f64, s: f64, rays: u32);
-    /// The open node is a cone of n sampled rays (glossy or frosted), not a ray.
-    fn samples(&mut self, n: u32);
+    /// The open node is a cone of n sampled rays drawn from the `lobe`, not a ray.
+    fn samples(&mut self, n: u32, lobe: LobeKind);
     /// The open node's ray reached the light `light` (the stop rule at lights).
     fn lamp(&mut self, light: &str);
     /// The node closed last was divided by `divisor` before its parent weighted it (the
@@ -60,7 +60,7 @@ impl Recorder for NoRecorder {
     fn local(&mut self, _: Local) {}
     fn indices(&mut self, _: Indices) {}
     fn shadow(&mut self, _: &str, _: f64, _: f64, _: u32) {}
-    fn samples(&mut self, _: u32) {}
+    fn samples(&mut self, _: u32, _: LobeKind) {}
     fn lamp(&mut self, _: &str) {}
     fn attenuated(&mut self, _: f64) {}
     fn end(&mut self, _: DVec3, _: Option<Termination>) {}
@@ -106,6 +106,7 @@ impl Recorder for TreeRecorder {
             shadow: None,
             shadow_rays: None,
             samples: None,
+            lobe: None,
             attenuation: None,
             hit: None,
             local: None,
@@ -135,8 +136,9 @@ impl Recorder for TreeRecorder {
         node.shadow_rays = (rays > 1).then_some(rays);
     }
 
-    fn samples(&mut self, n: u32) {
-        self.current().samples = Some(n);
+    fn samples(&mut self, n: u32, lobe: LobeKind) {
+        let node = self.current();
+        (node.samples, node.lobe) = (Some(n), Some(lobe));
     }
 
     fn lamp(&mut self, light: &str) {

@@ -185,6 +185,17 @@ pub struct Indices {
     pub n2: f64,
 }
 
+/// Which of a material's Monte Carlo lobes a cone of sampled rays is drawn from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LobeKind {
+    /// About the mirror direction (`glossy`).
+    Glossy,
+    /// About the refracted direction (`frosted`), or past the limiting angle about the mirror
+    /// ray that stays inside.
+    Frosted,
+}
+
 /// A node of the ray tree: one ray, what it hit, the local terms there, and its child rays.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct RayNode {
@@ -223,6 +234,10 @@ pub struct RayNode {
     /// each with coefficient 1/n).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub samples: Option<u32>,
+    /// The material's lobe the cone's rays are drawn from (the frosted one also for the
+    /// reflection that stays inside past the limiting angle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lobe: Option<LobeKind>,
     /// With `secondary_attenuation`: the c0 + c1·d + c2·d² (d the distance to this ray's hit)
     /// its intensity was divided by before its parent weighted it (seeds 000, 004).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -242,10 +257,10 @@ pub struct RayNode {
 impl RayNode {
     /// For a glossy or frosted cone: its name and how many rays it averages.
     pub fn cone(&self) -> Option<(&'static str, u32)> {
-        let name = if self.kind == RayKind::Reflection {
-            "glossy reflection"
-        } else {
-            "frosted refraction"
+        let name = match (self.lobe, self.kind) {
+            (Some(LobeKind::Frosted), RayKind::Reflection) => "frosted reflection",
+            (Some(LobeKind::Frosted), _) => "frosted refraction",
+            _ => "glossy reflection",
         };
         self.samples.map(|k| (name, k))
     }

@@ -20,7 +20,7 @@ use glam::DVec3;
 
 use super::media::Across;
 use super::task::Task;
-use super::tree::{Indices, LightTerm, Local, Termination};
+use super::tree::{Indices, LightTerm, LobeKind, Local, Termination};
 use super::Tracer;
 use crate::geometry::Ray;
 use crate::scene::{Hit, Interaction};
@@ -173,17 +173,19 @@ impl<R: Recorder> Tracer<'_, R> {
         } else {
             light_terms(m, &si.paint, si.normal, v, sample.l, strength, shows)
         };
-        let skipped = self.no_shadow_ray(si, k, lit.n_dot_l, through);
+        let skipped = self.no_shadow_ray(si, k, &sample, lit.n_dot_l, through);
         (sample, lit, skipped)
     }
 
     /// Why light k needs no shadow ray at a surface, if it does not (then s = 0): it is behind
-    /// the surface, dark, or outside the convex solid the point is inside of. `through`: the
-    /// light is seen through the surface (Hall's transmitted highlight).
+    /// the surface, dark, sends nothing toward the point (`toward`, its sample there, has
+    /// fatt = 0), or is outside the convex solid the point is inside of. `through`: the light
+    /// is seen through the surface (Hall's transmitted highlight).
     pub(crate) fn no_shadow_ray(
         &mut self,
         si: &Interaction,
         k: usize,
+        toward: &LightSample,
         n_dot_l: f64,
         through: bool,
     ) -> Option<&'static str> {
@@ -193,6 +195,11 @@ impl<R: Recorder> Tracer<'_, R> {
         } else if self.scene.lights[k].is_dark() {
             self.stats.shadow_skipped_dark += 1;
             Some("light has zero intensity")
+        } else if toward.attenuation == 0.0 {
+            self.stats.shadow_skipped_dark += 1;
+            Some(
+                "the light sends nothing this way (fatt = 0: a rectangle lights the side of u × v)",
+            )
         } else if si.inside
             && !through
             && self.options.shadows
@@ -272,7 +279,7 @@ impl<R: Recorder> Tracer<'_, R> {
             sum += kr
                 * match m.glossy {
                     None => self.child(&reflection),
-                    Some(lobe) => self.cone(&reflection, task, si, lobe),
+                    Some(lobe) => self.cone(&reflection, task, si, (lobe, LobeKind::Glossy)),
                 };
         }
         if kt > 0.0 {
@@ -283,7 +290,9 @@ impl<R: Recorder> Tracer<'_, R> {
                         let refraction = task.refraction(ray, kt, across.beyond, indices);
                         match m.frosted {
                             None => self.child(&refraction),
-                            Some(lobe) => self.cone(&refraction, task, si, lobe),
+                            Some(lobe) => {
+                                self.cone(&refraction, task, si, (lobe, LobeKind::Frosted))
+                            }
                         }
                     }
                     None => self.total_internal_reflection(task, si, mirror, kt, indices),
@@ -311,7 +320,10 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// Beyond the limiting angle no light is transmitted: the refraction ray becomes a
     /// reflection ray that stays inside. The tree shows a refraction node that ends in
-    /// "total_internal_reflection" with that mirror ray as its child.
+    /// "total_internal_reflection" with that mirror ray as its child. A frosted surface
+    /// spreads it too, drawn from the frosted lobe about the mirror direction: the rough face
+    /// that blurs the light it lets through blurs the light it turns back (a perfect mirror
+    /// there would keep a ray in a sphere at one angle, bouncing until the depth limit).
     fn total_internal_reflection(
         &mut self,
         task: &Task,
@@ -332,7 +344,10 @@ impl<R: Recorder> Tracer<'_, R> {
         self.stats.total_internal_reflections += 1;
         refraction.begin(&mut self.rec);
         let inside = task.mirror_inside(self.spawn(si, mirror, task), kt);
-        let color = self.child(&inside);
+        let color = match self.scene.material(si.material).frosted {
+            None => self.child(&inside),
+            Some(lobe) => self.cone(&inside, task, si, (lobe, LobeKind::Frosted)),
+        };
         self.rec
             .end(color, Some(Termination::TotalInternalReflection));
         color
@@ -408,23 +423,30 @@ impl<R: Recorder> Tracer<'_, R> {
     /// Seed 000's Monte Carlo reflection and refraction: the light arriving in a cone about
     /// the principal direction is the average of n rays drawn from the lobe, each traced
     /// recursively. The tree shows the cone as a node whose children are the sampled rays.
-    fn cone(&mut self, principal: &Task, parent: &Task, si: &Interaction, lobe: Lobe) -> DVec3 {
+    fn cone(
+        &mut self,
+        principal: &Task,
+        parent: &Task,
+        si: &Interaction,
+        (lobe, kind): (Lobe, LobeKind),
+    ) -> DVec3 {
         let n = if principal.split { 1 } else { lobe.samples };
         if R::ACTIVE {
             principal.begin(&mut self.rec);
-            self.rec.samples(n);
+            self.rec.samples(n, kind);
         }
         let mut sum = DVec3::ZERO;
         for _ in 0..n {
             let (u1, u2) = (self.rng.uniform(), self.rng.uniform());
             let dir = lobe::spread(lobe.shape, principal.ray.dir, si.normal, u1, u2);
-            self.stats.glossy_rays += 1;
             let sample = Task {
                 ray: self.spawn(si, dir, parent),
                 coefficient: 1.0 / n as f64,
                 split: true,
                 ..*principal
             };
+            // Counted among the rays traced only if it is traced (`child` may cut it off).
+            self.stats.glossy_rays += self.limit(&sample).is_none() as u64;
             sum += self.child(&sample);
         }
         let mean = sum / n as f64;
