@@ -534,6 +534,119 @@ fn check_json_and_progress() {
     assert!(text.contains("(1/11 done)"), "{text}");
 }
 
+/// raytree run in `cwd` (a folder without `lessons/`, so the built-in lessons are used), with
+/// its own data and cache folders.
+fn raytree_built_in(cwd: &Path, data: &Path, cache: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(args)
+        .current_dir(cwd)
+        .env("RAYTREE_DATA", data)
+        .env("RAYTREE_CACHE", cache)
+        .env_remove("RAYTREE_LESSONS")
+        .env("NO_COLOR", "1")
+        .output()
+        .unwrap()
+}
+
+/// A built-in lesson's marks belong to the lesson, not to the cache folder its copy is written
+/// to: a new cache folder (a cleared cache, a new version) keeps them, and marks an earlier
+/// version kept under its copy's folder still count. An answer checked for another student
+/// (`--student`, grading) does not mark the checker's own lesson.
+#[test]
+fn progress_is_kept_by_lesson_not_by_cache_folder() {
+    let root = scratch("built-in-progress");
+    let (cwd, data) = (root.join("home"), root.join("data"));
+    std::fs::create_dir_all(&cwd).unwrap();
+    let done = |cache: &str| {
+        let o = raytree_built_in(
+            &cwd,
+            &data,
+            &root.join(cache),
+            &["lessons", "05-reflection"],
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        out(&o).lines().next().unwrap_or_default().to_string()
+    };
+    let check = |args: &[&str]| {
+        let mut all = vec!["check", "05-reflection", "--exercise", "mirror-local"];
+        all.extend_from_slice(args);
+        raytree_built_in(&cwd, &data, &root.join("cache-1"), &all)
+    };
+    assert!(check(&["--answer", "0.23", "--student", "s1"])
+        .status
+        .success());
+    assert!(
+        done("cache-1").contains("(0/11 done)"),
+        "{}",
+        done("cache-1")
+    );
+    assert!(check(&["--answer", "0.23"]).status.success());
+    assert!(
+        done("cache-1").contains("(1/11 done)"),
+        "{}",
+        done("cache-1")
+    );
+    assert!(
+        done("cache-2").contains("(1/11 done)"),
+        "{}",
+        done("cache-2")
+    );
+
+    // An earlier version's mark, under its copy's folder in the cache.
+    let old_copy = root
+        .join("cache-2")
+        .join("lessons-0.0.1-0000000000000000")
+        .join("05-reflection");
+    std::fs::create_dir_all(&old_copy).unwrap();
+    let old_key = std::fs::canonicalize(&old_copy)
+        .unwrap()
+        .display()
+        .to_string();
+    let file = data.join("progress.json");
+    let old = serde_json::json!({ "lessons": { old_key: ["pixel-intensity"] } });
+    std::fs::write(&file, old.to_string()).unwrap();
+    assert!(
+        done("cache-2").contains("(1/11 done)"),
+        "{}",
+        done("cache-2")
+    );
+    let o = raytree_built_in(
+        &cwd,
+        &data,
+        &root.join("cache-2"),
+        &["lessons", "05-reflection"],
+    );
+    assert!(out(&o).contains("✓ pixel-intensity"), "{}", out(&o));
+}
+
+/// A progress file that does not read as progress is not written over by the next right
+/// answer: the check still passes, and says why nothing was saved.
+#[test]
+fn a_corrupt_progress_file_is_left_alone_with_a_warning() {
+    let data = scratch("corrupt-progress");
+    std::fs::create_dir_all(&data).unwrap();
+    let file = data.join("progress.json");
+    std::fs::write(&file, "{not json").unwrap();
+    let o = raytree_in(
+        &data,
+        &[
+            "check",
+            "lessons/05-reflection",
+            "--exercise",
+            "mirror-local",
+            "--answer",
+            "0.23",
+        ],
+    );
+    assert!(o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("progress not saved") && err.contains("not a progress file"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "{not json");
+}
+
 /// A lesson with `solutions: hidden` refuses --explain (a usage error) but checks answers.
 #[test]
 fn hidden_solutions_are_not_explained() {

@@ -61,8 +61,10 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     } else {
         None
     };
-    if verdict.as_ref().is_some_and(|v| v.correct) {
-        // Progress is a convenience: a data folder that cannot be written does not fail a check.
+    // Progress is the user's own: an answer checked for another student (grading) is not
+    // theirs. And it is a convenience: a data folder that cannot be written does not fail a
+    // check.
+    if a.student.is_none() && verdict.as_ref().is_some_and(|v| v.correct) {
         if let Err(e) = Progress::record(&lesson, &ex.id) {
             super::output::eprintln(&format!("raytree: progress not saved: {e}"));
         }

@@ -95,6 +95,14 @@ pub enum LessonError {
     /// The platform gives no data folder to keep a student's progress in.
     #[error("no data folder (set RAYTREE_DATA)")]
     NoDataDir,
+    /// The progress file is there but does not read as progress; it is left as it is.
+    #[error("{}: not a progress file ({reason}); left as it is: move it away to start afresh", path.display())]
+    ProgressUnreadable {
+        /// The file.
+        path: PathBuf,
+        /// What the JSON reader said.
+        reason: String,
+    },
 }
 
 impl LessonError {
