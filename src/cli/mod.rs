@@ -117,6 +117,12 @@ pub fn run() -> ExitCode {
     if let Some(dir) = cli.lessons {
         crate::lessons::use_lessons_root(dir);
     }
+    // Renders that run on rayon's global pool (previews, the explorer's, lesson checks, bench
+    // sweeps) need the render workers' stack as much as `render`'s own pool does: unoptimised,
+    // the fast wing's frames overflow a default thread stack within a few levels.
+    let _ = rayon::ThreadPoolBuilder::new()
+        .stack_size(args::RENDER_STACK)
+        .build_global();
     let result = match cli.command {
         Command::Render(a) => render::run(a),
         Command::Inspect(a) => inspect::run(a),
