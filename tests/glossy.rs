@@ -249,7 +249,10 @@ objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: fro
     assert!(tree.hit.as_ref().unwrap().inside);
     let refraction = &tree.children[0];
     assert_eq!(refraction.kind, RayKind::Refraction);
-    assert_eq!(refraction.terminated, Some(Termination::TotalInternalReflection));
+    assert_eq!(
+        refraction.terminated,
+        Some(Termination::TotalInternalReflection)
+    );
     let inside = &refraction.children[0];
     assert_eq!(inside.kind, RayKind::Reflection);
     assert_eq!(inside.cone(), Some(("frosted reflection", 4)));

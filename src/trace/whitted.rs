@@ -197,9 +197,7 @@ impl<R: Recorder> Tracer<'_, R> {
             Some("light has zero intensity")
         } else if toward.attenuation == 0.0 {
             self.stats.shadow_skipped_dark += 1;
-            Some(
-                "the light sends nothing this way (fatt = 0: a rectangle lights the side of u × v)",
-            )
+            Some("the light sends nothing this way: a rectangle lights only the side of u × v")
         } else if si.inside
             && !through
             && self.options.shadows
