@@ -1259,6 +1259,68 @@ fn bench_sweep_takes_the_median_of_its_runs() {
     assert!(refused.stderr.contains("--runs"), "{}", refused.stderr);
 }
 
+/// A render equal to an EXR reference that raytree wrote of the same image is exact: the EXR
+/// keeps f32, and the sweep rounds its render to f32 before measuring it, so the row has no
+/// error (RMSE 0, no PSNR, efficiency "exact") rather than the f32 rounding's tiny one. The
+/// JSON rows carry the table's efficiency, 1/(seconds·MSE), and whether the row is exact.
+#[test]
+fn bench_sweep_finds_its_own_exr_reference_exact() {
+    let small = write("exact-sweep.yaml", SMALL);
+    let small = small.to_str().unwrap();
+    let reference = scratch("exact-reference.exr");
+    let reference = reference.to_str().unwrap();
+    let r = run(&["render", small, "-o", reference, "--spp", "4"]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let sweep = |format: &str| {
+        let r = run(&[
+            "bench",
+            "sweep",
+            small,
+            "--knob",
+            "spp",
+            "--values",
+            "1,4",
+            "--reference",
+            reference,
+            "--format",
+            format,
+        ]);
+        assert_eq!(r.code(), Some(0), "{}", r.stderr);
+        r.stdout
+    };
+    let table = sweep("text");
+    let efficiencies: Vec<&str> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.split_whitespace().last().unwrap())
+        .collect();
+    assert_eq!(efficiencies.len(), 2, "{table}");
+    assert_eq!(efficiencies[1], "exact", "{table}");
+    assert!(efficiencies[0].parse::<f64>().unwrap() > 0.0, "{table}");
+
+    let doc: serde_json::Value = serde_json::from_str(&sweep("json")).unwrap();
+    let rows = doc["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2);
+    let (rough, same) = (&rows[0], &rows[1]);
+    assert_eq!(same["value"], 4.0);
+    assert_eq!(same["rmse"], 0.0, "{same}");
+    assert_eq!(same["max_abs"], 0.0, "{same}");
+    assert!(same["efficiency"].is_null(), "{same}");
+    assert_eq!(same["exact"], true, "{same}");
+    assert_eq!(rough["exact"], false, "{rough}");
+    let (seconds, rmse) = (
+        rough["seconds"].as_f64().unwrap(),
+        rough["rmse"].as_f64().unwrap(),
+    );
+    assert!(rmse > 0.0, "{rough}");
+    let efficiency = rough["efficiency"].as_f64().unwrap();
+    let expected = 1.0 / (seconds * rmse * rmse);
+    assert!(
+        (efficiency - expected).abs() <= 1e-9 * expected,
+        "{efficiency} against 1/(seconds·MSE) = {expected}"
+    );
+}
+
 /// `bench scaling` with a size it has no row for is a usage error that names the flag and its
 /// range, before anything is measured: subdivisions 3 to 8 (an icosphere of 9 is past the
 /// scene's triangle budget; the mesh rows start at 3), and 10 to 100 000 spheres (the rows are

@@ -9,7 +9,9 @@ mod threads;
 pub use error::BenchError;
 pub use plot::{log_ticks, sweep_plot_svg, tick_label};
 pub use scaling::{measure, mesh, spheres, table, table_header, table_row, Row};
-pub use sweep::{errors, reference_for, sweep, sweep_csv, sweep_table, Knob, SweepRow};
+pub use sweep::{
+    errors, reference_for, sweep, sweep_csv, sweep_table, Knob, Precision, Reference, SweepRow,
+};
 pub use threads::{thread_rounds, threads_table, ThreadRounds, ThreadRun};
 
 #[cfg(all(test, feature = "cli"))]

@@ -111,6 +111,39 @@ impl Knob {
     }
 }
 
+/// How finely a reference keeps its intensities. A render is rounded the same way before it is
+/// measured: one equal to the reference to the reference's own precision has no error, and
+/// reads "exact" whether the reference was rendered in this run or read from a file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Precision {
+    /// As computed: the render is measured as it is.
+    Full,
+    /// f32, as an EXR file stores a render's f64 intensities.
+    F32,
+}
+
+impl Precision {
+    /// `image` with every channel rounded to this precision.
+    pub fn round(self, image: &Image) -> Image {
+        let mut out = image.clone();
+        if self == Precision::F32 {
+            for p in &mut out.pixels {
+                *p = p.as_vec3().as_dvec3();
+            }
+        }
+        out
+    }
+}
+
+/// The image a sweep measures its renders against, and the precision it was kept at.
+#[derive(Clone, Debug)]
+pub struct Reference {
+    /// Linear intensities.
+    pub image: Image,
+    /// How finely `image` holds them.
+    pub precision: Precision,
+}
+
 /// One setting of the knob: its cost and its error against the reference.
 #[derive(Clone, Debug)]
 pub struct SweepRow {
@@ -128,6 +161,18 @@ pub struct SweepRow {
     pub max_abs: f64,
     /// 20·log10(1/RMSE) for intensities in [0, 1].
     pub psnr: f64,
+}
+
+impl SweepRow {
+    /// Whether the image equals the reference (to the reference's precision).
+    pub fn exact(&self) -> bool {
+        self.rmse == 0.0
+    }
+
+    /// 1/(seconds·MSE): higher is better; None for an exact image, whose MSE is 0.
+    pub fn efficiency(&self) -> Option<f64> {
+        (!self.exact()).then(|| 1.0 / (self.seconds * self.rmse * self.rmse))
+    }
 }
 
 /// RMSE, relative MSE and the largest absolute difference, over all channels.
@@ -167,12 +212,13 @@ fn options_for(scene: &Scene, knob: Knob, value: f64, seed: u64) -> (Scene, Rend
     (s, o)
 }
 
-/// Renders at every value of the knob and measures time and error against `reference`.
+/// Renders at every value of the knob and measures time and error against `reference`, each
+/// render rounded to the reference's precision.
 pub fn sweep(
     scene: &Scene,
     knob: Knob,
     values: &[f64],
-    reference: &crate::render::Image,
+    reference: &Reference,
     seed: u64,
     clamp: bool,
     runs: usize,
@@ -186,13 +232,14 @@ pub fn sweep(
         }
         out
     };
-    let reference = &display(reference);
+    let reference_image = &display(&reference.image);
     values
         .iter()
         .map(|&value| {
             let (s, o) = options_for(scene, knob, value, seed);
             let (image, stats, seconds) = timed_renders(&s, o, runs);
-            let (rmse, rel_mse, max_abs) = errors(&display(&image), reference);
+            let image = reference.precision.round(&image);
+            let (rmse, rel_mse, max_abs) = errors(&display(&image), reference_image);
             SweepRow {
                 value,
                 seconds,
@@ -257,10 +304,9 @@ pub fn reference_for(scene: &Scene, knob: Knob, values: &[f64], seed: u64) -> cr
 
 /// 1/(seconds·MSE), or "exact" when the image equals the reference.
 fn efficiency(r: &SweepRow) -> String {
-    if r.rmse == 0.0 {
-        "exact".into()
-    } else {
-        format!("{:.0}", 1.0 / (r.seconds * r.rmse * r.rmse))
+    match r.efficiency() {
+        None => "exact".into(),
+        Some(e) => format!("{e:.0}"),
     }
 }
 
@@ -400,6 +446,21 @@ mod tests {
             });
             assert_eq!((n, last), (calls, calls), "{runs} runs");
         }
+    }
+
+    /// Rounded to f32, 0.1 becomes the f32 nearest it (0.100000001490116…), which an EXR of
+    /// the image holds; kept in full, it stays 0.1.
+    #[test]
+    fn a_render_is_rounded_as_its_reference_keeps_it() {
+        let image = Image {
+            width: 1,
+            height: 1,
+            pixels: vec![glam::DVec3::new(0.1, 0.5, 3.0)],
+        };
+        let f32 = Precision::F32.round(&image).pixels[0];
+        assert_eq!(f32.x, 0.100_000_001_490_116_12);
+        assert_eq!((f32.y, f32.z), (0.5, 3.0));
+        assert_eq!(Precision::Full.round(&image).pixels[0].x, 0.1);
     }
 
     /// The median of hand-picked times: the middle one, whatever the order.

@@ -7,7 +7,8 @@ use super::args::Format;
 use super::output::{eprintln, print, print_json};
 use super::Failure;
 use crate::bench::{
-    measure, mesh, spheres, table_header, table_row, thread_rounds, threads_table, Row,
+    measure, mesh, spheres, table_header, table_row, thread_rounds, threads_table, Precision,
+    Reference, Row,
 };
 use crate::diagram::raster;
 
@@ -185,8 +186,9 @@ impl PlotKind {
     }
 }
 
-/// A reference image as linear intensities: EXR as stored, PNG/others decoded from sRGB.
-fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<crate::render::Image, Failure> {
+/// A reference image as linear intensities: EXR as stored (f32, the precision renders are
+/// rounded to before they are measured against it), PNG/others decoded from sRGB.
+fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<Reference, Failure> {
     let img = image::open(path)
         .map_err(|e| Failure(format!("{}: {e}", path.display())))?
         .into_rgb32f();
@@ -215,10 +217,13 @@ fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<crate::rende
         .pixels()
         .map(|p| glam::DVec3::new(decode(p[0]), decode(p[1]), decode(p[2])))
         .collect();
-    Ok(crate::render::Image {
-        width: w,
-        height: h,
-        pixels,
+    Ok(Reference {
+        image: crate::render::Image {
+            width: w,
+            height: h,
+            pixels,
+        },
+        precision: if exr { Precision::F32 } else { Precision::Full },
     })
 }
 
@@ -299,9 +304,9 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                     // user's cache folder, named by everything it depends on.
                     let cache = reference_cache(&scene_path, knob, &values, seed)?;
                     match cache.as_ref().map(|c| (c, load_reference(c, w, h))) {
-                        Some((cache, Ok(image))) => {
+                        Some((cache, Ok(reference))) => {
                             eprintln(&format!("reference: {} (cached)", cache.display()));
-                            image
+                            reference
                         }
                         _ => {
                             let image = pool.install(|| {
@@ -320,7 +325,12 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                                     )),
                                 }
                             }
-                            image
+                            // At the precision the cache keeps, so that this sweep measures
+                            // what the next, reading the cache, will.
+                            Reference {
+                                image: Precision::F32.round(&image),
+                                precision: Precision::F32,
+                            }
                         }
                     }
                 }
@@ -351,6 +361,8 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                         "rel_mse": r.rel_mse,
                         "max_abs": r.max_abs,
                         "psnr": finite(r.psnr),
+                        "efficiency": r.efficiency(),
+                        "exact": r.exact(),
                     })).collect::<Vec<_>>(),
                 }))?,
             }
