@@ -387,6 +387,65 @@ fn a_real_lesson_opens_and_checks_answers() {
     assert!(text.contains("right:"), "{text}");
 }
 
+/// In a 40 × 12 terminal the lesson panel has three rows inside its border: lesson 08's
+/// exercises there keep the prompt (how to answer, then the answer given and its verdict) in
+/// sight, with the selected exercise above it, and the footer says which of the nine
+/// exercises is shown. At every height from there up the prompt stays, and a footer never
+/// counts an empty range.
+#[test]
+fn the_exercises_keep_the_prompt_in_a_small_terminal() {
+    let dir = Path::new("lessons/08-pixel-intensity");
+    let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (40, 12));
+    press(&mut app, KeyCode::Char('a'));
+    let lesson = app.lesson.as_ref().unwrap().lesson.clone();
+    let count = lesson.exercises.len();
+    assert_eq!(count, 9);
+    // (The mark beside the exercise depends on whether another test answered it already.)
+    let selected = |text: &str, id: &str| {
+        text.lines()
+            .any(|l| l.contains('▶') && l.contains(&format!(" {id}  ")))
+    };
+    let text = screen(&app);
+    assert!(selected(&text, "local-a"), "{text}");
+    assert!(text.contains("Enter: answer as"), "{text}");
+    assert!(text.contains(&format!(" exercise 1 of {count} ")), "{text}");
+
+    // The last exercise: the footer follows the selection.
+    for _ in 1..count {
+        press(&mut app, KeyCode::Down);
+    }
+    let last = &lesson.exercises[count - 1].id;
+    let text = screen(&app);
+    assert!(selected(&text, last), "{text}");
+    assert!(
+        text.contains(&format!(" exercise {count} of {count} ")),
+        "{text}"
+    );
+
+    // Typed on the message line, the answer is kept and its verdict shown in the pinned rows.
+    press(&mut app, KeyCode::Enter);
+    keys(&mut app, "0.5");
+    assert!(screen(&app).contains(&format!("answer to {last}: 0.5")));
+    press(&mut app, KeyCode::Enter);
+    let text = screen(&app);
+    assert!(text.contains("your answer: 0.5"), "{text}");
+    assert!(text.contains("wrong"), "{text}");
+
+    for h in 12..=48 {
+        let mut app = open(dir.to_str().unwrap(), ColorMode::TrueColor, (40, h));
+        press(&mut app, KeyCode::Char('a'));
+        let text = screen(&app);
+        assert!(text.contains("Enter: answer as"), "40×{h}: {text}");
+        assert!(!text.contains("–0 "), "40×{h}: {text}");
+        let listed = (0..count)
+            .filter(|&i| text.contains(&format!("  {}  ", lesson.exercises[i].id)))
+            .count();
+        if listed < count {
+            assert!(text.contains(&format!("1 of {count}")), "40×{h}: {text}");
+        }
+    }
+}
+
 #[test]
 fn lesson_list() {
     let root = demo_lesson("lesson-list");

@@ -304,9 +304,8 @@ impl LessonPanel {
         let i = inner(r);
         match self.view {
             LessonView::Exercises => {
-                let (head, body) = exercises::rows(self, i);
-                let room = (i.height as usize).saturating_sub(head.len());
-                body.len().saturating_sub(room).min(u16::MAX as usize) as u16
+                let v = exercises::view(self, i);
+                v.text.len().saturating_sub(v.room).min(u16::MAX as usize) as u16
             }
             LessonView::Readme => {
                 let rows = markdown(&self.lesson.readme, (i.width as usize).max(10));

@@ -81,18 +81,16 @@ fn md_style(kind: Md) -> Style {
 }
 
 fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
-    let body = inner(area);
-    let (head, lines) = exercises::rows(l, body);
-    let (head, lines) = (exercise_lines(app, head), exercise_lines(app, lines));
+    let view = exercises::view(l, inner(area));
     let title = format!(" {} · exercises (Enter answer · w worked) ", l.lesson.id);
-    let room = body.height.saturating_sub(head.len() as u16);
-    let total = lines.len();
-    let (rest, start) = scroll_window(&lines, l.exercise_scroll, room);
+    let (text, start) = scroll_window(&view.text, l.exercise_scroll, view.room as u16);
     let mut block = pane(app, title, Some(Focus::Lesson));
-    if let Some(note) = position_note(start, rest.len(), total) {
+    let width = (area.width as usize).saturating_sub(2);
+    if let Some(note) = view.footer(l.exercise, start, text.len(), width) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
-    let shown: Vec<Line> = head.into_iter().chain(rest).collect();
+    let rows = view.head.into_iter().chain(text).chain(view.foot);
+    let shown = exercise_lines(app, rows.collect());
     f.render_widget(Paragraph::new(shown).block(block), area);
 }
 
