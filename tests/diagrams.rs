@@ -607,3 +607,169 @@ fn the_title_says_when_the_centre_ray_is_not_the_pixels_value() {
         "{t15}"
     );
 }
+
+/// Every point an SVG figure's shapes reach: the ends of its lines, the corners of its
+/// rectangles (the white background, given in percent, aside), the extremes of its circles and
+/// the points of its polygons.
+fn shape_points(svg: &str) -> Vec<(String, DVec2)> {
+    let tags = |name: &str| -> Vec<&str> {
+        svg.split(&format!("<{name} "))
+            .skip(1)
+            .map(|t| t.split_once('>').unwrap().0)
+            .collect()
+    };
+    let mut out = vec![];
+    for t in tags("line") {
+        for (x, y) in [("x1", "y1"), ("x2", "y2")] {
+            out.push((format!("line {t}"), DVec2::new(attr(t, x), attr(t, y))));
+        }
+    }
+    for t in tags("rect").into_iter().filter(|t| !t.contains('%')) {
+        let at = DVec2::new(attr(t, "x"), attr(t, "y"));
+        let size = DVec2::new(attr(t, "width"), attr(t, "height"));
+        out.push((format!("rect {t}"), at));
+        out.push((format!("rect {t}"), at + size));
+    }
+    for t in tags("circle") {
+        let (c, r) = (DVec2::new(attr(t, "cx"), attr(t, "cy")), attr(t, "r"));
+        out.push((format!("circle {t}"), c - DVec2::splat(r)));
+        out.push((format!("circle {t}"), c + DVec2::splat(r)));
+    }
+    for t in tags("polygon") {
+        let from = t.find("points=\"").unwrap() + 8;
+        let points = &t[from..from + t[from..].find('"').unwrap()];
+        for p in points.split(' ') {
+            let (x, y) = p.split_once(',').unwrap();
+            let p = DVec2::new(x.parse().unwrap(), y.parse().unwrap());
+            out.push((format!("polygon {t}"), p));
+        }
+    }
+    out
+}
+
+/// The box a text covers, as `text_box` has it, a bold one at 0.64 em a character (the title's
+/// and the names' letters are wider).
+fn drawn_box(tag: &str, s: &str) -> (DVec2, DVec2) {
+    let (min, max) = text_box(tag, s);
+    if tag.contains("font-weight=\"bold\"") {
+        let size = attr(tag, "font-size");
+        let extra = 0.04 * size * s.chars().count() as f64;
+        if tag.contains("text-anchor=\"middle\"") {
+            (
+                min - DVec2::new(extra / 2.0, 0.0),
+                max + DVec2::new(extra / 2.0, 0.0),
+            )
+        } else if tag.contains("text-anchor=\"end\"") {
+            (min - DVec2::new(extra, 0.0), max)
+        } else {
+            (min, max + DVec2::new(extra, 0.0))
+        }
+    } else {
+        (min, max)
+    }
+}
+
+/// At the narrowest width `raytree diagram` takes, at a middle one (where the legend's last
+/// entry once ran off the figure) and at the default, every text (title, legend, the graph's
+/// boxes and coefficients) and every shape lies inside the figure, and the section, clipped
+/// to its rectangle, lies inside too: on
+/// lesson 8's pixel, lesson 6's deep tree through the slab and lesson 13's long title. A
+/// narrower figure is refused with a usage error naming the least width.
+#[test]
+fn nothing_is_drawn_outside_the_figure_at_any_width() {
+    let cases = [
+        (L08, "30,30"),
+        ("lessons/06-refraction", "80,60"),
+        ("lessons/06-refraction", "125,95"),
+        ("lessons/13-antialiasing", "1,1"),
+    ];
+    for width in ["400", "600", "1200"] {
+        for height in ["200", "640"] {
+            for (scene, pixel) in cases {
+                let args = [
+                    scene, "--pixel", pixel, "--width", width, "--height", height,
+                ];
+                let svg = diagram_svg(&args, "within.svg");
+                // The section is drawn clipped to its rectangle (a <rect> checked below with
+                // the other shapes): nothing in it is drawn outside that.
+                assert!(svg.contains("<clipPath id=\"section\">"), "{args:?}");
+                let (before, rest) = svg
+                    .split_once("<g clip-path=\"url(#section)\">")
+                    .expect("the section is clipped");
+                let svg = format!("{before}{}", rest.split_once("</g>").unwrap().1);
+                let (w, h) = (
+                    width.parse::<f64>().unwrap(),
+                    height.parse::<f64>().unwrap(),
+                );
+                let inside = |p: DVec2| p.x >= 0.0 && p.y >= 0.0 && p.x <= w && p.y <= h;
+                for (tag, s) in texts(&svg) {
+                    let (min, max) = drawn_box(tag, &s);
+                    assert!(
+                        inside(min) && inside(max),
+                        "{args:?}: \"{s}\" at {min}–{max} leaves the {w}×{h} figure"
+                    );
+                }
+                for (what, p) in shape_points(&svg) {
+                    assert!(inside(p), "{args:?}: {what} reaches {p}, outside {w}×{h}");
+                }
+            }
+        }
+    }
+    let out = temp("narrow.svg");
+    let narrow = raytree(&[
+        "diagram",
+        L08,
+        "--pixel",
+        "30,30",
+        "--width",
+        "399",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&narrow.stderr);
+    assert_eq!(narrow.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("--width must be between 400 and 8000"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}
+
+/// Lesson 6's slab seen from the side: the rays' labels ("refraction I = …", …) keep off the
+/// objects' and the lights' names, and off each other.
+#[test]
+fn ray_labels_keep_off_the_names() {
+    for width in ["1200", "600"] {
+        let svg = diagram_svg(
+            &[
+                "lessons/06-refraction",
+                "--pixel",
+                "80,60",
+                "--width",
+                width,
+            ],
+            "l06-labels.svg",
+        );
+        // The rays' labels: 12 px, outlined in white, saying an intensity; the title (bold)
+        // and the graph's lines (no outline) say one too.
+        let rays: Vec<(String, (DVec2, DVec2))> = texts(&svg)
+            .filter(|(tag, s)| {
+                s.contains("I = ")
+                    && tag.contains("font-size=\"12\"")
+                    && !tag.contains("font-weight")
+                    && !tag.contains("stroke-width=\"0\"")
+            })
+            .map(|(tag, s)| {
+                let bx = text_box(tag, &s);
+                (s, bx)
+            })
+            .collect();
+        assert!(
+            rays.iter().any(|(s, _)| s.starts_with("refraction I = ")),
+            "{width}: {rays:?}"
+        );
+        let names = names_drawn(&svg);
+        assert!(names.iter().any(|(n, _)| n == "slab"), "{width}: {names:?}");
+        assert_apart(&[names, rays].concat());
+    }
+}

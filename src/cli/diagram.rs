@@ -33,10 +33,10 @@ pub struct Args {
     /// Rays per path, primary included (overrides the scene's max_depth).
     #[arg(long)]
     depth: Option<u32>,
-    /// The figure's width in pixels.
+    /// The figure's width in pixels, 400 to 8000.
     #[arg(long, default_value_t = 1200)]
     width: u32,
-    /// The figure's height in pixels.
+    /// The figure's height in pixels, 200 to 8000.
     #[arg(long, default_value_t = 640)]
     height: u32,
 }
@@ -57,10 +57,13 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             )))
         }
     };
-    for (name, v) in [("--width", a.width), ("--height", a.height)] {
-        if !(200..=8000).contains(&v) {
+    // Narrower, the legend's rows would leave the section no room, and the graph's boxes no
+    // room for a word.
+    let least = crate::diagram::figure::MIN_WIDTH;
+    for (name, v, least) in [("--width", a.width, least), ("--height", a.height, 200)] {
+        if !(least..=8000).contains(&v) {
             return Err(Failure(format!(
-                "{name} must be between 200 and 8000 pixels, got {v}"
+                "{name} must be between {least} and 8000 pixels, got {v}"
             )));
         }
     }

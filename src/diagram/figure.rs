@@ -244,29 +244,119 @@ fn arrowhead(tip: DVec2, dir: DVec2, size: f64, color: &str) -> Polygon {
         .set("fill", color)
 }
 
-/// The title's height, the legend's, and the share of the width the section takes.
+/// The title's least height, the legend's (one row), a legend row's, and the share of the
+/// width the section takes.
 const TOP: f64 = 40.0;
 const LEGEND: f64 = 30.0;
+const LEGEND_ROW: f64 = 18.0;
 const SPLIT: f64 = 0.58;
+/// The narrowest figure drawn: below it the legend's rows would leave the section no room on
+/// the least height, and the graph's boxes no room for a word.
+pub const MIN_WIDTH: u32 = 400;
+/// A wrapped title's font size.
+const WRAPPED_TITLE: f64 = 10.0;
+
+/// How wide a bold title is drawn: about 0.64 em a character.
+fn title_width(s: &str, size: f64) -> f64 {
+    0.64 * size * s.chars().count() as f64
+}
+
+/// Where the figure's bands go at its size.
+struct Layout {
+    /// The title's lines, and their font size.
+    title: Vec<String>,
+    title_size: f64,
+    /// The title's band, from the top.
+    top: f64,
+    /// The legend's entries (a kind of ray, or None for the normal) and where each starts.
+    legend: Vec<(Option<SegKind>, DVec2)>,
+    /// The legend's band, at the bottom.
+    legend_h: f64,
+    /// The x where the section ends and the graph begins.
+    split: f64,
+}
+
+/// The title on one line, 16 px or smaller down to 8 where it is long; where it does not fit
+/// even at 8, in lines of `WRAPPED_TITLE` px broken between words.
+fn title_lines(title: &str, room: f64) -> (Vec<String>, f64) {
+    let size = (room / title_width(title, 1.0)).clamp(8.0, 16.0);
+    if title_width(title, size) <= room {
+        return (vec![title.to_string()], size);
+    }
+    let mut lines: Vec<String> = vec![];
+    for word in title.split(' ') {
+        match lines.last_mut() {
+            Some(l) if title_width(&format!("{l} {word}"), WRAPPED_TITLE) <= room => {
+                l.push(' ');
+                l.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    // A word longer than the line (a long path) keeps its start and says it is cut.
+    let most = (room / title_width("x", WRAPPED_TITLE)).floor() as usize;
+    for l in &mut lines {
+        if l.chars().count() > most {
+            *l = l
+                .chars()
+                .take(most.saturating_sub(1))
+                .chain(['…'])
+                .collect();
+        }
+    }
+    (lines, WRAPPED_TITLE)
+}
+
+/// The legend's entries laid out from `left` in rows no wider than `right`: each entry's
+/// start, and the number of rows.
+fn legend_rows(left: f64, right: f64) -> (Vec<(Option<SegKind>, DVec2)>, usize) {
+    let entries = SegKind::ALL
+        .iter()
+        .map(|&k| (Some(k), k.name()))
+        .chain([(None, "normal")]);
+    let (mut x, mut row) = (left, 0usize);
+    let mut out = vec![];
+    for (kind, name) in entries {
+        // The swatch, the gap and the name, then a gap before the next entry.
+        let drawn = 27.0 + text_width(name, 12.0);
+        if x > left && x + drawn > right {
+            (x, row) = (left, row + 1);
+        }
+        out.push((kind, DVec2::new(x, row as f64 * LEGEND_ROW)));
+        x += drawn + 9.0;
+    }
+    (out, row + 1)
+}
 
 impl Figure<'_> {
-    /// Where the section is drawn.
-    fn scene_panel(&self) -> Panel {
-        let (w, h) = (self.width as f64, self.height as f64);
+    /// The bands at this figure's size.
+    fn layout(&self) -> Layout {
+        let w = self.width as f64;
         let split = (w * SPLIT).round();
-        Panel::new(
-            self.drawing.frame,
-            DVec2::new(12.0, TOP),
-            DVec2::new(split - 24.0, h - TOP - LEGEND - 12.0),
-        )
+        let (title, title_size) = title_lines(&self.title, w - 24.0);
+        // The first baseline 26 px below the top, the band 14 px below the last.
+        let last = 26.0 + 1.25 * title_size * (title.len() - 1) as f64;
+        let top = TOP.max(last + 14.0);
+        let (legend, rows) = legend_rows(12.0, split - 12.0);
+        Layout {
+            title,
+            title_size,
+            top,
+            legend,
+            legend_h: LEGEND + LEGEND_ROW * (rows - 1) as f64,
+            split,
+        }
     }
 
-    /// The title's font size: 16 px, or smaller where a long title would run off the figure
-    /// (a bold sans-serif character is about 0.64 of its size wide).
-    fn title_size(&self) -> f64 {
-        let room = self.width as f64 - 24.0;
-        let wide = 0.64 * self.title.chars().count() as f64;
-        (room / wide).clamp(8.0, 16.0)
+    /// Where the section is drawn.
+    fn scene_panel(&self) -> Panel {
+        let l = self.layout();
+        let h = self.height as f64;
+        Panel::new(
+            self.drawing.frame,
+            DVec2::new(12.0, l.top),
+            DVec2::new(l.split - 24.0, h - l.top - l.legend_h - 12.0),
+        )
     }
 
     /// Where a world point is drawn in the figure, in pixels.
@@ -277,9 +367,10 @@ impl Figure<'_> {
     /// The SVG document.
     pub fn svg(&self) -> Document {
         let (w, h) = (self.width as f64, self.height as f64);
+        let layout = self.layout();
         let panel = self.scene_panel();
         let (scene_origin, scene_size) = (panel.origin, panel.size);
-        let split = (w * SPLIT).round();
+        let split = layout.split;
         let mut doc = Document::new()
             .set("width", self.width)
             .set("height", self.height)
@@ -301,11 +392,13 @@ impl Figure<'_> {
                             .set("height", scene_size.y),
                     ),
                 ),
-            )
-            .add(
-                text(DVec2::new(12.0, 26.0), &self.title, self.title_size(), INK)
-                    .set("font-weight", "bold"),
-            )
+            );
+        let size = layout.title_size;
+        for (i, line) in layout.title.iter().enumerate() {
+            let at = DVec2::new(12.0, 26.0 + 1.25 * size * i as f64);
+            doc = doc.add(text(at, line, size, INK).set("font-weight", "bold"));
+        }
+        doc = doc
             .add(
                 Rectangle::new()
                     .set("x", scene_origin.x)
@@ -316,9 +409,9 @@ impl Figure<'_> {
                     .set("stroke", "#cccccc"),
             )
             .add(self.section(&panel))
-            .add(self.legend(DVec2::new(12.0, h - LEGEND + 8.0)));
-        let graph_origin = DVec2::new(split + 8.0, TOP);
-        let graph_size = DVec2::new(w - split - 20.0, h - TOP - 12.0);
+            .add(legend(&layout.legend, h - layout.legend_h + 8.0));
+        let graph_origin = DVec2::new(split + 8.0, layout.top);
+        let graph_size = DVec2::new(w - split - 20.0, h - layout.top - 12.0);
         doc = doc.add(self.graph(graph_origin, graph_size));
         doc
     }
@@ -385,6 +478,8 @@ impl Figure<'_> {
             let width = text_width(&name, 14.0);
             let covers = |at: DVec2| (at - DVec2::new(0.0, 14.0), at + DVec2::new(width, 2.0));
             let mut at = p.px(anchor) + DVec2::new(4.0, -6.0);
+            // Inside the panel: a name at its right edge reads up to it.
+            at.x = at.x.min(p.origin.x + p.size.x - 4.0 - width);
             if lights.iter().any(|b| overlap(b, &covers(at))) {
                 at.y -= 16.0;
             }
@@ -445,7 +540,8 @@ impl Figure<'_> {
         });
         let labelled = d.segments.len() <= 40;
         let mut labels = vec![];
-        let mut taken: Vec<(DVec2, DVec2)> = vec![];
+        // The objects' and lights' names are there first: a ray's label keeps off them.
+        let mut taken: Vec<(DVec2, DVec2)> = named.iter().chain(&lights).copied().collect();
         // Every ray's ends on the page: a label keeps off all of them where it can.
         let paths: Vec<(DVec2, DVec2)> = (d.segments.iter())
             .map(|s| {
@@ -455,6 +551,17 @@ impl Figure<'_> {
             .collect();
         if let Some((eye, pix)) = eye_dot {
             let (at, bx) = eye_label(eye, pix, &paths);
+            // Inside the panel, where the eye sits at its edge.
+            let half = (bx.1.x - bx.0.x) / 2.0;
+            let inside =
+                at.x.clamp(p.origin.x + 4.0 + half, p.origin.x + p.size.x - 4.0 - half);
+            let (at, bx) = (
+                DVec2::new(inside, at.y),
+                (
+                    bx.0 + DVec2::new(inside - at.x, 0.0),
+                    bx.1 + DVec2::new(inside - at.x, 0.0),
+                ),
+            );
             taken.push(bx);
             labels.push(text(at, "eye", 13.0, INK).set("text-anchor", "middle"));
         }
@@ -528,22 +635,33 @@ impl Figure<'_> {
                     label = format!("{label} (background)");
                 }
                 // Above the ray, else below it: off every ray where it can be, else off its
-                // own; left out where both spots would cover another label.
+                // own; where both spots would cover another label (or a name), the same a
+                // quarter of the ray nearer either end; left out where none is free.
                 let above = if off.y > 0.0 { -off } else { off };
-                let spots = [mid + above, mid - above + DVec2::new(0.0, 10.0)];
-                let free = |paths: &[(DVec2, DVec2)]| {
+                let beside = |mid: DVec2| [mid + above, mid - above + DVec2::new(0.0, 10.0)];
+                let spots = beside(mid);
+                let free = |spots: &[DVec2], paths: &[(DVec2, DVec2)]| {
                     spots.iter().find_map(|&at| {
                         let (bx, end) = beside_rays(p, at, &label, 12.0, paths, &taken)?;
                         Some((at, bx, end))
                     })
                 };
-                let anywhere = || {
+                let anywhere = |spots: &[DVec2]| {
                     spots.iter().find_map(|&at| {
                         let bx = label_box(p, at, &label, 12.0);
                         (!taken.iter().any(|b| overlap(b, &bx))).then_some((at, bx, false))
                     })
                 };
-                let place = free(&paths).or_else(|| free(&[(pa, pb)])).or_else(anywhere);
+                let further: Vec<DVec2> = [along + 0.25, along - 0.25]
+                    .into_iter()
+                    .filter(|t| (0.1..=0.9).contains(t))
+                    .flat_map(|t| beside(pa + dir * t))
+                    .collect();
+                let place = free(&spots, &paths)
+                    .or_else(|| free(&spots, &[(pa, pb)]))
+                    .or_else(|| anywhere(&spots))
+                    .or_else(|| free(&further, &[(pa, pb)]))
+                    .or_else(|| anywhere(&further));
                 if let Some((at, bx, end)) = place {
                     taken.push(bx);
                     let t = label_in(p, at, &label, 12.0, &color);
@@ -616,30 +734,9 @@ impl Figure<'_> {
         )
     }
 
-    fn legend(&self, at: DVec2) -> Group {
-        let mut g = Group::new();
-        let mut x = at.x;
-        for k in SegKind::ALL {
-            let c = ray_color(k);
-            g = g
-                .add(line(
-                    DVec2::new(x, at.y),
-                    DVec2::new(x + 22.0, at.y),
-                    &c,
-                    3.0,
-                ))
-                .add(text(DVec2::new(x + 27.0, at.y + 4.0), k.name(), 12.0, INK));
-            x += 36.0 + 7.2 * k.name().len() as f64;
-        }
-        g.add(
-            line(DVec2::new(x, at.y), DVec2::new(x + 22.0, at.y), NORMAL, 1.6)
-                .set("stroke-dasharray", "5 4"),
-        )
-        .add(text(DVec2::new(x + 27.0, at.y + 4.0), "normal", 12.0, INK))
-    }
-
     /// The ray tree as a graph in the rectangle at `origin` of `size`.
-    fn graph(&self, origin: DVec2, size: DVec2) -> Group {
+    fn graph(&self, origin: DVec2, area: DVec2) -> Group {
+        let size = area;
         let nodes = layout(self.tree, Some(self.scene));
         let mut g = Group::new().add(
             text(origin + DVec2::new(0.0, 12.0), "ray tree", 14.0, INK).set("font-weight", "bold"),
@@ -673,7 +770,27 @@ impl Figure<'_> {
                 .unwrap_or(1) as f64;
             (c * 0.62 * font + 8.0).min(col_w * 0.98).max(font * 4.0)
         };
-        let box_h = 3.0 * font * 1.25 + 6.0;
+        // A short figure with a deep tree keeps a node's first lines, as many as a row holds;
+        // one that cannot hold a line a row says so instead of drawing boxes over each other.
+        let Some(kept) = (1..=3usize)
+            .rev()
+            .find(|&k| k as f64 * font * 1.25 + 6.0 <= row_h)
+        else {
+            return g
+                .add(text(
+                    origin + DVec2::new(0.0, 32.0),
+                    &format!("{rows} levels: too deep"),
+                    11.0,
+                    INK,
+                ))
+                .add(text(
+                    origin + DVec2::new(0.0, 46.0),
+                    "for this height",
+                    11.0,
+                    INK,
+                ));
+        };
+        let box_h = kept as f64 * font * 1.25 + 6.0;
         let centre = |n: &GraphNode| {
             DVec2::new(
                 origin.x + (n.pos.x + 0.5) * col_w,
@@ -694,6 +811,9 @@ impl Figure<'_> {
                 // Centred in the gap between the boxes (a baseline 0.35 em below the middle).
                 let size = font * 0.95;
                 let mid = (a + b) / 2.0 + DVec2::new(3.0, 0.35 * size);
+                // Kept inside the graph's right edge.
+                let right = origin.x + area.x - text_width(e, size);
+                let mid = DVec2::new(mid.x.min(right), mid.y);
                 g = g.add(text(mid, e, size, "#444444"));
             }
         }
@@ -717,11 +837,18 @@ impl Figure<'_> {
                     .set("stroke-opacity", 0.6);
             }
             g = g.add(rect);
-            for (i, l) in node_lines(n).iter().enumerate() {
+            // Where the box is narrower than a line (its column is), the line is cut.
+            let most = ((bw - 4.0) / (0.62 * font)).floor().max(1.0) as usize;
+            for (i, l) in node_lines(n).iter().take(kept).enumerate() {
                 let y = c.y - box_h / 2.0 + 3.0 + font * (1.0 + 1.25 * i as f64);
+                let l = if l.chars().count() > most {
+                    l.chars().take(most - 1).chain(['…']).collect()
+                } else {
+                    l.clone()
+                };
                 let t = text(
                     DVec2::new(c.x, y),
-                    l,
+                    &l,
                     font,
                     if i == 0 { color.as_str() } else { INK },
                 )
@@ -736,6 +863,25 @@ impl Figure<'_> {
         }
         g
     }
+}
+
+/// The legend: each entry a swatch of its colour and its name, its row from `top`.
+fn legend(entries: &[(Option<SegKind>, DVec2)], top: f64) -> Group {
+    let mut g = Group::new();
+    for &(kind, at) in entries {
+        let at = at + DVec2::new(0.0, top);
+        let swatch = match kind {
+            Some(k) => line(at, at + DVec2::new(22.0, 0.0), &ray_color(k), 3.0),
+            None => {
+                line(at, at + DVec2::new(22.0, 0.0), NORMAL, 1.6).set("stroke-dasharray", "5 4")
+            }
+        };
+        let name = kind.map_or("normal", SegKind::name);
+        g = g
+            .add(swatch)
+            .add(text(at + DVec2::new(27.0, 4.0), name, 12.0, INK));
+    }
+    g
 }
 
 /// A graph node's three lines: the kind, what it reached, the value.
