@@ -882,3 +882,163 @@ fn a_homework_folder_holds_none_of_the_lessons_answers_and_every_file_its_readme
         }
     }
 }
+
+/// The value a scene gives a `vary:` path: map keys, and list items by their `name`.
+fn at_path<'a>(scene: &'a Value, path: &str) -> Option<&'a Value> {
+    path.split('.').try_fold(scene, |node, key| match node {
+        Value::Object(map) => map.get(key),
+        Value::Array(items) => items.iter().find(|i| i["name"] == key),
+        _ => None,
+    })
+}
+
+/// A value as numbers: `1.5` is [1.5], `[0, 4, -4]` is [0, 4, -4].
+fn value_numbers(v: &Value) -> Vec<f64> {
+    match v {
+        Value::Array(items) => items.iter().flat_map(value_numbers).collect(),
+        Value::Number(n) => vec![n.as_f64().unwrap()],
+        _ => vec![],
+    }
+}
+
+/// The numbers a text writes, in order: "(0.8, -0.6, 0) at 1.5." is 0.8, −0.6, 0, 1.5. Digits
+/// that end a word (`h2`, `lamp2.yaml`) are not numbers; `-` and `−` before a digit are its
+/// sign.
+fn numbers(text: &str) -> Vec<f64> {
+    let chars: Vec<char> = text.chars().collect();
+    let digit = |k: usize| chars.get(k).is_some_and(char::is_ascii_digit);
+    let mut out = vec![];
+    let mut i = 0;
+    while i < chars.len() {
+        let sign = matches!(chars[i], '-' | '−') && digit(i + 1);
+        let in_word = i > 0 && (chars[i - 1].is_alphanumeric() || chars[i - 1] == '_');
+        if (sign || digit(i)) && !in_word {
+            let mut j = i + 1;
+            while digit(j) || (chars.get(j) == Some(&'.') && digit(j + 1)) {
+                j += 1;
+            }
+            let written: String = chars[i..j].iter().collect();
+            out.push(written.replace('−', "-").parse().unwrap());
+            i = j;
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+/// Texts of a lesson's questions that write one of its varied values for another quantity:
+/// a direction, or a coefficient the lesson does not vary.
+const NOT_VARIED_QUOTES: &[(&str, &str)] = &[
+    // The ray's direction, not the floor's kd 0.8.
+    ("06-refraction", "direction (0.8, 0.6, 0)"),
+    // ka and kr, ks, kt of the lecture's exercise, not the varied ambient 0.3 and kd 0.2, 0.3.
+    ("08-pixel-intensity", "ka 0.2"),
+    ("08-pixel-intensity", "kr = ks = 0.3, kt 0.3"),
+];
+
+/// A homework's questions quote the student's values, never the lesson's: for every lesson
+/// with `vary:` and every value a varied path has in the lesson's scene files, a student who
+/// did not draw that value finds that number (or that vector's numbers in a row) nowhere in
+/// the questions of their README, except where the text is known to mean another quantity.
+#[test]
+fn a_homework_readme_quotes_none_of_the_values_its_lesson_varies() {
+    let root = scratch("homework-quotes");
+    let mut lessons = 0;
+    let mut entries: Vec<_> = std::fs::read_dir("lessons")
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("exercises.yaml").is_file())
+        .collect();
+    entries.sort();
+    for lesson in entries {
+        let name = lesson.file_name().unwrap().to_string_lossy().into_owned();
+        let read = |p: &Path| -> Value {
+            serde_saphyr::from_str(&std::fs::read_to_string(p).unwrap())
+                .unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+        };
+        let exercises = read(&lesson.join("exercises.yaml"));
+        let Some(vary) = exercises["vary"].as_object().filter(|v| !v.is_empty()) else {
+            continue;
+        };
+        lessons += 1;
+        // Every value each varied path has in the lesson's scenes.
+        let scenes: Vec<Value> = std::fs::read_dir(&lesson)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| {
+                p.extension().is_some_and(|e| e == "yaml") && !p.ends_with("exercises.yaml")
+            })
+            .map(|p| read(&p))
+            .collect();
+        let lesson_values: Vec<(&String, Vec<Vec<f64>>)> = vary
+            .keys()
+            .map(|path| {
+                let mut values: Vec<Vec<f64>> = vec![];
+                for v in scenes.iter().filter_map(|s| at_path(s, path)) {
+                    let v = value_numbers(v);
+                    if !values.contains(&v) {
+                        values.push(v);
+                    }
+                }
+                assert!(!values.is_empty(), "{name}: no scene writes {path}");
+                (path, values)
+            })
+            .collect();
+        let mut checked: Vec<&String> = vec![];
+        for student in ["s1234", "alice", "bob"] {
+            let dir = root.join(format!("{name}-{student}"));
+            let o = raytree(&[
+                "homework",
+                lesson.to_str().unwrap(),
+                "--student",
+                student,
+                "-o",
+                dir.to_str().unwrap(),
+            ]);
+            assert!(o.status.success(), "{name} {student}: {}", err(&o));
+            let readme = std::fs::read_to_string(dir.join("README.md")).unwrap();
+            let mut questions = readme
+                .split("## Exercises")
+                .nth(1)
+                .and_then(|s| s.split("## Answering").next())
+                .unwrap_or_else(|| panic!("{name}: no exercises in\n{readme}"))
+                .to_string();
+            for (of, quote) in NOT_VARIED_QUOTES.iter().filter(|(l, _)| *l == name) {
+                assert!(questions.contains(quote), "{of}: no {quote:?} any more");
+                questions = questions.replace(quote, " ");
+            }
+            let written = numbers(&questions);
+            // The student's own values, as the README lists them.
+            let own = |path: &str| -> Vec<f64> {
+                readme
+                    .lines()
+                    .find_map(|l| l.strip_prefix(&format!("- `{path}` = ")))
+                    .map(numbers)
+                    .unwrap_or_else(|| panic!("{name} {student}: no value of {path}"))
+            };
+            let owns: Vec<Vec<f64>> = lesson_values.iter().map(|(p, _)| own(p)).collect();
+            let in_own = |v: &[f64]| owns.iter().any(|o| o.windows(v.len()).any(|w| w == v));
+            for (path, values) in &lesson_values {
+                // A value the student drew too (for this path or another) may rightly be quoted.
+                for v in values.iter().filter(|v| !in_own(v)) {
+                    checked.push(*path);
+                    let quoted = written.windows(v.len()).any(|w| w == v.as_slice());
+                    assert!(
+                        !quoted,
+                        "{name}, {student}'s homework (their {path} = {:?}) quotes the \
+                         lesson's {v:?}:\n{questions}",
+                        own(path)
+                    );
+                }
+            }
+        }
+        for (path, _) in &lesson_values {
+            assert!(
+                checked.contains(path),
+                "{name}: every student drew a value the lesson writes for {path}"
+            );
+        }
+    }
+    assert!(lessons >= 3, "only {lessons} lessons vary values");
+}
