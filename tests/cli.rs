@@ -738,6 +738,179 @@ fn the_lessons_bvh_counts_are_what_their_commands_print() {
     );
 }
 
+/// Lesson 12's `bench scaling` table quotes, beside its times, the BVH's work: nodes visited
+/// and primitives tested per ray, and a mesh's bytes per triangle. Those are counts, the same
+/// on every machine, so every sphere row and every mesh row the test measures must be what
+/// the command prints, to the table's one decimal; and the sentence built on the sphere rows
+/// must quote their first and last nodes per ray, and the step per ×10 in N between them.
+/// (Brute force is left out: it changes only the times.)
+#[test]
+fn the_lessons_bvh_scaling_counts_are_what_bench_scaling_prints() {
+    let o = raytree(&[
+        "bench",
+        "scaling",
+        "--max-spheres",
+        "100000",
+        "--max-brute",
+        "10",
+        "--max-subdivisions",
+        "3",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let printed = json["rows"].as_array().unwrap();
+    let readme = std::fs::read_to_string("lessons/12-acceleration/README.md").unwrap();
+    let table = between(&readme, "bytes/tri\n", "\n\n");
+    let mut spheres = vec![];
+    let mut checked = 0;
+    for line in table.lines() {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        let (kind, n) = (fields[0], quoted(fields[1]));
+        // nodes/ray and prims/ray end a sphere row; a mesh row has its bytes/tri after them.
+        let counts = match kind {
+            "spheres" => &fields[fields.len() - 2..],
+            "mesh" => &fields[fields.len() - 3..],
+            _ => panic!("a row of neither spheres nor a mesh: {line}"),
+        };
+        if kind == "spheres" {
+            spheres.push((n, counts[0]));
+        }
+        let Some(row) = printed
+            .iter()
+            .find(|r| r["kind"] == kind && r["n"].as_f64() == Some(n))
+        else {
+            // A mesh too large for a quick test.
+            assert!(kind == "mesh" && n > 1280.0, "no row {line}");
+            continue;
+        };
+        let mut columns = vec![
+            ("nodes/ray", counts[0], &row["nodes_per_ray"]),
+            ("prims/ray", counts[1], &row["primitives_per_ray"]),
+        ];
+        if kind == "mesh" {
+            columns.push(("bytes/tri", counts[2], &row["bytes_per_triangle"]));
+        }
+        for (column, quoted, value) in columns {
+            assert_eq!(
+                quoted,
+                format!("{:.1}", value.as_f64().unwrap()),
+                "{kind} {n}: {column}\n{row}"
+            );
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, printed.len(), "{table}");
+    assert_eq!(spheres.len(), 5, "{table}");
+
+    let text = flowing(&readme);
+    let (first, last) = (spheres[1], spheres[4]);
+    let from = between(&text, "the nodes visited per ray grow from ", " to ");
+    let to = between(&text, &format!("grow from {from} to "), ":");
+    let step = between(&text, &format!("{to}: about +"), " for every × 10");
+    assert_eq!((from, to), (first.1, last.1), "{text}");
+    let decades = (last.0 / first.0).log10();
+    let per_decade = (quoted(last.1) - quoted(first.1)) / decades;
+    assert!(rounds_to(step, per_decade), "+{step} per ×10: {per_decade}");
+}
+
+/// A README's text with every run of whitespace one space: a figure is found whatever the
+/// line breaks around it.
+fn flowing(readme: &str) -> String {
+    readme.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// Whether `quoted`, a figure as a README writes it, is `printed` rounded to the digits it
+/// shows: "0.119" for 0.119423, not "0.14".
+fn rounds_to(quoted: &str, printed: f64) -> bool {
+    let decimals = quoted.split_once('.').map_or(0, |(_, d)| d.len()) as i32;
+    (quoted.parse::<f64>().unwrap() - printed).abs() <= 0.5 * 10f64.powi(-decimals) + 1e-12
+}
+
+/// Lesson 15's worked glow-roulette quotes what `check --explain` prints for the exercise's
+/// paths: their number, their standard deviation, the mean's standard error and the mean,
+/// each to the digits the text gives. The tolerance the text and the question name is the
+/// one `check` applies, and the number of standard errors they call it is that tolerance over
+/// the printed standard error, rounded. The biased answer it says is rejected is.
+#[test]
+fn the_lessons_glow_roulette_figures_are_what_check_explain_prints() {
+    let readme = std::fs::read_to_string("lessons/15-path-tracing/README.md").unwrap();
+    let text = flowing(&readme);
+    let text = between(&text, "With max_depth 64", "**Answer (glow-roulette):**");
+    let check = |answer: &str| {
+        raytree(&[
+            "check",
+            "lessons/15-path-tracing",
+            "--exercise",
+            "glow-roulette",
+            "--answer",
+            answer,
+            "--explain",
+        ])
+    };
+    let o = check("0.4");
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let explain = stdout(&o);
+    let printed = |before: &str, after: &str| -> f64 {
+        between(&explain, before, after)
+            .parse()
+            .unwrap_or_else(|e| panic!("{before}: {e}\n{explain}"))
+    };
+    let paths = between(&explain, "pixel = the mean of the ", " values");
+    let mean = printed(&format!("the mean of the {paths} values = "), "\n");
+    let s = printed("standard deviation s = ", ";");
+    let error = printed("s/√N = ", " ");
+    assert!((error - s / quoted(paths).sqrt()).abs() < 1e-6, "{explain}");
+
+    let quoted_paths = between(text, "(the ", " paths of the exercise show");
+    let quoted_s = between(text, "paths of the exercise show ", ")");
+    let quoted_error = between(text, &format!("/√{paths} ≈ "), ":");
+    let quoted_mean = between(text, "raytree's estimate is ", ". ");
+    assert_eq!(quoted_paths, paths, "{text}");
+    for (what, quoted, printed) in [
+        ("standard deviation", quoted_s, s),
+        ("standard error", quoted_error, error),
+        ("mean", quoted_mean, mean),
+    ] {
+        assert!(
+            rounds_to(quoted, printed),
+            "the README's {what} {quoted}, `check --explain` {printed}:\n{text}"
+        );
+    }
+    // The tolerance `check` applied, as the README and the question name it, in standard
+    // errors.
+    let tolerance = between(&explain, "tolerance ±", ")");
+    let question = between(&explain, "glow-roulette: ", "\n");
+    for (accepts, words) in [
+        (
+            between(text, "The exercise accepts ±", ","),
+            between(text, "accepts ±", " standard errors"),
+        ),
+        (
+            between(question, "Tolerance ", ","),
+            between(question, "Tolerance ", " standard errors"),
+        ),
+    ] {
+        assert_eq!(accepts, tolerance, "{text}\n{question}");
+        let count = words.rsplit(' ').next().unwrap();
+        let count = ["three", "four", "five", "six"]
+            .iter()
+            .position(|w| *w == count)
+            .unwrap_or_else(|| panic!("{words} standard errors")) as f64
+            + 3.0;
+        assert_eq!(
+            (quoted(accepts) / error).round(),
+            count,
+            "±{accepts} is {} standard errors of {error}",
+            quoted(accepts) / error
+        );
+    }
+    let biased = text.rsplit("and rejects ").next().unwrap();
+    let biased = biased.trim_end_matches('.');
+    assert_eq!(check(biased).status.code(), Some(1), "{biased} is rejected");
+}
+
 #[test]
 fn a_path_traced_render_refuses_grid_and_jittered_and_names_its_sampling() {
     const PATH: &str = "lessons/15-path-tracing";
