@@ -1207,35 +1207,35 @@ fn bench_sweep_csv_has_the_printed_tables_columns() {
     }
 }
 
+/// `bench sweep` of the small scene at 1 and 4 spp (with `args`) against an EXR reference
+/// rendered at `spp` (files named after `name`): its standard output.
+fn sweep_of_spp_1_and_4(name: &str, spp: u32, args: &[&str]) -> String {
+    let small = write(&format!("{name}-sweep.yaml"), SMALL);
+    let small = small.to_str().unwrap();
+    let reference = scratch(&format!("{name}-reference.exr"));
+    let reference = reference.to_str().unwrap();
+    let r = run(&["render", small, "-o", reference, "--spp", &spp.to_string()]);
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    let mut all = vec!["bench", "sweep", small, "--knob", "spp", "--values", "1,4"];
+    all.extend_from_slice(&["--reference", reference]);
+    all.extend_from_slice(args);
+    let r = run(&all);
+    assert_eq!(r.code(), Some(0), "{args:?}: {}", r.stderr);
+    r.stdout
+}
+
 /// `--runs 3` times three renders (after an untimed one) and reports their median: the error
 /// and the rays counted are those of a single render, since every render is the same image;
 /// `--runs 0` is refused with a usage message.
 #[test]
 fn bench_sweep_takes_the_median_of_its_runs() {
-    let small = write("runs-sweep.yaml", SMALL);
-    let small = small.to_str().unwrap();
-    let reference = scratch("runs-reference.exr");
-    let reference = reference.to_str().unwrap();
-    let r = run(&["render", small, "-o", reference, "--spp", "64"]);
-    assert_eq!(r.code(), Some(0), "{}", r.stderr);
     let sweep = |runs: &str| {
-        let r = run(&[
-            "bench",
-            "sweep",
-            small,
-            "--knob",
-            "spp",
-            "--values",
-            "1,4",
-            "--reference",
-            reference,
-            "--runs",
-            runs,
-            "--format",
-            "json",
-        ]);
-        assert_eq!(r.code(), Some(0), "--runs {runs}: {}", r.stderr);
-        let doc: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+        let doc: serde_json::Value = serde_json::from_str(&sweep_of_spp_1_and_4(
+            "runs",
+            64,
+            &["--runs", runs, "--format", "json"],
+        ))
+        .unwrap();
         doc["rows"]
             .as_array()
             .unwrap()
@@ -1252,8 +1252,17 @@ fn bench_sweep_takes_the_median_of_its_runs() {
     let once = sweep("1");
     assert_eq!(once.len(), 2);
     assert_eq!(sweep("3"), once);
+    let small = write("runs-sweep.yaml", SMALL);
     let refused = run(&[
-        "bench", "sweep", small, "--knob", "spp", "--values", "1", "--runs", "0",
+        "bench",
+        "sweep",
+        small.to_str().unwrap(),
+        "--knob",
+        "spp",
+        "--values",
+        "1",
+        "--runs",
+        "0",
     ]);
     assert_eq!(refused.code(), Some(2), "{}", refused.stderr);
     assert!(refused.stderr.contains("--runs"), "{}", refused.stderr);
@@ -1265,29 +1274,7 @@ fn bench_sweep_takes_the_median_of_its_runs() {
 /// JSON rows carry the table's efficiency, 1/(seconds·MSE), and whether the row is exact.
 #[test]
 fn bench_sweep_finds_its_own_exr_reference_exact() {
-    let small = write("exact-sweep.yaml", SMALL);
-    let small = small.to_str().unwrap();
-    let reference = scratch("exact-reference.exr");
-    let reference = reference.to_str().unwrap();
-    let r = run(&["render", small, "-o", reference, "--spp", "4"]);
-    assert_eq!(r.code(), Some(0), "{}", r.stderr);
-    let sweep = |format: &str| {
-        let r = run(&[
-            "bench",
-            "sweep",
-            small,
-            "--knob",
-            "spp",
-            "--values",
-            "1,4",
-            "--reference",
-            reference,
-            "--format",
-            format,
-        ]);
-        assert_eq!(r.code(), Some(0), "{}", r.stderr);
-        r.stdout
-    };
+    let sweep = |format: &str| sweep_of_spp_1_and_4("exact", 4, &["--format", format]);
     let table = sweep("text");
     let efficiencies: Vec<&str> = table
         .lines()

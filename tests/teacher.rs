@@ -466,6 +466,18 @@ fn two_students_homework_differ_and_grade_against_their_own_values() {
     assert!(!root.join("nested").exists());
 }
 
+/// `check` of lesson 05's mirror-local (the mirror's local term, 0.23 by hand) with `answer`,
+/// progress kept in `data`.
+fn check_mirror_local(data: &Path, answer: &str) -> Output {
+    let args = [
+        "check",
+        "lessons/05-reflection",
+        "--exercise",
+        "mirror-local",
+    ];
+    raytree_in(data, &[&args[..], &["--answer", answer]].concat())
+}
+
 /// `check --format json` carries the contract's fields, and a right answer is remembered:
 /// `lessons --format json` marks it solved, in the data folder RAYTREE_DATA names.
 #[test]
@@ -516,17 +528,7 @@ fn check_json_and_progress() {
             .collect()
     };
     assert!(solved(&data).is_empty());
-    let o = raytree_in(
-        &data,
-        &[
-            "check",
-            "lessons/05-reflection",
-            "--exercise",
-            "mirror-local",
-            "--answer",
-            "0.23",
-        ],
-    );
+    let o = check_mirror_local(&data, "0.23");
     assert!(o.status.success());
     assert_eq!(solved(&data), vec!["mirror-local".to_string()]);
     let text = out(&raytree_in(&data, &["lessons"]));
@@ -627,17 +629,7 @@ fn a_corrupt_progress_file_is_left_alone_with_a_warning() {
     std::fs::create_dir_all(&data).unwrap();
     let file = data.join("progress.json");
     std::fs::write(&file, "{not json").unwrap();
-    let o = raytree_in(
-        &data,
-        &[
-            "check",
-            "lessons/05-reflection",
-            "--exercise",
-            "mirror-local",
-            "--answer",
-            "0.23",
-        ],
-    );
+    let o = check_mirror_local(&data, "0.23");
     assert!(o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
