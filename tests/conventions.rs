@@ -143,34 +143,6 @@ fn the_man_page_lists_the_commands() {
     assert!(render.contains("depth\\-strip"), "{render}");
 }
 
-/// `man -o DIR` makes DIR when its parent is there, and otherwise refuses (exit 2) naming the
-/// missing parent, making nothing: as `render -o` and `--csv` refuse an output in a folder
-/// that is not there.
-#[test]
-fn man_makes_only_the_last_folder() {
-    let parent = scratch("man-parent");
-    let _ = std::fs::remove_dir_all(&parent);
-    std::fs::create_dir(&parent).unwrap();
-    let made = parent.join("man1");
-    ok(&raytree(&["man", "-o", made.to_str().unwrap()]));
-    assert!(made.join("raytree.1").is_file());
-
-    let missing = parent.join("missing");
-    let deep = missing.join("share").join("man1");
-    let r = raytree(&["man", "-o", deep.to_str().unwrap()]);
-    assert_eq!(r.status.code(), Some(2));
-    let stderr = String::from_utf8_lossy(&r.stderr);
-    assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(
-        stderr.contains(&format!(
-            "there is no folder {}",
-            missing.join("share").display()
-        )),
-        "{stderr}"
-    );
-    assert!(!missing.exists(), "{stderr}");
-}
-
 /// The document parsed, after checking it carries this build's version.
 fn versioned(text: &str) -> serde_json::Value {
     let doc: serde_json::Value =

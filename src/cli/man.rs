@@ -13,8 +13,7 @@ use crate::render::write_atomically;
   raytree man | man -l -
   raytree man -o ~/.local/share/man/man1")]
 pub struct Args {
-    /// Write raytree.1 and a page per command (raytree-render.1, …) into this folder instead
-    /// (made if missing, when its parent folder exists).
+    /// Write raytree.1 and a page per command (raytree-render.1, …) into this folder instead.
     #[arg(short, long, value_name = "DIR")]
     output: Option<PathBuf>,
 }
@@ -38,28 +37,6 @@ fn write_pages(cmd: clap::Command, dir: &Path) -> Result<(), Failure> {
     Ok(())
 }
 
-/// The pages' folder, made if it is missing but its parent is there: like every other output, a
-/// folder named with a mistake in its path is refused rather than made, with all the folders
-/// above it.
-fn make_folder(dir: &Path) -> Result<(), Failure> {
-    if dir.is_dir() {
-        return Ok(());
-    }
-    let parent = dir
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !parent.is_dir() {
-        return Err(Failure(format!(
-            "{}: cannot create the folder: there is no folder {}",
-            dir.display(),
-            parent.display()
-        )));
-    }
-    std::fs::create_dir(dir)
-        .map_err(|e| Failure(format!("{}: cannot create the folder: {e}", dir.display())))
-}
-
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     // Built, the commands know their full names (raytree-bench-sweep) and lose `help`.
     let mut cmd = Cli::command().disable_help_subcommand(true);
@@ -67,7 +44,8 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.output {
         None => super::output::print_raw(&page(cmd)?.1)?,
         Some(dir) => {
-            make_folder(&dir)?;
+            std::fs::create_dir_all(&dir)
+                .map_err(|e| Failure(format!("{}: cannot create: {e}", dir.display())))?;
             write_pages(cmd, &dir)?;
         }
     }
