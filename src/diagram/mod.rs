@@ -3,7 +3,8 @@
 //!
 //! The geometry is here, once, for both places that draw it: the explorer's diagram pane
 //! (braille on a ratatui canvas, `tui`) and the `raytree diagram` figure (SVG and PNG, this
-//! module's `figure.rs` and `raster.rs`). `view.rs` is the orthographic projection,
+//! module's `figure.rs`, with `section.rs`, `tree_panel.rs`, `labels.rs` and `ink.rs`, and
+//! `raster.rs`). `view.rs` is the orthographic projection,
 //! `frame.rs` the part of the plane shown, `rays.rs` the tree's rays as segments,
 //! `outline.rs` the objects' outlines, `drawing.rs` all of it together; `graph.rs` lays the
 //! tree out as a graph (the figure, `dot.rs` for Graphviz) and `marks.rs` finds where the
@@ -14,10 +15,14 @@ pub mod drawing;
 pub mod figure;
 pub mod frame;
 pub mod graph;
+mod ink;
+mod labels;
 pub mod marks;
 pub mod outline;
 pub mod raster;
 pub mod rays;
+mod section;
+mod tree_panel;
 pub mod view;
 
 pub use drawing::Drawing;
