@@ -474,6 +474,70 @@ fn a_path_that_leaves_the_scene_is_shown_leaving_toward_a_direction() {
     );
 }
 
+/// A path-traced pixel keeps the JSON contract's `tree`: the Whitted reading of its centre
+/// ray, from lesson 15's eye at (0, 0, 3.9), the same tree `--ray` gives for that ray. An
+/// explicit ray is read the Whitted way too: straight back from the eye along −z it meets
+/// the back wall's face z = −1 at t = 4.9, normal (0, 0, 1). Graphviz draws the reading.
+#[test]
+fn a_path_traced_scene_is_inspected_with_its_whitted_reading() {
+    let pixel = ["inspect", "15-path-tracing", "--pixel", "30,30"];
+    let o = raytree(&[&pixel[..], &["--format", "json"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(v["integrator"], "path");
+    let tree = &v["tree"];
+    assert_eq!(tree["kind"], "primary");
+    assert_eq!(tree["depth"], 0);
+    let at = |x: &serde_json::Value| -> Vec<f64> {
+        (0..3).map(|i| x[i].as_f64().expect("a number")).collect()
+    };
+    assert_eq!(at(&tree["origin"]), [0.0, 0.0, 3.9]);
+    let d = at(&tree["direction"]);
+    let ray = format!("0,0,3.9:{},{},{}", d[0], d[1], d[2]);
+    let o = raytree(&[
+        "inspect",
+        "15-path-tracing",
+        "--ray",
+        &ray,
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let by_ray: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(by_ray["tree"]["color"], tree["color"]);
+    assert_eq!(by_ray["integrator"], "path");
+
+    let o = raytree(&[
+        "inspect",
+        "15-path-tracing",
+        "--ray",
+        "0,0,3.9:0,0,-1",
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let hit = &v["tree"]["hit"];
+    assert_eq!(hit["object"], "back");
+    assert!((hit["t"].as_f64().unwrap() - 4.9).abs() < 1e-12, "{hit}");
+    assert_eq!(at(&hit["normal"]), [0.0, 0.0, 1.0]);
+    let text = stdout(&raytree(&[
+        "inspect",
+        "15-path-tracing",
+        "--ray",
+        "0,0,3.9:0,0,-1",
+    ]));
+    assert!(
+        text.starts_with("the Whitted reading of this ray"),
+        "{text}"
+    );
+
+    let o = raytree(&[&pixel[..], &["--format", "dot"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).starts_with("digraph"), "{}", stdout(&o));
+    assert!(stdout(&o).contains("Whitted reading of its centre ray"));
+}
+
 #[test]
 fn inspect_a_path_traced_pixel_shows_sampled_paths_and_the_estimate() {
     let o = raytree(&[

@@ -57,13 +57,12 @@ pub enum Format {
     Dot,
 }
 
-/// A path-traced pixel: its estimate over the scene's samples, and the first few paths.
-fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
+/// A path-traced pixel: its estimate over the scene's samples, and the first few paths. Its
+/// ray tree (JSON's `tree`, and the Graphviz graph) is the Whitted reading of its centre
+/// ray, as the explorer shows beside the paths: a path is one sampled chain of bounces, not
+/// a tree.
+fn paths(a: &Args, scene: &Scene, [x, y]: [u32; 2]) -> Result<ExitCode, Failure> {
     const SHOWN: u32 = 4;
-    let [x, y] = a
-        .target
-        .pixel
-        .ok_or_else(|| Failure("a path-traced scene is inspected by --pixel X,Y".into()))?;
     a.target.ray(scene)?;
     let max_depth = depth(scene, a.depth)?;
     let options = RenderOptions {
@@ -82,11 +81,12 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
         None => 0..SHOWN,
     };
     let shown = film.replay_paths(x, y, which.clone());
-    if a.format == Format::Dot {
-        return Err(Failure(
-            "--format dot draws a Whitted ray tree; a path-traced pixel has sampled paths (use text or json)".into(),
-        ));
-    }
+    let whitted = || {
+        Tracer::new(scene)
+            .with_depth(max_depth)
+            .with_rng(Rng::for_pixel(options.seed, x, y))
+            .inspect(&scene.camera.pixel_ray(x, y))
+    };
     match a.format {
         Format::Json => {
             let doc = serde_json::json!({
@@ -96,10 +96,19 @@ fn paths(a: &Args, scene: &Scene) -> Result<ExitCode, Failure> {
                 "seed": options.seed,
                 "color": estimate.to_array(),
                 "paths": which.zip(&shown).map(|(i, (v, log))| serde_json::json!({ "sample": i + 1, "value": v.to_array(), "vertices": log })).collect::<Vec<_>>(),
+                "tree": whitted(),
+                "traced": "whitted reading of the centre ray",
             });
             super::output::print_json(doc)?;
         }
-        Format::Text | Format::Dot => {
+        Format::Dot => {
+            let title = format!(
+                "pixel ({x}, {y}): the Whitted reading of its centre ray, not the path-traced estimate {}",
+                text::color(estimate)
+            );
+            print(&dot(&whitted(), Some(scene), &title))?;
+        }
+        Format::Text => {
             let mut out = format!(
                 "pixel ({x}, {y}), path traced: estimate {} from {spp} samples\n",
                 text::color(estimate)
@@ -222,8 +231,9 @@ fn pixel_ray(
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let scene = a.scene.load()?;
-    if scene.integrator == crate::scene::Integrator::Path {
-        return paths(&a, &scene);
+    let path_traced = scene.integrator == crate::scene::Integrator::Path;
+    if let (true, Some(pixel)) = (path_traced, a.target.pixel) {
+        return paths(&a, &scene, pixel);
     }
     let ray = a.target.ray(&scene)?;
     let max_depth = depth(&scene, a.depth)?;
@@ -260,6 +270,10 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.format {
         Format::Json => {
             let mut doc = serde_json::to_value(&inspection)?;
+            if path_traced {
+                doc["integrator"] = serde_json::json!("path");
+                doc["traced"] = serde_json::json!("whitted reading of the ray");
+            }
             if let Some(r) = &rendered {
                 doc["rendered"] = serde_json::json!({
                     "samples": r.options.spp.max(1),
@@ -279,12 +293,22 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         Format::Dot => {
             let title = match inspection.pixel {
                 Some([x, y]) => format!("pixel ({x}, {y}): I = {}", text::color(inspection.color)),
+                None if path_traced => format!(
+                    "ray {} → {}: its Whitted reading (the scene is path traced)",
+                    text::vec3(ray.origin),
+                    text::vec3(ray.dir)
+                ),
                 None => format!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir)),
             };
             print(&dot(&inspection.tree, Some(&scene), &title))?;
         }
         Format::Text => {
             let mut out = String::new();
+            if path_traced {
+                // Only an explicit ray gets here: a pixel shows its paths.
+                out += "the Whitted reading of this ray (the scene is path traced: \
+                        --pixel X,Y shows a pixel's estimate and its paths)\n";
+            }
             if let (Some([x, y]), Some(r)) = (inspection.pixel, &rendered) {
                 out += &format!("pixel ({x}, {y}) = {}", text::color(r.value));
                 if r.is_centre_ray() && a.sample.is_none() {
