@@ -1,4 +1,4 @@
-//! Reading the files a user names (scenes, meshes): regular files only, opened so that a FIFO
+//! Reading the files a user names (scenes, meshes, lessons, answer sheets): regular files only, opened so that a FIFO
 //! or a device can neither block nor feed bytes forever, and never more than a budget of
 //! bytes, so a file that is too large is refused before its contents are held in memory. And
 //! where raytree keeps what it can make again (the user's cache folder).
@@ -106,6 +106,33 @@ pub fn read_bounded(path: &Path, budget: u64) -> Result<Vec<u8>, ReadError> {
             }
             Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
             Err(e) => return Err(ReadError::Io(e)),
+        }
+    }
+}
+
+/// The budget for the text files of lessons and of grading (exercises, READMEs, the scenes a
+/// lesson varies, answer sheets, the progress file): far above any real one, far below what
+/// would trouble a laptop.
+pub const TEXT_BUDGET: u64 = 16 << 20;
+
+/// `read_bounded` as UTF-8 text (bytes that are not give the `InvalidData` error that
+/// `std::fs::read_to_string` gives).
+pub fn read_text(path: &Path, budget: u64) -> Result<String, ReadError> {
+    String::from_utf8(read_bounded(path, budget)?).map_err(|_| {
+        ReadError::Io(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            "stream did not contain valid UTF-8",
+        ))
+    })
+}
+
+/// As the system's errors are reported: the reason of a failed read or open itself, the
+/// others as their message.
+impl From<ReadError> for std::io::Error {
+    fn from(e: ReadError) -> std::io::Error {
+        match e {
+            ReadError::Io(e) => e,
+            e => std::io::Error::other(e.to_string()),
         }
     }
 }

@@ -755,6 +755,58 @@ fn rows_that_do_not_read_are_not_graded() {
     }
 }
 
+/// A sheet where no row names an exercise of the lesson (another lesson's answers) grades
+/// nobody: `grade` says so and exits 1, so a script cannot take it for an empty class.
+#[test]
+fn a_sheet_where_nothing_is_graded_exits_1() {
+    let dir = scratch("nothing-graded");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("c.csv");
+    std::fs::write(&file, "s1,tangent-t,8\ns2,no-such-exercise,1\n").unwrap();
+    let o = raytree(&[
+        "grade",
+        "08-pixel-intensity",
+        "--answers",
+        file.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    assert!(err(&o).contains("no answer graded"), "{}", err(&o));
+}
+
+/// Answers, READMEs and exercise files are read within a budget, and a device is refused at
+/// once: /dev/zero given as the answers, or linked as a lesson's README, is never read
+/// without end (it would take all the memory there is before failing).
+#[cfg(unix)]
+#[test]
+fn a_device_is_refused_as_answers_and_as_a_lessons_readme() {
+    let o = raytree(&["grade", "03-local-illumination", "--answers", "/dev/zero"]);
+    assert_eq!(o.status.code(), Some(2), "{}", err(&o));
+    assert!(
+        err(&o).contains("/dev/zero: not a regular file"),
+        "{}",
+        err(&o)
+    );
+
+    let root = scratch("device-readme");
+    let dir = root.join("02-intersection");
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in std::fs::read_dir("lessons/02-intersection").unwrap() {
+        let f = f.unwrap();
+        if f.file_name() != "README.md" && f.path().is_file() {
+            std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+        }
+    }
+    std::os::unix::fs::symlink("/dev/zero", dir.join("README.md")).unwrap();
+    let o = raytree(&["lessons", "validate", root.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", out(&o));
+    let report = out(&o);
+    assert!(
+        report.contains("README.md: cannot read: not a regular file"),
+        "{report}"
+    );
+    assert!(!report.contains("states no answer"), "{report}");
+}
+
 /// A lesson whose exercises.yaml does not read is named once by file:line:column, and the
 /// summary says that it could not be read, not that it disagrees.
 #[test]

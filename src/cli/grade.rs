@@ -25,7 +25,10 @@ pub enum GradeFormat {
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:
   raytree grade lessons/03-local-illumination --answers class.csv
-  raytree grade lessons/03-local-illumination --answers class.csv --format json")]
+  raytree grade lessons/03-local-illumination --answers class.csv --format json
+
+Exit status: 0 when the answers were graded, 1 when no row of the file could be, 2 for a
+usage error or a file that cannot be read.")]
 pub struct Args {
     /// The lesson the homework was made from: its folder, or its name (`03-local-illumination`).
     lesson: PathBuf,
@@ -40,8 +43,8 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let lesson = Lesson::named(&a.lesson)?;
-    let text = std::fs::read_to_string(&a.answers)
-        .map_err(|e| Failure(format!("{}: cannot read: {e}", a.answers.display())))?;
+    let text = crate::files::read_text(&a.answers, crate::files::TEXT_BUDGET)
+        .map_err(|e| Failure(format!("{}: {e}", a.answers.display())))?;
     let (rows, problems) = read_answers(&text);
     let report = grade(&lesson, &rows, problems)?;
     let file = a.answers.display().to_string();
@@ -55,6 +58,15 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         for p in &report.problems {
             super::output::eprintln(&format!("{file}:{}: {}", p.line, p.message));
         }
+    }
+    // A sheet where no row could be graded is a mistake a script must see (a wrong file,
+    // another lesson's answers), not a class with no students.
+    if report.students.is_empty() {
+        super::output::eprintln(&format!(
+            "{file}: no answer graded: no row names a student and an exercise of lesson {}",
+            report.lesson
+        ));
+        return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
 }

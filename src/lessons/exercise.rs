@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use super::error::LessonError;
 use super::tolerance::Tolerance;
 use super::vary::{self, Range};
+use crate::files::{read_text, ReadError, TEXT_BUDGET};
 use crate::shading::Highlight;
 
 /// What an exercise asks for.
@@ -201,7 +202,8 @@ impl Lesson {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         let path = dir.join("exercises.yaml");
-        let text = std::fs::read_to_string(&path).map_err(|e| LessonError::io(&path, "read", e))?;
+        let text =
+            read_text(&path, TEXT_BUDGET).map_err(|e| LessonError::io(&path, "read", e.into()))?;
         let file: ExerciseFile = serde_saphyr::from_str(&text).map_err(|e| {
             use serde_saphyr::MessageFormatter;
             let (line, column) = e.location().map_or((1, 1), |l| (l.line(), l.column()));
@@ -215,7 +217,13 @@ impl Lesson {
                 message: first.strip_prefix("error: ").unwrap_or(first).to_string(),
             }
         })?;
-        let readme = std::fs::read_to_string(dir.join("README.md")).unwrap_or_default();
+        // A lesson may have no README; one that is there must read.
+        let path = dir.join("README.md");
+        let readme = match read_text(&path, TEXT_BUDGET) {
+            Err(ReadError::Io(e)) if e.kind() == std::io::ErrorKind::NotFound => String::new(),
+            read => read.map_err(|e| LessonError::io(&path, "read", e.into()))?,
+        };
+        let path = dir.join("exercises.yaml");
         let mut seen = std::collections::HashSet::new();
         for ex in &file.exercises {
             if !seen.insert(&ex.id) {

@@ -78,7 +78,8 @@ pub struct Report {
 
 /// The rows of an answers file, and the lines that are not rows. A row is one line of three
 /// fields, `student,exercise,answer`; an answer with commas is quoted (`"0.6, -0.8, 0"`). A
-/// first line `student,exercise,answer` is a header. A line with fewer or more fields, or with a
+/// first line that names the three columns (`student,exercise,answer`, or in another order)
+/// is a header, and the rows follow its order. A line with fewer or more fields, or with a
 /// quote left open, is a problem: guessing what it meant could grade an answer the student did
 /// not give.
 pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
@@ -86,6 +87,9 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
     let mut problems = Vec::new();
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut first = true;
+    // Where each of student, exercise and answer stands in a row: as a header line puts
+    // them, else in that order.
+    let mut order = [0, 1, 2];
     // Line by line, so that a quote left open costs its own row and not every row after it.
     for (k, raw) in text.lines().enumerate() {
         let line = k as u64 + 1;
@@ -101,16 +105,15 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
         if fields.iter().all(|f| f.is_empty()) {
             continue;
         }
-        let header = std::mem::replace(&mut first, false)
-            && fields.len() == 3
-            && ["student", "exercise", "answer"]
-                .iter()
-                .zip(&fields)
-                .all(|(name, f)| f.eq_ignore_ascii_case(name));
-        if header {
-            continue;
+        if std::mem::replace(&mut first, false) {
+            if let Some(columns) = header(&fields) {
+                order = columns;
+                continue;
+            }
         }
-        match <[String; 3]>::try_from(fields) {
+        let in_order = <[String; 3]>::try_from(fields)
+            .map(|mut fields| order.map(|i| std::mem::take(&mut fields[i])));
+        match in_order {
             Ok([student, exercise, answer]) if !student.is_empty() && !exercise.is_empty() => rows
                 .push(Row {
                     line,
@@ -138,6 +141,14 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
         }
     }
     (rows, problems)
+}
+
+/// Where student, exercise and answer stand, if the row is a header: those three names, in
+/// any order and any case.
+fn header(fields: &[String]) -> Option<[usize; 3]> {
+    let at = |name: &str| fields.iter().position(|f| f.eq_ignore_ascii_case(name));
+    let columns = [at("student")?, at("exercise")?, at("answer")?];
+    (fields.len() == 3).then_some(columns)
 }
 
 /// The fields of one line of CSV, each trimmed: separated by commas; a field in double quotes
@@ -416,5 +427,28 @@ mod tests {
         assert_eq!(rows.len(), 2);
         assert_eq!(rows[0].exercise, "a\"b");
         assert_eq!(rows[1].student, "student");
+    }
+
+    /// A header that names the columns in another order (any case) sets the order of the
+    /// rows after it.
+    #[test]
+    fn a_header_in_another_order_is_followed() {
+        let (rows, problems) = read_answers(
+            "Exercise,STUDENT,answer
+diffuse,s1,0.16846
+",
+        );
+        assert_eq!(problems, vec![]);
+        assert_eq!(rows.len(), 1);
+        let r = &rows[0];
+        let got = (r.student.as_str(), r.exercise.as_str(), r.answer.as_str());
+        assert_eq!(got, ("s1", "diffuse", "0.16846"));
+        assert_eq!(r.line, 2);
+        // Two names and a third word is no header: it is a row.
+        let (rows, _) = read_answers(
+            "exercise,student,mark
+",
+        );
+        assert_eq!(rows.len(), 1);
     }
 }

@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use super::error::LessonError;
 use super::exercise::Lesson;
+use crate::files::{read_text, ReadError, TEXT_BUDGET};
 
 /// The exercises a student has answered right, lesson by lesson, as `progress.json` keeps them.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
@@ -73,10 +74,12 @@ impl Progress {
         let Some(path) = file() else {
             return Ok(Progress::default());
         };
-        let text = match std::fs::read_to_string(&path) {
+        let text = match read_text(&path, TEXT_BUDGET) {
             Ok(text) => text,
-            Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Progress::default()),
-            Err(e) => return Err(LessonError::io(&path, "read", e)),
+            Err(ReadError::Io(e)) if e.kind() == std::io::ErrorKind::NotFound => {
+                return Ok(Progress::default())
+            }
+            Err(e) => return Err(LessonError::io(&path, "read", e.into())),
         };
         let saved: Progress =
             serde_json::from_str(&text).map_err(|e| LessonError::ProgressUnreadable {

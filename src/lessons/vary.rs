@@ -21,6 +21,7 @@ use serde::Deserialize;
 
 use super::error::{LessonError, RangeError};
 use super::yaml_spans::{self, Edit};
+use crate::files::{read_text, TEXT_BUDGET};
 use crate::sampling::Rng;
 use crate::trace::text::num;
 
@@ -204,7 +205,8 @@ pub fn scene_files(
             continue;
         }
         let path = dir.join(&name);
-        let text = std::fs::read_to_string(&path).map_err(|e| LessonError::io(&path, "read", e))?;
+        let text =
+            read_text(&path, TEXT_BUDGET).map_err(|e| LessonError::io(&path, "read", e.into()))?;
         out.insert(name, text);
     }
     Ok(out)
