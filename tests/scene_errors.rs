@@ -26,7 +26,7 @@ const CASES: &[(&str, &str, &str)] = &[
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects:\n  - { name: b, box: { min: [1, 0, 0], max: [0, 1, 1] }, material: m }", "4:28", "box min must be smaller"),
     ("camera: { eye: [0, 0, -5], u: [1, 0, 0], v: [0, 1, 0], w: [0, 0, 1], f: 1, window: [1, 1, 1, -1] }", "1:84", "zero width"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\ncamera: { eye: [0, 0, -5], look_at: [0, 0, 0] }", "2:1", "duplicate"),
-    ("camera: [1, 2", "1:9", "expected mapping"),
+    ("camera: [1, 2", "1:9", "expected a mapping"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, -.inf] }", "1:44", "non-finite"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 1e999] }", "1:44", "expected a number within floating point's range here, got `1e999`"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nambient: \"abc\"", "2:1", "number or a list"),

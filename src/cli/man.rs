@@ -44,6 +44,11 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.output {
         None => super::output::print_raw(&page(cmd)?.1)?,
         Some(dir) => {
+            // create_dir_all takes a file in the way for a folder that exists.
+            if dir.exists() && !dir.is_dir() {
+                let why = "not a folder: -o names the folder the pages are written into";
+                return Err(Failure(format!("{}: {why}", dir.display())));
+            }
             std::fs::create_dir_all(&dir)
                 .map_err(|e| Failure(format!("{}: cannot create: {e}", dir.display())))?;
             write_pages(cmd, &dir)?;

@@ -217,6 +217,10 @@ fn from_yaml_sized<T: serde::de::DeserializeOwned>(
     serde_saphyr::from_str_with_options(text, parse_options(file_len)).map_err(|e| {
         let mut pos = e.location().map_or(error::Pos::default(), |l| error::Pos::of(&l));
         let mut message = invalid_scalar(&e, text, pos).unwrap_or_else(|| parser_message(&e));
+        let line = text.lines().nth(pos.line.saturating_sub(1) as usize);
+        if message.starts_with("expected a mapping") && line.is_some_and(|l| l.contains("complement:")) {
+            message += " (`complement` takes one child, not a list)";
+        }
         // The parser points at the node after a tag: point at the tag itself.
         if let Some(tag) = tag_of(&e) {
             if let Some(line) = text.lines().nth(pos.line.saturating_sub(1) as usize) {
@@ -360,7 +364,7 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
         E::MultipleDocuments { .. } => MORE_THAN_ONE.into(),
         E::Budget { breach, .. } => match breach {
             BudgetBreach::Depth { .. } => {
-                "nested more than 64 levels deep (CSG trees and lists must be shallower)".into()
+                "nested more than 64 YAML levels deep, about 30 levels of a CSG tree (each level is a mapping and its list): make the tree shallower".into()
             }
             BudgetBreach::Aliases { .. } | BudgetBreach::Anchors { .. } => ALIAS_BOMB.into(),
             BudgetBreach::Documents { .. } => MORE_THAN_ONE.into(),
@@ -380,6 +384,14 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
             expected: "string scalar",
             ..
         } => "expected a single value here (a number or a name), not a list or a mapping".into(),
+        E::Unexpected {
+            expected: "sequence start",
+            ..
+        } => "expected a list here: `- item` lines, or `[a, b]` (`[]` for none)".into(),
+        E::Unexpected {
+            expected: "mapping start",
+            ..
+        } => "expected a mapping here: `key: value` lines, or `{ key: value }`".into(),
         e => {
             let text = serde_saphyr::DefaultMessageFormatter.format_message(e);
             let first = text.lines().next().unwrap_or("").trim();

@@ -155,8 +155,15 @@ fn vec3(v: DVec3) -> String {
 }
 
 /// A name as given in the file: one line of printable text, so that it can be shown in a
-/// terminal as it is (no escape sequences, no line breaks faking output).
+/// terminal as it is (no escape sequences, no line breaks faking output), and not blank, so
+/// that trees and segment lists can name what they met.
 fn printable_name(name: &str, p: Pos, what: &str) -> Result<(), Invalid> {
+    if name.trim().is_empty() {
+        return invalid(
+            p,
+            format!("{what} name is empty: give it a name, or leave `name` out"),
+        );
+    }
     match name.chars().find(|c| c.is_control()) {
         Some(c) => invalid(
             p,
