@@ -147,12 +147,16 @@ impl Figure<'_> {
             let at = DVec2::new(inside, at.y);
             labels.push(text(at, "eye", 13.0, INK).set("text-anchor", "middle"));
         }
+        // What a label had best keep off: the rays, and the objects' outlines.
+        let lines: Vec<(DVec2, DVec2)> = (paths.iter().copied())
+            .chain(d.outlines.iter().flat_map(|o| edges(p, &o.outline)))
+            .collect();
         for i in order {
             let s = &d.segments[i];
             g = self.ray(g, p, s, paths[i]);
             let few = !is_shadow(s.kind) || d.segments.len() <= 16;
             if labelled && few {
-                if let Some((label, bx)) = ray_label(p, s, paths[i], &paths, &taken) {
+                if let Some((label, bx)) = ray_label(p, s, paths[i], &lines, &taken) {
                     taken.push(bx);
                     labels.push(label);
                 }
@@ -320,6 +324,28 @@ fn silhouette(g: Group, p: &Panel, outline: &Outline, diag: f64) -> Group {
     }
 }
 
+/// The sides of an object's outline on the page (a plane's line as far as the frame shows
+/// it).
+fn edges(p: &Panel, outline: &Outline) -> Vec<(DVec2, DVec2)> {
+    match outline {
+        Outline::Polygon(pts) if pts.len() >= 2 => {
+            let px: Vec<DVec2> = pts.iter().map(|q| p.px(*q)).collect();
+            let closed = if px.len() >= 3 { px.len() } else { 1 };
+            (0..closed)
+                .map(|i| (px[i], px[(i + 1) % px.len()]))
+                .collect()
+        }
+        Outline::Line { point, dir } => {
+            let diag = p.frame.size().length();
+            let (a, b) = (*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag);
+            (p.frame.clip(a, b).into_iter())
+                .map(|(a, b)| (p.px(a), p.px(b)))
+                .collect()
+        }
+        _ => vec![],
+    }
+}
+
 /// Where an object's name goes: for a plane, near where its line enters the frame on the
 /// left (None where it misses the frame); else the outline's own anchor.
 fn name_anchor(p: &Panel, outline: &Outline, diag: f64) -> Option<DVec2> {
@@ -335,14 +361,15 @@ fn name_anchor(p: &Panel, outline: &Outline, diag: f64) -> Option<DVec2> {
 }
 
 /// A ray's label, "kind I = value", and the box it covers: above the ray, else below it;
-/// off every ray where it can be, else off its own; where both spots would cover another
+/// off every line of `lines` (the rays and the outlines) where it can be, at its middle or
+/// elsewhere along it, else off its own; where both spots would cover another
 /// label (or a name), the same a quarter of the ray nearer either end; None where none is
 /// free, or where the ray is too short on the page to carry one.
 fn ray_label(
     p: &Panel,
     s: &Segment,
     (pa, pb): (DVec2, DVec2),
-    paths: &[(DVec2, DVec2)],
+    lines: &[(DVec2, DVec2)],
     taken: &[Box2],
 ) -> Option<(Text, Box2)> {
     let dir = pb - pa;
@@ -360,8 +387,10 @@ fn ray_label(
         (false, false) => 0.35,
     };
     let mut label = s.label();
-    if s.kind == SegKind::Missed {
-        label = format!("{label} (background)");
+    // "(background)" says where a ray went, where the panel is wide enough to say it.
+    let long = format!("{label} (background)");
+    if s.kind == SegKind::Missed && text_width(&long, 12.0) <= p.size.x - 8.0 {
+        label = long;
     }
     let off = dir.perp().normalize_or_zero() * 10.0;
     let above = if off.y > 0.0 { -off } else { off };
@@ -384,7 +413,14 @@ fn ray_label(
         .filter(|t| (0.1..=0.9).contains(t))
         .flat_map(|t| beside(pa + dir * t))
         .collect();
-    let (at, bx, end) = free(&spots, paths)
+    // Off every line anywhere along the ray before it may lie across another ray, where it
+    // would read as that ray's label.
+    let along_it: Vec<DVec2> = [0.3, 0.45, 0.6, 0.75]
+        .into_iter()
+        .flat_map(|t| beside(pa + dir * t))
+        .collect();
+    let (at, bx, end) = free(&spots, lines)
+        .or_else(|| free(&along_it, lines))
         .or_else(|| free(&spots, &[(pa, pb)]))
         .or_else(|| anywhere(&spots))
         .or_else(|| free(&further, &[(pa, pb)]))
