@@ -376,6 +376,20 @@ fn texts(svg: &str) -> impl Iterator<Item = (&str, String)> {
     })
 }
 
+/// Every `<line>` of an SVG figure: its ends and its stroke's width.
+fn lines_drawn(svg: &str) -> impl Iterator<Item = (DVec2, DVec2, f64)> + '_ {
+    svg.split("<line ")
+        .skip(1)
+        .map(|t| t.split_once('>').unwrap().0)
+        .map(|t| {
+            (
+                DVec2::new(attr(t, "x1"), attr(t, "y1")),
+                DVec2::new(attr(t, "x2"), attr(t, "y2")),
+                attr(t, "stroke-width"),
+            )
+        })
+}
+
 /// The box a text covers, at about 0.6 em a character, placed by its anchor.
 fn text_box(tag: &str, s: &str) -> (DVec2, DVec2) {
     let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
@@ -499,17 +513,7 @@ fn the_eyes_name_keeps_off_a_ray_that_comes_back_through_the_eye() {
         .find(|(_, s)| s == "eye")
         .expect("the eye is named");
     let (min, max) = text_box(tag, "eye");
-    let lines: Vec<(DVec2, DVec2)> = svg
-        .split("<line ")
-        .skip(1)
-        .map(|t| t.split_once('>').unwrap().0)
-        .map(|t| {
-            (
-                DVec2::new(attr(t, "x1"), attr(t, "y1")),
-                DVec2::new(attr(t, "x2"), attr(t, "y2")),
-            )
-        })
-        .collect();
+    let lines: Vec<(DVec2, DVec2)> = lines_drawn(&svg).map(|(a, b, _)| (a, b)).collect();
     // The eye's dot (r = 5) has rays drawn through it, level with it, on both sides.
     let dot = svg
         .split("<circle ")
@@ -537,6 +541,41 @@ fn the_eyes_name_keeps_off_a_ray_that_comes_back_through_the_eye() {
             !through,
             "the line {a} → {b} runs through the eye's name at {min}–{max}"
         );
+    }
+}
+
+/// In lesson 8's figure of pixel p the two rays that leave for the background (from c and
+/// from d) are long, with room beside them: their labels lie across no ray (primary,
+/// reflection, refraction: lines 3 and 2.4 px wide), where they would read as that ray's.
+/// (d's label was laid across b's ray, beside b, as if b's ray went to the background.)
+#[test]
+fn the_background_rays_labels_lie_across_no_ray_in_lesson_8() {
+    let svg = figure_svg(
+        "lessons/08-pixel-intensity/scene.yaml",
+        "30,30",
+        "l08-labels.svg",
+    );
+    let rays: Vec<(DVec2, DVec2)> = lines_drawn(&svg)
+        .filter(|&(_, _, width)| width == 3.0 || width == 2.4)
+        .map(|(a, b, _)| (a, b))
+        .collect();
+    assert!(rays.len() >= 6, "{rays:?}");
+    let labels: Vec<(String, (DVec2, DVec2))> = texts(&svg)
+        .filter(|(_, s)| s.ends_with("(background)"))
+        .map(|(tag, s)| (s.clone(), text_box(tag, &s)))
+        .collect();
+    assert_eq!(labels.len(), 2, "{labels:?}");
+    for (label, (min, max)) in &labels {
+        for &(a, b) in &rays {
+            let across = (0..=400).any(|k| {
+                let q = a + (b - a) * (k as f64 / 400.0);
+                q.x > min.x && q.x < max.x && q.y > min.y && q.y < max.y
+            });
+            assert!(
+                !across,
+                "{label} at {min}–{max} lies across the ray {a} → {b}"
+            );
+        }
     }
 }
 
