@@ -390,6 +390,14 @@ fn lines_drawn(svg: &str) -> impl Iterator<Item = (DVec2, DVec2, f64)> + '_ {
         })
 }
 
+/// Whether the line from `a` to `b` passes inside the box, tried at 401 points along it.
+fn runs_through((min, max): (DVec2, DVec2), a: DVec2, b: DVec2) -> bool {
+    (0..=400).any(|k| {
+        let q = a + (b - a) * (k as f64 / 400.0);
+        q.x > min.x && q.x < max.x && q.y > min.y && q.y < max.y
+    })
+}
+
 /// The box a text covers, at about 0.6 em a character, placed by its anchor.
 fn text_box(tag: &str, s: &str) -> (DVec2, DVec2) {
     let (x, y, size) = (attr(tag, "x"), attr(tag, "y"), attr(tag, "font-size"));
@@ -533,12 +541,8 @@ fn the_eyes_name_keeps_off_a_ray_that_comes_back_through_the_eye() {
         "{dot} {lines:?}"
     );
     for &(a, b) in &lines {
-        let through = (0..=400).any(|k| {
-            let q = a + (b - a) * (k as f64 / 400.0);
-            q.x > min.x && q.x < max.x && q.y > min.y && q.y < max.y
-        });
         assert!(
-            !through,
+            !runs_through((min, max), a, b),
             "the line {a} → {b} runs through the eye's name at {min}–{max}"
         );
     }
@@ -567,12 +571,8 @@ fn the_background_rays_labels_lie_across_no_ray_in_lesson_8() {
     assert_eq!(labels.len(), 2, "{labels:?}");
     for (label, (min, max)) in &labels {
         for &(a, b) in &rays {
-            let across = (0..=400).any(|k| {
-                let q = a + (b - a) * (k as f64 / 400.0);
-                q.x > min.x && q.x < max.x && q.y > min.y && q.y < max.y
-            });
             assert!(
-                !across,
+                !runs_through((*min, *max), a, b),
                 "{label} at {min}–{max} lies across the ray {a} → {b}"
             );
         }

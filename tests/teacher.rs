@@ -31,6 +31,15 @@ fn raytree(args: &[&str]) -> Output {
     raytree_in(&scratch_data(), args)
 }
 
+/// A class's answers, `rows` of CSV, written as c.csv in a scratch folder of its own.
+fn answer_sheet(name: &str, rows: &str) -> PathBuf {
+    let dir = scratch(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("c.csv");
+    std::fs::write(&file, rows).unwrap();
+    file
+}
+
 fn scratch_data() -> PathBuf {
     std::env::temp_dir().join(format!("raytree-teacher-{}-data", std::process::id()))
 }
@@ -703,14 +712,10 @@ fn hidden_solutions_are_not_explained() {
 /// graded; the row after the open quote still is.
 #[test]
 fn rows_that_do_not_read_are_not_graded() {
-    let dir = scratch("malformed");
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("c.csv");
-    std::fs::write(
-        &file,
+    let file = answer_sheet(
+        "malformed",
         "s1,pixel-p\ns5,pixel-p,\"0.87\ns6,pixel-p,0.6,0.8\ns7,pixel-p,0.87\n",
-    )
-    .unwrap();
+    );
     let f = file.to_str().unwrap();
     let o = raytree(&[
         "grade",
@@ -759,10 +764,7 @@ fn rows_that_do_not_read_are_not_graded() {
 /// nobody: `grade` says so and exits 1, so a script cannot take it for an empty class.
 #[test]
 fn a_sheet_where_nothing_is_graded_exits_1() {
-    let dir = scratch("nothing-graded");
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("c.csv");
-    std::fs::write(&file, "s1,tangent-t,8\ns2,no-such-exercise,1\n").unwrap();
+    let file = answer_sheet("nothing-graded", "s1,tangent-t,8\ns2,no-such-exercise,1\n");
     let o = raytree(&[
         "grade",
         "08-pixel-intensity",
@@ -852,10 +854,7 @@ fn a_lesson_that_does_not_read_is_reported_as_such() {
 /// escaped, so a name cannot clear the teacher's terminal or fake a line of the report.
 #[test]
 fn the_grade_report_shows_control_characters_escaped() {
-    let dir = scratch("control");
-    std::fs::create_dir_all(&dir).unwrap();
-    let file = dir.join("c.csv");
-    std::fs::write(&file, "s1\u{1b}[2J,pixel-p,0.5\u{7}\n").unwrap();
+    let file = answer_sheet("control", "s1\u{1b}[2J,pixel-p,0.5\u{7}\n");
     let o = raytree(&[
         "grade",
         "08-pixel-intensity",
