@@ -1,7 +1,7 @@
-//! Reading the files a user names (scenes, meshes, lessons, answer sheets): regular files only, opened so that a FIFO
-//! or a device can neither block nor feed bytes forever, and never more than a budget of
-//! bytes, so a file that is too large is refused before its contents are held in memory. And
-//! where raytree keeps what it can make again (the user's cache folder).
+//! Reading the files a user names (scenes, meshes, lessons, answer sheets): regular files
+//! only, opened so that a FIFO or a device can neither block nor feed bytes forever, and never
+//! more than a budget of bytes, so a file that is too large is refused before its contents are
+//! held in memory. And where raytree keeps what it can make again (the user's cache folder).
 
 use std::fs::File;
 use std::io::Read;

@@ -15,7 +15,7 @@ use super::outline::{LeafOutline, Outline};
 use super::rays::{SegKind, Segment};
 
 /// Where a light's name goes from its centre.
-pub(super) const LIGHT_LABEL: DVec2 = DVec2::new(14.0, -10.0);
+const LIGHT_LABEL: DVec2 = DVec2::new(14.0, -10.0);
 
 /// The eye and the pixel on the image plane, as drawn.
 #[derive(Clone, Copy)]
@@ -221,7 +221,7 @@ impl Figure<'_> {
 
     /// Where a light at a point is drawn, and its name there (one off the figure is drawn at
     /// the edge, towards it, and says so).
-    pub(super) fn light_spot(&self, p: &Panel, l: &LightMark) -> Option<(DVec2, String)> {
+    fn light_spot(&self, p: &Panel, l: &LightMark) -> Option<(DVec2, String)> {
         let q = self.drawing.at(l.at?);
         if p.frame.contains(q) {
             return Some((p.px(q), l.name.clone()));

@@ -433,11 +433,7 @@ mod tests {
     /// rows after it.
     #[test]
     fn a_header_in_another_order_is_followed() {
-        let (rows, problems) = read_answers(
-            "Exercise,STUDENT,answer
-diffuse,s1,0.16846
-",
-        );
+        let (rows, problems) = read_answers("Exercise,STUDENT,answer\ndiffuse,s1,0.16846\n");
         assert_eq!(problems, vec![]);
         assert_eq!(rows.len(), 1);
         let r = &rows[0];
@@ -445,10 +441,7 @@ diffuse,s1,0.16846
         assert_eq!(got, ("s1", "diffuse", "0.16846"));
         assert_eq!(r.line, 2);
         // Two names and a third word is no header: it is a row.
-        let (rows, _) = read_answers(
-            "exercise,student,mark
-",
-        );
+        let (rows, _) = read_answers("exercise,student,mark\n");
         assert_eq!(rows.len(), 1);
     }
 }
