@@ -776,8 +776,8 @@ fn a_sheet_where_nothing_is_graded_exits_1() {
 }
 
 /// Answers, READMEs and exercise files are read within a budget, and a device is refused at
-/// once: /dev/zero given as the answers, or linked as a lesson's README, is never read
-/// without end (it would take all the memory there is before failing).
+/// once: /dev/zero given as the answers, or linked as a lesson's README or exercises.yaml, is
+/// never read without end (it would take all the memory there is before failing).
 #[cfg(unix)]
 #[test]
 fn a_device_is_refused_as_answers_and_as_a_lessons_readme() {
@@ -807,6 +807,18 @@ fn a_device_is_refused_as_answers_and_as_a_lessons_readme() {
         "{report}"
     );
     assert!(!report.contains("states no answer"), "{report}");
+
+    // The folder is still a lesson with its exercises.yaml a device: named, not passed over.
+    std::fs::remove_file(dir.join("README.md")).unwrap();
+    std::fs::remove_file(dir.join("exercises.yaml")).unwrap();
+    std::os::unix::fs::symlink("/dev/zero", dir.join("exercises.yaml")).unwrap();
+    let o = raytree(&["lessons", "validate", root.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+    let report = out(&o);
+    assert!(
+        report.contains("exercises.yaml: cannot read: not a regular file"),
+        "{report}"
+    );
 }
 
 /// A lesson whose exercises.yaml does not read is named once by file:line:column, and the

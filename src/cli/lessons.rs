@@ -102,7 +102,7 @@ type Loaded = (PathBuf, Result<Lesson, String>);
 
 /// Every lesson folder under `root` in name order, loaded or with why it does not load.
 fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
-    if root.join("exercises.yaml").is_file() {
+    if crate::lessons::is_lesson_folder(root) {
         return Ok(vec![(
             root.to_path_buf(),
             Lesson::load(root).map_err(String::from),
@@ -111,7 +111,7 @@ fn load_all(root: &Path) -> Result<Vec<Loaded>, Failure> {
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
         .map_err(|e| Failure(format!("{}: cannot list lessons: {e}", root.display())))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.join("exercises.yaml").is_file())
+        .filter(|p| crate::lessons::is_lesson_folder(p))
         .collect();
     if dirs.is_empty() {
         return Err(Failure(format!(

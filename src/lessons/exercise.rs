@@ -428,12 +428,19 @@ pub fn lesson_dir(path: &Path) -> Result<PathBuf, LessonError> {
     })
 }
 
+/// Whether a folder is a lesson: it holds an exercises.yaml. Of any kind: one that is not a
+/// regular file (a device, a folder) is then refused by name when the lesson loads, rather
+/// than the folder passed over in silence.
+pub fn is_lesson_folder(dir: &Path) -> bool {
+    dir.join("exercises.yaml").exists()
+}
+
 /// All lessons, in folder order.
 pub fn all_lessons(root: &Path) -> Result<Vec<Lesson>, LessonError> {
     let mut dirs: Vec<PathBuf> = std::fs::read_dir(root)
         .map_err(|e| LessonError::io(root, "list lessons", e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.join("exercises.yaml").is_file())
+        .filter(|p| is_lesson_folder(p))
         .collect();
     dirs.sort();
     dirs.iter().map(|d| Lesson::load(d)).collect()

@@ -18,8 +18,8 @@ pub use answer::{parse_answer, Answer};
 pub use check::{check, explain, work, Verdict, Worked};
 pub use error::{AnswerError, CheckError, LessonError, RangeError};
 pub use exercise::{
-    all_lessons, find_lesson, lesson_dir, lessons_root, use_lessons_root, Ask, Exercise, Lesson,
-    Solutions, VariantOf,
+    all_lessons, find_lesson, is_lesson_folder, lesson_dir, lessons_root, use_lessons_root, Ask,
+    Exercise, Lesson, Solutions, VariantOf,
 };
 pub use tolerance::Tolerance;
 pub use vary::Range;

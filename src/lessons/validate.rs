@@ -34,7 +34,7 @@ impl Validation {
 
 /// Validates a lesson folder, or every lesson folder in a folder.
 pub fn validate(dir: &Path) -> Result<Validation, LessonError> {
-    let lessons: Vec<Result<Lesson, String>> = if dir.join("exercises.yaml").is_file() {
+    let lessons: Vec<Result<Lesson, String>> = if crate::lessons::is_lesson_folder(dir) {
         vec![Lesson::load(dir).map_err(String::from)]
     } else {
         let found = all_lessons_or_errors(dir)?;
@@ -63,7 +63,7 @@ fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, Les
     let mut dirs: Vec<_> = std::fs::read_dir(root)
         .map_err(|e| LessonError::io(root, "list lessons", e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.join("exercises.yaml").is_file())
+        .filter(|p| crate::lessons::is_lesson_folder(p))
         .collect();
     dirs.sort();
     Ok(dirs

@@ -56,7 +56,7 @@ impl LessonList {
         let mut dirs: Vec<PathBuf> = match std::fs::read_dir(root) {
             Ok(rd) => rd
                 .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.join("exercises.yaml").is_file())
+                .filter(|p| crate::lessons::is_lesson_folder(p))
                 .collect(),
             Err(e) => {
                 list.error = Some(format!("{}: cannot list lessons: {e}", root.display()));

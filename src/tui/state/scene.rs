@@ -64,7 +64,7 @@ impl SceneFile {
         let target = display_path(target);
         let (path, lesson) = if target.is_dir() {
             let scene = target.join("scene.yaml");
-            if target.join("exercises.yaml").is_file() {
+            if crate::lessons::is_lesson_folder(&target) {
                 (scene, Some(Lesson::load(&target)?))
             } else if scene.is_file() {
                 (scene, None)
@@ -78,7 +78,7 @@ impl SceneFile {
             // A scene file beside an exercises.yaml is one of that lesson's scenes.
             let dir = target
                 .parent()
-                .filter(|d| d.join("exercises.yaml").is_file());
+                .filter(|d| crate::lessons::is_lesson_folder(d));
             (target.clone(), dir.and_then(|d| Lesson::load(d).ok()))
         };
         let scene = crate::scene::load(&path, &Limits::default()).map_err(|e| e.to_string())?;
