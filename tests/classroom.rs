@@ -152,3 +152,63 @@ fn a_soft_shadow_says_how_many_rays_got_through() {
     assert!(title.contains("partly blocked"), "{title}");
     assert!(title.contains("8 of 16 clear"), "{title}");
 }
+
+/// Along pixel (83, 77) of lesson 10 the ray misses B and meets A and C. In (B − A) ∩ C the
+/// empty B leaves A and C untried: the object is listed with its tree, which says they were
+/// pruned and why, not as an object whose parts the ray meets none of.
+#[test]
+fn an_object_emptied_by_pruning_is_listed_with_its_tree() {
+    let out = raytree(&["csg", "lessons/10-csg/scene.yaml", "--pixel", "83,77"]);
+    let (_, object) = out
+        .split_once("object BminusA_cap_C\n")
+        .unwrap_or_else(|| panic!("BminusA_cap_C not listed with its tree:\n{out}"));
+    let tree: Vec<&str> = object.lines().take_while(|l| !l.is_empty()).collect();
+    assert!(
+        tree[0].starts_with("intersection BminusA_cap_C: (empty)"),
+        "{out}"
+    );
+    let said = |leaf: &str, why: &str| {
+        tree.iter()
+            .any(|l| l.contains(&format!("sphere {leaf}: pruned: {why}")))
+    };
+    assert!(
+        said("A", "the left operand of the difference is empty"),
+        "{out}"
+    );
+    assert!(
+        said("C", "an earlier operand of the intersection is empty"),
+        "{out}"
+    );
+    assert!(!out.contains("meets none of its parts"), "{out}");
+}
+
+/// The hint for a coordinate counted from the wrong end (1 − v) names the shape's own v: a
+/// cylinder's runs up its axis (lesson 16's can: v = (w·a)/h = 0.5/2 = 0.25, so 0.75 is that
+/// mistake), with no sphere's pole; a plane's v is a distance, with no end to count from.
+#[test]
+fn the_one_minus_v_hint_is_the_shapes_own() {
+    // A wrong answer exits 1, with the verdict on stdout.
+    let check = |exercise: &str, answer: &str| {
+        let args = [
+            "check",
+            "16-textures",
+            "--exercise",
+            exercise,
+            "--answer",
+            answer,
+        ];
+        let o = Command::new(env!("CARGO_BIN_EXE_raytree"))
+            .args(args)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let can = check("can-v", "0.75");
+    assert!(can.contains("hint: v runs up the axis"), "{can}");
+    assert!(!can.contains("pole"), "{can}");
+    let wall = check("wall-v", "0.4");
+    assert!(wall.starts_with("wrong"), "{wall}");
+    assert!(!wall.contains("pole"), "{wall}");
+}

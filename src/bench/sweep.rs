@@ -3,6 +3,7 @@
 use std::time::Instant;
 
 use super::error::BenchError;
+use crate::render::antialias::adaptive_levels;
 use crate::render::{render_simple, Image, RenderOptions};
 use crate::scene::Antialias;
 use crate::scene::{Integrator, Scene};
@@ -65,14 +66,18 @@ impl Knob {
     }
 
     /// Whether turning the knob can change `scene`'s image: an error saying what the scene
-    /// lacks when it cannot (a sweep of it would measure nothing). Samples per pixel and the
-    /// antialiasing threshold move every image's primary rays; the others act only on rays
-    /// after the first hit.
+    /// lacks when it cannot (a sweep of it would measure nothing). Samples per pixel move
+    /// every image's primary rays, and so does the antialiasing threshold where a pixel has
+    /// a grid of samples to split into; the others act only on rays after the first hit.
     pub fn acts_on(self, scene: &Scene) -> Result<(), BenchError> {
         let path = scene.integrator == Integrator::Path;
         let features = &scene.features;
         let recursion = features.reflective || features.transparent;
         let why = match self {
+            // Adaptive antialiasing splits a pixel's square no finer than the √spp grid.
+            Knob::AaThreshold if adaptive_levels(scene.spp) == 0 => Some(
+                "the scene renders one sample a pixel (spp: 1), and adaptive antialiasing splits a pixel no finer than its √spp grid: give the scene spp: 4 or more",
+            ),
             Knob::Spp | Knob::AaThreshold => None,
             // The path tracer's paths bounce off anything.
             Knob::Depth if path => None,
@@ -370,16 +375,17 @@ mod tests {
 
     fn scene(materials: &str, integrator: &str) -> Scene {
         let yaml = format!(
-            "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }}\n\
+            "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }}\nspp: 4\n\
              {integrator}lights: [ {{ point: [2, 3, -4] }} ]\nmaterials: {{ {materials} }}\n\
              objects: [ {{ sphere: {{ center: [0, 0, 0], radius: 1 }}, material: m }} ]\n"
         );
         crate::scene::parse(&yaml, "test", None, &crate::scene::Limits::default()).unwrap()
     }
 
-    /// Which knobs can change which scenes: depth and adaptive need a ray past the first hit,
-    /// glossy a lobe on a material that reflects or refracts; the path tracer bounces off
-    /// anything but has neither adaptive control nor lobe samples.
+    /// Which knobs can change which scenes (of 4 samples a pixel): depth and adaptive need a
+    /// ray past the first hit, glossy a lobe on a material that reflects or refracts; the
+    /// path tracer bounces off anything but has neither adaptive control nor lobe samples.
+    /// The antialiasing threshold needs a grid to split a pixel into: 2 samples or more.
     #[test]
     fn a_knob_acts_only_on_a_scene_that_has_what_it_turns() {
         use Knob::*;
@@ -432,6 +438,11 @@ mod tests {
                         .starts_with(&format!("--knob {} ", knob.name())));
                 }
             }
+        }
+        for (spp, acts) in [(1, false), (2, true), (4, true), (16, true)] {
+            let mut s = scene("m: { kd: 1 }", "");
+            s.spp = spp;
+            assert_eq!(AaThreshold.acts_on(&s).is_ok(), acts, "spp {spp}");
         }
     }
 

@@ -337,7 +337,8 @@ pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String 
 /// What the CSG listing of one ray holds: the objects it meets, each with its trace, and a
 /// line for every other object saying why it is not shown.
 pub struct CsgSurvey {
-    /// The objects the ray meets, by name, each with its CSG trace.
+    /// The objects the ray meets, by name, each with its CSG trace (also one whose list is
+    /// empty because parts of it were pruned).
     pub met: Vec<(String, CsgTrace)>,
     /// "object X (op): culled: …" for a CSG object skipped whole, "object X: the ray meets none
     /// of its parts" for one evaluated to nothing, and one line naming the plain shapes the
@@ -354,6 +355,13 @@ pub fn csg_survey(scene: &Scene, ray: &Ray, all: bool) -> CsgSurvey {
     fn has_segments(t: &CsgTrace) -> bool {
         !t.segments.is_empty() || t.children.iter().any(has_segments)
     }
+    // An empty list with parts pruned inside is shown whole: the parts were never tried, and
+    // the tree says why.
+    fn has_pruned(t: &CsgTrace) -> bool {
+        t.children
+            .iter()
+            .any(|c| c.pruned.is_some() || has_pruned(c))
+    }
     let mut survey = CsgSurvey {
         met: vec![],
         unmet: vec![],
@@ -362,7 +370,8 @@ pub fn csg_survey(scene: &Scene, ray: &Ray, all: bool) -> CsgSurvey {
     for o in 0..scene.objects.len() as u32 {
         let name = scene.objects[o as usize].name.clone();
         let (list, trace) = scene.object_trace(o, ray, !all);
-        if all || !list.is_empty() || has_segments(&trace) {
+        let pruned_inside = trace.pruned.is_none() && has_pruned(&trace);
+        if all || !list.is_empty() || has_segments(&trace) || pruned_inside {
             survey.met.push((name, trace));
         } else if let Some(p) = trace.pruned {
             survey.unmet.push(format!(

@@ -31,18 +31,36 @@ impl Question for TextureCoordinate {
         Ok(Answer::Number(if self.v { uv.y } else { uv.x }))
     }
 
-    fn mistakes(&self, w: &Worked, _ex: &Exercise) -> Vec<Mistake> {
+    /// 1 − u or 1 − v: the coordinate counted from the wrong end, said in the terms of the
+    /// shape hit (a plane's coordinates are distances, with no end to count from).
+    fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
         let Answer::Number(x) = w.expected else {
             return vec![];
         };
+        let shape = w
+            .tree
+            .find(&ex.node)
+            .and_then(|n| n.hit.as_ref())
+            .and_then(|h| leaf(w, h))
+            .map(|l| &l.shape);
+        let hint = match (shape, self.v) {
+            (Some(Shape::Sphere(_)), true) => {
+                "v runs up: v = 1 − φ/π is 0 at the bottom (the south pole, φ = π) and 1 at the top"
+            }
+            (Some(Shape::Sphere(_)), false) => {
+                "u runs the other way round: u = 1 − (θ/2π + ½), with θ = atan2(d.x, d.z)"
+            }
+            (Some(Shape::Cylinder(_) | Shape::OpenCylinder(_)), true) => {
+                "v runs up the axis: v = (w·a)/h is 0 at the base and 1 at the top"
+            }
+            (Some(Shape::Cylinder(_) | Shape::OpenCylinder(_)), false) => {
+                "u runs the other way round: u = 1 − (θ/2π + ½), with θ = atan2(w.x, w.z), w = p − base"
+            }
+            _ => return vec![],
+        };
         vec![Mistake {
             answer: Answer::Number(1.0 - x),
-            hint: if self.v {
-                "v runs up: v = 1 − φ/π is 0 at the bottom (the south pole, φ = π) and 1 at the top"
-                    .into()
-            } else {
-                "u runs the other way round: u = 1 − (θ/2π + ½), with θ = atan2(x, z)".into()
-            },
+            hint: hint.into(),
         }]
     }
 
