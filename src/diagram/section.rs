@@ -56,12 +56,11 @@ impl Figure<'_> {
     /// makes way for a light's. The names go on top of all the silhouettes; the boxes they
     /// cover are returned.
     fn objects(&self, mut g: Group, p: &Panel, lights: &[Box2]) -> (Group, Vec<Box2>) {
-        let diag = p.frame.size().length();
         let mut named: Vec<Box2> = vec![];
         let mut names = vec![];
         for o in &self.drawing.outlines {
-            g = silhouette(g, p, &o.outline, diag);
-            let Some(anchor) = name_anchor(p, &o.outline, diag) else {
+            g = silhouette(g, p, &o.outline);
+            let Some(anchor) = name_anchor(p, &o.outline) else {
                 continue;
             };
             let name = object_name(o);
@@ -297,7 +296,7 @@ fn object_name(o: &LeafOutline) -> String {
 
 /// An object's outline: a filled polygon, a thick line where it is seen edge on, or (a plane)
 /// a line across the frame.
-fn silhouette(g: Group, p: &Panel, outline: &Outline, diag: f64) -> Group {
+fn silhouette(g: Group, p: &Panel, outline: &Outline) -> Group {
     match outline {
         Outline::Polygon(pts) if pts.len() >= 3 => {
             let px: Vec<DVec2> = pts.iter().map(|q| p.px(*q)).collect();
@@ -313,15 +312,20 @@ fn silhouette(g: Group, p: &Panel, outline: &Outline, diag: f64) -> Group {
         Outline::Polygon(pts) if pts.len() == 2 => {
             g.add(line(p.px(pts[0]), p.px(pts[1]), OUTLINE, 3.0))
         }
-        Outline::Line { point, dir } => {
-            let (a, b) = (*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag);
-            match p.frame.clip(a, b) {
-                Some((a, b)) => g.add(line(p.px(a), p.px(b), OUTLINE, 3.0)),
-                None => g,
-            }
-        }
+        Outline::Line { point, dir } => match plane_line(p, *point, *dir) {
+            Some((a, b)) => g.add(line(p.px(a), p.px(b), OUTLINE, 3.0)),
+            None => g,
+        },
         _ => g,
     }
+}
+
+/// A plane's line, through `point` along `dir` in the view's plane, as far as the frame
+/// shows it (None where it misses the frame).
+fn plane_line(p: &Panel, point: DVec2, dir: DVec2) -> Option<(DVec2, DVec2)> {
+    // Four diagonals each way reach past the frame from any point in or near it.
+    let reach = 4.0 * p.frame.size().length();
+    p.frame.clip(point - dir * reach, point + dir * reach)
 }
 
 /// The sides of an object's outline on the page (a plane's line as far as the frame shows
@@ -335,24 +339,19 @@ fn edges(p: &Panel, outline: &Outline) -> Vec<(DVec2, DVec2)> {
                 .map(|i| (px[i], px[(i + 1) % px.len()]))
                 .collect()
         }
-        Outline::Line { point, dir } => {
-            let diag = p.frame.size().length();
-            let (a, b) = (*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag);
-            (p.frame.clip(a, b).into_iter())
-                .map(|(a, b)| (p.px(a), p.px(b)))
-                .collect()
-        }
+        Outline::Line { point, dir } => (plane_line(p, *point, *dir).into_iter())
+            .map(|(a, b)| (p.px(a), p.px(b)))
+            .collect(),
         _ => vec![],
     }
 }
 
 /// Where an object's name goes: for a plane, near where its line enters the frame on the
 /// left (None where it misses the frame); else the outline's own anchor.
-fn name_anchor(p: &Panel, outline: &Outline, diag: f64) -> Option<DVec2> {
+fn name_anchor(p: &Panel, outline: &Outline) -> Option<DVec2> {
     match outline {
         Outline::Line { point, dir } => {
-            let (a, b) = (*point - *dir * 4.0 * diag, *point + *dir * 4.0 * diag);
-            let (a, b) = p.frame.clip(a, b)?;
+            let (a, b) = plane_line(p, *point, *dir)?;
             let (left, right) = if a.x <= b.x { (a, b) } else { (b, a) };
             Some(left + (right - left) * 0.04)
         }
