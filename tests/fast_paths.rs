@@ -767,13 +767,22 @@ secondary_attenuation: [1, 0.05, 0]
     );
 }
 
-/// A lone triangle of glass is a sheet with no inside: a ray passes it unbent (n2 = n1), and
-/// being no medium it leaves at most one transparent solid in the scene (a glass ball), so
-/// the wing's own copy of `Tracer::across` answers there and must say so too. Every pixel is
-/// exactly its samples traced one by one, and both engines render the same image.
+/// A lone triangle, an open tube or an open cone of glass is a sheet with no inside: a ray
+/// passes it unbent (n2 = n1) and stays in the medium it was in, and being no medium it leaves
+/// at most one transparent solid in the scene (a glass ball), so the wing's own copy of
+/// `Tracer::across` answers there and must say so too. Every pixel is exactly its samples
+/// traced one by one, and both engines render the same image.
 #[test]
 fn a_glass_sheet_bends_no_ray_in_the_wing_either() {
-    for ball in ["matte", "glass"] {
+    let sheets = [
+        "triangle: [[-2.5, 0, -1], [2.5, 0, -1.5], [0, 3, -2.5]]",
+        "cylinder: { base: [0.5, 0, 1.5], top: [0.5, 2.5, 1.5], radius: 1.4, capped: false }",
+        "cone: { apex: [0.5, 3, 1.5], base: [0.5, 0, 1.5], radius: 1.8, capped: false }",
+    ];
+    for (ball, sheet) in ["matte", "glass"]
+        .into_iter()
+        .flat_map(|b| sheets.map(|s| (b, s)))
+    {
         let yaml = format!(
             "camera: {{ eye: [0, 1.5, -6], look_at: [0, 1, 0], width: 24, height: 18 }}
 spp: 4
@@ -786,14 +795,14 @@ materials:
   glass: {{ color: 1, kd: 0.05, kr: 0.1, kt: 0.9, ior: 1.5 }}
 objects:
   - {{ name: floor, plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: floor }}
-  - {{ name: sheet, triangle: [[-2.5, 0, -1], [2.5, 0, -1.5], [0, 3, -2.5]], material: glass }}
+  - {{ name: sheet, {sheet}, material: glass }}
   - {{ name: ball, sphere: {{ center: [0.5, 1, 1.5], radius: 1 }}, material: {ball} }}
 "
         );
         let scene = parse(&yaml, "sheet.yaml", None, &Limits::default()).unwrap();
         let media = usize::from(ball == "glass");
         assert_eq!(scene.features.transparent_objects.len(), media);
-        assert_engines_agree(&format!("sheet before a {ball} ball"), &scene, 4);
+        assert_engines_agree(&format!("{sheet} and a {ball} ball"), &scene, 4);
         let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
         assert!(total.refraction_rays > 0, "{total:?}");
     }

@@ -170,6 +170,44 @@ fn schlick_weights_add_no_energy() {
     }
 }
 
+/// With Hall's weights a glass whose kr is below its kt loses (kt − kr)·R: past the limiting
+/// angle (R = 1) a ray inside a kt = 1, kr = 0 ball is lost whole. The scene says so, at the
+/// material; clear glass (kr = kt) and a glass without the Fresnel term do not warn. Under the
+/// path tracer, whose expected weight is kd·O + kr + kt, a material above 1 is warned of.
+#[test]
+fn materials_that_lose_or_make_light_are_warned_of() {
+    let warnings = |yaml: &str| common::scene(yaml).warnings.clone();
+    let lossy = GLASS_BALL.replace("kr: 1, kt: 1", "kr: 0, kt: 1");
+    let w = warnings(&lossy);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!((w[0].0.line, w[0].0.column), (3, 21), "{w:?}");
+    assert!(w[0].1.contains("material `glass`") && w[0].1.contains("(kt − kr)·R"));
+    // Past the limiting angle the lossy glass sends nothing on: a ray inside the ball at 60°
+    // from the normal (sin 60° > 1/1.5) has no refracted child and no reflected weight.
+    let s = common::scene(&lossy);
+    let y = 60f64.to_radians().sin();
+    let inside = Tracer::new(&s).inspect(&Ray::new(DVec3::new(y, 0.0, 0.0), DVec3::Y));
+    let sent: f64 = inside.children.iter().map(|c| c.coefficient).sum();
+    assert_eq!(sent, 0.0, "{inside:#?}");
+    assert!(warnings(GLASS_BALL).is_empty());
+    assert!(warnings(
+        &GLASS_BALL
+            .replace(", fresnel: schlick", "")
+            .replace("kr: 1", "kr: 0")
+    )
+    .is_empty());
+    let path = |m: &str| {
+        format!("camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0] }}\nintegrator: path\nmaterials: {{ m: {m} }}\nobjects: [ {{ name: b, sphere: {{ center: [0, 0, 0], radius: 1 }}, material: m }} ]\n")
+    };
+    let w = warnings(&path("{ kr: 1, kt: 1, ior: 1.5 }"));
+    assert!(
+        w.len() == 1 && w[0].1.contains("kd·O + kr + kt = 2 is above 1"),
+        "{w:?}"
+    );
+    assert!(warnings(&path("{ kt: 1, ior: 1.5 }")).is_empty());
+    assert!(warnings(&path("{ color: 0.5, kd: 1, kr: 0.5 }")).is_empty());
+}
+
 const GLASS_BALL: &str = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }
 max_depth: 3
 materials: { glass: { kr: 1, kt: 1, ior: 1.5, fresnel: schlick } }

@@ -239,3 +239,29 @@ fn a_hollow_glass_sphere_is_entered_and_left_twice() {
         assert_eq!(got.3, Some(want.3));
     }
 }
+
+/// The lecture's tangent example (lesson 02): the ray from (−3, 1, 0) along (0.8, −0.6, 0)
+/// touches the unit sphere at t = 3, at p = (−0.6, −0.8, 0), from outside. Its normal there is
+/// the outward one, p itself, and the ray is not inside the ball: n·d is 0 up to rounding, of
+/// either sign, and a ray inside a sphere would leave it at an angle.
+#[test]
+fn a_tangent_ray_touches_the_sphere_from_outside() {
+    let s = scene(
+        "camera: { eye: [0, 0, -6], look_at: [0, 0, 0] }
+lights: [ { name: L, point: [-4, 6, -6] } ]
+materials: { chalk: { ka: 0.3, kd: 0.7 } }
+objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: chalk } ]
+",
+    );
+    let tree = Tracer::new(&s).inspect(&Ray::new(
+        DVec3::new(-3.0, 1.0, 0.0),
+        DVec3::new(0.8, -0.6, 0.0),
+    ));
+    let h = tree.hit.expect("the tangent ray touches the ball");
+    assert!((h.t - 3.0).abs() < 1e-6, "t = {}", h.t);
+    assert!(!h.inside, "{h:?}");
+    assert!(
+        (h.normal - DVec3::new(-0.6, -0.8, 0.0)).length() < 1e-6,
+        "{h:?}"
+    );
+}

@@ -7,7 +7,7 @@ mod common;
 use glam::DVec3;
 use raytree::geometry::{Cone, Cylinder, Ray, Shape};
 use raytree::scene::{parse, Limits};
-use raytree::trace::Tracer;
+use raytree::trace::{RayKind, Tracer};
 
 fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
     Ray::new(DVec3::from(o), DVec3::from(d))
@@ -239,4 +239,44 @@ objects:
         shown.starts_with("bad.yaml:8:9: ") && shown.contains("an open cone (capped: false)"),
         "{shown}"
     );
+}
+
+/// A sheet (an open tube, an open cone, a lone triangle) of water has no inside, so crossing
+/// it changes no medium: a ray through the water tube's two walls, or through the sheet, meets
+/// the glass ball beyond it from the air, 1 → 1.5 going in and 1.5 → 1 coming out, and passes
+/// each wall unbent, 1 → 1. (A wall taken for a way into the water would have the ball entered
+/// from n1 = 1.33.)
+#[test]
+fn crossing_a_sheet_changes_no_medium() {
+    let sheets = [
+        "{ name: sheet, cylinder: { base: [20, -1, 0], top: [20, 3, 0], radius: 1, capped: false }, material: water }",
+        "{ name: sheet, cone: { apex: [20, 3, 0], base: [20, -1, 0], radius: 1.5, capped: false }, material: water }",
+        "{ name: sheet, triangle: [[21, -3, -3], [21, 3, -3], [21, 0, 4]], material: water }",
+    ];
+    for sheet in sheets {
+        let s = common::scene(&format!(
+            "camera: {{ eye: [15, 1, -5], look_at: [20, 1, 0] }}
+max_depth: 8
+materials:
+  water: {{ kt: 1, ior: 1.33 }}
+  glass: {{ kt: 1, ior: 1.5 }}
+objects:
+  - {sheet}
+  - {{ name: ball, sphere: {{ center: [25, 1, 0], radius: 1 }}, material: glass }}
+"
+        ));
+        let tree = Tracer::new(&s).inspect(&ray([15.0, 1.0, 0.5], [1.0, 0.0, 0.0]));
+        let mut node = &tree;
+        let mut crossings = vec![];
+        while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
+            let i = next.indices.expect("a refraction ray names its media");
+            crossings.push((node.hit.as_ref().unwrap().object.clone(), i.n1, i.n2));
+            node = next;
+        }
+        let walls = crossings.iter().take_while(|c| c.0 == "sheet").count();
+        assert!((1..=2).contains(&walls), "{sheet}: {crossings:?}");
+        assert!(crossings[..walls].iter().all(|c| (c.1, c.2) == (1.0, 1.0)));
+        let ball: Vec<(f64, f64)> = crossings[walls..].iter().map(|c| (c.1, c.2)).collect();
+        assert_eq!(ball, [(1.0, 1.5), (1.5, 1.0)], "{sheet}: {crossings:?}");
+    }
 }

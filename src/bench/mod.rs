@@ -14,9 +14,30 @@ pub use sweep::{
 };
 pub use threads::{thread_rounds, threads_table, ThreadRounds, ThreadRun};
 
+/// A time in seconds for a table: three decimals, and more for a time under 0.1 s, so that it
+/// keeps three significant digits (a render of 0.2 ms reads 0.000200, not 0.000).
+pub fn seconds(s: f64) -> String {
+    let decimals = if s > 0.0 && s.is_finite() {
+        (2 - s.log10().floor() as i32).clamp(3, 9) as usize
+    } else {
+        3
+    };
+    format!("{s:.decimals$}")
+}
+
 #[cfg(all(test, feature = "cli"))]
 mod tests {
-    use super::Knob;
+    use super::{seconds, Knob};
+
+    /// Times keep three significant digits however short, and three decimals from 0.1 s up.
+    #[test]
+    fn seconds_keep_three_significant_digits() {
+        assert_eq!(seconds(12.34567), "12.346");
+        assert_eq!(seconds(0.123456), "0.123");
+        assert_eq!(seconds(0.0123456), "0.0123");
+        assert_eq!(seconds(0.000_123_456), "0.000123");
+        assert_eq!(seconds(0.0), "0.000");
+    }
     use clap::ValueEnum;
 
     /// Table headers and error messages name each knob as `--knob` spells it.

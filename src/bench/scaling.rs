@@ -20,8 +20,8 @@ pub struct Row {
     pub n: usize,
     /// Seconds to parse and compile the scene, BVH included.
     pub build: f64,
-    /// Nanoseconds per ray with the BVH.
-    pub bvh_ns: f64,
+    /// Nanoseconds per ray with the BVH (None where the scene is too small to get one).
+    pub bvh_ns: Option<f64>,
     /// Nanoseconds per ray testing everything (None when skipped as too slow).
     pub brute_ns: Option<f64>,
     /// BVH nodes visited per ray, on average.
@@ -91,12 +91,18 @@ pub fn measure(kind: &'static str, n: usize, yaml: &str, brute: bool) -> Result<
     let build = start.elapsed().as_secs_f64();
     let mesh_bytes: usize = meshes(&scene).map(|m| m.memory().total()).sum();
     let bytes_per_triangle = (mesh_bytes > 0).then(|| mesh_bytes as f64 / n as f64);
-    let (bvh_ns, stats) = time_per_ray(&scene);
+    let (default_ns, stats) = time_per_ray(&scene);
+    // A scene's BVH or a mesh's own: either is entered by every ray.
+    let bvh_ns = (stats.bvh_nodes_visited > 0).then_some(default_ns);
     let rays = stats.rays() as f64;
-    let brute_ns = brute.then(|| {
-        scene.set_accel(Accel::None);
-        time_per_ray(&scene).0
-    });
+    // Without a BVH the default search is already brute force: measured once.
+    let brute_ns = match bvh_ns {
+        None => Some(default_ns),
+        Some(_) => brute.then(|| {
+            scene.set_accel(Accel::None);
+            time_per_ray(&scene).0
+        }),
+    };
     Ok(Row {
         kind,
         n,
@@ -149,17 +155,20 @@ pub fn table_header() -> String {
     )
 }
 
-/// One line of the scaling table; the brute-force columns read `(skipped)` when not measured.
+/// One line of the scaling table; the brute-force columns read `(skipped)` when not measured,
+/// the BVH's `(no BVH)` when the scene has too few objects to get one.
 pub fn table_row(r: &Row) -> String {
-    let (brute, ratio) = match r.brute_ns {
-        Some(b) => (format!("{b:.0}"), format!("{:.1}×", b / r.bvh_ns)),
-        None => ("(skipped)".into(), "".into()),
+    let bvh = r.bvh_ns.map_or("(no BVH)".into(), |t| format!("{t:.0}"));
+    let brute = r.brute_ns.map_or("(skipped)".into(), |b| format!("{b:.0}"));
+    let ratio = match (r.brute_ns, r.bvh_ns) {
+        (Some(b), Some(t)) => format!("{:.1}×", b / t),
+        _ => "".into(),
     };
     let bytes = r
         .bytes_per_triangle
         .map_or("".into(), |b| format!("{b:.1}"));
     format!(
-        "{:<8} {:>9} {:>10.3} {:>14.0} {:>16} {:>8} {:>12.1} {:>12.1} {:>10}\n",
-        r.kind, r.n, r.build, r.bvh_ns, brute, ratio, r.nodes_per_ray, r.prims_per_ray, bytes
+        "{:<8} {:>9} {:>10.3} {:>14} {:>16} {:>8} {:>12.1} {:>12.1} {:>10}\n",
+        r.kind, r.n, r.build, bvh, brute, ratio, r.nodes_per_ray, r.prims_per_ray, bytes
     )
 }

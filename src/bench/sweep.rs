@@ -331,9 +331,9 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
     );
     for r in rows {
         s.push_str(&format!(
-            "{:>10} {:>10.3} {:>14} {:>11.5} {:>11.5} {:>10.4} {:>8.2} {:>14}\n",
+            "{:>10} {:>10} {:>14} {:>11.5} {:>11.5} {:>10.4} {:>8.2} {:>14}\n",
             r.value,
-            r.seconds,
+            super::seconds(r.seconds),
             r.rays,
             r.rmse,
             r.rel_mse,

@@ -153,7 +153,8 @@ pub fn threads_table(rounds: &ThreadRounds, threads: usize) -> String {
         [("scene", r1, rn, render), ("arithmetic", c1, cn, control)]
     {
         let range = format!("{mid:.2}× ({lo:.2}–{hi:.2})");
-        s.push_str(&format!("{name:<11} {one:>12.3} {n:>12.3} {range:>24}\n"));
+        let (one, n) = (super::seconds(one), super::seconds(n));
+        s.push_str(&format!("{name:<11} {one:>12} {n:>12} {range:>24}\n"));
     }
     let each = match rounds.repeats {
         1 => String::new(),

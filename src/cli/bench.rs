@@ -425,6 +425,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                         "kind": r.kind,
                         "n": r.n,
                         "build_seconds": r.build,
+                        "bvh_built": r.bvh_ns.is_some(),
                         "bvh_ns_per_ray": r.bvh_ns,
                         "brute_ns_per_ray": r.brute_ns,
                         "nodes_per_ray": r.nodes_per_ray,

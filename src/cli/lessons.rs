@@ -10,7 +10,7 @@ use super::args::Format;
 use super::Failure;
 use crate::lessons::progress::Progress;
 use crate::lessons::validate::validate;
-use crate::lessons::{find_lesson, lessons_root, Lesson, Solutions};
+use crate::lessons::{lesson_dir, lessons_root, Lesson, Solutions};
 
 #[derive(clap::Args, Debug)]
 #[command(args_conflicts_with_subcommands = true)]
@@ -53,7 +53,7 @@ enum Action {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     match a.action {
-        Some(Action::Validate { dir }) => return run_validate(&find_lesson(&dir)),
+        Some(Action::Validate { dir }) => return run_validate(&lesson_dir(&dir)?),
         Some(Action::Export { dir }) => {
             crate::lessons::builtin::export(&dir)?;
             super::output::println(&format!("wrote the lessons to {}", dir.display()))?;
@@ -62,7 +62,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         None => {}
     }
     let root = match a.dir {
-        Some(dir) => find_lesson(&dir),
+        Some(dir) => lesson_dir(&dir)?,
         None => lessons_root()?,
     };
     let lessons = load_all(&root)?;

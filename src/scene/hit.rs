@@ -10,6 +10,11 @@ use super::{Leaf, Scene};
 use crate::geometry::{Ray, Surface};
 use crate::shading::{Material, Paint, PatternPoint};
 
+/// Cosines of the normal and the ray within this of zero are a tangent's, rounded: the error
+/// of a unit normal computed at a point far from the ray's origin (t ≈ 10⁶ radii) is about
+/// 10⁻¹⁰.
+const TANGENT_COSINE: f64 = 1e-9;
+
 /// The cheap record of an intersection: enough to find everything else later.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hit {
@@ -73,13 +78,14 @@ impl Scene {
         if hit.surface.flip {
             outward = -outward;
         }
+        // The ray leaves the solid where it meets the outward normal at a positive cosine. A
+        // tangent ray's cosine is zero up to rounding, of either sign, and it touches the solid
+        // from outside (a ray inside a convex solid leaves it at an angle), so only a cosine
+        // clearly above zero means leaving.
+        let leaving = outward.dot(ray.dir) > TANGENT_COSINE;
         // A triangle has no inside: it is seen from whichever side the ray comes.
-        let inside = leaf.shape.is_solid() && outward.dot(ray.dir) > 0.0;
-        let normal = if outward.dot(ray.dir) > 0.0 {
-            -outward
-        } else {
-            outward
-        };
+        let inside = leaf.shape.is_solid() && leaving;
+        let normal = if leaving { -outward } else { outward };
         // Field by field, into `si`: a record built whole would be assembled in a stack slot
         // and copied in.
         si.point = point;

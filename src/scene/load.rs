@@ -49,6 +49,13 @@ pub fn load(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
                 "the file is larger than the budget of {} for scene files (use --allow-huge to load it)",
                 crate::files::bytes(budget)
             ),
+            ReadError::Io(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                match path.extension() {
+                    Some(_) => "no such file".into(),
+                    None => "no such file, nor a lesson of that name (`raytree lessons` lists them)"
+                        .into(),
+                }
+            }
             ReadError::Io(e) => format!("cannot read: {e}"),
         })
     })?;

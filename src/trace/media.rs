@@ -114,7 +114,10 @@ impl<R: Recorder> Tracer<'_, R> {
         let scene = self.scene;
         let media = &task.media;
         // n1 is the index on the near side; `beyond` the media past the surface.
-        let (n1, beyond) = if si.paint.kt == 0.0 && m.fresnel == Fresnel::None {
+        let sheet = !scene.leaves[si.leaf as usize].shape.is_solid();
+        let (n1, beyond) = if sheet || (si.paint.kt == 0.0 && m.fresnel == Fresnel::None) {
+            // A sheet (a lone triangle, an open tube or cone) has no inside: crossing it
+            // changes no medium, and the ray stays in those it is in.
             (media.current(scene), *media)
         } else if scene.features.transparent_objects.len() <= 1 {
             let entered = media.entering(si.object, si.material);
@@ -131,12 +134,7 @@ impl<R: Recorder> Tracer<'_, R> {
             let beyond = self.media_at(si.point - step * si.normal, d, &entered);
             (near.current(scene), beyond)
         };
-        let n2 = if scene.leaves[si.leaf as usize].shape.is_solid() {
-            beyond.current(scene)
-        } else {
-            // A lone triangle is a sheet with no inside: nothing changes across it.
-            n1
-        };
+        let n2 = if sheet { n1 } else { beyond.current(scene) };
         Across { n1, n2, beyond }
     }
 

@@ -10,7 +10,7 @@ use serde_saphyr::Spanned;
 
 use super::patterns::{Of, Textures};
 use super::{invalid, pos, printable_name, Invalid};
-use crate::scene::format::{LobeSpec, MaterialSpec, SceneFile, Varying};
+use crate::scene::format::{Integrator, LobeSpec, MaterialSpec, SceneFile, Varying};
 use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material, Pattern, Patterns};
 
 /// The file's materials, and each one's index by name. Texture images are found relative to
@@ -29,6 +29,42 @@ pub fn of(
         materials.push(material(name, &m.value, &mut textures)?);
     }
     Ok((materials, material_index))
+}
+
+/// Materials that lose light or make it, as the scene's integrator reads them, each with a
+/// warning at the material's entry. The Whitted tracer weighs Schlick's R as Hall's model
+/// does: kr·R on the mirror ray, kt·(1 − R) on the refracted one, so a glass whose kr is below
+/// its kt loses (kt − kr)·R, and past the limiting angle (R = 1) all of kt. The path tracer
+/// sends a path on with the expected weight kd·O + kr + kt (Fresnel's R comes out of kt), so
+/// more than 1 makes light.
+pub fn warnings(
+    file: &SceneFile,
+    materials: &[Material],
+    integrator: Integrator,
+) -> Vec<(super::Pos, String)> {
+    file.materials
+        .iter()
+        .zip(materials)
+        .filter_map(|((name, spec), m)| {
+            let warning = match integrator {
+                Integrator::Whitted if m.fresnel == Fresnel::Schlick && m.kr < m.kt => format!(
+                    "material `{name}`: with fresnel: schlick the mirror ray carries kr·R and the \
+                     refracted ray kt·(1 − R), so with kr = {} below kt = {} the share \
+                     (kt − kr)·R of the light is lost, all of kt past the limiting angle; clear \
+                     glass has kr = kt",
+                    m.kr, m.kt
+                ),
+                Integrator::Path if m.kd * m.color.max_element() + m.kr + m.kt > 1.0 => format!(
+                    "material `{name}`: kd·O + kr + kt = {} is above 1: under integrator: path \
+                     the surface sends on more light than it receives (Fresnel's reflection \
+                     comes out of kt; clear glass has kt = 1 and kr = 0)",
+                    m.kd * m.color.max_element() + m.kr + m.kt
+                ),
+                _ => return None,
+            };
+            Some((pos(spec), warning))
+        })
+        .collect()
 }
 
 /// A value that may vary: its constant (for a pattern, the largest value it takes), and the

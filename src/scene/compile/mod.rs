@@ -93,7 +93,7 @@ pub fn compile(
     let settings = settings::Settings::of(&file, limits)?;
     let (materials, by_name) = materials::of(&file, source.as_deref())?;
     let lights = lights::of(&file, &by_name)?;
-    let mut warnings = Vec::new();
+    let mut warnings = materials::warnings(&file, &materials, settings.integrator);
     let (leaves, objects) = objects::of(
         &file,
         &by_name,
