@@ -802,6 +802,33 @@ fn the_lessons_bvh_counts_are_what_their_commands_print() {
     );
 }
 
+/// A lesson name that is neither a folder nor a lesson gets the same answer from `lessons`
+/// and `lessons validate` as from `check`: no such lesson, and where to find the list; a
+/// scene named that way, "no such file, nor a lesson of that name".
+#[test]
+fn an_unknown_lesson_name_is_said_to_be_one() {
+    for args in [
+        &["lessons", "99-nope"][..],
+        &["lessons", "validate", "99-nope"],
+        &["check", "99-nope", "--exercise", "x", "--answer", "1"],
+    ] {
+        let o = raytree(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let e = stderr(&o);
+        assert!(
+            e.contains("no lesson `99-nope`") && e.contains("`raytree lessons` lists them"),
+            "{args:?}: {e}"
+        );
+    }
+    let o = raytree(&["inspect", "99-nope", "--pixel", "1,1"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("99-nope:1:1: no such file, nor a lesson of that name"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 /// Lesson 12's `bench scaling` table quotes, beside its times, the BVH's work: nodes visited
 /// and primitives tested per ray, and a mesh's bytes per triangle. Those are counts, the same
 /// on every machine, so every sphere row and every mesh row the test measures must be what
@@ -840,6 +867,18 @@ fn the_lessons_bvh_scaling_counts_are_what_bench_scaling_prints() {
         };
         if kind == "spheres" {
             spheres.push((n, counts[0]));
+        }
+        // Lesson 12: below 16 bounded objects no BVH is built, so 10 spheres have only a
+        // brute-force time; a mesh is one object with a BVH of its own.
+        let built = !(kind == "spheres" && n < 16.0);
+        let printed_row = printed
+            .iter()
+            .find(|r| r["kind"] == kind && r["n"].as_f64() == Some(n));
+        if let Some(row) = printed_row {
+            assert_eq!(row["bvh_built"], built, "{row}");
+            assert_eq!(row["bvh_ns_per_ray"].is_f64(), built, "{row}");
+            assert!(row["brute_ns_per_ray"].is_f64() || built, "{row}");
+            assert_eq!(line.contains("(no BVH)"), !built, "{line}");
         }
         let Some(row) = printed
             .iter()
