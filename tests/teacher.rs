@@ -1097,3 +1097,122 @@ fn a_homework_readme_quotes_none_of_the_values_its_lesson_varies() {
     }
     assert!(lessons >= 3, "only {lessons} lessons vary values");
 }
+
+/// Lesson 02 copied into a scratch folder of lessons, its exercises.yaml with `extra` added.
+fn lesson02_with(name: &str, extra: &str) -> PathBuf {
+    let root = scratch(name);
+    let dir = root.join("02-intersection");
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in std::fs::read_dir("lessons/02-intersection").unwrap() {
+        let f = f.unwrap();
+        if f.path().is_file() {
+            std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+        }
+    }
+    let exercises = dir.join("exercises.yaml");
+    let text = std::fs::read_to_string(&exercises).unwrap();
+    std::fs::write(&exercises, text + extra).unwrap();
+    dir
+}
+
+/// A `vary:` range that reaches values the scene refuses: `max_depth` in [1, 4] in the
+/// default steps of 0.01 draws fractions (1.01 is its first step), and a radius from 0 gives
+/// a sphere of radius 0. `lessons validate` tries each range's ends and first step and names
+/// both; a lesson whose every student gets a refused value (`one_of: [1.5]`) hands out no
+/// homework, and its rows in a class's sheet are set aside, not marked wrong or copied.
+#[test]
+fn a_variation_that_breaks_the_scene_is_refused_not_handed_out() {
+    let dir = lesson02_with(
+        "vary-breaks",
+        "vary:\n  max_depth: [1, 4]\n  objects.ball.sphere.radius: [0, 2]\n",
+    );
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    let report = out(&o);
+    let problems: Vec<&str> = report.lines().filter(|l| l.starts_with('✗')).collect();
+    assert_eq!(problems.len(), 2, "{report}");
+    assert!(
+        problems[0].contains("vary `max_depth` = 1.01") && problems[0].contains("whole number"),
+        "{report}"
+    );
+    assert!(
+        problems[1].contains("vary `objects.ball.sphere.radius` = 0")
+            && problems[1].contains("radius must be > 0"),
+        "{report}"
+    );
+
+    let dir = lesson02_with(
+        "vary-always-breaks",
+        "vary:\n  max_depth: { one_of: [1.5] }\n",
+    );
+    let homework = scratch("vary-always-breaks-hw");
+    let o = raytree(&[
+        "homework",
+        dir.to_str().unwrap(),
+        "--student",
+        "s1",
+        "-o",
+        homework.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", err(&o));
+    assert!(
+        err(&o).contains("student s1's variant does not load (max_depth = 1.5)"),
+        "{}",
+        err(&o)
+    );
+    assert!(!homework.exists());
+    let sheet = answer_sheet(
+        "vary-always-breaks-sheet",
+        "student,exercise,answer\ns1,tangent-t,3\ns2,tangent-t,4\n",
+    );
+    let o = raytree(&[
+        "grade",
+        dir.to_str().unwrap(),
+        "--answers",
+        sheet.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    let e = out(&o) + &err(&o);
+    assert!(
+        e.contains("no answer graded: every row was set aside"),
+        "{e}"
+    );
+    assert!(
+        e.contains("s1, tangent-t: not graded: student s1's variant"),
+        "{e}"
+    );
+    assert!(
+        e.contains("s2, tangent-t: not graded: student s2's variant"),
+        "{e}"
+    );
+    assert!(!out(&o).contains("answer, worked out with"), "{}", out(&o));
+}
+
+/// A question that quotes a value the lesson does not vary (a typo in `{materials.zz.kd}`)
+/// would reach every student with its braces: the lesson is refused where it is read, naming
+/// the exercise, the placeholder and what the lesson varies.
+#[test]
+fn a_question_quoting_an_unvaried_value_is_refused() {
+    let dir = lesson02_with(
+        "placeholder-typo",
+        "vary:\n  objects.ball.sphere.radius: [1, 1.2]\n",
+    );
+    let exercises = dir.join("exercises.yaml");
+    let text = std::fs::read_to_string(&exercises).unwrap();
+    let typo = text.replacen(
+        "meets the unit sphere.",
+        "meets the sphere of kd {materials.zz.kd}.",
+        1,
+    );
+    assert_ne!(typo, text);
+    std::fs::write(&exercises, typo).unwrap();
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    assert!(
+        out(&o).contains(
+            "exercise `tangent-t`: the question quotes `{materials.zz.kd}`, which is not a value the lesson varies (it varies objects.ball.sphere.radius)"
+        ),
+        "{}",
+        out(&o)
+    );
+}

@@ -62,10 +62,14 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     // A sheet where no row could be graded is a mistake a script must see (a wrong file,
     // another lesson's answers), not a class with no students.
     if report.students.is_empty() {
-        super::output::eprintln(&format!(
-            "{file}: no answer graded: no row names a student and an exercise of lesson {}",
-            report.lesson
-        ));
+        let why = match report.problems.is_empty() {
+            true => format!(
+                "no row names a student and an exercise of lesson {}",
+                report.lesson
+            ),
+            false => "every row was set aside (the rows not graded say why)".to_string(),
+        };
+        super::output::eprintln(&format!("{file}: no answer graded: {why}"));
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)

@@ -121,7 +121,7 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
     };
     let value = match s.split_once('/') {
         Some((a, b)) => number(a, false)? / number(b, false)?,
-        None => match s {
+        None => match s.to_ascii_lowercase().as_str() {
             "inf" | "∞" | "+inf" | "+∞" | "-inf" | "-∞" | "−∞" | "−inf" => {
                 if !infinite_allowed {
                     return Err(AnswerError::Infinite(s.into()));
@@ -141,7 +141,8 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
     if value.is_nan() {
         return Err(AnswerError::NotANumber(shown()));
     }
-    if value.is_infinite() && !matches!(s.trim_start_matches(['+', '-', '−']), "inf" | "∞") {
+    let sign_less = s.trim_start_matches(['+', '-', '−']).to_ascii_lowercase();
+    if value.is_infinite() && !matches!(sign_less.as_str(), "inf" | "∞") {
         return Err(AnswerError::TooLarge(shown()));
     }
     Ok(value)
@@ -151,11 +152,13 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
 /// list `a, b; c, d` (brackets and parentheses are ignored). An answer without a number in it
 /// (empty, or punctuation alone) is refused: an empty segment list is written `none`.
 pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
-    let t = s.trim().to_ascii_lowercase();
-    if t == "tir" {
+    // Words in any case; the numbers as typed, so that an error quotes them so.
+    let t = s.trim();
+    let word = t.to_ascii_lowercase();
+    if word == "tir" {
         return Ok(Answer::Tir);
     }
-    if segments && matches!(t.as_str(), "none" | "empty") {
+    if segments && matches!(word.as_str(), "none" | "empty") {
         return Ok(Answer::Segments(vec![]));
     }
     let cleaned: String = t
@@ -216,6 +219,20 @@ mod tests {
         );
         assert_eq!(parse_answer("1/4", false).unwrap(), Answer::Number(0.25));
         assert_eq!(parse_answer("TIR", false).unwrap(), Answer::Tir);
+        assert_eq!(parse_answer("1E-1", false).unwrap(), Answer::Number(0.1));
+        assert_eq!(
+            parse_answer("0, INF", true).unwrap(),
+            Answer::Segments(vec![(0.0, f64::INFINITY)])
+        );
+        // A part that is no number is quoted as typed.
+        assert_eq!(
+            parse_answer("ABC", false),
+            Err(AnswerError::NotANumber("ABC".into()))
+        );
+        assert_eq!(
+            parse_answer("I = 0.87", false),
+            Err(AnswerError::NotANumber("I".into()))
+        );
         assert_eq!(
             parse_answer("13, 16; 22, 23", true).unwrap(),
             Answer::Segments(vec![(13.0, 16.0), (22.0, 23.0)])

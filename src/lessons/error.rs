@@ -75,6 +75,19 @@ pub enum LessonError {
         /// The student asked for.
         student: String,
     },
+    /// A student's variant whose values make one of the lesson's scenes fail to load: the
+    /// lesson's `vary` ranges reach values the scene refuses.
+    #[error(
+        "student {student}'s variant does not load ({values}): {error}; the lesson's `vary` ranges must keep its scenes loadable (`raytree lessons validate` tries them)"
+    )]
+    VariantDoesNotLoad {
+        /// The student.
+        student: String,
+        /// The values drawn for them, `path = value` each.
+        values: String,
+        /// The scene's error, at its line and column (the variant's lines are the lesson's).
+        error: String,
+    },
     /// A homework folder would be written over a folder that has files in it.
     #[error("{}: already exists (remove it, or choose another folder)", .0.display())]
     Exists(PathBuf),

@@ -232,6 +232,21 @@ impl Lesson {
                     message: format!("duplicate exercise id `{}`", ex.id),
                 });
             }
+            if let Some(p) = vary::placeholders(&ex.question).find(|p| !file.vary.contains_key(*p))
+            {
+                let varied: Vec<&str> = file.vary.keys().map(String::as_str).collect();
+                return Err(LessonError::Invalid {
+                    file: path,
+                    message: format!(
+                        "exercise `{}`: the question quotes `{{{p}}}`, which is not a value the lesson varies ({})",
+                        ex.id,
+                        match varied.is_empty() {
+                            true => "it varies none".to_string(),
+                            false => format!("it varies {}", varied.join(", ")),
+                        }
+                    ),
+                });
+            }
             if ex.pixel.is_none() && ex.ray.is_none() && !ex.ask.about_image() {
                 return Err(LessonError::Invalid {
                     file: path,
@@ -322,6 +337,17 @@ impl Lesson {
             .iter()
             .map(|(p, v)| (p.clone(), vary::show(v)))
             .collect();
+        if let Err(error) = self.load_sources(&out.sources) {
+            return Err(LessonError::VariantDoesNotLoad {
+                student: student.to_string(),
+                values: shown
+                    .iter()
+                    .map(|(p, v)| format!("{p} = {v}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                error,
+            });
+        }
         out.fill_questions(&shown);
         out.variant = Some(VariantOf {
             lesson: self.id.clone(),
@@ -329,6 +355,37 @@ impl Lesson {
             values: shown,
         });
         Ok(out)
+    }
+
+    /// Whether scene texts of this lesson (file name → text) load, as a scene file in its
+    /// folder would: the first one's error if one does not.
+    fn load_sources(&self, sources: &BTreeMap<String, String>) -> Result<(), String> {
+        for (name, text) in sources {
+            let path = self.dir.join(name);
+            let file = path.display().to_string();
+            crate::scene::parse(text, &file, Some(&path), &crate::scene::Limits::default())
+                .map_err(|e| e.to_string())?;
+        }
+        Ok(())
+    }
+
+    /// The varied values that keep a scene from loading, each as a line naming the path, the
+    /// value and the scene's error. Each range is tried at its ends and its first step (a
+    /// range of whole numbers written without `step` draws fractions there), and each listed
+    /// value of a `one_of`, the other values as the lesson writes them.
+    pub fn unloadable_variations(&self) -> Result<Vec<String>, LessonError> {
+        let files = self.scene_files()?;
+        let mut problems = Vec::new();
+        for (path, range) in &self.vary {
+            for value in range.probes() {
+                let one = BTreeMap::from([(path.clone(), value.clone())]);
+                let sources = vary::rewrite(&files, &one).map_err(LessonError::Scenes)?;
+                if let Err(e) = self.load_sources(&sources) {
+                    problems.push(format!("vary `{path}` = {}: {e}", vary::show(&value)));
+                }
+            }
+        }
+        Ok(problems)
     }
 
     /// The text of an exercise's scene when the lesson holds it in memory (a variant).

@@ -234,7 +234,19 @@ pub fn grade(
     // Each student's expected answers, to tell a copied answer from a plain mistake.
     let mut expected_of: Vec<Vec<Option<Answer>>> = Vec::new();
     for student in order {
-        let own = lesson.variant(&student)?;
+        let own = match lesson.variant(&student) {
+            Ok(own) => own,
+            // The lesson's fault, not the student's: their rows are set aside, not marked wrong.
+            Err(e @ LessonError::VariantDoesNotLoad { .. }) => {
+                let rows = answers.values().filter(|r| r.student == student);
+                problems.extend(rows.map(|r| Problem {
+                    line: r.line,
+                    message: format!("{}, {}: not graded: {e}", r.student, r.exercise),
+                }));
+                continue;
+            }
+            Err(e) => return Err(e),
+        };
         expected_of.push(
             own.exercises
                 .iter()

@@ -77,6 +77,14 @@ fn validate_lesson(l: &Lesson, v: &mut Validation) {
     let name = l.dir.display();
     let stated = l.stated_answers();
     let homework = l.variant.is_some();
+    if !homework {
+        match l.unloadable_variations() {
+            Ok(problems) => v
+                .problems
+                .extend(problems.into_iter().map(|p| format!("{name}: {p}"))),
+            Err(e) => v.problems.push(format!("{name}: {e}")),
+        }
+    }
     for ex in &l.exercises {
         v.exercises += 1;
         if let Err(e) = work(l, ex) {

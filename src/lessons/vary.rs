@@ -76,6 +76,34 @@ impl Range {
         }
     }
 
+    /// The values a validation tries: the range's low end, its first step and its high end
+    /// (each coordinate of a vector at once), or every value a `one_of` lists.
+    pub fn probes(&self) -> Vec<Vec<String>> {
+        let ends = |lo: f64, hi: f64, step: f64| [lo, (lo + step).min(hi), hi].map(num);
+        let column = |k: usize, columns: &[[String; 3]]| -> Vec<String> {
+            columns.iter().map(|c| c[k].clone()).collect()
+        };
+        let mut probes: Vec<Vec<String>> = match self {
+            Range::Numbers([lo, hi]) => ends(*lo, *hi, STEP).map(|x| vec![x]).to_vec(),
+            Range::Stepped { between, step } => ends(between[0], between[1], *step)
+                .map(|x| vec![x])
+                .to_vec(),
+            Range::Vectors([lo, hi]) => {
+                let columns: Vec<[String; 3]> = (0..3).map(|i| ends(lo[i], hi[i], STEP)).collect();
+                (0..3).map(|k| column(k, &columns)).collect()
+            }
+            Range::OneOf { one_of } => one_of
+                .iter()
+                .map(|p| match p {
+                    Pick::Number(x) => vec![num(*x)],
+                    Pick::Vector(v) => v.iter().map(|x| num(*x)).collect(),
+                })
+                .collect(),
+        };
+        probes.dedup();
+        probes
+    }
+
     /// One value drawn from the range, as the texts of its numbers.
     fn draw(&self, rng: &mut Rng) -> Vec<String> {
         let stepped = |lo: f64, hi: f64, step: f64, rng: &mut Rng| {
@@ -185,6 +213,17 @@ pub fn written(
         .collect()
 }
 
+/// The `{path}` placeholders of a question: braces around a key path (letters, digits, `_`,
+/// `-`, `.`), not other braces (`{1, 2}`).
+pub fn placeholders(question: &str) -> impl Iterator<Item = &str> {
+    question.split('{').skip(1).filter_map(|rest| {
+        let (inside, _) = rest.split_once('}')?;
+        let path_char = |c: char| c.is_ascii_alphanumeric() || "_-.".contains(c);
+        let starts = inside.starts_with(|c: char| c.is_ascii_alphabetic() || c == '_');
+        (starts && inside.chars().all(path_char)).then_some(inside)
+    })
+}
+
 /// A question with `{path}` replaced by the value of each varied path.
 pub fn fill(question: &str, values: &BTreeMap<String, String>) -> String {
     let mut q = question.to_string();
@@ -235,6 +274,15 @@ mod tests {
         let distinct: std::collections::HashSet<String> =
             students.iter().map(|s| format!("{s:?}")).collect();
         assert!(distinct.len() >= 19, "{} distinct of 20", distinct.len());
+    }
+
+    #[test]
+    fn placeholders_are_key_paths_in_braces() {
+        let q = "kd {materials.a.kd}, ambient {ambient}, the set {1, 2}, {x y}, {}";
+        assert_eq!(
+            placeholders(q).collect::<Vec<_>>(),
+            ["materials.a.kd", "ambient"]
+        );
     }
 
     #[test]
