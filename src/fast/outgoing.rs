@@ -198,23 +198,15 @@ fn across(t: &mut Tracer, task: &Task, si: &Interaction, m: &Material) -> Across
         return t.across(task, si, m);
     }
     let media = &task.media;
-    if !scene.leaves[si.leaf as usize].shape.is_solid() {
-        let n1 = media.current(scene);
-        return Across {
-            n1,
-            n2: n1,
-            beyond: *media,
-        };
-    }
-    let (n1, beyond) = if si.inside {
+    let solid = scene.leaves[si.leaf as usize].shape.is_solid();
+    let (n1, beyond) = if !solid {
+        (media.current(scene), *media)
+    } else if si.inside {
         let within = media.entering(si.object, si.material);
         (within.current(scene), media.leaving(si.object))
     } else {
         (media.current(scene), media.entering(si.object, si.material))
     };
-    Across {
-        n1,
-        n2: beyond.current(scene),
-        beyond,
-    }
+    let n2 = if solid { beyond.current(scene) } else { n1 };
+    Across { n1, n2, beyond }
 }
