@@ -28,6 +28,7 @@ pub fn seconds(s: f64) -> String {
 #[cfg(all(test, feature = "cli"))]
 mod tests {
     use super::{seconds, Knob};
+    use clap::ValueEnum;
 
     /// Times keep three significant digits however short, and three decimals from 0.1 s up.
     #[test]
@@ -38,7 +39,6 @@ mod tests {
         assert_eq!(seconds(0.000_123_456), "0.000123");
         assert_eq!(seconds(0.0), "0.000");
     }
-    use clap::ValueEnum;
 
     /// Table headers and error messages name each knob as `--knob` spells it.
     #[test]
