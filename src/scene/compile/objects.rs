@@ -12,7 +12,7 @@ use super::{invalid, nonzero, pos, printable_name, Invalid, Limits, Pos};
 use crate::accel::{Aabb, Ball};
 use crate::geometry::csg::{CsgNode, CsgOp};
 use crate::geometry::{Aabox, Cone, Cylinder, Plane, Shape, Sphere, Transform, Triangle};
-use crate::scene::format::{ObjectSpec, SceneFile, TransformStep, Triple};
+use crate::scene::format::{ObjectSpec, SceneFile, TransformStep, Triple, MAX_MAGNITUDE};
 use crate::scene::{Geometry, Group, Leaf, Object};
 use crate::shading::Material;
 
@@ -536,10 +536,88 @@ fn key_name(spec: &ObjectSpec) -> &'static str {
 /// The transform of an object with these steps inside `parent` (its own steps first). Without
 /// steps of its own an object is where its parent puts it: no product, no inverse.
 fn placed(parent: &Transform, steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
-    if steps.is_empty() {
+    let Some(last) = steps.last() else {
         return Ok(parent.clone());
+    };
+    let own = transform(steps)?;
+    if parent.to_world == DAffine3::IDENTITY {
+        return Ok(own);
     }
-    Ok(parent.after(&transform(steps)?))
+    let whole = parent.after(&own);
+    in_range(
+        &whole.to_world,
+        pos(last),
+        ", with the transforms of the groups around it,",
+    )?;
+    Ok(whole)
+}
+
+/// The smallest magnitude of a scale factor: a smaller one flattens the object so far that
+/// the inverse, which carries rays into the object's space, is out of range.
+const MIN_SCALE: f64 = 1e-12;
+
+/// The largest magnitude among an affine map's matrix and offset (NaN counts as beyond any).
+fn largest_entry(m: &DAffine3) -> f64 {
+    m.to_cols_array().iter().fold(0.0f64, |worst, v| {
+        if v.is_nan() {
+            f64::INFINITY
+        } else {
+            worst.max(v.abs())
+        }
+    })
+}
+
+/// The largest magnitude among the inverse's matrix and offset. The matrix is scaled to
+/// entries near 1 before it is inverted: the determinant of a transform shrinking by 1e-108
+/// underflows to zero, though its inverse (1e108) is a number like any other.
+fn largest_inverse_entry(m: &DAffine3) -> f64 {
+    let big = largest_entry(&DAffine3::from_mat3(m.matrix3));
+    if !big.is_normal() {
+        return f64::INFINITY;
+    }
+    let unit = m.matrix3 * (1.0 / big);
+    if !unit.determinant().is_normal() {
+        return f64::INFINITY;
+    }
+    let inverse = unit.inverse() * (1.0 / big);
+    let offset = -(inverse * m.translation);
+    largest_entry(&DAffine3::from_mat3_translation(inverse, offset))
+}
+
+/// A magnitude for a message: three significant digits, or words for one beyond any number.
+fn round(x: f64) -> String {
+    if x.is_finite() {
+        format!("{:e}", format!("{x:.2e}").parse::<f64>().unwrap_or(x))
+    } else {
+        "more than any number".into()
+    }
+}
+
+/// Refuses a composed transform whose matrix or inverse holds numbers beyond ±1e100, the bound
+/// every number written in a scene keeps (their squares, met in every intersection test, must
+/// not overflow); each step may keep it while their product does not.
+fn in_range(m: &DAffine3, at: Pos, context: &str) -> Result<(), Invalid> {
+    let forward = largest_entry(m);
+    if forward > MAX_MAGNITUDE {
+        return invalid(
+            at,
+            format!(
+                "the transform's steps up to here{context} scale or move by {} together: the composed transform must stay within ±1e100 (as every number in a scene)",
+                round(forward)
+            ),
+        );
+    }
+    let backward = largest_inverse_entry(m);
+    if backward > MAX_MAGNITUDE {
+        return invalid(
+            at,
+            format!(
+                "the transform's steps up to here{context} shrink the object so far that undoing them takes a factor of {}: the inverse transform must stay within ±1e100 (as every number in a scene)",
+                round(backward)
+            ),
+        );
+    }
+    Ok(())
 }
 
 pub(super) fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, Invalid> {
@@ -551,13 +629,23 @@ pub(super) fn transform(steps: &[Spanned<TransformStep>]) -> Result<Transform, I
             TransformStep::RotateY(d) => DAffine3::from_rotation_y(d.0.to_radians()),
             TransformStep::RotateZ(d) => DAffine3::from_rotation_z(d.0.to_radians()),
             TransformStep::Scale(Triple(v)) => {
-                if v.abs().min_element() < 1e-12 {
+                let smallest = v.abs().min_element();
+                if smallest == 0.0 {
                     return invalid(pos(s), "scale must not be zero in any axis");
+                }
+                if smallest < MIN_SCALE {
+                    return invalid(
+                        pos(s),
+                        format!(
+                            "scale factor {smallest:e} is too small: each factor's magnitude must be at least {MIN_SCALE:e}"
+                        ),
+                    );
                 }
                 DAffine3::from_scale(*v)
             }
         };
         m = step * m;
+        in_range(&m, pos(s), "")?;
     }
     Ok(Transform::new(m))
 }
