@@ -322,6 +322,9 @@ impl Mesh {
                 budget.total, budget.raise
             ));
         }
+        if let Err(e) = check_obj(text) {
+            return Err(format!("{shown}:{}:{}: {}", e.line, e.column, e.message));
+        }
         let options = tobj::LoadOptions {
             triangulate: true,
             single_index: true,
@@ -367,9 +370,6 @@ impl Mesh {
         if triangles.is_empty() {
             return Err(format!("{shown}: the OBJ file has no triangles"));
         }
-        if positions.iter().any(|p| !p.is_finite()) {
-            return Err(format!("{shown}: the OBJ file has a non-finite vertex"));
-        }
         let (mesh, dropped) = Mesh::new(positions, normals, triangles);
         Ok((mesh.with_texcoords(texcoords), dropped))
     }
@@ -386,6 +386,152 @@ pub struct ObjBudget {
     pub total: u64,
     /// How to raise the budgets (for the message).
     pub raise: &'static str,
+}
+
+/// A mistake in an OBJ file, at a line and column from 1.
+#[derive(Debug, PartialEq)]
+struct ObjMistake {
+    line: usize,
+    column: usize,
+    message: String,
+}
+
+/// The largest magnitude of an OBJ number: the scene's own bound.
+const MAX_OBJ_NUMBER: f64 = crate::scene::format::MAX_MAGNITUDE;
+
+/// Checks what the OBJ parser would refuse without a line, or accept though it is wrong: the
+/// numbers of `v`, `vn` and `vt` lines and the indices of `f` lines. The parser keeps
+/// positions in single precision, so numbers beyond its range are refused here too.
+fn check_obj(text: &[u8]) -> Result<(), ObjMistake> {
+    let lines = || {
+        text.split(|&b| b == b'\n').enumerate().map(|(i, line)| {
+            // A comment runs to the end of its line, as the parser reads it.
+            let end = line.iter().position(|&b| b == b'#').unwrap_or(line.len());
+            (i + 1, &line[..end])
+        })
+    };
+    // An index may name an element written later in the file (the parser resolves them once
+    // it has read it all); one counted back (negative) names one written before.
+    let mut total = [0usize; 3];
+    for (_, line) in lines() {
+        if let Some(kind) = element_kind(words(line).next().map(|(_, w)| w)) {
+            total[kind] += 1;
+        }
+    }
+    let mut so_far = [0usize; 3];
+    for (number, line) in lines() {
+        let mut ws = words(line);
+        let Some((_, keyword)) = ws.next() else {
+            continue;
+        };
+        let at = |offset: usize, message: String| ObjMistake {
+            line: number,
+            column: String::from_utf8_lossy(&line[..offset]).chars().count() + 1,
+            message,
+        };
+        if let Some(kind) = element_kind(Some(keyword)) {
+            so_far[kind] += 1;
+            let needs = [3, 2, 3][kind];
+            let mut count = 0;
+            for (offset, word) in ws {
+                check_obj_number(word).map_err(|m| at(offset, m))?;
+                count += 1;
+            }
+            if count < needs {
+                return Err(at(
+                    0,
+                    format!(
+                        "a `{}` line needs {needs} numbers, this one has {count}",
+                        String::from_utf8_lossy(keyword)
+                    ),
+                ));
+            }
+        } else if keyword == b"f" {
+            for (offset, word) in ws {
+                let mut part_offset = offset;
+                for (kind, part) in word.split(|&b| b == b'/').enumerate() {
+                    if kind < 3 && !(part.is_empty() && kind > 0) {
+                        check_obj_index(part, kind, so_far[kind], total[kind])
+                            .map_err(|m| at(part_offset, m))?;
+                    }
+                    part_offset += part.len() + 1;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The words of a line with their byte offsets.
+fn words(line: &[u8]) -> impl Iterator<Item = (usize, &[u8])> {
+    let mut offset = 0;
+    line.split(|b| b.is_ascii_whitespace())
+        .filter_map(move |w| {
+            let at = offset;
+            offset += w.len() + 1;
+            (!w.is_empty()).then_some((at, w))
+        })
+}
+
+/// 0, 1 and 2 for the keywords of positions, texture coordinates and normals: the elements
+/// a face's `v/vt/vn` indices name, in that order.
+fn element_kind(keyword: Option<&[u8]>) -> Option<usize> {
+    match keyword? {
+        b"v" => Some(0),
+        b"vt" => Some(1),
+        b"vn" => Some(2),
+        _ => None,
+    }
+}
+
+fn check_obj_number(word: &[u8]) -> Result<(), String> {
+    let shown = String::from_utf8_lossy(word);
+    let x: f64 = std::str::from_utf8(word)
+        .ok()
+        .and_then(|w| w.parse().ok())
+        .ok_or_else(|| format!("`{shown}` is not a number"))?;
+    if !x.is_finite() {
+        Err(format!(
+            "non-finite number `{shown}`: every number in a mesh must be finite"
+        ))
+    } else if x.abs() > MAX_OBJ_NUMBER {
+        Err(format!(
+            "number {x:e} is too large: numbers must lie within ±1e100"
+        ))
+    } else if x.abs() > f32::MAX as f64 {
+        Err(format!(
+            "number {x:e} is too large for a mesh: its numbers are read in single precision, which reaches ±{:.1e}",
+            f32::MAX
+        ))
+    } else {
+        Ok(())
+    }
+}
+
+fn check_obj_index(word: &[u8], kind: usize, so_far: usize, total: usize) -> Result<(), String> {
+    let what = ["vertex", "texture coordinate", "normal"][kind];
+    let keyword = ["v", "vt", "vn"][kind];
+    let shown = String::from_utf8_lossy(word);
+    let i: i64 = std::str::from_utf8(word)
+        .ok()
+        .and_then(|w| w.parse().ok())
+        .ok_or_else(|| format!("`{shown}` is not a {what} index"))?;
+    let (fine, have) = match i {
+        0 => (false, total),
+        i if i > 0 => (i as u64 <= total as u64, total),
+        i => (i.unsigned_abs() <= so_far as u64, so_far),
+    };
+    if fine {
+        return Ok(());
+    }
+    let lines = match have {
+        1 => "1 `{keyword}` line".replace("{keyword}", keyword),
+        n => format!("{n} `{keyword}` lines"),
+    };
+    let counted = if i < 0 { " before this one" } else { "" };
+    Err(format!(
+        "{what} index {i} is out of range: the file has {lines}{counted} (indices count from 1, or back from −1)"
+    ))
 }
 
 /// The triangles an OBJ file's faces make (a face of n vertices makes n − 2), counted from
@@ -439,6 +585,62 @@ pub(crate) mod tests {
         assert_eq!(b.positions, a.positions);
         assert_eq!(b.positions[0], DVec3::new(5.0, 0.0, 0.0));
         assert_eq!(b.triangles, vec![[0, 1, 2]]);
+    }
+
+    /// Where the check points, and a piece of what it says.
+    fn mistake(text: &str) -> (usize, usize, String) {
+        let e = check_obj(text.as_bytes()).unwrap_err();
+        (e.line, e.column, e.message)
+    }
+
+    #[test]
+    fn obj_mistakes_are_found_with_their_line_and_column() {
+        let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        let (line, column, m) = mistake(&format!("{tri}f 1/5 2/5 3/5\n"));
+        assert_eq!((line, column), (4, 5), "{m}");
+        assert!(
+            m.contains("texture coordinate index 5") && m.contains("0 `vt` lines"),
+            "{m}"
+        );
+        let (line, column, m) = mistake("v 0 0 0\n# a comment\n  v 1 0 abc\n");
+        assert_eq!((line, column), (3, 9), "{m}");
+        assert!(m.contains("`abc` is not a number"), "{m}");
+        let (line, column, m) = mistake("v 1e300 0 0\n");
+        assert_eq!((line, column), (1, 3), "{m}");
+        assert!(m.contains("±1e100") && !m.contains("finite"), "{m}");
+        // Within the scene's range, yet beyond single precision, in which positions are read.
+        let (_, _, m) = mistake("v 1e50 0 0\n");
+        assert!(m.contains("single precision"), "{m}");
+        let (_, _, m) = mistake("v nan 0 0\n");
+        assert!(m.contains("non-finite"), "{m}");
+        let (line, column, m) = mistake(&format!("{tri}f 1 2 0\n"));
+        assert_eq!((line, column), (4, 7), "{m}");
+        // Counted back from the face, −4 is before the first of three vertices.
+        let (line, column, m) = mistake(&format!("{tri}f -1 -2 -4\n"));
+        assert_eq!((line, column), (4, 9), "{m}");
+        assert!(m.contains("3 `v` lines before this one"), "{m}");
+        let (line, column, m) = mistake(&format!("{tri}vn 0 0 1\nf 1//1 2//2 3//1\n"));
+        assert_eq!((line, column), (5, 11), "{m}");
+        assert!(
+            m.contains("normal index 2") && m.contains("1 `vn` line"),
+            "{m}"
+        );
+        let (line, column, m) = mistake("v 1 2\n");
+        assert_eq!((line, column), (1, 1), "{m}");
+        assert!(m.contains("needs 3 numbers"), "{m}");
+    }
+
+    #[test]
+    fn well_formed_obj_files_pass_the_check() {
+        for text in [
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+            // A face may name vertices written after it, and count back from itself.
+            "f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n",
+            "v 0 0 0 1\nv 1 0 0\r\nv 0 1 0 # corner\nvt 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n",
+            "v -1e30 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        ] {
+            assert_eq!(check_obj(text.as_bytes()), Ok(()), "{text:?}");
+        }
     }
 
     #[test]
