@@ -360,6 +360,8 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
     use serde_saphyr::{Error as E, MessageFormatter};
     const ALIAS_BOMB: &str = "YAML aliases expand too far (an alias bomb?): refused";
     const MORE_THAN_ONE: &str = MORE_THAN_ONE_DOCUMENT;
+    const SELF_ALIAS: &str =
+        "an alias (*name) refers to the node it is inside of: a scene cannot contain itself";
     match e {
         E::WithSnippet { error, .. } | E::AliasError { error, .. } => parser_message(error),
         E::DuplicateMappingKey { key: Some(key), .. } => {
@@ -369,6 +371,7 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
             "duplicate key: each key may appear once in a mapping".into()
         }
         E::MultipleDocuments { .. } => MORE_THAN_ONE.into(),
+        E::RecursiveReferencesRequireWeakTypes { .. } => SELF_ALIAS.into(),
         E::Budget { breach, .. } => match breach {
             BudgetBreach::Depth { .. } => {
                 "nested more than 64 YAML levels deep, about 30 levels of a CSG tree (each level is a mapping and its list): make the tree shallower".into()
@@ -402,7 +405,12 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
         e => {
             let text = serde_saphyr::DefaultMessageFormatter.format_message(e);
             let first = text.lines().next().unwrap_or("").trim();
-            first.strip_prefix("error: ").unwrap_or(first).to_string()
+            let first = first.strip_prefix("error: ").unwrap_or(first);
+            // The same refusal, raised as a plain message where the parser resolves an alias.
+            if first.contains("recursive references require weak recursion types") {
+                return SELF_ALIAS.into();
+            }
+            first.to_string()
         }
     }
 }
