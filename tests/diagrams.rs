@@ -812,3 +812,102 @@ fn ray_labels_keep_off_the_names() {
         assert_apart(&[names, rays].concat());
     }
 }
+
+/// The section's clip rectangle: its top-left and bottom-right corners.
+fn section_clip(svg: &str) -> (DVec2, DVec2) {
+    let rect = svg
+        .split_once("<clipPath id=\"section\">")
+        .expect("the section is clipped")
+        .1
+        .split_once("<rect ")
+        .unwrap()
+        .1
+        .split_once('>')
+        .unwrap()
+        .0;
+    let at = DVec2::new(attr(rect, "x"), attr(rect, "y"));
+    (
+        at,
+        at + DVec2::new(attr(rect, "width"), attr(rect, "height")),
+    )
+}
+
+/// A directional light comes in as three arrows from the edge of the section with its name
+/// beside them: from whichever side it comes, in any view and at a small figure, the arrows
+/// (their round caps too), their heads and the name lie wholly inside the section's clip, so
+/// none of them is cut.
+#[test]
+fn a_directional_lights_arrows_and_name_lie_inside_the_section() {
+    let dir = Path::new("target/diagram-tests/sun");
+    std::fs::create_dir_all(dir).unwrap();
+    let directions = [
+        "[1, -2, 1]",
+        "[0.5, -1, 0]",
+        "[-1, -1, 0]",
+        "[3, -1, 0]",
+        "[-3, -1, -1]",
+        "[1, 1, 1]",
+        "[0.2, -1, 3]",
+        "[-2, 0.5, -2]",
+    ];
+    for (i, direction) in directions.into_iter().enumerate() {
+        let scene = dir.join(format!("sun-{i}.yaml"));
+        std::fs::write(
+            &scene,
+            format!(
+                "camera: {{ eye: [0, 1, -6], look_at: [0, 0.5, 0], fov: 40, width: 160, height: 120 }}\n\
+                 lights:\n  - {{ name: sun, direction: {direction}, intensity: 1 }}\n\
+                 materials:\n  matte: {{ color: 0.8, kd: 0.7 }}\n\
+                 objects:\n  \
+                 - {{ name: ball, sphere: {{ center: [0, 1, 0], radius: 1 }}, material: matte }}\n  \
+                 - {{ name: floor, plane: {{ point: [0, 0, 0], normal: [0, 1, 0] }}, material: matte }}\n"
+            ),
+        )
+        .unwrap();
+        let scene = scene.to_str().unwrap();
+        for extra in [
+            &["--view", "front"][..],
+            &["--view", "side"],
+            &["--view", "top"],
+            &["--view", "front", "--width", "400", "--height", "300"],
+        ] {
+            let args = [&[scene, "--pixel", "80,75"][..], extra].concat();
+            let svg = diagram_svg(&args, "sun.svg");
+            let (lo, hi) = section_clip(&svg);
+            let inside = |p: DVec2, reach: f64| {
+                p.x - reach >= lo.x
+                    && p.y - reach >= lo.y
+                    && p.x + reach <= hi.x
+                    && p.y + reach <= hi.y
+            };
+            let sun_tags = |name: &str, paint: &str| -> Vec<&str> {
+                (svg.split(&format!("<{name} ")).skip(1))
+                    .map(|t| t.split_once('>').unwrap().0)
+                    .filter(|t| t.contains(&format!("{paint}=\"#f2b705\"")))
+                    .collect()
+            };
+            let arrows = sun_tags("line", "stroke");
+            assert_eq!(arrows.len(), 3, "{args:?}: {arrows:?}");
+            for t in arrows {
+                let cap = attr(t, "stroke-width") / 2.0;
+                for (x, y) in [("x1", "y1"), ("x2", "y2")] {
+                    let p = DVec2::new(attr(t, x), attr(t, y));
+                    assert!(inside(p, cap), "{args:?}: arrow {t} outside {lo}–{hi}");
+                }
+            }
+            let heads = sun_tags("polygon", "fill");
+            assert_eq!(heads.len(), 3, "{args:?}: {heads:?}");
+            let heads: String = heads.iter().map(|t| format!("<polygon {t}>")).collect();
+            for (what, p) in shape_points(&heads) {
+                assert!(inside(p, 0.0), "{args:?}: {what} outside {lo}–{hi}");
+            }
+            let names: Vec<_> = texts(&svg).filter(|(_, s)| s == "sun (far away)").collect();
+            assert_eq!(names.len(), 1, "{args:?}");
+            let (min, max) = drawn_box(names[0].0, &names[0].1);
+            assert!(
+                inside(min, 0.0) && inside(max, 0.0),
+                "{args:?}: the light's name at {min}–{max} leaves the section {lo}–{hi}"
+            );
+        }
+    }
+}

@@ -7,7 +7,7 @@ use glam::DVec2;
 use svg::node::element::Text;
 
 use super::frame::Frame;
-use super::ink::{r, text, text_width, Panel};
+use super::ink::{text, text_width, Panel};
 
 /// A rectangle of the page: its top-left and bottom-right corners, in pixels.
 pub(super) type Box2 = (DVec2, DVec2);
@@ -15,11 +15,26 @@ pub(super) type Box2 = (DVec2, DVec2);
 /// A label at `at` that stays inside the panel: anchored at its end when it would run off
 /// the right edge.
 pub(super) fn label_in(p: &Panel, at: DVec2, s: &str, size: f64, color: &str) -> Text {
-    let width = text_width(s, size);
+    let (x, end) = anchor_in(p, at, s, size);
+    anchored(DVec2::new(x, at.y), end, s, size, color)
+}
+
+/// Where `label_in` anchors a label meant for `at`: the x, and whether that is the label's
+/// end.
+pub(super) fn anchor_in(p: &Panel, at: DVec2, s: &str, size: f64) -> (f64, bool) {
     let right = p.origin.x + p.size.x - 4.0;
+    if at.x + text_width(s, size) > right {
+        (at.x.min(right), true)
+    } else {
+        (at.x, false)
+    }
+}
+
+/// A label that starts at `at`, or (`end`) ends there.
+pub(super) fn anchored(at: DVec2, end: bool, s: &str, size: f64, color: &str) -> Text {
     let t = text(at, s, size, color);
-    if at.x + width > right {
-        t.set("x", r(at.x.min(right))).set("text-anchor", "end")
+    if end {
+        t.set("text-anchor", "end")
     } else {
         t
     }
@@ -28,15 +43,31 @@ pub(super) fn label_in(p: &Panel, at: DVec2, s: &str, size: f64, color: &str) ->
 /// The rectangle (top-left, bottom-right) a label drawn by `label_in` covers, roughly.
 pub(super) fn label_box(p: &Panel, at: DVec2, s: &str, size: f64) -> Box2 {
     let width = text_width(s, size);
-    let right = p.origin.x + p.size.x - 4.0;
-    let x0 = if at.x + width > right {
-        at.x.min(right) - width
-    } else {
-        at.x
-    };
+    let (x, end) = anchor_in(p, at, s, size);
+    let x0 = if end { x - width } else { x };
     (
         DVec2::new(x0, at.y - size),
         DVec2::new(x0 + width, at.y + 2.0),
+    )
+}
+
+/// How far the box must move to lie inside the panel, `margin` in from its edges; along an
+/// axis where it is too large for that, its left or top edge is kept in.
+pub(super) fn into_panel(p: &Panel, (lo, hi): Box2, margin: f64) -> DVec2 {
+    let min = p.origin + DVec2::splat(margin);
+    let max = p.origin + p.size - DVec2::splat(margin);
+    let axis = |lo: f64, hi: f64, min: f64, max: f64| {
+        if lo < min {
+            min - lo
+        } else if hi > max {
+            (max - hi).max(min - lo)
+        } else {
+            0.0
+        }
+    };
+    DVec2::new(
+        axis(lo.x, hi.x, min.x, max.x),
+        axis(lo.y, hi.y, min.y, max.y),
     )
 }
 
@@ -195,6 +226,27 @@ mod tests {
             DVec2::new(-5.0, 15.0),
             DVec2::new(15.0, 11.0)
         ));
+    }
+
+    /// A box inside the panel stays; one across an edge moves in by as much as it crosses it,
+    /// and one too wide for the panel keeps its left edge in.
+    #[test]
+    fn a_box_moves_into_the_panel() {
+        let p = panel();
+        let bx = |x0: f64, y0: f64, x1: f64, y1: f64| (DVec2::new(x0, y0), DVec2::new(x1, y1));
+        assert_eq!(into_panel(&p, bx(10.0, 10.0, 50.0, 30.0), 4.0), DVec2::ZERO);
+        assert_eq!(
+            into_panel(&p, bx(-6.0, 590.0, 50.0, 599.0), 4.0),
+            DVec2::new(10.0, -3.0)
+        );
+        assert_eq!(
+            into_panel(&p, bx(100.0, -20.0, 650.0, 0.0), 4.0),
+            DVec2::new(-54.0, 24.0)
+        );
+        assert_eq!(
+            into_panel(&p, bx(-100.0, 0.0, 700.0, 10.0), 4.0),
+            DVec2::new(104.0, 4.0)
+        );
     }
 
     /// Eye, pixel and image plane as the top view of a lesson draws them (the eye a few pixels

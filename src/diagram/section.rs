@@ -10,12 +10,17 @@ use super::figure::Figure;
 use super::ink::{arrowhead, dot, line, points, r, ray_color, text, text_width, Panel};
 use super::ink::{FILL, INK, NORMAL, OUTLINE};
 use super::labels::Box2;
+use super::labels::{anchor_in, anchored, into_panel};
 use super::labels::{beside_rays, eye_label, image_plane_label, label_box, label_in, overlap};
 use super::outline::{LeafOutline, Outline};
 use super::rays::{SegKind, Segment};
 
 /// Where a light's name goes from its centre.
 const LIGHT_LABEL: DVec2 = DVec2::new(14.0, -10.0);
+
+/// How far a directional light's arrow reaches past its ends, in pixels: its arrowhead's
+/// half width (4.5) and more than its round cap (1.25).
+const ARROW_REACH: f64 = 5.0;
 
 /// The eye and the pixel on the image plane, as drawn.
 #[derive(Clone, Copy)]
@@ -263,20 +268,42 @@ impl Figure<'_> {
         let centre = p.frame.center();
         let size = p.frame.size().length();
         let from_edge = p.frame.exit(centre, -v) + v * 0.02 * size;
+        let arrows: Vec<(DVec2, DVec2)> = [-1.0, 0.0, 1.0]
+            .into_iter()
+            .map(|k| {
+                let start = from_edge + v.perp() * k * 0.035 * size;
+                (p.px(start), p.px(start + v * 0.12 * size))
+            })
+            .collect();
+        let name = format!("{} (far away)", l.name);
+        let at = p.px(from_edge + v * 0.06 * size + v.perp() * 0.07 * size);
+        let (x, end) = anchor_in(p, at, &name, 14.0);
+        // Started at the frame's edge, the outer arrows and the name beside them can reach
+        // past it, where the panel's clip would cut them: arrows and name move in together,
+        // so that the name stays beside its arrows.
+        let (mut lo, mut hi) = label_box(p, at, &name, 14.0);
+        // Bold letters are about 0.64 em wide, not `label_box`'s 0.6: the name reaches further
+        // from its anchor.
+        let bold = 0.04 * 14.0 * name.chars().count() as f64;
+        if end {
+            lo.x -= bold;
+        } else {
+            hi.x += bold;
+        }
+        let reach = DVec2::splat(ARROW_REACH);
+        let covers = (arrows.iter()).fold((lo, hi), |(lo, hi), &(a, b)| {
+            (lo.min(a.min(b) - reach), hi.max(a.max(b) + reach))
+        });
+        let shift = into_panel(p, covers, 4.0);
         let mut g = g;
-        for k in [-1.0, 0.0, 1.0] {
-            let start = from_edge + v.perp() * k * 0.035 * size;
-            let end = start + v * 0.12 * size;
-            let (a, b) = (p.px(start), p.px(end));
+        for (a, b) in arrows {
+            let (a, b) = (a + shift, b + shift);
             g = g
                 .add(line(a, b, sun, 2.5))
                 .add(arrowhead(b, b - a, 10.0, sun));
         }
-        let at = p.px(from_edge + v * 0.06 * size + v.perp() * 0.07 * size);
-        g.add(
-            label_in(p, at, &format!("{} (far away)", l.name), 14.0, INK)
-                .set("font-weight", "bold"),
-        )
+        let at = DVec2::new(x, at.y) + shift;
+        g.add(anchored(at, end, &name, 14.0, INK).set("font-weight", "bold"))
     }
 }
 
