@@ -12,6 +12,7 @@ use common::tmux::{have_tmux, Tmux};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use raytree::render::preview::ColorMode;
 use raytree::render::{render_simple, RenderOptions};
+use raytree::scene::Limits;
 use raytree::trace::{RayKind, Tracer};
 use raytree::tui::app::{Focus, Screen};
 use raytree::tui::{input, ui, update, App, Msg};
@@ -459,6 +460,64 @@ fn lesson_list() {
     assert_eq!(app.screen, Screen::Scene);
     assert!(app.lesson_open());
     assert!(app.file.scene.is_some());
+}
+
+/// A copy of the lesson `from`'s files in a lesson folder `to` beside it.
+fn copy_lesson(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, to.join(path.file_name().unwrap())).unwrap();
+    }
+}
+
+/// `o` over a lesson of the user's own folder of lessons (exported or copied, not named by
+/// `--lessons`) lists that folder, the open lesson selected, and opens its lessons; over a
+/// lesson alone in its folder it lists the lessons root's, as without a lesson.
+#[test]
+fn o_lists_the_folder_of_lessons_the_open_lesson_came_from() {
+    common::private_data();
+    let root = demo_lesson("own-lessons");
+    copy_lesson(&root.join("01-demo"), &root.join("02-again"));
+    // A folder that is no lesson is not listed.
+    std::fs::create_dir_all(root.join("notes")).unwrap();
+    let mut app = open(
+        root.join("02-again").to_str().unwrap(),
+        ColorMode::TrueColor,
+        (80, 24),
+    );
+    press(&mut app, KeyCode::Char('o'));
+    assert_eq!(app.screen, Screen::Lessons);
+    let list = app.list.as_ref().unwrap();
+    assert_eq!(list.root, root);
+    let dirs: Vec<&Path> = list.entries.iter().map(|e| e.dir.as_path()).collect();
+    assert_eq!(dirs, [root.join("01-demo"), root.join("02-again")]);
+    assert_eq!(list.selected, 1, "the open lesson is selected");
+    let text = screen(&app);
+    assert!(
+        text.contains("01-demo") && text.contains("02-again"),
+        "{text}"
+    );
+    press(&mut app, KeyCode::Up);
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.screen, Screen::Scene);
+    assert_eq!(app.file.path, Some(root.join("01-demo").join("scene.yaml")));
+    press(&mut app, KeyCode::Char('o'));
+    assert_eq!(app.list.as_ref().unwrap().root, root);
+    assert_eq!(app.list.as_ref().unwrap().selected, 0);
+
+    // A lesson alone in its folder: the usual lessons root.
+    let lone = demo_lesson("lone-lesson");
+    let mut app = open(
+        lone.join("01-demo").to_str().unwrap(),
+        ColorMode::TrueColor,
+        (80, 24),
+    );
+    press(&mut app, KeyCode::Char('o'));
+    assert_eq!(
+        app.list.as_ref().unwrap().root,
+        raytree::lessons::lessons_root().unwrap()
+    );
 }
 
 #[test]
@@ -1281,6 +1340,53 @@ fn explore_without_a_terminal_or_with_a_bad_scene_says_why() {
     let (code, err) = explore_cli(&["tests/scenes"]);
     assert_eq!(code, 2);
     assert!(err.contains("not a lesson folder"), "{err}");
+}
+
+/// `--allow-huge` raises the explorer's budgets as it does the other commands': the scene
+/// over the pixel budget that `explore` refuses, saying to use the flag, opens with it; and a
+/// scene edited over the budget while it is open reloads with it, and without it is refused
+/// with the same hint (the last good scene stays).
+#[test]
+fn allow_huge_opens_and_reloads_a_scene_over_the_budget() {
+    let dir = scratch("allow-huge");
+    let path = dir.join("scene.yaml");
+    let good = std::fs::read_to_string(MIRROR).unwrap();
+    let huge = good.replace("width: 48, height: 36", "width: 100000, height: 100000");
+    assert_ne!(huge, good);
+    std::fs::write(&path, &huge).unwrap();
+    let file = path.to_str().unwrap();
+    let (code, err) = explore_cli(&[file]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("exceeds the budget") && err.contains("--allow-huge"),
+        "{err}"
+    );
+    // Loaded, it goes on to ask for a terminal, which the test has not.
+    let (code, err) = explore_cli(&[file, "--allow-huge"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("explore needs a terminal"), "{err}");
+    let help = Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(["explore", "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8_lossy(&help.stdout);
+    assert!(help.contains("--allow-huge"), "{help}");
+
+    std::fs::write(&path, &good).unwrap();
+    let mut strict = open(file, ColorMode::TrueColor, (80, 24));
+    let mut huge_app =
+        App::open_within(Some(&path), ColorMode::TrueColor, Limits::huge()).expect("opens");
+    update(&mut huge_app, Msg::Resize(80, 24));
+    std::fs::write(&path, &huge).unwrap();
+    update(&mut strict, Msg::Tick);
+    update(&mut huge_app, Msg::Tick);
+    let err = strict.file.error.clone().expect("over the budget");
+    assert!(err.contains("--allow-huge"), "{err}");
+    assert_eq!(strict.image_size(), (48, 36), "the last good scene stays");
+    assert_eq!(huge_app.file.error, None);
+    assert_eq!(huge_app.image_size(), (100_000, 100_000));
+    huge_app.render_now();
+    assert!(huge_app.preview.image.is_some(), "its preview is drawn");
 }
 
 #[test]

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use super::args::parse_pixel;
+use super::args::{limits, parse_pixel};
 use super::Failure;
 
 #[derive(clap::Args, Debug)]
@@ -23,6 +23,11 @@ pub struct Args {
     /// An ASCII preview instead of colour (also chosen by NO_COLOR or TERM=dumb).
     #[arg(long)]
     pub ascii: bool,
+    /// Go beyond the budgets that keep a mistake from exhausting memory: 64 million pixels,
+    /// 16 MiB scene files, 256 MiB mesh files, 200 000 objects, 4 million triangles (for the
+    /// scene as opened and as it is edited).
+    #[arg(long)]
+    pub allow_huge: bool,
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
@@ -38,6 +43,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         ascii: a.ascii,
         pixel: a.pixel,
         depth: a.depth,
+        limits: limits(a.allow_huge),
     })
     .map_err(Failure)?;
     Ok(ExitCode::SUCCESS)

@@ -34,7 +34,7 @@ use super::state::scene::{Opened, SceneFile};
 use super::state::{Note, Tone};
 use super::worker::{self, Job, Pass};
 use crate::render::preview::ColorMode;
-use crate::scene::Scene;
+use crate::scene::{Limits, Scene};
 
 /// Pixels moved by shift + arrow (or H J K L).
 pub const BIG_STEP: i32 = 10;
@@ -175,7 +175,18 @@ impl App {
 
     /// Opens a scene file, a lesson folder, or (None) the lesson list of `lessons_root()`.
     pub fn open(target: Option<&Path>, color: ColorMode) -> Result<App, String> {
+        App::open_within(target, color, Limits::default())
+    }
+
+    /// As `open`, every scene of the session (the first, reloads, lessons opened from the
+    /// list) loaded within `limits`.
+    pub fn open_within(
+        target: Option<&Path>,
+        color: ColorMode,
+        limits: Limits,
+    ) -> Result<App, String> {
         let mut app = App::empty(color);
+        app.file.limits = limits;
         match target {
             None => {
                 app.screen = Screen::Lessons;
@@ -209,7 +220,7 @@ impl App {
             scene,
             lesson,
             folder,
-        } = SceneFile::open(target)?;
+        } = SceneFile::open(target, &self.file.limits)?;
         self.file.watch(path);
         self.lesson = lesson.map(|l| {
             let mut panel = LessonPanel::new(l);

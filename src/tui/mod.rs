@@ -32,6 +32,7 @@ pub use msg::Msg;
 pub use state::ray_tree::{FREE_DEPTH, TREE_BUDGET};
 
 use crate::render::preview::ColorMode;
+use crate::scene::Limits;
 use state::ray_tree::MAX_DEPTH;
 
 /// How the explorer starts.
@@ -45,6 +46,8 @@ pub struct Options {
     pub pixel: Option<[u32; 2]>,
     /// Start with this maximum depth (rays per path) instead of the scene's.
     pub depth: Option<u32>,
+    /// The budgets scenes are loaded within (raised by `--allow-huge`).
+    pub limits: Limits,
 }
 
 /// Runs the explorer until the user quits.
@@ -54,7 +57,7 @@ pub fn run(options: Options) -> Result<(), String> {
     } else {
         ColorMode::detect()
     };
-    let mut app = App::open(options.target.as_deref(), color)?;
+    let mut app = App::open_within(options.target.as_deref(), color, options.limits)?;
     if let Some(d) = options.depth {
         if !(1..=MAX_DEPTH).contains(&d) {
             return Err(format!(

@@ -3,7 +3,6 @@
 //! opening a lesson from the list.
 
 use super::{App, Focus, Screen};
-use crate::scene::Limits;
 use crate::tui::layout;
 use crate::tui::msg::Msg;
 use crate::tui::state::lesson::{AimAt, NO_LESSON};
@@ -123,7 +122,7 @@ impl App {
             return Err(NO_LESSON.into());
         };
         let path = l.lesson.dir.join(name);
-        let scene = crate::scene::load(&path, &Limits::default()).map_err(|e| e.to_string())?;
+        let scene = crate::scene::load(&path, &self.file.limits).map_err(|e| e.to_string())?;
         self.file.watch(path);
         self.tree.restart((scene.camera.width, scene.camera.height));
         self.preview.clear();
@@ -158,12 +157,7 @@ impl App {
     }
 
     pub(super) fn open_list(&mut self) {
-        let mut list = LessonList::load_default();
-        if let Some(l) = &self.lesson {
-            if let Some(i) = list.entries.iter().position(|e| e.dir == l.lesson.dir) {
-                list.selected = i;
-            }
-        }
+        let mut list = LessonList::around(self.lesson.as_ref().map(|l| l.lesson.dir.as_path()));
         list.from_scene = self.file.scene.is_some();
         self.list = Some(list);
         self.screen = Screen::Lessons;

@@ -1,5 +1,6 @@
 //! The lesson list (`raytree explore` without an argument, or `o`): every lesson folder under
-//! the lessons root, the selected one, and whether Esc goes back to a scene.
+//! the lessons root (or under the folder the open lesson came from), the selected one, and
+//! whether Esc goes back to a scene.
 
 use std::path::{Path, PathBuf};
 
@@ -42,6 +43,22 @@ impl LessonList {
                 from_scene: false,
             },
         }
+    }
+
+    /// The list `o` shows beside the lesson in `open`: the folder that lesson came from where
+    /// it holds other lessons too (a user's own folder, which need not be the lessons root),
+    /// else the lessons root's; the open lesson selected.
+    pub fn around(open: Option<&Path>) -> LessonList {
+        let mut list = match open.and_then(folder_of_lessons) {
+            Some(root) => LessonList::load(&root),
+            None => LessonList::load_default(),
+        };
+        if let Some(dir) = open {
+            if let Some(i) = list.entries.iter().position(|e| same_dir(&e.dir, dir)) {
+                list.selected = i;
+            }
+        }
+        list
     }
 
     /// Every folder under `root` with an exercises.yaml, in name order.
@@ -125,6 +142,29 @@ impl LessonList {
         self.selected = i;
         false
     }
+}
+
+/// The folder that holds the lesson `dir` and at least one other lesson.
+fn folder_of_lessons(dir: &Path) -> Option<PathBuf> {
+    let name = dir.file_name()?;
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let others = std::fs::read_dir(parent)
+        .ok()?
+        .filter_map(|e| e.ok())
+        .any(|e| e.file_name() != name && crate::lessons::is_lesson_folder(&e.path()));
+    others.then(|| parent.to_path_buf())
+}
+
+/// Whether two paths name the same folder, however each is written (`./a`, `a`).
+fn same_dir(a: &Path, b: &Path) -> bool {
+    a == b
+        || matches!(
+            (a.canonicalize(), b.canonicalize()),
+            (Ok(a), Ok(b)) if a == b
+        )
 }
 
 #[cfg(test)]

@@ -33,6 +33,9 @@ pub struct SceneFile {
     /// event loop waits a few milliseconds (a small scene still appears at once); without a
     /// loop (tests, scripts) a poll waits for the reload to finish.
     pub reload_wait: Duration,
+    /// The budgets every scene is loaded within, reloads too: `--allow-huge` raises them for
+    /// the whole session, so an edit that grows the scene is still shown.
+    pub limits: Limits,
 }
 
 impl Default for SceneFile {
@@ -44,6 +47,7 @@ impl Default for SceneFile {
             signature: None,
             loading: None,
             reload_wait: Duration::from_secs(60),
+            limits: Limits::default(),
         }
     }
 }
@@ -59,8 +63,8 @@ pub struct Opened {
 }
 
 impl SceneFile {
-    /// Loads a scene file or a lesson folder (its scene.yaml and its lesson).
-    pub fn open(target: &Path) -> Result<Opened, String> {
+    /// Loads a scene file or a lesson folder (its scene.yaml and its lesson) within `limits`.
+    pub fn open(target: &Path, limits: &Limits) -> Result<Opened, String> {
         let target = display_path(target);
         let (path, lesson) = if target.is_dir() {
             let scene = target.join("scene.yaml");
@@ -81,7 +85,7 @@ impl SceneFile {
                 .filter(|d| crate::lessons::is_lesson_folder(d));
             (target.clone(), dir.and_then(|d| Lesson::load(d).ok()))
         };
-        let scene = crate::scene::load(&path, &Limits::default()).map_err(|e| e.to_string())?;
+        let scene = crate::scene::load(&path, limits).map_err(|e| e.to_string())?;
         Ok(Opened {
             path,
             scene,
@@ -116,10 +120,11 @@ impl SceneFile {
             self.signature = sig;
             let (tx, rx) = channel();
             let file = path.clone();
+            let limits = self.limits;
             let started = std::thread::Builder::new()
                 .name("reload".into())
                 .spawn(move || {
-                    let loaded = crate::scene::load(&file, &Limits::default());
+                    let loaded = crate::scene::load(&file, &limits);
                     let _ = tx.send(loaded.map_err(|e| e.to_string()));
                 });
             if let Err(e) = started {
