@@ -397,7 +397,7 @@ struct ObjMistake {
 }
 
 /// The largest magnitude of an OBJ number: the scene's own bound.
-const MAX_OBJ_NUMBER: f64 = crate::scene::format::MAX_MAGNITUDE;
+const MAX_OBJ_NUMBER: f64 = super::MAX_MAGNITUDE;
 
 /// Checks what the OBJ parser would refuse without a line, or accept though it is wrong: the
 /// numbers of `v`, `vn` and `vt` lines and the indices of `f` lines. The parser keeps

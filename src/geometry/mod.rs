@@ -30,3 +30,7 @@ pub use shape::{Shape, Span};
 pub use sphere::Sphere;
 pub use transform::Transform;
 pub use triangle::{Triangle, TriangleHit};
+
+/// The largest magnitude accepted for any number of a scene or a mesh file: squares of
+/// coordinates, met in every intersection test, must not overflow.
+pub const MAX_MAGNITUDE: f64 = 1e100;

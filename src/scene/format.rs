@@ -9,6 +9,7 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 use serde_saphyr::Spanned;
 
+pub use crate::geometry::MAX_MAGNITUDE;
 use crate::shading::texture::Mapping;
 use crate::shading::{Fresnel, Highlight};
 
@@ -61,9 +62,6 @@ pub enum FilterKind {
     Box,
     Gaussian,
 }
-
-/// The largest magnitude accepted for any number: squares of coordinates must not overflow.
-pub const MAX_MAGNITUDE: f64 = 1e100;
 
 fn check<E: de::Error>(v: f64) -> Result<f64, E> {
     if !v.is_finite() {
