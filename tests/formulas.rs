@@ -122,13 +122,7 @@ objects:
 ",
     );
     let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(-5.0, 0.0, 0.0), DVec3::X));
-    let mut node = &tree;
-    let mut crossings = vec![];
-    while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
-        let i = next.indices.expect("a refraction ray names its media");
-        crossings.push((node.hit.as_ref().unwrap().object.clone(), i.n1, i.n2));
-        node = next;
-    }
+    let crossings = common::refraction_crossings(&tree);
     let expected = [
         ("block", 1.0, 1.5),
         ("bubble", 1.5, 1.0),

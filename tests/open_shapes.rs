@@ -7,7 +7,7 @@ mod common;
 use glam::DVec3;
 use raytree::geometry::{Cone, Cylinder, Ray, Shape};
 use raytree::scene::{parse, Limits};
-use raytree::trace::{RayKind, Tracer};
+use raytree::trace::Tracer;
 
 fn ray(o: [f64; 3], d: [f64; 3]) -> Ray {
     Ray::new(DVec3::from(o), DVec3::from(d))
@@ -266,13 +266,7 @@ objects:
 "
         ));
         let tree = Tracer::new(&s).inspect(&ray([15.0, 1.0, 0.5], [1.0, 0.0, 0.0]));
-        let mut node = &tree;
-        let mut crossings = vec![];
-        while let Some(next) = node.children.iter().find(|c| c.kind == RayKind::Refraction) {
-            let i = next.indices.expect("a refraction ray names its media");
-            crossings.push((node.hit.as_ref().unwrap().object.clone(), i.n1, i.n2));
-            node = next;
-        }
+        let crossings = common::refraction_crossings(&tree);
         let walls = crossings.iter().take_while(|c| c.0 == "sheet").count();
         assert!((1..=2).contains(&walls), "{sheet}: {crossings:?}");
         assert!(crossings[..walls].iter().all(|c| (c.1, c.2) == (1.0, 1.0)));

@@ -26,6 +26,23 @@ pub fn scene(yaml: &str) -> Scene {
     parse(yaml, "test.yaml", None, &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// The refractions along a ray tree's chain of refraction rays: for each surface crossed,
+/// the object's name and the indices n1 → n2 its refraction ray names.
+pub fn refraction_crossings(tree: &raytree::trace::RayNode) -> Vec<(String, f64, f64)> {
+    let mut node = tree;
+    let mut crossings = vec![];
+    while let Some(next) = node
+        .children
+        .iter()
+        .find(|c| c.kind == raytree::trace::RayKind::Refraction)
+    {
+        let i = next.indices.expect("a refraction ray names its media");
+        crossings.push((node.hit.as_ref().unwrap().object.clone(), i.n1, i.n2));
+        node = next;
+    }
+    crossings
+}
+
 /// A scene file of the project (path relative to its root).
 pub fn scene_file(path: &str) -> Scene {
     raytree::scene::load(Path::new(path), &Limits::default()).unwrap_or_else(|e| panic!("{e}"))
