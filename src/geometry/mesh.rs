@@ -525,7 +525,7 @@ fn check_obj_index(word: &[u8], kind: usize, so_far: usize, total: usize) -> Res
         return Ok(());
     }
     let lines = match have {
-        1 => "1 `{keyword}` line".replace("{keyword}", keyword),
+        1 => format!("1 `{keyword}` line"),
         n => format!("{n} `{keyword}` lines"),
     };
     let counted = if i < 0 { " before this one" } else { "" };
