@@ -579,6 +579,36 @@ fn the_background_rays_labels_lie_across_no_ray_in_lesson_8() {
     }
 }
 
+/// The far light's name in lesson 8's figure goes where no ray runs through it: beside its
+/// arrows on the side the rays leave free. (It was drawn across the shadow ray from d and by
+/// the background ray from d.)
+#[test]
+fn the_far_lights_name_lies_across_no_ray_in_lesson_8() {
+    let svg = figure_svg(
+        "lessons/08-pixel-intensity/scene.yaml",
+        "30,30",
+        "l08-light.svg",
+    );
+    // Primary, secondary and shadow rays: 3, 2.4 and 1.6 px wide (the light's arrows 2.5).
+    let rays: Vec<(DVec2, DVec2)> = lines_drawn(&svg)
+        .filter(|&(_, _, width)| [3.0, 2.4, 1.6].contains(&width))
+        .map(|(a, b, _)| (a, b))
+        .collect();
+    let (name, (mut min, mut max)) = names_drawn(&svg)
+        .into_iter()
+        .find(|(name, _)| name == "L (far away)")
+        .expect("the light's name");
+    // Bold letters: about 0.64 em each, not 0.6 (either way, whichever end is anchored).
+    let bold = 0.04 * 14.0 * name.chars().count() as f64;
+    (min.x, max.x) = (min.x - bold, max.x + bold);
+    for &(a, b) in &rays {
+        assert!(
+            !runs_through((min, max), a, b),
+            "{name} at {min}–{max} lies across the ray {a} → {b}"
+        );
+    }
+}
+
 /// The figures lessons 7 and 8 show are what the commands their READMEs give draw: after a
 /// change to the figures, `raytree diagram` writes them again.
 #[test]

@@ -98,7 +98,7 @@ pub(super) fn beside_rays(
 }
 
 /// Whether the segment from `a` to `b` passes through the box.
-fn crosses(&(min, max): &Box2, a: DVec2, b: DVec2) -> bool {
+pub(super) fn crosses(&(min, max): &Box2, a: DVec2, b: DVec2) -> bool {
     Frame { min, max }.clip(a, b).is_some()
 }
 

@@ -11,7 +11,8 @@ use super::ink::{arrowhead, dot, line, points, r, ray_color, text, text_width, P
 use super::ink::{FILL, INK, NORMAL, OUTLINE};
 use super::labels::Box2;
 use super::labels::{anchor_in, anchored, into_panel};
-use super::labels::{beside_rays, eye_label, image_plane_label, label_box, label_in, overlap};
+use super::labels::{beside_rays, crosses, eye_label, image_plane_label};
+use super::labels::{label_box, label_in, overlap};
 use super::outline::{LeafOutline, Outline};
 use super::rays::{SegKind, Segment};
 
@@ -21,6 +22,18 @@ const LIGHT_LABEL: DVec2 = DVec2::new(14.0, -10.0);
 /// How far a directional light's arrow reaches past its ends, in pixels: its arrowhead's
 /// half width (4.5) and more than its round cap (1.25).
 const ARROW_REACH: f64 = 5.0;
+
+/// A light far away (a directional light) as drawn: three parallel arrows coming in from the
+/// edge its light comes from, and its name beside them, moved into the panel together.
+struct FarLight {
+    arrows: Vec<(DVec2, DVec2)>,
+    name: String,
+    /// The name's anchor, and whether it is the name's end.
+    at: DVec2,
+    end: bool,
+    /// The box the name covers.
+    covers: Box2,
+}
 
 /// The eye and the pixel on the image plane, as drawn.
 #[derive(Clone, Copy)]
@@ -34,10 +47,21 @@ impl Figure<'_> {
     pub(super) fn section(&self, p: &Panel) -> Group {
         let d = self.drawing;
         let g = Group::new().set("clip-path", "url(#section)");
+        // Every ray's ends on the page: a label keeps off all of them where it can.
+        let paths: Vec<(DVec2, DVec2)> = (d.segments.iter())
+            .map(|s| {
+                let (a, b) = d.ends(s, &p.frame);
+                (p.px(a), p.px(b))
+            })
+            .collect();
         // The lights' names are placed first: the objects' names make way for them.
+        let far: Vec<Option<FarLight>> = (d.lights.iter())
+            .map(|l| self.far_light(p, l, &paths))
+            .collect();
         let lights: Vec<Box2> = (d.lights.iter())
             .filter_map(|l| self.light_spot(p, l))
             .map(|(c, name)| label_box(p, c + LIGHT_LABEL, &name, 14.0))
+            .chain(far.iter().flatten().map(|f| f.covers))
             .collect();
         let (g, named) = self.objects(g, p, &lights);
         let (mut g, eye) = match &d.eye {
@@ -47,12 +71,12 @@ impl Figure<'_> {
             }
             None => (g, None),
         };
-        for l in &d.lights {
-            g = self.light(g, p, l);
+        for (l, far) in d.lights.iter().zip(&far) {
+            g = self.light(g, p, l, far.as_ref());
         }
         // The objects' and lights' names are there first: a ray's label keeps off them.
         let taken = named.into_iter().chain(lights).collect();
-        self.rays(g, p, eye, taken)
+        self.rays(g, p, eye, &paths, taken)
     }
 
     /// Objects: silhouettes filled light grey, planes as lines, each named where its name
@@ -127,21 +151,21 @@ impl Figure<'_> {
     /// The rays, shadow rays first, then by depth, so that the ray a label belongs to is on
     /// top; then, over all of them, the eye's name and the rays' labels, each kept off the
     /// boxes `taken` and off the labels placed before it.
-    fn rays(&self, mut g: Group, p: &Panel, eye: Option<EyeDot>, mut taken: Vec<Box2>) -> Group {
+    fn rays(
+        &self,
+        mut g: Group,
+        p: &Panel,
+        eye: Option<EyeDot>,
+        paths: &[(DVec2, DVec2)],
+        mut taken: Vec<Box2>,
+    ) -> Group {
         let d = self.drawing;
         let mut order: Vec<usize> = (0..d.segments.len()).collect();
         order.sort_by_key(|&i| (!is_shadow(d.segments[i].kind), d.segments[i].depth));
         let labelled = d.segments.len() <= 40;
         let mut labels = vec![];
-        // Every ray's ends on the page: a label keeps off all of them where it can.
-        let paths: Vec<(DVec2, DVec2)> = (d.segments.iter())
-            .map(|s| {
-                let (a, b) = d.ends(s, &p.frame);
-                (p.px(a), p.px(b))
-            })
-            .collect();
         if let Some(EyeDot { eye, pixel }) = eye {
-            let (at, bx) = eye_label(eye, pixel, &paths);
+            let (at, bx) = eye_label(eye, pixel, paths);
             // Inside the panel, where the eye sits at its edge.
             let half = (bx.1.x - bx.0.x) / 2.0;
             let inside =
@@ -236,10 +260,9 @@ impl Figure<'_> {
         Some((p.px(edge + inward), format!("{} (off the figure)", l.name)))
     }
 
-    /// A light: a sun with its name where it has a place, else (a directional light) three
-    /// parallel arrows coming in from far away.
-    fn light(&self, g: Group, p: &Panel, l: &LightMark) -> Group {
-        let d = self.drawing;
+    /// A light: a sun with its name where it has a place, else (a directional light, `far`)
+    /// three parallel arrows coming in from far away.
+    fn light(&self, g: Group, p: &Panel, l: &LightMark, far: Option<&FarLight>) -> Group {
         let sun = "#f2b705";
         if let Some((c, name)) = self.light_spot(p, l) {
             let mut g = g;
@@ -252,18 +275,40 @@ impl Figure<'_> {
                 .add(dot(c, 7.0, sun).set("stroke", "#b07d00"))
                 .add(label_in(p, c + LIGHT_LABEL, &name, 14.0, INK).set("font-weight", "bold"));
         }
-        let Some(dir) = l.direction else {
-            return g;
-        };
-        // Parallel arrows from far away, entering near the corner the light comes from.
-        let v = d.view.project(dir).normalize_or_zero();
-        if v == DVec2::ZERO {
-            return g.add(text(
+        if let Some(far) = far {
+            let mut g = g;
+            for &(a, b) in &far.arrows {
+                g = g
+                    .add(line(a, b, sun, 2.5))
+                    .add(arrowhead(b, b - a, 10.0, sun));
+            }
+            return g
+                .add(anchored(far.at, far.end, &far.name, 14.0, INK).set("font-weight", "bold"));
+        }
+        match l.direction {
+            // Along the view: no arrow shows which way it goes.
+            Some(_) => g.add(text(
                 p.origin + DVec2::new(8.0, 18.0),
                 &format!("{}: along the view", l.name),
                 13.0,
                 INK,
-            ));
+            )),
+            None => g,
+        }
+    }
+
+    /// A directional light's arrows, entering near the corner the light comes from, and its
+    /// name beside them, on the first side and at the first spot along them where the name
+    /// lies across none of the rays `paths` (else where the first would have it). None for a
+    /// light with a place, or one whose light travels along the view.
+    fn far_light(&self, p: &Panel, l: &LightMark, paths: &[(DVec2, DVec2)]) -> Option<FarLight> {
+        let d = self.drawing;
+        if l.at.is_some() {
+            return None;
+        }
+        let v = d.view.project(l.direction?).normalize_or_zero();
+        if v == DVec2::ZERO {
+            return None;
         }
         let centre = p.frame.center();
         let size = p.frame.size().length();
@@ -276,34 +321,55 @@ impl Figure<'_> {
             })
             .collect();
         let name = format!("{} (far away)", l.name);
-        let at = p.px(from_edge + v * 0.06 * size + v.perp() * 0.07 * size);
-        let (x, end) = anchor_in(p, at, &name, 14.0);
-        // Started at the frame's edge, the outer arrows and the name beside them can reach
-        // past it, where the panel's clip would cut them: arrows and name move in together,
-        // so that the name stays beside its arrows.
-        let (mut lo, mut hi) = label_box(p, at, &name, 14.0);
-        // Bold letters are about 0.64 em wide, not `label_box`'s 0.6: the name reaches further
-        // from its anchor.
-        let bold = 0.04 * 14.0 * name.chars().count() as f64;
-        if end {
-            lo.x -= bold;
-        } else {
-            hi.x += bold;
-        }
-        let reach = DVec2::splat(ARROW_REACH);
-        let covers = (arrows.iter()).fold((lo, hi), |(lo, hi), &(a, b)| {
-            (lo.min(a.min(b) - reach), hi.max(a.max(b) + reach))
-        });
-        let shift = into_panel(p, covers, 4.0);
-        let mut g = g;
-        for (a, b) in arrows {
-            let (a, b) = (a + shift, b + shift);
-            g = g
-                .add(line(a, b, sun, 2.5))
-                .add(arrowhead(b, b - a, 10.0, sun));
-        }
-        let at = DVec2::new(x, at.y) + shift;
-        g.add(anchored(at, end, &name, 14.0, INK).set("font-weight", "bold"))
+        let placed = |along: f64, side: f64| {
+            let at = p.px(from_edge + v * along * size + v.perp() * side * size);
+            let (x, end) = anchor_in(p, at, &name, 14.0);
+            let (mut lo, mut hi) = label_box(p, at, &name, 14.0);
+            // Bold letters are about 0.64 em wide, not `label_box`'s 0.6: the name reaches
+            // further from its anchor.
+            let bold = 0.04 * 14.0 * name.chars().count() as f64;
+            if end {
+                lo.x -= bold;
+            } else {
+                hi.x += bold;
+            }
+            // Started at the frame's edge, the outer arrows and the name beside them can
+            // reach past it, where the panel's clip would cut them: arrows and name move in
+            // together, so that the name stays beside its arrows.
+            let reach = DVec2::splat(ARROW_REACH);
+            let all = (arrows.iter()).fold((lo, hi), |(lo, hi), &(a, b)| {
+                (lo.min(a.min(b) - reach), hi.max(a.max(b) + reach))
+            });
+            let shift = into_panel(p, all, 4.0);
+            (
+                shift,
+                DVec2::new(x, at.y) + shift,
+                end,
+                (lo + shift, hi + shift),
+            )
+        };
+        let spots = [
+            (0.06, 0.07),
+            (0.06, -0.07),
+            (0.0, 0.07),
+            (0.0, -0.07),
+            (0.12, 0.07),
+            (0.12, -0.07),
+        ];
+        let clear = |covers: &Box2| !paths.iter().any(|&(a, b)| crosses(covers, a, b));
+        let (shift, at, end, covers) = (spots.iter())
+            .map(|&(along, side)| placed(along, side))
+            .find(|(_, _, _, covers)| clear(covers))
+            .unwrap_or_else(|| placed(spots[0].0, spots[0].1));
+        Some(FarLight {
+            arrows: (arrows.iter())
+                .map(|&(a, b)| (a + shift, b + shift))
+                .collect(),
+            name,
+            at,
+            end,
+            covers,
+        })
     }
 }
 
