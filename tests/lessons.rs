@@ -390,6 +390,21 @@ fn each_common_mistake_gets_its_hint() {
         ),
         // I_local(a) + kr·I(b) without kt·I(c): 0.439904 + 0.3·0.462059.
         ("08-pixel-intensity", "pixel-p", "0.578522", "kt·I_t"),
+        // I_local(a) alone: ambient 0.1·1·0.5 + diffuse 0.6·0.5·cos 60° + the highlight.
+        (
+            "08-pixel-intensity",
+            "pixel-p",
+            "0.439904",
+            "stopped at the local term",
+        ),
+        // s = 1 at P under the sphere light, where the shelf's edge x = 0 blocks the 8 of its
+        // 4 × 4 shadow rays that aim at x > 0 (the pattern is symmetric about the centre).
+        (
+            "14-monte-carlo-glossy",
+            "half-shadow",
+            "1",
+            "here s = 0.5 for bulb",
+        ),
         // The floor's 0.712384 through the slab weighted by kt once: 0.9·0.712384.
         ("06-refraction", "through-slab", "0.641146", "every surface"),
         // Phong's 0.793042 for the Blinn exercise, and Blinn's 0.870161 for the Phong one.
@@ -451,6 +466,14 @@ fn each_common_mistake_gets_its_hint() {
         "glass/under-glass --answer 0.9\n{}\n",
         v.message()
     ));
+    // One shelf sample's value (0.3·0.2·O) for the glossy node's mean: far from the mean's
+    // (0.271, 0.265, 0.259) but within 4 standard errors of the node cut off at max depth
+    // (0). The node has no local term to stop at, so that hint would mislead.
+    let l = lesson("14-monte-carlo-glossy");
+    let v = check(&l, l.exercise("edge-mean").unwrap(), "0.042, 0.03, 0.018").unwrap();
+    if v.hint.as_deref().unwrap_or("").contains("local term") {
+        failures.push(format!("edge-mean: {}", v.message()));
+    }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     insta::assert_snapshot!("hints", all);
 }

@@ -34,10 +34,7 @@ pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
             glass_lets_light_through(w, ex),
             "glass casts shadows too: in Whitted's model a shadow ray that meets any object, a transparent one included, is blocked (s = 0)".into(),
         ),
-        (
-            retrace(w, ex, &w.scene, no_shadows),
-            "you left out the shadow term: a shadow ray toward a light is blocked here, so s = 0 for it".into(),
-        ),
+        (retrace(w, ex, &w.scene, no_shadows), shadow_hint(w, ex)),
         (
             retrace(w, ex, &other_highlight(&w.scene), full),
             format!("the highlight here is {highlight}; you used {other}"),
@@ -51,9 +48,12 @@ pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
             "you left out the distance attenuation fatt = 1/(c0 + c1·d + c2·d²)".into(),
         ),
     ];
-    if w.depth > 1 {
+    // The node's local term alone: the tree cut just below the node (the primary ray is
+    // depth 1 of max_depth).
+    let below_node = ex.node.split('/').filter(|step| !step.is_empty()).count() as u32 + 1;
+    if w.depth > below_node {
         let local_only = TraceOptions {
-            max_depth: 1,
+            max_depth: below_node,
             ..full
         };
         tries.push((
@@ -86,6 +86,30 @@ pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
         .into_iter()
         .filter_map(|(a, hint)| Some(Mistake { answer: a?, hint }))
         .collect()
+}
+
+/// What the shadow term is where the student left it out: each light's s at the exercise's
+/// node where one is under 1 there (a fraction for a light sampled by several shadow rays),
+/// else that a shadow ray further down the tree is blocked.
+fn shadow_hint(w: &Worked, ex: &Exercise) -> String {
+    let shaded = (w.tree.find(&ex.node).and_then(|n| n.local.as_ref()))
+        .map(|local| {
+            (local.lights.iter())
+                .filter(|term| term.shadow < 1.0)
+                .map(|term| format!("s = {} for {}", term.shadow, term.light))
+                .collect::<Vec<_>>()
+        })
+        .unwrap_or_default();
+    if shaded.is_empty() {
+        return "you left out the shadow term: a shadow ray further down the tree is blocked, \
+                and that light's terms there are multiplied by its shadow factor s"
+            .into();
+    }
+    format!(
+        "you left out the shadow term: here {} (s is the fraction of a light's shadow rays \
+         that reach it: 0 or 1 for one ray), and the light's terms are multiplied by it",
+        shaded.join(", ")
+    )
 }
 
 /// The highlight model the exercise is worked in: the one it states, or the one of the
