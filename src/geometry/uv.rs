@@ -10,7 +10,11 @@
 //! - planar: u = x − ⌊x⌋, v = z − ⌊z⌋: unit tiles over the xz plane.
 //! - cylindrical: u as spherical, v = y − ⌊y⌋: one image per unit of height round the y axis.
 //! - cube: the face of the cube [−1, 1]³ that p's largest coordinate points to, (u, v) on that
-//!   face, and the six faces unfolded into a cross four faces wide and three high (below).
+//!   face, and the six faces unfolded into a cross four faces wide and three high (below). The
+//!   book lays the faces out to be read from inside the cube, as a sky box is; raytree's world
+//!   is left-handed like the book's, so seen from outside each face reads mirrored. A box's own
+//!   (u, v) mirrors the point in z first, which turns the cross inside out: every face then
+//!   reads left to right from outside.
 //!
 //! A point on a seam (u = 1 after rounding, or −0 turning atan2 round) wraps to u = 0, so the
 //! same point always gets the same coordinates. Each shape also has its own (u, v): the
@@ -156,10 +160,12 @@ impl Shape {
     /// - plane: the distances from its `point` along two axes, u along n × y (x for a floor), v
     ///   along u × n (z for a floor, up for a wall); not wrapped into the unit square, so that a
     ///   pattern's transform can set the size of its tiles (an image repeats every unit);
-    /// - box: the cube projection of the face hit, unfolded into the cross;
+    /// - box: the cube projection of the face hit, seen from outside (the point mirrored in z,
+    ///   so that the cross's middle face is the one towards −z, which a camera at −z sees),
+    ///   unfolded into the cross;
     /// - cylinder and cone: u round the axis (as the cylindrical projection round an upright
     ///   axis: 0 towards −z), v along it, 0 at the base and 1 at the top or apex; a cap's disc
-    ///   fills the unit square;
+    ///   fills the unit square, seen from outside (as a box's top and bottom faces are);
     /// - triangle: (λ2, λ3), so a = (0, 0), b = (1, 0), c = (0, 1);
     /// - mesh: its vertices' texture coordinates (OBJ `vt`) blended with the barycentric
     ///   coordinates, or the triangle's own (λ2, λ3) without them.
@@ -173,13 +179,15 @@ impl Shape {
             }
             Shape::Box(b) => {
                 let q = (p - 0.5 * (b.min + b.max)) / (0.5 * (b.max - b.min));
+                // Mirrored in z: the face at z = −1 (face 4) is read as the cube's front.
+                let q = DVec3::new(q.x, q.y, -q.z);
                 let face = match face {
                     0 => CubeFace::Left,
                     1 => CubeFace::Right,
                     2 => CubeFace::Down,
                     3 => CubeFace::Up,
-                    4 => CubeFace::Back,
-                    _ => CubeFace::Front,
+                    4 => CubeFace::Front,
+                    _ => CubeFace::Back,
                 };
                 face.unfolded(face.uv(q))
             }
@@ -223,23 +231,26 @@ fn across_axis(a: DVec3) -> (DVec3, DVec3) {
 }
 
 /// (u, v) on a surface round the axis a through the base: u the angle, v = `along`(height) on
-/// the side; on a cap (faces 1 and 2) the disc of radius r fills the unit square.
+/// the side; on a cap (faces 1 and 2) the disc of radius r fills the unit square, u along x and
+/// v along z seen from beyond the top cap, v along −z from below the base cap, so that each
+/// reads left to right from outside.
 fn round_axis(w: DVec3, a: DVec3, r: f64, face: u8, along: impl Fn(f64) -> f64) -> DVec2 {
     let (x, z) = across_axis(a);
     let (wx, wz) = (w.dot(x), w.dot(z));
     if face == cylinder::SIDE {
-        DVec2::new(around_y(wx, wz), along(w.dot(a)).clamp(0.0, 1.0))
-    } else {
-        DVec2::new(
-            (0.5 + wx / (2.0 * r)).clamp(0.0, 1.0),
-            (0.5 + wz / (2.0 * r)).clamp(0.0, 1.0),
-        )
+        return DVec2::new(around_y(wx, wz), along(w.dot(a)).clamp(0.0, 1.0));
     }
+    let wz = if face == cylinder::BASE_CAP { -wz } else { wz };
+    DVec2::new(
+        (0.5 + wx / (2.0 * r)).clamp(0.0, 1.0),
+        (0.5 + wz / (2.0 * r)).clamp(0.0, 1.0),
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::{Aabox, Cylinder, Sphere};
 
     fn close(a: DVec2, u: f64, v: f64) -> bool {
         (a.x - u).abs() < 1e-5 && (a.y - v).abs() < 1e-5
@@ -362,5 +373,72 @@ mod tests {
             cube(DVec3::new(0.0, 0.0, 1.0)),
             DVec2::new(1.5 / 4.0, 1.5 / 3.0)
         );
+    }
+
+    /// How (u, v) changes as a point of the surface moves a little to the right and up, as a
+    /// viewer outside sees it: looking along −n, with `up` up, right = up × forward (the
+    /// look-at camera's left-handed frame).
+    fn seen_from_outside(uv: impl Fn(DVec3) -> DVec2, p: DVec3, n: DVec3, up: DVec3) -> DVec2 {
+        let right = up.cross(-n);
+        let e = 1e-4;
+        let across = (uv(p + e * right) - uv(p - e * right)).x;
+        let upward = (uv(p + e * up) - uv(p - e * up)).y;
+        DVec2::new(across, upward)
+    }
+
+    /// Seen from outside, every face of a box and both caps of a cylinder read left to right
+    /// and bottom to top, as a sphere does where it faces the viewer: u grows to the right, v
+    /// upward (the top faces with +z up, as a camera at −z looking down sees them, the bottom
+    /// ones with −z up). The face the book's cube puts in the cross's middle is the one
+    /// towards −z.
+    #[test]
+    fn a_box_and_a_caps_faces_read_left_to_right_from_outside() {
+        let ball = Shape::Sphere(Sphere {
+            center: DVec3::ZERO,
+            radius: 1.0,
+        });
+        let sphere_uv = |p: DVec3| ball.uv(p, 0);
+        let at_front = seen_from_outside(
+            sphere_uv,
+            DVec3::new(0.3, 0.2, -0.9327379),
+            DVec3::NEG_Z,
+            DVec3::Y,
+        );
+        assert!(at_front.x > 0.0 && at_front.y > 0.0, "sphere {at_front}");
+        let cube = Shape::Box(Aabox {
+            min: DVec3::splat(-1.0),
+            max: DVec3::ONE,
+        });
+        let (y, z) = (DVec3::Y, DVec3::Z);
+        for (face, n, up) in [
+            (0, DVec3::NEG_X, y),
+            (1, DVec3::X, y),
+            (2, DVec3::NEG_Y, -z),
+            (3, DVec3::Y, z),
+            (4, DVec3::NEG_Z, y),
+            (5, DVec3::Z, y),
+        ] {
+            // A point off the face's centre, so that no coordinate is on an edge.
+            let p = n + (DVec3::ONE - n.abs()) * DVec3::new(0.3, 0.2, 0.1);
+            let d = seen_from_outside(|q| cube.uv(q, face), p, n, up);
+            assert!(d.x > 0.0 && d.y > 0.0, "box face {face}: {d}");
+        }
+        assert_eq!(
+            cube.uv(DVec3::new(0.0, 0.0, -1.0), 4),
+            DVec2::new(1.5 / 4.0, 1.5 / 3.0)
+        );
+        let can = Shape::Cylinder(Cylinder {
+            base: DVec3::ZERO,
+            top: DVec3::Y,
+            radius: 1.0,
+        });
+        for (face, n, up) in [
+            (cylinder::TOP_CAP, y, z),
+            (cylinder::BASE_CAP, DVec3::NEG_Y, -z),
+        ] {
+            let p = DVec3::new(0.3, if face == cylinder::TOP_CAP { 1.0 } else { 0.0 }, 0.2);
+            let d = seen_from_outside(|q| can.uv(q, face as u32), p, n, up);
+            assert!(d.x > 0.0 && d.y > 0.0, "cap {face}: {d}");
+        }
     }
 }
