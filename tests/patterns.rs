@@ -448,6 +448,44 @@ objects:
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// An image two texels high, red on top and blue below, on a globe and a can: the texels do
+/// not wrap round where v ends. The north pole (v = 1) and every point within half a texel of
+/// it (v ≥ ¾, the top row's centre) are red, the south pole blue; half a texel below the
+/// can's top rim too. Where v wraps, as on a wall, v = 1 reads as v = 0: between the bottom
+/// row and the next copy's top row, half and half.
+#[test]
+fn an_image_on_a_sphere_keeps_its_top_row_at_the_north_pole() {
+    let dir = std::env::temp_dir().join(format!("raytree-poles-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let pixels = [[255, 0, 0]; 4].into_iter().chain([[0, 0, 255]; 4]).flatten().collect();
+    image::RgbImage::from_raw(4, 2, pixels).unwrap().save(dir.join("tb.png")).unwrap();
+    let text = "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], width: 8, height: 6 }
+ambient: 1
+materials:
+  m: { color: { image: tb.png }, ka: 1 }
+objects:
+  - { name: globe, sphere: { center: [0, 0, 0], radius: 1 }, material: m }
+  - { name: can, cylinder: { base: [3, -1, 0], top: [3, 1, 0], radius: 1 }, material: m }
+  - { name: wall, plane: { point: [0, 0, 5], normal: [0, 0, -1] }, material: m }
+";
+    let path = dir.join("scene.yaml");
+    std::fs::write(&path, text).unwrap();
+    let s = raytree::scene::load(&path, &Limits::default()).unwrap();
+    let color = |o: [f64; 3], d: [f64; 3]| trace(&s, o, d).color;
+    let (red, blue) = (DVec3::X, DVec3::Z);
+    let close = |a: DVec3, b: DVec3| (a - b).length() < 1e-9;
+    // The poles, along the axis.
+    assert!(close(color([0.0, 5.0, 0.0], [0.0, -1.0, 0.0]), red));
+    assert!(close(color([0.0, -5.0, 0.0], [0.0, 1.0, 0.0]), blue));
+    // y = 0.97 on the globe: v = 1 − acos(0.97)/π = 0.922, above the top row's centre.
+    assert!(close(color([0.0, 0.97, -5.0], [0.0, 0.0, 1.0]), red));
+    // y = 0.95 on the can: v = 1.95/2 = 0.975.
+    assert!(close(color([3.0, 0.95, -5.0], [0.0, 0.0, 1.0]), red));
+    // The wall at y = 1 (its own v = 1, wrapped to 0): half red, half blue.
+    assert!(close(color([-3.0, 1.0, -5.0], [0.0, 0.0, 1.0]), (red + blue) / 2.0));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// A missing or unreadable image is an error at the `image:` key, never a panic.
 #[test]
 fn missing_and_unreadable_images_are_scene_errors() {

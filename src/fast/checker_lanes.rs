@@ -97,7 +97,6 @@ mod tests {
     use super::*;
     use crate::fast::simd::{level, Level, Wide};
     use crate::shading::PatternPoint;
-    use glam::DVec2;
 
     /// The core's checker of A = (1, 1, 1) and B = (0, 0, 0) at p: whether it is A.
     fn core_says_even(p: DVec3) -> bool {
@@ -108,10 +107,7 @@ mod tests {
             ]),
             to_pattern: None,
         }));
-        let at = PatternPoint {
-            point: p,
-            uv: DVec2::ZERO,
-        };
+        let at = PatternPoint::at(p);
         checker.value(&at) == DVec3::ONE
     }
 

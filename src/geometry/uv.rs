@@ -26,6 +26,26 @@ use std::f64::consts::PI;
 use super::floor::floor;
 use super::{cylinder, Shape};
 
+/// Which texture coordinates of a surface run from one edge of the image to the other, as v
+/// does on a sphere from pole to pole, rather than round and round (u round a sphere) or on
+/// without end (a plane's): an image does not wrap round those edges.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Edges {
+    /// u ends at the image's left and right edges.
+    pub u: bool,
+    /// v ends at the image's bottom and top edges.
+    pub v: bool,
+}
+
+impl Edges {
+    /// Neither coordinate ends: the image repeats both ways.
+    pub const NONE: Edges = Edges { u: false, v: false };
+    /// v ends (pole to pole, base to top), u goes round.
+    pub const V: Edges = Edges { u: false, v: true };
+    /// Both end: a disc or a triangle filling the unit square.
+    pub const BOTH: Edges = Edges { u: true, v: true };
+}
+
 /// x − ⌊x⌋, in [0, 1) (a value that rounds to 1 wraps to 0).
 pub fn wrap(x: f64) -> f64 {
     let f = x - floor(x);
@@ -207,6 +227,25 @@ impl Shape {
                 DVec2::new(l.y, l.z)
             }
             Shape::Mesh(m) => m.uv(p, face),
+        }
+    }
+
+    /// Which of the coordinates `uv` gives on `face` end at the image's edges: v on a sphere,
+    /// on the side of a cylinder or cone and in a box's cross (whose middle row goes round
+    /// the box), both on a cap and on a triangle. A plane's run on without end, and a mesh's
+    /// `vt` coordinates repeat the image, as OBJ files expect.
+    pub fn uv_edges(&self, face: u32) -> Edges {
+        match self {
+            Shape::Plane(_) | Shape::Mesh(_) => Edges::NONE,
+            Shape::Sphere(_) | Shape::Box(_) => Edges::V,
+            Shape::Cylinder(_) | Shape::OpenCylinder(_) | Shape::Cone(_) | Shape::OpenCone(_) => {
+                if face == cylinder::SIDE as u32 {
+                    Edges::V
+                } else {
+                    Edges::BOTH
+                }
+            }
+            Shape::Triangle(_) => Edges::BOTH,
         }
     }
 }

@@ -4,7 +4,7 @@
 //! secondary ray leaves a surface through `offset`, the one place its origin is moved off the
 //! surface so that it cannot hit that surface again (seed 004's "self-intersection").
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
 use super::{Leaf, Scene};
 use crate::geometry::{Ray, Surface};
@@ -119,13 +119,13 @@ impl Scene {
             .transform
             .as_ref()
             .map_or(point, |tf| tf.to_local.transform_point3(point));
+        if !uv {
+            return PatternPoint::at(own);
+        }
         PatternPoint {
             point: own,
-            uv: if uv {
-                leaf.shape.uv(own, face)
-            } else {
-                DVec2::ZERO
-            },
+            uv: leaf.shape.uv(own, face),
+            edges: leaf.shape.uv_edges(face),
         }
     }
 

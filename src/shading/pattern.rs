@@ -30,6 +30,7 @@ use glam::{DAffine3, DVec2, DVec3};
 
 use super::texture::{Image, Mapping};
 use crate::geometry::floor::floor;
+use crate::geometry::uv::Edges;
 
 /// A point less than this (in the pattern's units: cells of side 1) below a cell boundary
 /// counts as on the boundary.
@@ -60,6 +61,19 @@ pub struct PatternPoint {
     pub point: DVec3,
     /// The surface's own (u, v) at the hit point.
     pub uv: DVec2,
+    /// Which of those end at an image's edges (`Shape::uv_edges`).
+    pub edges: Edges,
+}
+
+impl PatternPoint {
+    /// A point without texture coordinates (a pattern of space needs none).
+    pub fn at(point: DVec3) -> PatternPoint {
+        PatternPoint {
+            point,
+            uv: DVec2::ZERO,
+            edges: Edges::NONE,
+        }
+    }
 }
 
 /// A value over a surface: a constant, or a pattern placed by its transform.
@@ -150,10 +164,7 @@ impl Pattern {
     /// can reflect or transmit at all.
     pub fn max(&self) -> DVec3 {
         let Pattern::Placed(p) = self else {
-            return self.value(&PatternPoint {
-                point: DVec3::ZERO,
-                uv: DVec2::ZERO,
-            });
+            return self.value(&PatternPoint::at(DVec3::ZERO));
         };
         match &p.kind {
             Kind::Stripes([a, b])
@@ -190,15 +201,16 @@ impl Pattern {
     }
 
     /// The point in this pattern's own space (what its formula is evaluated at), and the (u, v)
-    /// of its mapping when it is a texture or a uv checker: what a ray tree shows.
-    pub fn lookup(&self, at: &PatternPoint) -> (DVec3, Option<DVec2>) {
+    /// of its mapping when it is a texture or a uv checker, with the coordinates of those that
+    /// end at an image's edges: what a ray tree shows.
+    pub fn lookup(&self, at: &PatternPoint) -> (DVec3, Option<(DVec2, Edges)>) {
         match self {
             Pattern::Constant(_) => (at.point, None),
             Pattern::Placed(p) => {
                 let at = p.place(at);
                 let uv = match &p.kind {
                     Kind::Image { mapping, .. } | Kind::UvChecker { mapping, .. } => {
-                        Some(mapping.uv(&at))
+                        Some((mapping.uv(&at), mapping.edges(&at)))
                     }
                     _ => None,
                 };
@@ -217,6 +229,7 @@ impl Placed {
             Some(m) => PatternPoint {
                 point: m.transform_point3(at.point),
                 uv: m.transform_point3(at.uv.extend(0.0)).truncate(),
+                edges: at.edges,
             },
         }
     }
@@ -266,7 +279,7 @@ impl Kind {
                 let uv = mapping.uv(at);
                 pick(values, even(cell(uv.x * width) + cell(uv.y * height)))
             }
-            Kind::Image { image, mapping } => image.bilinear(mapping.uv(at)),
+            Kind::Image { image, mapping } => image.bilinear(mapping.uv(at), mapping.edges(at)),
         }
     }
 }
@@ -286,10 +299,7 @@ mod tests {
     }
 
     fn at(x: f64, y: f64, z: f64) -> PatternPoint {
-        PatternPoint {
-            point: DVec3::new(x, y, z),
-            uv: DVec2::ZERO,
-        }
+        PatternPoint::at(DVec3::new(x, y, z))
     }
 
     /// The Ray Tracer Challenge, chapter "Patterns": a stripe pattern is constant in y and z
@@ -434,6 +444,7 @@ mod tests {
         let uv = |u, v| PatternPoint {
             point: DVec3::ZERO,
             uv: DVec2::new(u, v),
+            edges: Edges::NONE,
         };
         assert_eq!(c.value(&uv(0.0, 0.0)), BLACK);
         assert_eq!(c.value(&uv(0.5, 0.0)), WHITE);

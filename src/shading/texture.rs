@@ -11,7 +11,7 @@ use serde::Deserialize;
 
 use super::pattern::PatternPoint;
 use crate::geometry::floor::floor;
-use crate::geometry::uv::{cube, cylindrical, planar, spherical, wrap};
+use crate::geometry::uv::{cube, cylindrical, planar, spherical, wrap, Edges};
 
 /// How a point of a surface gets its (u, v).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -40,6 +40,17 @@ impl Mapping {
             Mapping::Cylindrical => cylindrical(at.point),
             Mapping::Cube => cube(at.point),
             Mapping::Uv => at.uv,
+        }
+    }
+
+    /// Which of its coordinates end at an image's edges: v from pole to pole (spherical) and
+    /// across the cube's cross; none of the planar and cylindrical projections' (one image per
+    /// unit tile or unit of height); the surface's own for `uv`.
+    pub fn edges(self, at: &PatternPoint) -> Edges {
+        match self {
+            Mapping::Spherical | Mapping::Cube => Edges::V,
+            Mapping::Planar | Mapping::Cylindrical => Edges::NONE,
+            Mapping::Uv => at.edges,
         }
     }
 
@@ -213,10 +224,26 @@ impl Image {
         })
     }
 
-    /// The texel in column i, row j (both wrapped round the image).
-    pub fn texel(&self, i: i64, j: i64) -> DVec3 {
-        let i = i.rem_euclid(self.width as i64) as usize;
-        let j = j.rem_euclid(self.height as i64) as usize;
+    /// The column and row of the texel at column i, row j of the grid the image repeats in:
+    /// wrapped round the image, or, across an edge where the coordinate ends (`edges`), the
+    /// edge's own column or row.
+    pub fn texel_at(&self, i: i64, j: i64, edges: Edges) -> (usize, usize) {
+        let place = |k: i64, n: u32, ends: bool| {
+            if ends {
+                k.clamp(0, n as i64 - 1) as usize
+            } else {
+                k.rem_euclid(n as i64) as usize
+            }
+        };
+        (
+            place(i, self.width, edges.u),
+            place(j, self.height, edges.v),
+        )
+    }
+
+    /// The texel in column i, row j (`texel_at`).
+    pub fn texel(&self, i: i64, j: i64, edges: Edges) -> DVec3 {
+        let (i, j) = self.texel_at(i, j, edges);
         let [r, g, b] = self.texels[j * self.width as usize + i];
         DVec3::new(r as f64, g as f64, b as f64)
     }
@@ -224,10 +251,13 @@ impl Image {
     /// Where (u, v) falls among the texel centres: texel (i, j) is centred at
     /// ((i + ½)/width, 1 − (j + ½)/height), so (u, v) lies at column x = u·width − ½ and row
     /// y = (1 − v)·height − ½ of the grid of centres, between columns ⌊x⌋, ⌊x⌋ + 1 and rows ⌊y⌋,
-    /// ⌊y⌋ + 1. The image repeats beyond the unit square, in u and in v.
-    pub fn footprint(&self, uv: DVec2) -> Footprint {
-        let x = wrap(uv.x) * self.width as f64 - 0.5;
-        let y = (1.0 - wrap(uv.y)) * self.height as f64 - 0.5;
+    /// ⌊y⌋ + 1. The image repeats beyond the unit square, in u and in v; a coordinate that ends
+    /// at the image's edges (`edges`) reads 1 at the far edge (a pole's v = 1 is the top row's,
+    /// not the bottom's of the next copy).
+    pub fn footprint(&self, uv: DVec2, edges: Edges) -> Footprint {
+        let within = |x: f64, ends: bool| if ends && x == 1.0 { 1.0 } else { wrap(x) };
+        let x = within(uv.x, edges.u) * self.width as f64 - 0.5;
+        let y = (1.0 - within(uv.y, edges.v)) * self.height as f64 - 0.5;
         let (x0, y0) = (floor(x), floor(y));
         Footprint {
             x,
@@ -240,13 +270,14 @@ impl Image {
     }
 
     /// The colour at (u, v), bilinearly filtered: the four texels around it blended by its
-    /// distances to their centres, first along the rows, then between them.
-    pub fn bilinear(&self, uv: DVec2) -> DVec3 {
-        let f = self.footprint(uv);
-        let top = self.texel(f.i, f.j).lerp(self.texel(f.i + 1, f.j), f.fx);
-        let bottom = self
-            .texel(f.i, f.j + 1)
-            .lerp(self.texel(f.i + 1, f.j + 1), f.fx);
+    /// distances to their centres, first along the rows, then between them. Across an edge
+    /// where a coordinate ends (`edges`) the texels are the edge's own: a sphere's poles take
+    /// the top and bottom rows, not a blend of both.
+    pub fn bilinear(&self, uv: DVec2, edges: Edges) -> DVec3 {
+        let f = self.footprint(uv, edges);
+        let t = |di: i64, dj: i64| self.texel(f.i + di, f.j + dj, edges);
+        let top = t(0, 0).lerp(t(1, 0), f.fx);
+        let bottom = t(0, 1).lerp(t(1, 1), f.fx);
         top.lerp(bottom, f.fy)
     }
 }
@@ -294,7 +325,7 @@ mod tests {
     #[test]
     fn bilinear_filtering_hits_texel_centres_and_blends_between() {
         let img = quad();
-        let at = |u, v| img.bilinear(DVec2::new(u, v));
+        let at = |u, v| img.bilinear(DVec2::new(u, v), Edges::NONE);
         assert_eq!(at(0.25, 0.75), DVec3::X);
         assert_eq!(at(0.75, 0.75), DVec3::Y);
         assert_eq!(at(0.25, 0.25), DVec3::Z);
@@ -307,14 +338,32 @@ mod tests {
     #[test]
     fn the_seam_blends_the_first_and_last_columns() {
         let img = quad();
-        assert_eq!(
-            img.bilinear(DVec2::new(0.0, 0.75)),
-            DVec3::new(0.5, 0.5, 0.0)
-        );
-        assert_eq!(
-            img.bilinear(DVec2::new(1.0, 0.75)),
-            img.bilinear(DVec2::new(0.0, 0.75))
-        );
+        let at = |u, v| img.bilinear(DVec2::new(u, v), Edges::V);
+        assert_eq!(at(0.0, 0.75), DVec3::new(0.5, 0.5, 0.0));
+        assert_eq!(at(1.0, 0.75), at(0.0, 0.75));
+    }
+
+    /// Where v ends at the image's edges (a sphere from pole to pole) the top row is not
+    /// blended with the bottom one: at v = 1 (the north pole) and within half a texel of it
+    /// the filter reads the top row alone, at v = 0 the bottom row, where a repeating image
+    /// blends the two half and half (v = 1 as v = 0, between the last row and the next copy's
+    /// first).
+    #[test]
+    fn an_image_does_not_wrap_round_an_edge_where_v_ends() {
+        let img = quad();
+        let (ends, repeats) = (Edges::V, Edges::NONE);
+        let mid_top = (DVec3::X + DVec3::Y) / 2.0;
+        let mid_bottom = (DVec3::Z + DVec3::ONE) / 2.0;
+        assert_eq!(img.bilinear(DVec2::new(0.5, 1.0), ends), mid_top);
+        assert_eq!(img.bilinear(DVec2::new(0.5, 0.9), ends), mid_top);
+        assert_eq!(img.bilinear(DVec2::new(0.5, 0.0), ends), mid_bottom);
+        assert_eq!(img.bilinear(DVec2::new(0.5, 0.1), ends), mid_bottom);
+        let half = (mid_top + mid_bottom) / 2.0;
+        assert_eq!(img.bilinear(DVec2::new(0.5, 1.0), repeats), half);
+        assert_eq!(img.bilinear(DVec2::new(0.5, 0.0), repeats), half);
+        // Between the rows' centres both blend the same.
+        let inside = DVec2::new(0.5, 0.5);
+        assert_eq!(img.bilinear(inside, ends), img.bilinear(inside, repeats));
     }
 
     /// The sRGB curve: 0 and 1 stay, mid grey 0.5 (128/255 stored) is 0.2158 of full

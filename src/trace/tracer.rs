@@ -9,6 +9,7 @@ use super::recorder::{NoRecorder, RayStart, Recorder, TreeRecorder};
 use super::task::Task;
 use super::tree::{Coefficients, HitInfo, Inspection, Local, PatternLookup, RayKind, RayNode};
 use super::whitted::shadow_reach;
+use crate::geometry::uv::Edges;
 use crate::geometry::{Ray, Shape};
 use crate::sampling::Rng;
 use crate::scene::{Hit, Interaction, Scene, Search};
@@ -224,12 +225,13 @@ impl<'s, R: Recorder> Tracer<'s, R> {
         patterns
             .named()
             .map(|(varies, p)| {
-                let (point, uv) = p.lookup(&at);
+                let (point, mapped) = p.lookup(&at);
                 PatternLookup {
                     varies: varies.into(),
                     pattern: p.describe(),
                     point,
-                    uv,
+                    uv: mapped.map(|(uv, _)| uv),
+                    edges: mapped.map_or(Edges::NONE, |(_, edges)| edges),
                     value: p.value(&at),
                 }
             })

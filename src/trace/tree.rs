@@ -4,6 +4,8 @@
 use glam::{DVec2, DVec3};
 use serde::Serialize;
 
+use crate::geometry::uv::Edges;
+
 /// What a ray of the ray tree is for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -160,6 +162,9 @@ pub struct PatternLookup {
     /// The texture coordinates of an image or a uv checker.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub uv: Option<DVec2>,
+    /// Which of those end at the image's edges, where it does not wrap round.
+    #[serde(skip)]
+    pub edges: Edges,
     /// Its value there (a coefficient's is grey).
     pub value: DVec3,
 }

@@ -6,6 +6,7 @@ use std::f64::consts::PI;
 use glam::{DVec2, DVec3};
 
 use super::{Mistake, Question, Traced, Worked};
+use crate::geometry::uv::Edges;
 use crate::geometry::Shape;
 use crate::lessons::{Answer, Exercise};
 use crate::scene::Leaf;
@@ -140,7 +141,7 @@ impl Question for SurfaceColor {
                         text::vec3(at.point)
                     ));
                 }
-                out.extend(cell_lines(&p.kind, at.point, at.uv));
+                out.extend(cell_lines(&p.kind, at.point, at.uv, at.edges));
             }
         }
         out.extend(lookups(n));
@@ -279,7 +280,7 @@ fn placed(w: &Worked, h: &HitInfo) -> bool {
 }
 
 /// The cell a point falls in, for the patterns made of cells.
-fn cell_lines(kind: &Kind, p: DVec3, uv: Option<DVec2>) -> Vec<String> {
+fn cell_lines(kind: &Kind, p: DVec3, uv: Option<DVec2>, edges: Edges) -> Vec<String> {
     let parity = |n: f64| {
         if n.rem_euclid(2.0) == 0.0 {
             "even: the first value A"
@@ -328,30 +329,41 @@ fn cell_lines(kind: &Kind, p: DVec3, uv: Option<DVec2>) -> Vec<String> {
                 parity(a + b)
             )]
         }
-        Kind::Image { image, .. } => uv.map_or(vec![], |uv| bilinear_lines(image, uv)),
+        Kind::Image { image, .. } => uv.map_or(vec![], |uv| bilinear_lines(image, uv, edges)),
         _ => vec![],
     }
 }
 
 /// Bilinear filtering of an image at (u, v), step by step.
-fn bilinear_lines(image: &Image, uv: DVec2) -> Vec<String> {
-    let f = image.footprint(uv);
-    let t = |di: i64, dj: i64| image.texel(f.i + di, f.j + dj);
+fn bilinear_lines(image: &Image, uv: DVec2, edges: Edges) -> Vec<String> {
+    let f = image.footprint(uv, edges);
+    let t = |di: i64, dj: i64| image.texel(f.i + di, f.j + dj, edges);
     let (a, b, c, d) = (t(0, 0), t(1, 0), t(0, 1), t(1, 1));
     let top = a.lerp(b, f.fx);
     let bottom = c.lerp(d, f.fx);
     let (w, h) = (image.width as i64, image.height as i64);
-    let at = |i: i64, j: i64| format!("({}, {})", i.rem_euclid(w), j.rem_euclid(h));
+    let at = |i: i64, j: i64| {
+        let (i, j) = image.texel_at(i, j, edges);
+        format!("({i}, {j})")
+    };
+    // Where the footprint reads the image, back from the grid of centres.
+    let (u, v) = ((f.x + 0.5) / w as f64, 1.0 - (f.y + 0.5) / h as f64);
+    let ends = match (edges.u, edges.v) {
+        (false, false) => "",
+        (false, true) => "; v runs from the image's bottom edge to its top here, so it does not wrap round them: the rows beyond are the edge's own",
+        (true, false) => "; u runs from the image's left edge to its right here, so it does not wrap round them: the columns beyond are the edge's own",
+        (true, true) => "; u and v run from edge to edge of the image here, so it does not wrap round them: the texels beyond are the edge's own",
+    };
     vec![
         format!(
-            "image {}, {}×{} texels (linear values, decoded from sRGB when it was read); it repeats, so (u, v) = ({}, {}) reads it at ({}, {})",
+            "image {}, {}×{} texels (linear values, decoded from sRGB when it was read); it repeats, so (u, v) = ({}, {}) reads it at ({}, {}){ends}",
             image.name,
             w,
             h,
             text::num(uv.x),
             text::num(uv.y),
-            text::num(uv.x - uv.x.floor()),
-            text::num(uv.y - uv.y.floor())
+            text::num(u),
+            text::num(v)
         ),
         format!(
             "among the texel centres: x = u·{w} − ½ = {}, y = (1 − v)·{h} − ½ = {} (columns from the left, rows from the top)",
