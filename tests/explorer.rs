@@ -1340,6 +1340,16 @@ fn explore_without_a_terminal_or_with_a_bad_scene_says_why() {
     let (code, err) = explore_cli(&["tests/scenes"]);
     assert_eq!(code, 2);
     assert!(err.contains("not a lesson folder"), "{err}");
+    // The lesson list has no pixel and no depth: a usage error naming what they need (it was
+    // "pixel 5,50 is outside the 0 × 0 image", and --depth went unheeded).
+    for flags in [&["--pixel", "5,50"][..], &["--depth", "2"]] {
+        let (code, err) = explore_cli(flags);
+        assert_eq!(code, 2, "{flags:?}");
+        assert!(
+            err.contains("<TARGET>") && err.contains("Usage"),
+            "{flags:?}: {err}"
+        );
+    }
 }
 
 /// `--allow-huge` raises the explorer's budgets as it does the other commands': the scene
@@ -1542,6 +1552,70 @@ fn exercises_and_the_s_key_switch_between_a_lessons_scenes() {
         seen,
         ["scene.yaml", "color.yaml", "phong.yaml", "scene.yaml"]
     );
+}
+
+/// An exercise that names no depth is asked at the scene's own max_depth, whatever depth an
+/// earlier exercise or the keys chose: in lesson 07, depth-5 after depth-3 is the README's
+/// 0.777809 at depth 5 (it showed depth 3's 0.6467, which the check marks wrong), and so after
+/// `-` too.
+#[test]
+fn an_exercise_without_a_depth_goes_back_to_the_scenes() {
+    let mut app = open(
+        "lessons/07-recursion-depth",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    select_exercise(&mut app, 2);
+    let l = app.lesson.as_ref().unwrap();
+    assert_eq!(l.lesson.exercises[l.exercise].id, "depth-3");
+    assert_eq!(app.tree.depth(), 3);
+    press(&mut app, KeyCode::Down);
+    press(&mut app, KeyCode::Down);
+    let l = app.lesson.as_ref().unwrap();
+    assert_eq!(l.lesson.exercises[l.exercise].id, "depth-5");
+    assert_eq!(app.tree.depth(), 5);
+    assert!(
+        (root_color(&app).x - 0.777809).abs() < 1e-6,
+        "{}",
+        root_color(&app)
+    );
+    press(&mut app, KeyCode::Esc);
+    press(&mut app, KeyCode::Char('-'));
+    assert_eq!(app.tree.depth(), 4);
+    // `a` goes back to the exercise last selected, depth-5.
+    select_exercise(&mut app, 0);
+    assert_eq!(app.tree.depth(), 5);
+}
+
+/// Esc from the exercises goes back to the picture and says that a second Esc quits (the
+/// exercise's "Esc: back" stayed on screen, and the next Esc ended the session); an exercise
+/// worked in the other highlight model than the scene's says the tree is not in it (lesson 08's
+/// pixel-p-phong: Phong's 0.793042, the tree Blinn's 0.870161).
+#[test]
+fn the_message_line_says_what_esc_and_the_tree_will_do() {
+    let mut app = open(
+        "lessons/08-pixel-intensity",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    select_exercise(&mut app, 8);
+    let l = app.lesson.as_ref().unwrap();
+    assert_eq!(l.lesson.exercises[l.exercise].id, "pixel-p-phong");
+    let (note, _) = app.message_text().unwrap();
+    assert!(
+        note.contains("worked in Phong's (r·v)^m where the tree shows Blinn's (h·n)^m"),
+        "{note}"
+    );
+    assert!((root_color(&app).x - 0.870161).abs() < 1e-6);
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.quit);
+    let (note, _) = app.message_text().unwrap();
+    assert!(
+        note.contains("Esc or q: quit") && !note.contains("Esc: back"),
+        "{note}"
+    );
+    press(&mut app, KeyCode::Esc);
+    assert!(app.quit);
 }
 
 /// Defect 7: a ray exercise shows the tree of its ray and selects the node asked about. In

@@ -457,8 +457,15 @@ objects:
 fn an_image_on_a_sphere_keeps_its_top_row_at_the_north_pole() {
     let dir = std::env::temp_dir().join(format!("raytree-poles-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let pixels = [[255, 0, 0]; 4].into_iter().chain([[0, 0, 255]; 4]).flatten().collect();
-    image::RgbImage::from_raw(4, 2, pixels).unwrap().save(dir.join("tb.png")).unwrap();
+    let pixels = [[255, 0, 0]; 4]
+        .into_iter()
+        .chain([[0, 0, 255]; 4])
+        .flatten()
+        .collect();
+    image::RgbImage::from_raw(4, 2, pixels)
+        .unwrap()
+        .save(dir.join("tb.png"))
+        .unwrap();
     let text = "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], width: 8, height: 6 }
 ambient: 1
 materials:
@@ -482,7 +489,10 @@ objects:
     // y = 0.95 on the can: v = 1.95/2 = 0.975.
     assert!(close(color([3.0, 0.95, -5.0], [0.0, 0.0, 1.0]), red));
     // The wall at y = 1 (its own v = 1, wrapped to 0): half red, half blue.
-    assert!(close(color([-3.0, 1.0, -5.0], [0.0, 0.0, 1.0]), (red + blue) / 2.0));
+    assert!(close(
+        color([-3.0, 1.0, -5.0], [0.0, 0.0, 1.0]),
+        (red + blue) / 2.0
+    ));
     std::fs::remove_dir_all(&dir).ok();
 }
 

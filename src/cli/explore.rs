@@ -14,11 +14,13 @@ use super::Failure;
 pub struct Args {
     /// A scene file or a lesson folder; none opens the lesson list.
     pub target: Option<PathBuf>,
-    /// The pixel picked at the start, X,Y ((0,0) is top-left; default: the centre).
-    #[arg(long, value_parser = parse_pixel)]
+    /// The pixel picked at the start, X,Y ((0,0) is top-left; default: the centre). Needs a
+    /// scene or lesson (the lesson list has no pixels).
+    #[arg(long, value_parser = parse_pixel, requires = "target")]
     pub pixel: Option<[u32; 2]>,
-    /// The maximum depth at the start (default: the scene's max_depth).
-    #[arg(long)]
+    /// The maximum depth at the start (default: the scene's max_depth). Needs a scene or
+    /// lesson.
+    #[arg(long, requires = "target")]
     pub depth: Option<u32>,
     /// An ASCII preview instead of colour (also chosen by NO_COLOR or TERM=dumb).
     #[arg(long)]

@@ -19,6 +19,16 @@ pub enum Highlight {
     Phong,
 }
 
+impl Highlight {
+    /// The model with its term: "Blinn's (h·n)^m", "Phong's (r·v)^m".
+    pub fn name(self) -> &'static str {
+        match self {
+            Highlight::Blinn => "Blinn's (h·n)^m",
+            Highlight::Phong => "Phong's (r·v)^m",
+        }
+    }
+}
+
 /// Whether kr and kt are weighted by the Fresnel reflectance.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, Default)]
 #[serde(rename_all = "snake_case")]

@@ -27,8 +27,8 @@ pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
         shadows: false,
         ..full
     };
-    let highlight = model_name(used_highlight(w, ex));
-    let other = model_name(other(used_highlight(w, ex)));
+    let highlight = used_highlight(w, ex).name();
+    let other = other(used_highlight(w, ex)).name();
     let mut tries: Vec<(Option<Answer>, String)> = vec![
         (
             glass_lets_light_through(w, ex),
@@ -123,13 +123,6 @@ pub(super) fn used_highlight(w: &Worked, ex: &Exercise) -> Highlight {
         .and_then(|n| n.hit.as_ref())
         .and_then(|h| w.scene.materials.iter().find(|m| m.name == h.material))
         .map_or(Highlight::Blinn, |m| m.highlight)
-}
-
-pub(super) fn model_name(h: Highlight) -> &'static str {
-    match h {
-        Highlight::Blinn => "Blinn's (h·n)^m",
-        Highlight::Phong => "Phong's (r·v)^m",
-    }
 }
 
 fn other(h: Highlight) -> Highlight {

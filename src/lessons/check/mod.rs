@@ -323,7 +323,7 @@ pub fn highlight_model(w: &Worked, ex: &Exercise) -> Option<String> {
     if let Some(m) = ex.model {
         return Some(format!(
             "highlight model: {}, as the exercise states",
-            mistakes::model_name(m)
+            m.name()
         ));
     }
     let mut shiny: Vec<(String, Highlight)> = Vec::new();
@@ -344,14 +344,14 @@ pub fn highlight_model(w: &Worked, ex: &Exercise) -> Option<String> {
     if shiny.iter().all(|(_, h)| h == first) {
         Some(format!(
             "highlight model: {}, as the material{} set{}",
-            mistakes::model_name(*first),
+            first.name(),
             if shiny.len() == 1 { "" } else { "s" },
             if shiny.len() == 1 { "s" } else { "" }
         ))
     } else {
         let each: Vec<String> = shiny
             .iter()
-            .map(|(name, h)| format!("{} for {name}", mistakes::model_name(*h)))
+            .map(|(name, h)| format!("{} for {name}", h.name()))
             .collect();
         Some(format!(
             "highlight model: each material's own ({})",

@@ -19,6 +19,11 @@ impl App {
             self.screen = Screen::Scene;
         } else if self.focus == Focus::Lesson {
             self.focus = Focus::Preview;
+            // The exercise's "Esc: back" is said and done: a second Esc quits.
+            self.message = Some((
+                "back to the picture · a: the exercises · Esc or q: quit".into(),
+                Tone::Info,
+            ));
         }
     }
 
@@ -93,11 +98,12 @@ impl App {
             return;
         };
         if let Some(aim) = aim {
-            match aim.at {
-                AimAt::Pixel(x, y) => self.tree.aim((x, y), aim.depth),
-                AimAt::Ray(r) => self.tree.aim_ray(r, aim.depth),
-            }
-            if aim.depth.is_some() {
+            let scene_depth = self.file.scene.as_ref().map_or(1, |s| s.max_depth);
+            let changed = match aim.at {
+                AimAt::Pixel(x, y) => self.tree.aim((x, y), aim.depth, scene_depth),
+                AimAt::Ray(r) => self.tree.aim_ray(r, aim.depth, scene_depth),
+            };
+            if changed {
                 self.request_render();
             }
             self.retrace();

@@ -197,6 +197,22 @@ impl LessonPanel {
         if let Some(s) = &ex.scene {
             note.push_str(&format!(" (scene {s})"));
         }
+        // The tree is the scene's: an exercise worked in the other highlight model says so.
+        if let (Some(model), Some(scene)) = (ex.model, scene) {
+            let shiny = |m: &&crate::shading::Material| m.ks != 0.0 || m.patterns.is_some();
+            let other = scene
+                .materials
+                .iter()
+                .filter(shiny)
+                .find(|m| m.highlight != model);
+            if let Some(m) = other {
+                note.push_str(&format!(
+                    ", worked in {} where the tree shows {}",
+                    model.name(),
+                    m.highlight.name()
+                ));
+            }
+        }
         let note = format!("{note} · Enter: answer · w: worked solution · Esc: back");
         Some((aim, (note, Tone::Info)))
     }

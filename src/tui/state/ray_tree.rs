@@ -292,24 +292,27 @@ impl RayTree {
         Ok(())
     }
 
-    /// An exercise's pixel, and its depth when it names one (then the preview renders again).
-    pub fn aim(&mut self, pixel: (u32, u32), depth: Option<u32>) {
+    /// An exercise's pixel, and the depth it is asked at (`aim_depth`). True when the depth
+    /// changed (then the preview renders again).
+    pub fn aim(&mut self, pixel: (u32, u32), depth: Option<u32>, scene_depth: u32) -> bool {
         self.pixel = pixel;
         self.ray = None;
-        self.aim_depth(depth);
+        self.aim_depth(depth, scene_depth)
     }
 
-    /// An exercise's ray (not a pixel's), and its depth when it names one.
-    pub fn aim_ray(&mut self, ray: Ray, depth: Option<u32>) {
+    /// An exercise's ray (not a pixel's), and the depth it is asked at (`aim_depth`).
+    pub fn aim_ray(&mut self, ray: Ray, depth: Option<u32>, scene_depth: u32) -> bool {
         self.ray = Some(ray);
-        self.aim_depth(depth);
+        self.aim_depth(depth, scene_depth)
     }
 
-    fn aim_depth(&mut self, depth: Option<u32>) {
-        if let Some(d) = depth {
-            self.asked = d.clamp(1, MAX_DEPTH);
-            self.depth_from_user = true;
-        }
+    /// The exercise's depth, or the scene's max_depth where it names none: its question is
+    /// asked at that depth, whatever an earlier exercise or the keys chose.
+    fn aim_depth(&mut self, depth: Option<u32>, scene_depth: u32) -> bool {
+        let before = self.asked;
+        self.asked = depth.unwrap_or(scene_depth).clamp(1, MAX_DEPTH);
+        self.depth_from_user = depth.is_some();
+        self.asked != before
     }
 
     /// Sets the maximum depth as the user would; true when it changed (retrace and render).
