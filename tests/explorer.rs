@@ -1260,6 +1260,51 @@ fn in_tmux_the_diagram_pane_draws_braille_and_its_legend() {
     );
 }
 
+/// Ctrl-Z stops the explorer as it stops any program in a shell, and so does SIGTSTP from
+/// outside: while it is stopped the terminal is the shell's again (main screen, no mouse
+/// reports, the cursor shown), and `fg` brings back the full screen, drawn whole, its keys
+/// working. (The explorer stopped with the terminal in its own modes, and after `fg` drew
+/// nothing and read keys a line at a time.)
+#[test]
+fn in_tmux_ctrl_z_and_fg_leave_and_bring_back_the_explorer() {
+    if !have_tmux() {
+        return;
+    }
+    let bin = env!("CARGO_BIN_EXE_raytree");
+    let tmux = Tmux::new("tmux-suspend");
+    tmux.start("PS1='$ ' exec bash --norc --noprofile -i");
+    let command = format!("'{bin}' explore {L08}");
+    tmux.run(&["send-keys", "-t", "explore", &command, "Enter"]);
+    tmux.wait_for(&["ray tree · pixel 30,30", "preview"]);
+    let shell = tmux.flag("#{pane_pid}");
+    for (k, how) in ["Ctrl-Z", "SIGTSTP"].into_iter().enumerate() {
+        if how == "Ctrl-Z" {
+            tmux.run(&["send-keys", "-t", "explore", "C-z"]);
+        } else {
+            let explorer = Command::new("pgrep").args(["-P", &shell]).output().unwrap();
+            let pid = String::from_utf8_lossy(&explorer.stdout).trim().to_string();
+            assert!(!pid.is_empty(), "the explorer runs under the shell");
+            let killed = Command::new("kill").args(["-TSTP", &pid]).status().unwrap();
+            assert!(killed.success());
+        }
+        tmux.wait_until(&format!("{how} stops the explorer"), |t| {
+            t.flag("#{alternate_on}") == "0" && t.capture().contains("Stopped")
+        });
+        assert_eq!(tmux.flag("#{mouse_any_flag}"), "0", "{how}");
+        assert_eq!(tmux.flag("#{cursor_flag}"), "1", "{how}");
+        tmux.run(&["send-keys", "-t", "explore", "clear; fg", "Enter"]);
+        tmux.wait_for(&["ray tree · pixel", "primary: hit a"]);
+        assert_eq!(tmux.flag("#{alternate_on}"), "1", "{how}");
+        assert_eq!(tmux.flag("#{mouse_any_flag}"), "1", "{how}");
+        tmux.run(&["send-keys", "-t", "explore", "Right"]);
+        tmux.wait_for(&[&format!("ray tree · pixel {},30", 31 + k)]);
+    }
+    tmux.run(&["send-keys", "-t", "explore", "q"]);
+    tmux.wait_until("the explorer ends", |t| t.flag("#{alternate_on}") == "0");
+    assert_eq!(tmux.flag("#{mouse_any_flag}"), "0");
+    assert_eq!(tmux.flag("#{cursor_flag}"), "1");
+}
+
 #[test]
 fn in_tmux_a_panic_restores_the_terminal() {
     if !have_tmux() {
@@ -1552,6 +1597,26 @@ fn exercises_and_the_s_key_switch_between_a_lessons_scenes() {
         seen,
         ["scene.yaml", "color.yaml", "phong.yaml", "scene.yaml"]
     );
+}
+
+/// In a narrow tree pane a row gives up the end of its label ("…"), never its intensity: at
+/// 40 × 12 lesson 08's rows read "I = 0." where they read I = 0.4621 and 0.9721.
+#[test]
+fn a_narrow_tree_pane_cuts_the_label_not_the_intensity() {
+    let app = open("lessons/08-pixel-intensity", ColorMode::TrueColor, (40, 12));
+    let text = screen(&app);
+    let rows: Vec<&str> = text.lines().filter(|l| l.contains("I = ")).collect();
+    assert!(rows.len() >= 2, "{text}");
+    for row in rows {
+        let value = row.split("I = ").nth(1).unwrap();
+        let digits = value.trim_start_matches(|c: char| c.is_ascii_digit() || c == '.');
+        let number = &value[..value.len() - digits.len()];
+        assert!(
+            number.len() >= 5 && number.parse::<f64>().is_ok(),
+            "{row}\n{text}"
+        );
+    }
+    assert!(text.contains("…"), "{text}");
 }
 
 /// An exercise that names no depth is asked at the scene's own max_depth, whatever depth an

@@ -19,6 +19,14 @@ pub fn event(app: &App, ev: &Event) -> Option<Msg> {
     }
 }
 
+/// Ctrl-Z: stop the explorer as a shell's job control does (raw mode delivers it as a key,
+/// not as SIGTSTP), the terminal restored until `fg`.
+pub fn is_suspend(ev: &Event) -> bool {
+    matches!(ev, Event::Key(k) if k.kind == KeyEventKind::Press
+        && k.code == KeyCode::Char('z')
+        && k.modifiers.contains(KeyModifiers::CONTROL))
+}
+
 /// The message for a mouse event (a click picks or selects, a drag picks or pans, the wheel
 /// scrolls), or None when it means nothing here.
 pub fn mouse(app: &App, m: &MouseEvent) -> Option<Msg> {

@@ -86,9 +86,11 @@ pub fn run(options: Options) -> Result<(), String> {
     // the process as the signal asks.
     let signals =
         crate::signals::Signals::catch().map_err(|e| format!("cannot catch signals: {e}"))?;
+    let suspension =
+        terminal::Suspension::catch().map_err(|e| format!("cannot catch signals: {e}"))?;
     let mut guard = terminal::setup().map_err(|e| format!("cannot set up the terminal: {e}"))?;
     hangup::watch().map_err(|e| format!("cannot watch the terminal: {e}"))?;
-    let result = event_loop(&mut guard.term, &mut app, signals.stop());
+    let result = event_loop(&mut guard.term, &mut app, signals.stop(), &suspension);
     drop(guard);
     signals.finish();
     result.map_err(|e| format!("terminal error: {e}"))
@@ -101,6 +103,7 @@ fn event_loop(
     term: &mut terminal::Term,
     app: &mut App,
     stop: &std::sync::atomic::AtomicBool,
+    suspension: &terminal::Suspension,
 ) -> std::io::Result<()> {
     use crossterm::event;
     let mut worker = worker::Worker::spawn();
@@ -110,6 +113,10 @@ fn event_loop(
     let mut last_progress = (0, 0, 0);
     let mut dirty = true;
     while !app.quit && !stop.load(std::sync::atomic::Ordering::Relaxed) {
+        if suspension.asked() {
+            terminal::suspend(term)?;
+            dirty = true;
+        }
         if let Some(job) = app.take_job() {
             worker.submit(job);
         }
@@ -135,7 +142,9 @@ fn event_loop(
             // Handle everything queued before drawing again (key repeat, mouse drags).
             loop {
                 let ev = event::read()?;
-                if let Some(msg) = input::event(app, &ev) {
+                if input::is_suspend(&ev) {
+                    terminal::suspend(term)?;
+                } else if let Some(msg) = input::event(app, &ev) {
                     update(app, msg);
                 }
                 dirty = true;

@@ -8,6 +8,24 @@ pub fn width(s: &str) -> usize {
     Span::raw(s).width()
 }
 
+/// The line cut to `max` cells, ending in "…" where it was cut.
+pub fn cut(line: &str, max: usize) -> String {
+    if width(line) <= max {
+        return line.to_string();
+    }
+    let mut out = String::new();
+    for c in line.chars() {
+        if width(&out) + width(c.encode_utf8(&mut [0; 4])) + 1 > max {
+            break;
+        }
+        out.push(c);
+    }
+    if max > 0 {
+        out.push('…');
+    }
+    out
+}
+
 /// Word-wraps a line to `max` cells; continuation lines keep the line's indentation (plus
 /// two cells), so wrapped formulas stay readable.
 pub fn wrap(line: &str, max: usize) -> Vec<String> {

@@ -38,7 +38,7 @@ pub const KEYS: &[(&str, &str)] = &[
         "scroll the panel · ← →: a README's figures sideways",
     ),
     ("o", "lesson list"),
-    ("? q Esc", "this help · quit"),
+    ("? q Esc ^Z", "this help · quit · stop until fg"),
 ];
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {

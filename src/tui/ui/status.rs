@@ -45,11 +45,9 @@ pub fn status_text(app: &App) -> String {
     } else {
         "preview —".into()
     };
-    let rays = p
-        .stats
-        .map(|s| format!("{} rays", grouped(s.rays())))
-        .unwrap_or_default();
-    let tree = format!("tree {} rays", grouped(app.tree.stats().rays()));
+    let count = |n: u64| format!("{} {}", grouped(n), if n == 1 { "ray" } else { "rays" });
+    let rays = p.stats.map(|s| count(s.rays())).unwrap_or_default();
+    let tree = format!("tree {}", count(app.tree.stats().rays()));
     let path = app.file.name();
     let file = app
         .file

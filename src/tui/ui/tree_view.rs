@@ -11,6 +11,7 @@ use super::{pane, position_note, swatch, themed};
 use crate::trace::{text, RayKind, Termination};
 use crate::tui::app::{App, Focus};
 use crate::tui::tree::{self, intensity_text, label, short_color};
+use crate::tui::wrap::{cut, width};
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let t = &app.tree;
@@ -129,13 +130,20 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             // Cut by the level being stepped, not by the maximum depth.
             text = text.replace("not traced: max depth", "not yet revealed");
         }
-        spans.push(Span::styled(text, themed(app, Style::new().fg(kind_color))));
-        if n.kind != RayKind::Shadow && t.hidden() {
-            spans.push(Span::raw("  I = ?"));
+        let value = if n.kind != RayKind::Shadow && t.hidden() {
+            vec![Span::raw("  I = ?")]
         } else if let Some(i) = intensity_text(n) {
-            spans.push(Span::raw(i));
-            spans.push(swatch(app, n.color));
-        }
+            vec![Span::raw(i), swatch(app, n.color)]
+        } else {
+            vec![]
+        };
+        // A row too long for the pane gives up its label's end, never its intensity.
+        let room = (area.width as usize).saturating_sub(2);
+        let taken = 1 + width(&row.guides) + width(icon);
+        let value_width: usize = value.iter().map(Span::width).sum();
+        let text = cut(&text, room.saturating_sub(taken + value_width));
+        spans.push(Span::styled(text, themed(app, Style::new().fg(kind_color))));
+        spans.extend(value);
         let mut line = Line::from(spans);
         if selected {
             let style = if app.focus == Focus::Tree {
