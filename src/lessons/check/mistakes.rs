@@ -14,7 +14,7 @@ use super::{answer, trace, Mistake, Worked};
 use crate::lessons::{Answer, Exercise};
 use crate::scene::Scene;
 use crate::shading::{Highlight, LightKind};
-use crate::trace::{RayKind, RayNode, TraceOptions};
+use crate::trace::{text, RayKind, RayNode, TraceOptions};
 
 /// Every mistake in the order the hints are tried: the more specific first (glass blocking a
 /// shadow ray is a case of leaving out the shadow term, and is named as such when it is).
@@ -96,7 +96,7 @@ fn shadow_hint(w: &Worked, ex: &Exercise) -> String {
         .map(|local| {
             (local.lights.iter())
                 .filter(|term| term.shadow < 1.0)
-                .map(|term| format!("s = {} for {}", term.shadow, term.light))
+                .map(|term| format!("s = {} for {}", text::num(term.shadow), term.light))
                 .collect::<Vec<_>>()
         })
         .unwrap_or_default();
