@@ -10,10 +10,23 @@ use std::path::{Path, PathBuf};
 /// The user's cache folder for raytree: `RAYTREE_CACHE`, else the platform's
 /// (`~/.cache/raytree` on Linux). None when the platform has none (no home folder).
 pub fn cache_dir() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("RAYTREE_CACHE") {
-        return Some(PathBuf::from(p));
-    }
-    directories::ProjectDirs::from("", "", "raytree").map(|d| d.cache_dir().to_path_buf())
+    folder_from("RAYTREE_CACHE")
+        .or_else(|| directories::ProjectDirs::from("", "", "raytree").map(|d| d.cache_dir().into()))
+}
+
+/// The user's data folder for raytree (where progress is kept): `RAYTREE_DATA`, else the
+/// platform's (`~/.local/share/raytree` on Linux). None when the platform has none.
+pub fn data_dir() -> Option<PathBuf> {
+    folder_from("RAYTREE_DATA")
+        .or_else(|| directories::ProjectDirs::from("", "", "raytree").map(|d| d.data_dir().into()))
+}
+
+/// The folder an environment variable names. Set but empty counts as not set, as XDG's
+/// variables do: an empty path would be the current folder, which the user did not name.
+fn folder_from(variable: &str) -> Option<PathBuf> {
+    std::env::var_os(variable)
+        .filter(|p| !p.is_empty())
+        .map(PathBuf::from)
 }
 
 /// Why a file was not read.

@@ -844,6 +844,8 @@ fn the_lessons_bvh_scaling_counts_are_what_bench_scaling_prints() {
         "100000",
         "--max-brute",
         "10",
+        "--max-brute-triangles",
+        "0",
         "--max-subdivisions",
         "3",
         "--format",

@@ -656,11 +656,20 @@ fn long_output_names_symlinks_and_read_only_outputs() {
     let path = |p: &Path| p.to_str().expect("a UTF-8 temporary path").to_string();
     let (scene, missing_png) = (path(&scene), path(&missing.join("out.png")));
     let jpg = path(&dir.join("out.jpg"));
+    let in_a_file = format!("{scene}/out.png");
+    let slash = path(&dir.join("out.png/"));
     let big = ["--width", "2000", "--height", "1500", "--spp", "4096"];
-    for (out, says) in [
-        (&missing_png, "there is no folder"),
-        (&jpg, "must end in .png, .ppm or .exr"),
-    ] {
+    let mut refused = vec![
+        (missing_png.clone(), "there is no folder"),
+        (jpg, "must end in .png, .ppm or .exr"),
+        (in_a_file, "s.yaml is not a folder"),
+        (slash, "ends in '/'"),
+    ];
+    // A folder no file can be made in, even by root.
+    if cfg!(target_os = "linux") {
+        refused.push(("/proc/raytree-out.png".into(), "cannot write: "));
+    }
+    for (out, says) in &refused {
         let r = run(&[&["render", &scene, "-o", out][..], &big].concat());
         assert_eq!(r.code(), Some(2), "{}", r.stderr);
         assert!(r.stderr.contains(says), "{}", r.stderr);
@@ -902,6 +911,35 @@ fn inspect_reports_the_rendered_value() {
         "{}",
         r.stdout
     );
+    // Adaptive antialiasing traces the corners and as many rays as its splits ask for: no
+    // count of samples is claimed, only how far a pixel may be split (16 → 4 × 4) and when.
+    let r = run(&["inspect", "lessons/13-antialiasing", "--pixel", "1,0"]);
+    assert!(
+        r.stdout.contains(
+            "as rendered: adaptive: rays at the corners, squares split down to 4 × 4 where \
+             corners differ by more than 0.3, box filter, seed 0"
+        ),
+        "{}",
+        r.stdout
+    );
+    // The Graphviz figure's title says so too: its root's I is the sample's, not the pixel's.
+    let r = run(&[
+        "inspect",
+        "lessons/13-antialiasing/grid-4.yaml",
+        "--pixel",
+        "1,0",
+        "--sample",
+        "1",
+        "--format",
+        "dot",
+    ]);
+    assert!(
+        r.stdout.contains(
+            "label=\"pixel (1, 0): I = 0.5; the tree of sample 1 of 4, through (1.25, 0.25)"
+        ),
+        "{}",
+        r.stdout
+    );
     let r = run(&[
         "inspect",
         "lessons/13-antialiasing/grid-4.yaml",
@@ -1012,25 +1050,7 @@ fn bench_sweep_caches_its_reference_in_the_users_cache_folder() {
     let small = write("cached-sweep.yaml", SMALL);
     let cache = scratch("cache");
     let _ = std::fs::remove_dir_all(&cache);
-    let sweep = || {
-        let child = command(&[
-            OsStr::new("bench"),
-            OsStr::new("sweep"),
-            small.as_os_str(),
-            OsStr::new("--knob"),
-            OsStr::new("spp"),
-            OsStr::new("--values"),
-            OsStr::new("1,4"),
-        ])
-        .env("RAYTREE_CACHE", &cache)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("raytree starts");
-        let r = finish(child, Duration::from_secs(60));
-        assert_eq!(r.code(), Some(0), "{}", r.stderr);
-        r
-    };
+    let sweep = || sweep_with_cache(&small, &cache);
     let first = sweep();
     assert!(
         first.stderr.contains("reference: rendered, cached in"),
@@ -1066,6 +1086,98 @@ fn bench_sweep_caches_its_reference_in_the_users_cache_folder() {
         "the cached reference was written again"
     );
     assert_eq!(first.stdout.lines().count(), second.stdout.lines().count());
+}
+
+/// `bench sweep SCENE --knob spp --values 1,4` with `cache` as the user's cache folder.
+fn sweep_with_cache(scene: &Path, cache: &Path) -> Run {
+    let child = command(&[
+        OsStr::new("bench"),
+        OsStr::new("sweep"),
+        scene.as_os_str(),
+        OsStr::new("--knob"),
+        OsStr::new("spp"),
+        OsStr::new("--values"),
+        OsStr::new("1,4"),
+    ])
+    .env("RAYTREE_CACHE", cache)
+    .stdout(Stdio::piped())
+    .stderr(Stdio::piped())
+    .spawn()
+    .expect("raytree starts");
+    let r = finish(child, Duration::from_secs(60));
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    r
+}
+
+/// The cached reference stands for the scene's image, so it is named by everything the image
+/// depends on: a mesh or a texture changed under an unchanged scene file is a new reference,
+/// rendered again, not the old one read back.
+#[test]
+fn bench_sweep_renders_its_reference_again_when_a_mesh_or_an_image_changes() {
+    let dir = scratch("inputs-sweep");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cache = scratch("inputs-cache");
+    let _ = std::fs::remove_dir_all(&cache);
+    let obj = |z: f64| format!("v -1 -1 0\nv 1 -1 0\nv 0 1 {z}\nf 1 2 3\n");
+    let png = |grey: u8| {
+        let image = image::RgbImage::from_pixel(2, 2, image::Rgb([grey, grey, grey]));
+        image.save(dir.join("grey.png")).unwrap();
+    };
+    std::fs::write(dir.join("tri.obj"), obj(0.0)).unwrap();
+    png(200);
+    let scene = dir.join("s.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 16, height: 12 }\n\
+         lights: [ { point: [2, 3, -4] } ]\n\
+         materials: { m: { color: { image: grey.png }, kd: 1 } }\n\
+         objects: [ { name: tri, mesh: { file: tri.obj }, material: m } ]\n",
+    )
+    .unwrap();
+    let rendered = |r: &Run| r.stderr.contains("reference: rendered, cached in");
+    let cached = |r: &Run| r.stderr.contains("(cached)");
+    let first = sweep_with_cache(&scene, &cache);
+    assert!(rendered(&first), "{}", first.stderr);
+    let again = sweep_with_cache(&scene, &cache);
+    assert!(cached(&again), "{}", again.stderr);
+
+    std::fs::write(dir.join("tri.obj"), obj(0.5)).unwrap();
+    let moved = sweep_with_cache(&scene, &cache);
+    assert!(rendered(&moved), "a changed mesh: {}", moved.stderr);
+
+    png(60);
+    let darker = sweep_with_cache(&scene, &cache);
+    assert!(rendered(&darker), "a changed image: {}", darker.stderr);
+    assert!(cached(&sweep_with_cache(&scene, &cache)));
+}
+
+/// `RAYTREE_CACHE=` and `RAYTREE_DATA=`, set but empty, count as not set (as XDG's variables
+/// do): the platform's folders under HOME are used, and nothing is written into the current
+/// folder, which an empty path would otherwise name.
+#[test]
+fn empty_cache_and_data_variables_name_the_platforms_folders() {
+    let root = scratch("empty-variables");
+    let _ = std::fs::remove_dir_all(&root);
+    let (home, work) = (root.join("home"), root.join("work"));
+    std::fs::create_dir_all(&home).unwrap();
+    std::fs::create_dir_all(&work).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_raytree"))
+        .args(["check", "05-reflection", "--exercise", "mirror-local"])
+        .args(["--answer", "0.23"])
+        .current_dir(&work)
+        .env("HOME", &home)
+        .env("RAYTREE_CACHE", "")
+        .env("RAYTREE_DATA", "")
+        .env_remove("XDG_CACHE_HOME")
+        .env_remove("XDG_DATA_HOME")
+        .env_remove("RAYTREE_LESSONS")
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let written: Vec<_> = std::fs::read_dir(&work).unwrap().collect();
+    assert!(written.is_empty(), "{written:?}");
+    assert!(home.join(".local/share/raytree/progress.json").is_file());
+    assert!(home.join(".cache/raytree").is_dir());
 }
 
 /// A knob that cannot change the scene's image is refused before any render, naming the knob
@@ -1213,9 +1325,14 @@ fn bench_sweep_csv_has_the_printed_tables_columns() {
 /// `bench sweep` of the small scene at 1 and 4 spp (with `args`) against an EXR reference
 /// rendered at `spp` (files named after `name`): its standard output.
 fn sweep_of_spp_1_and_4(name: &str, spp: u32, args: &[&str]) -> String {
+    sweep_of_spp_1_and_4_against(name, "exr", spp, args)
+}
+
+/// As `sweep_of_spp_1_and_4`, with the reference written as `format` (exr or png).
+fn sweep_of_spp_1_and_4_against(name: &str, format: &str, spp: u32, args: &[&str]) -> String {
     let small = write(&format!("{name}-sweep.yaml"), SMALL);
     let small = small.to_str().unwrap();
-    let reference = scratch(&format!("{name}-reference.exr"));
+    let reference = scratch(&format!("{name}-reference.{format}"));
     let reference = reference.to_str().unwrap();
     let r = run(&["render", small, "-o", reference, "--spp", &spp.to_string()]);
     assert_eq!(r.code(), Some(0), "{}", r.stderr);
@@ -1271,6 +1388,29 @@ fn bench_sweep_takes_the_median_of_its_runs() {
     assert!(refused.stderr.contains("--runs"), "{}", refused.stderr);
 }
 
+/// A PNG holds display values: clamped to [0, 1] and rounded to 8-bit sRGB. A render is
+/// measured against one as `render` would write it, so the render a PNG was written from is
+/// exact, though the small scene's highlight is brighter than 1 (ka·Ia + kd + ks = 1.3 in red)
+/// and no `--clamp` is given; a coarser render is not.
+#[test]
+fn bench_sweep_measures_a_png_reference_as_the_png_holds_it() {
+    let doc: serde_json::Value = serde_json::from_str(&sweep_of_spp_1_and_4_against(
+        "png",
+        "png",
+        4,
+        &["--format", "json"],
+    ))
+    .unwrap();
+    let rows = doc["rows"].as_array().unwrap();
+    assert_eq!(rows[1]["value"], 4.0);
+    assert_eq!(rows[1]["exact"], true, "{doc}");
+    assert_eq!(rows[1]["rmse"], 0.0, "{doc}");
+    assert_eq!(rows[0]["exact"], false, "{doc}");
+    // Display values differ by at most 1.
+    let worst = rows[0]["max_abs"].as_f64().unwrap();
+    assert!(worst > 0.0 && worst <= 1.0, "{doc}");
+}
+
 /// A render equal to an EXR reference that raytree wrote of the same image is exact: the EXR
 /// keeps f32, and the sweep rounds its render to f32 before measuring it, so the row has no
 /// error (RMSE 0, no PSNR, efficiency "exact") rather than the f32 rounding's tiny one. The
@@ -1287,6 +1427,17 @@ fn bench_sweep_finds_its_own_exr_reference_exact() {
     assert_eq!(efficiencies.len(), 2, "{table}");
     assert_eq!(efficiencies[1], "exact", "{table}");
     assert!(efficiencies[0].parse::<f64>().unwrap() > 0.0, "{table}");
+    // PSNR, the second column from the right: infinite for the exact row.
+    let psnr = |row: usize| {
+        table
+            .lines()
+            .nth(1 + row)
+            .unwrap()
+            .split_whitespace()
+            .rev()
+            .nth(1)
+    };
+    assert_eq!(psnr(1), Some("∞"), "{table}");
 
     let doc: serde_json::Value = serde_json::from_str(&sweep("json")).unwrap();
     let rows = doc["rows"].as_array().unwrap();
@@ -1296,6 +1447,7 @@ fn bench_sweep_finds_its_own_exr_reference_exact() {
     assert_eq!(same["rmse"], 0.0, "{same}");
     assert_eq!(same["max_abs"], 0.0, "{same}");
     assert!(same["efficiency"].is_null(), "{same}");
+    assert!(same["psnr"].is_null(), "{same}");
     assert_eq!(same["exact"], true, "{same}");
     assert_eq!(rough["exact"], false, "{rough}");
     let (seconds, rmse) = (
@@ -1303,6 +1455,10 @@ fn bench_sweep_finds_its_own_exr_reference_exact() {
         rough["rmse"].as_f64().unwrap(),
     );
     assert!(rmse > 0.0, "{rough}");
+    let db = rough["psnr"].as_f64().unwrap();
+    assert!((db + 20.0 * rmse.log10()).abs() < 1e-9, "{rough}");
+    let shown: f64 = psnr(0).unwrap().parse().unwrap();
+    assert!((shown - db).abs() <= 0.005, "{table}");
     let efficiency = rough["efficiency"].as_f64().unwrap();
     let expected = 1.0 / (seconds * rmse * rmse);
     assert!(
@@ -1343,6 +1499,47 @@ fn bench_scaling_refuses_sizes_it_has_no_row_for_at_once() {
             assert!(r.stdout.is_empty(), "{flag} {v}: {}", r.stdout);
         }
     }
+}
+
+/// `--max-brute` bounds the sphere rows measured without the BVH, `--max-brute-triangles` the
+/// mesh rows, each as given: the 1 280-triangle mesh is measured by brute force up to a bound
+/// of 1 280 and not below it.
+#[test]
+fn bench_scaling_measures_brute_force_up_to_the_bounds_given() {
+    let brute = |spheres: &str, triangles: &str| -> Vec<bool> {
+        let r = run(&[
+            "bench",
+            "scaling",
+            "--max-spheres",
+            "100",
+            "--max-brute",
+            spheres,
+            "--max-brute-triangles",
+            triangles,
+            "--max-subdivisions",
+            "3",
+            "--format",
+            "json",
+        ]);
+        assert_eq!(r.code(), Some(0), "{}", r.stderr);
+        let doc: serde_json::Value = serde_json::from_str(&r.stdout).unwrap();
+        let rows = doc["rows"].as_array().unwrap();
+        let kinds: Vec<_> = rows
+            .iter()
+            .map(|r| (r["kind"].clone(), r["n"].clone()))
+            .collect();
+        assert_eq!(
+            kinds,
+            [("spheres", 10), ("spheres", 100), ("mesh", 1280)]
+                .map(|(k, n)| (serde_json::json!(k), serde_json::json!(n)))
+        );
+        rows.iter()
+            .map(|r| r["brute_ns_per_ray"].is_f64())
+            .collect()
+    };
+    // 10 spheres have no BVH: their one time is brute force's, whatever the bound.
+    assert_eq!(brute("100", "1280"), [true, true, true]);
+    assert_eq!(brute("99", "1279"), [true, false, false]);
 }
 
 /// On a terminal both streams show: each row of the scaling table must be printed once.

@@ -125,22 +125,38 @@ pub enum Precision {
     Full,
     /// f32, as an EXR file stores a render's f64 intensities.
     F32,
+    /// 8-bit sRGB, as a PNG stores a render: display values, clamped to [0, 1].
+    Srgb8,
 }
 
 impl Precision {
     /// `image` with every channel rounded to this precision.
     pub fn round(self, image: &Image) -> Image {
         let mut out = image.clone();
-        if self == Precision::F32 {
-            for p in &mut out.pixels {
-                *p = p.as_vec3().as_dvec3();
-            }
+        for p in &mut out.pixels {
+            *p = match self {
+                Precision::Full => *p,
+                Precision::F32 => p.as_vec3().as_dvec3(),
+                Precision::Srgb8 => p.map(|c| {
+                    Precision::srgb8_to_linear(crate::render::encode(
+                        c,
+                        crate::render::Encoding::Srgb,
+                    ))
+                }),
+            };
         }
         out
     }
+
+    /// The linear intensity an 8-bit sRGB value stands for.
+    pub fn srgb8_to_linear(byte: u8) -> f64 {
+        crate::shading::texture::srgb_to_linear(byte as f64 / 255.0)
+    }
 }
 
-/// The image a sweep measures its renders against, and the precision it was kept at.
+/// The image a sweep measures its renders against, and the precision it was kept at. Renders
+/// measured against an 8-bit sRGB reference are measured as display values (clamped), as the
+/// reference holds them.
 #[derive(Clone, Debug)]
 pub struct Reference {
     /// Linear intensities.
@@ -164,7 +180,7 @@ pub struct SweepRow {
     pub rel_mse: f64,
     /// The largest absolute difference from the reference, over every channel.
     pub max_abs: f64,
-    /// 20·log10(1/RMSE) for intensities in [0, 1].
+    /// 20·log10(1/RMSE) for intensities in [0, 1]: infinite for an exact image.
     pub psnr: f64,
 }
 
@@ -252,7 +268,7 @@ pub fn sweep(
                 rmse,
                 rel_mse,
                 max_abs,
-                psnr: -20.0 * rmse.max(1e-300).log10(),
+                psnr: -20.0 * rmse.log10(),
             }
         })
         .collect()
@@ -318,8 +334,10 @@ fn efficiency(r: &SweepRow) -> String {
 /// The sweep as a text table: a line per setting, with PSNR in dB and the efficiency
 /// 1/(seconds·MSE) (higher is better).
 pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
+    // The first column as wide as the knob's name ("aa-threshold") where it is wider.
+    let w = knob.name().chars().count().max(10);
     let mut s = format!(
-        "{:>10} {:>10} {:>14} {:>11} {:>11} {:>10} {:>8} {:>14}\n",
+        "{:>w$} {:>10} {:>14} {:>11} {:>11} {:>10} {:>8} {:>14}\n",
         knob.name(),
         "seconds",
         "rays",
@@ -331,14 +349,17 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
     );
     for r in rows {
         s.push_str(&format!(
-            "{:>10} {:>10} {:>14} {:>11.5} {:>11.5} {:>10.4} {:>8.2} {:>14}\n",
+            "{:>w$} {:>10} {:>14} {:>11.5} {:>11.5} {:>10.4} {:>8} {:>14}\n",
             r.value,
             super::seconds(r.seconds),
             r.rays,
             r.rmse,
             r.rel_mse,
             r.max_abs,
-            r.psnr,
+            match r.psnr {
+                p if p.is_finite() => format!("{p:.2}"),
+                _ => "∞".into(),
+            },
             efficiency(r)
         ));
     }
@@ -347,7 +368,8 @@ pub fn sweep_table(knob: Knob, rows: &[SweepRow]) -> String {
 
 /// The sweep as CSV, the columns of the table: a header line (the knob's name, then seconds,
 /// rays, rmse, rel_mse, max_abs, psnr, efficiency) and a line per setting. The efficiency is
-/// the table's 1/(seconds·MSE), rounded the same way and "exact" where the table says so.
+/// the table's 1/(seconds·MSE), rounded the same way and "exact" where the table says so;
+/// the PSNR of an exact image is `inf`.
 pub fn sweep_csv(knob: Knob, rows: &[SweepRow]) -> String {
     let mut s = format!(
         "{},seconds,rays,rmse,rel_mse,max_abs,psnr,efficiency\n",
@@ -472,6 +494,69 @@ mod tests {
         assert_eq!(f32.x, 0.100_000_001_490_116_12);
         assert_eq!((f32.y, f32.z), (0.5, 3.0));
         assert_eq!(Precision::Full.round(&image).pixels[0].x, 0.1);
+    }
+
+    /// Rounded as a PNG keeps it: clamped to [0, 1], then to the nearest of the 256 sRGB
+    /// levels. 0.5 encodes as 1.055·0.5^(1/2.4) − 0.055 = 0.7354, level 188 (187.5 rounds up),
+    /// which decodes to ((188/255 + 0.055)/1.055)^2.4 = 0.5029; 3.0 becomes 1 and −0.2 becomes 0.
+    #[test]
+    fn a_render_measured_against_a_png_is_rounded_to_its_8_bits() {
+        let image = Image {
+            width: 1,
+            height: 1,
+            pixels: vec![glam::DVec3::new(0.5, 3.0, -0.2)],
+        };
+        let p = Precision::Srgb8.round(&image).pixels[0];
+        let level = ((188.0 / 255.0 + 0.055) / 1.055f64).powf(2.4);
+        assert!((p.x - level).abs() < 1e-15, "{}", p.x);
+        assert!((p.x - 0.5029).abs() < 5e-5, "{}", p.x);
+        assert_eq!((p.y, p.z), (1.0, 0.0));
+    }
+
+    /// The table's columns line up under their headers whatever the knob's name, and an exact
+    /// row's PSNR reads ∞ (20·log10(1/0)), not a large number.
+    #[test]
+    fn the_table_lines_up_and_an_exact_rows_psnr_is_infinite() {
+        let row = |value: f64, rmse: f64| SweepRow {
+            value,
+            seconds: 0.5,
+            rays: 1000,
+            rmse,
+            rel_mse: rmse * rmse,
+            max_abs: rmse,
+            psnr: -20.0 * rmse.log10(),
+        };
+        let rows = [row(0.1, 0.01), row(0.0, 0.0)];
+        assert_eq!(rows[0].psnr, 40.0);
+        assert_eq!(rows[1].psnr, f64::INFINITY);
+        for knob in [Knob::Spp, Knob::AaThreshold] {
+            let table = sweep_table(knob, &rows);
+            let lines: Vec<&str> = table.lines().collect();
+            // Each column ends where its header ends.
+            let ends = |line: &str| -> Vec<usize> {
+                let chars: Vec<char> = line.chars().collect();
+                (0..chars.len())
+                    .filter(|&i| chars[i] != ' ' && chars.get(i + 1).is_none_or(|c| *c == ' '))
+                    .collect()
+            };
+            // Two headers are two words ("rel MSE", "max |err|"): every end of a row's eight
+            // fields is one of the header's ends.
+            let header = ends(lines[0]);
+            for line in &lines[1..] {
+                let row = ends(line);
+                assert_eq!(row.len(), 8, "{table}");
+                assert!(
+                    row.iter().all(|e| header.contains(e)),
+                    "{}:\n{table}",
+                    knob.name()
+                );
+            }
+            let psnr: Vec<&str> = lines[1..]
+                .iter()
+                .map(|l| l.split_whitespace().nth(6).unwrap())
+                .collect();
+            assert_eq!(psnr, ["40.00", "∞"], "{table}");
+        }
     }
 
     /// The median of hand-picked times: the middle one, whatever the order.

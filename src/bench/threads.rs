@@ -160,11 +160,14 @@ pub fn threads_table(rounds: &ThreadRounds, threads: usize) -> String {
         1 => String::new(),
         k => format!(", each the mean of {k} renders"),
     };
+    let runs = match runs.len() {
+        1 => "one run".to_string(),
+        n => format!("{n} runs, medians"),
+    };
     s.push_str(&format!(
-        "rays per second: {:.1} M on 1 thread, {:.1} M on {threads} ({} runs, medians{each})\n",
+        "rays per second: {:.1} M on 1 thread, {:.1} M on {threads} ({runs}{each})\n",
         mrays(r1),
         mrays(rn),
-        runs.len()
     ));
     s.push_str(&format!(
         "the scene's speed-up is {:.0} % of the arithmetic's, the most this machine gave\n",

@@ -45,9 +45,9 @@ enum Measure {
         /// Comma-separated values, e.g. 1,4,16,64.
         #[arg(long, value_delimiter = ',', required = true)]
         values: Vec<f64>,
-        /// Reference image: a linear EXR, or a PNG decoded from sRGB (default: the scene
-        /// rendered at a much higher setting, cached in the user's cache folder or
-        /// RAYTREE_CACHE).
+        /// Reference image: a linear EXR, or a PNG decoded from sRGB, against which renders
+        /// are measured as display values rounded to its 8 bits (default: the scene rendered
+        /// at a much higher setting, cached in the user's cache folder or RAYTREE_CACHE).
         #[arg(long, value_name = "FILE")]
         reference: Option<std::path::PathBuf>,
         /// Seed of the random numbers, as for `render`.
@@ -86,9 +86,13 @@ enum Measure {
         #[arg(long, value_name = "N", default_value_t = MAX_SPHERES,
               value_parser = clap::value_parser!(u64).range(MIN_SPHERES..=MAX_SPHERES))]
         max_spheres: u64,
-        /// Largest N to test without the BVH (brute force is O(N) per ray).
-        #[arg(long, default_value_t = 100_000)]
+        /// Most spheres tested without the BVH too (brute force is O(N) per ray).
+        #[arg(long, value_name = "N", default_value_t = 100_000)]
         max_brute: usize,
+        /// Most mesh triangles tested without the BVH too (20 480 is the largest icosphere
+        /// within the default).
+        #[arg(long, value_name = "N", default_value_t = 25_000)]
+        max_brute_triangles: usize,
         /// Mesh rows are icospheres of 20·4^k triangles at levels k = 3 (1 280 triangles) up
         /// to K; 8 (1.3 million) is the most an icosphere has.
         #[arg(long, value_name = "K", default_value_t = 8,
@@ -187,11 +191,11 @@ impl PlotKind {
 }
 
 /// A reference image as linear intensities: EXR as stored (f32, the precision renders are
-/// rounded to before they are measured against it), PNG/others decoded from sRGB.
+/// rounded to before they are measured against it); an 8-bit PNG decoded from sRGB (renders are
+/// encoded to 8-bit sRGB and decoded again before they are measured against it, as `render`
+/// writes them); a 16-bit PNG decoded from sRGB.
 fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<Reference, Failure> {
-    let img = image::open(path)
-        .map_err(|e| Failure(format!("{}: {e}", path.display())))?
-        .into_rgb32f();
+    let img = image::open(path).map_err(|e| Failure(format!("{}: {e}", path.display())))?;
     if img.width() != w || img.height() != h {
         return Err(Failure(format!(
             "{}: reference is {}×{}, the scene renders {w}×{h}",
@@ -203,44 +207,63 @@ fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<Reference, F
     let exr = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("exr"));
-    let decode = |c: f32| {
-        let c = c as f64;
-        if exr {
-            c
-        } else if c <= 0.04045 {
-            c / 12.92
-        } else {
-            ((c + 0.055) / 1.055).powf(2.4)
-        }
+    let (pixels, precision) = if exr {
+        let pixels = img
+            .into_rgb32f()
+            .pixels()
+            .map(|p| p.0.map(f64::from).into())
+            .collect();
+        (pixels, Precision::F32)
+    } else if matches!(
+        img.color(),
+        image::ColorType::L8
+            | image::ColorType::La8
+            | image::ColorType::Rgb8
+            | image::ColorType::Rgba8
+    ) {
+        let byte = Precision::srgb8_to_linear;
+        let pixels = img
+            .into_rgb8()
+            .pixels()
+            .map(|p| p.0.map(byte).into())
+            .collect();
+        (pixels, Precision::Srgb8)
+    } else {
+        let decode = |c: f32| crate::shading::texture::srgb_to_linear(c as f64);
+        let pixels = img
+            .into_rgb32f()
+            .pixels()
+            .map(|p| p.0.map(decode).into())
+            .collect();
+        (pixels, Precision::Full)
     };
-    let pixels = img
-        .pixels()
-        .map(|p| glam::DVec3::new(decode(p[0]), decode(p[1]), decode(p[2])))
-        .collect();
     Ok(Reference {
         image: crate::render::Image {
             width: w,
             height: h,
             pixels,
         },
-        precision: if exr { Precision::F32 } else { Precision::Full },
+        precision,
     })
 }
 
 /// Where the reference of a sweep is cached: `references/` in the user's cache folder, a name
-/// hashed from the scene file's bytes, the knob, its values, the seed and this build's version.
-/// None when there is no cache folder, or it cannot be made (the reference is then rendered
-/// every time).
+/// hashed from the contents of the scene file and of every file it read (meshes, images), the
+/// knob, its values, the seed and this build's version. None when there is no cache folder, or
+/// it cannot be made (the reference is then rendered every time).
 fn reference_cache(
-    scene: &std::path::Path,
+    scene_path: &std::path::Path,
+    scene: &crate::scene::Scene,
     knob: crate::bench::Knob,
     values: &[f64],
     seed: u64,
 ) -> Result<Option<std::path::PathBuf>, Failure> {
     use std::hash::{Hash, Hasher};
-    let bytes = std::fs::read(scene).map_err(|e| Failure(format!("{}: {e}", scene.display())))?;
     let mut h = std::collections::hash_map::DefaultHasher::new();
-    bytes.hash(&mut h);
+    for path in std::iter::once(scene_path).chain(scene.inputs.iter().map(|p| p.as_path())) {
+        let bytes = std::fs::read(path).map_err(|e| Failure(format!("{}: {e}", path.display())))?;
+        bytes.hash(&mut h);
+    }
     knob.name().hash(&mut h);
     values.iter().for_each(|v| v.to_bits().hash(&mut h));
     seed.hash(&mut h);
@@ -302,7 +325,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 None => {
                     // Rendered once at a much higher setting, then kept as a linear EXR in the
                     // user's cache folder, named by everything it depends on.
-                    let cache = reference_cache(&scene_path, knob, &values, seed)?;
+                    let cache = reference_cache(&scene_path, &scene, knob, &values, seed)?;
                     match cache.as_ref().map(|c| (c, load_reference(c, w, h))) {
                         Some((cache, Ok(reference))) => {
                             eprintln(&format!("reference: {} (cached)", cache.display()));
@@ -391,6 +414,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         Measure::Scaling {
             max_spheres,
             max_brute,
+            max_brute_triangles,
             max_subdivisions,
             format,
         } => {
@@ -415,7 +439,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 }
                 for k in MIN_SUBDIVISIONS..=max_subdivisions {
                     let n = 20 * 4usize.pow(k);
-                    show(measure("mesh", n, &mesh(k), n <= max_brute.min(25_000))?)?;
+                    show(measure("mesh", n, &mesh(k), n <= max_brute_triangles)?)?;
                 }
                 Ok(rows)
             })?;
@@ -446,8 +470,9 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
             let n = n.map_or(cores.max(2), |n| n as usize);
             eprintln(&format!(
-                "{}: {runs} rounds of 1 and {n} threads, scene and control alternating",
-                scene_path.display()
+                "{}: {runs} round{} of 1 and {n} threads, scene and control alternating",
+                scene_path.display(),
+                if runs == 1 { "" } else { "s" }
             ));
             let rounds = thread_rounds(&scene, n, runs as usize)?;
             match format {
@@ -509,8 +534,19 @@ fn explorer(
     match format {
         Format::Text => {
             let mut out = format!(
-                "{} × {} terminal, medians of {runs} runs (ms)\n{:<24} {:>9} {:>8} {:>8} {:>8} {:>8}\n",
-                size.0, size.1, "scene", "preview", "draft", "full", "pick", "reload"
+                "{} × {} terminal, {} (ms)\n{:<24} {:>9} {:>8} {:>8} {:>8} {:>8}\n",
+                size.0,
+                size.1,
+                match runs {
+                    1 => "one run".to_string(),
+                    n => format!("medians of {n} runs"),
+                },
+                "scene",
+                "preview",
+                "draft",
+                "full",
+                "pick",
+                "reload"
             );
             for (name, l) in &rows {
                 let draft = l.draft.map_or("—".to_string(), |d| format!("{:.1}", ms(d)));

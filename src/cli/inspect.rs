@@ -137,6 +137,7 @@ fn paths(a: &Args, scene: &Scene, [x, y]: [u32; 2]) -> Result<ExitCode, Failure>
 }
 
 /// Which ray of a pixel the tree follows.
+#[derive(Clone, Copy)]
 enum Traced {
     /// The ray through the pixel's centre.
     Centre,
@@ -160,10 +161,24 @@ impl Rendered {
 
     fn describe(&self) -> String {
         let spp = self.options.spp.max(1);
+        let rays = match self.options.antialias {
+            // Not a count of samples: the corners, and as many more as the splits ask for.
+            Antialias::Adaptive { threshold } => {
+                let side = 1 << crate::render::antialias::adaptive_levels(spp);
+                format!(
+                    "adaptive: rays at the corners, squares split down to {side} × {side} where \
+                     corners differ by more than {}",
+                    text::num(threshold)
+                )
+            }
+            aa => format!(
+                "{spp} sample{} ({})",
+                if spp == 1 { "" } else { "s" },
+                aa.name()
+            ),
+        };
         format!(
-            "{spp} sample{} ({}), {} filter, seed {}",
-            if spp == 1 { "" } else { "s" },
-            self.options.antialias.name(),
+            "{rays}, {} filter, seed {}",
             match self.filter {
                 Filter::Box => "box",
                 Filter::Gaussian => "Gaussian",
@@ -267,6 +282,23 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         color: rendered.as_ref().map_or(tree.color, |r| r.value),
         tree,
     };
+    // Which ray the tree is of, where the pixel is more than its centre ray.
+    let which_tree = rendered
+        .as_ref()
+        .filter(|r| !(r.is_centre_ray() && a.sample.is_none()))
+        .map(|r| match traced {
+            Traced::Centre => format!(
+                "the tree of the ray through the pixel's centre (I = {})",
+                text::color(inspection.tree.color)
+            ),
+            Traced::Sample(k, at) => format!(
+                "the tree of sample {k} of {}, through ({}, {}) (I = {})",
+                r.options.spp.max(1),
+                text::num(at.x),
+                text::num(at.y),
+                text::color(inspection.tree.color)
+            ),
+        });
     match a.format {
         Format::Json => {
             let mut doc = serde_json::to_value(&inspection)?;
@@ -292,7 +324,13 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         }
         Format::Dot => {
             let title = match inspection.pixel {
-                Some([x, y]) => format!("pixel ({x}, {y}): I = {}", text::color(inspection.color)),
+                Some([x, y]) => match &which_tree {
+                    Some(which) => format!(
+                        "pixel ({x}, {y}): I = {}; {which}",
+                        text::color(inspection.color)
+                    ),
+                    None => format!("pixel ({x}, {y}): I = {}", text::color(inspection.color)),
+                },
                 None if path_traced => format!(
                     "ray {} → {}: its Whitted reading (the scene is path traced)",
                     text::vec3(ray.origin),
@@ -311,23 +349,12 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             }
             if let (Some([x, y]), Some(r)) = (inspection.pixel, &rendered) {
                 out += &format!("pixel ({x}, {y}) = {}", text::color(r.value));
-                if r.is_centre_ray() && a.sample.is_none() {
-                    out += "\n";
-                } else {
-                    out += &format!("  as rendered: {}\n", r.describe());
-                    out += &match traced {
-                        Traced::Centre => format!(
-                            "the tree of the ray through the pixel's centre (I = {}):\n",
-                            text::color(inspection.tree.color)
-                        ),
-                        Traced::Sample(k, at) => format!(
-                            "the tree of sample {k} of {}, through ({}, {}) (I = {}):\n",
-                            r.options.spp.max(1),
-                            text::num(at.x),
-                            text::num(at.y),
-                            text::color(inspection.tree.color)
-                        ),
-                    };
+                match &which_tree {
+                    None => out += "\n",
+                    Some(which) => {
+                        out += &format!("  as rendered: {}\n", r.describe());
+                        out += &format!("{which}:\n");
+                    }
                 }
             }
             out += &text::tree(&inspection.tree);

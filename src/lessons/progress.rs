@@ -26,13 +26,7 @@ pub struct Progress {
     pub lessons: BTreeMap<String, BTreeSet<String>>,
 }
 
-/// The folder progress is kept in: `RAYTREE_DATA`, else the platform's data folder.
-pub fn data_dir() -> Option<PathBuf> {
-    if let Some(p) = std::env::var_os("RAYTREE_DATA") {
-        return Some(PathBuf::from(p));
-    }
-    directories::ProjectDirs::from("", "", "raytree").map(|d| d.data_dir().to_path_buf())
-}
+use crate::files::data_dir;
 
 fn file() -> Option<PathBuf> {
     data_dir().map(|d| d.join("progress.json"))

@@ -31,6 +31,20 @@ pub enum WriteError {
         /// Its folder.
         folder: PathBuf,
     },
+    /// The output's folder is a file (or a device): "t.ppm/x.png" where t.ppm is an image.
+    #[error("{}: cannot write: {} is not a folder", path.display(), folder.display())]
+    NotAFolder {
+        /// The output as given.
+        path: PathBuf,
+        /// Its folder.
+        folder: PathBuf,
+    },
+    /// The output ends in a path separator, which names a folder, not a file.
+    #[error("{}: ends in '/', which names a folder: give a file name", path.display())]
+    FolderName {
+        /// The output as given.
+        path: PathBuf,
+    },
     /// The symbolic links of the output cannot be followed (a loop, or one that cannot be read).
     #[error("{}: {source}", path.display())]
     Links {
@@ -63,6 +77,8 @@ impl WriteError {
             | WriteError::NotRegular { path }
             | WriteError::ReadOnly { path }
             | WriteError::NoFolder { path, .. }
+            | WriteError::NotAFolder { path, .. }
+            | WriteError::FolderName { path }
             | WriteError::Links { path, .. }
             | WriteError::Io { path, .. }
             | WriteError::Cancelled { path } => path,

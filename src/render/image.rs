@@ -306,20 +306,7 @@ pub fn write_atomically_with(
         path: path_buf(),
         source,
     };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".raytree-").suffix(".tmp");
-    // A new file gets the permissions any new file would (0666 less the umask), not the
-    // temporary file's private 0600.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    // The system's reason alone: tempfile adds the temporary file's name, which the user never
-    // asked for.
-    let tmp = builder
-        .tempfile_in(&dir)
-        .map_err(|e| failed(e.raw_os_error().map_or(e, io::Error::from_raw_os_error)))?;
+    let tmp = temporary_file_in(&dir).map_err(failed)?;
     let result = (|| {
         if let Some(meta) = &existing {
             tmp.as_file().set_permissions(meta.permissions())?;
@@ -361,15 +348,47 @@ struct Place {
     dir: PathBuf,
 }
 
-/// The refusals of `write_atomically_with` that need no writing: an output that is a folder, a
-/// device or read-only, whose links cannot be followed, or whose folder is not there. A
-/// command checks them before a long render, so as not to find out after it.
+/// The refusals of `write_atomically_with` found before anything is written: an output that
+/// is a folder, a device or read-only, whose links cannot be followed, whose folder is not
+/// there, or in a folder where no file can be made (a temporary file is made there and removed).
+/// A command checks them before a long render, so as not to find out after it.
 pub fn check_output(path: &Path) -> Result<(), WriteError> {
-    place(path).map(|_| ())
+    let place = place(path)?;
+    temporary_file_in(&place.dir)
+        .map(drop)
+        .map_err(|source| WriteError::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+}
+
+/// A new temporary file in `dir`, removed when dropped; its error is the system's reason alone
+/// (tempfile adds the temporary file's name, which the user never asked for).
+fn temporary_file_in(dir: &Path) -> io::Result<tempfile::NamedTempFile> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".raytree-").suffix(".tmp");
+    // A new file gets the permissions any new file would (0666 less the umask), not the
+    // temporary file's private 0600.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(dir).map_err(|e| {
+        let errno = e.raw_os_error().or_else(|| {
+            let inner = std::error::Error::source(e.get_ref()?)?;
+            inner.downcast_ref::<io::Error>()?.raw_os_error()
+        });
+        errno.map_or_else(|| io::Error::from(e.kind()), io::Error::from_raw_os_error)
+    })
 }
 
 fn place(path: &Path) -> Result<Place, WriteError> {
     let path_buf = || path.to_path_buf();
+    // "out.png/" names a folder, though none is there yet.
+    if path.as_os_str().as_encoded_bytes().last() == Some(&b'/') {
+        return Err(WriteError::FolderName { path: path_buf() });
+    }
     let target = through_links(path).map_err(|source| WriteError::Links {
         path: path_buf(),
         source,
@@ -392,9 +411,16 @@ fn place(path: &Path) -> Result<Place, WriteError> {
         .unwrap_or(Path::new("."))
         .to_path_buf();
     if !dir.is_dir() {
-        return Err(WriteError::NoFolder {
-            path: path_buf(),
-            folder: dir,
+        return Err(if dir.exists() {
+            WriteError::NotAFolder {
+                path: path_buf(),
+                folder: dir,
+            }
+        } else {
+            WriteError::NoFolder {
+                path: path_buf(),
+                folder: dir,
+            }
         });
     }
     Ok(Place {

@@ -47,6 +47,9 @@ use crate::shading::{Light, Material};
 pub struct Scene {
     /// The file the scene was read from, if any.
     pub source: Option<PathBuf>,
+    /// The other files the scene read (meshes, texture images), each once, in the order the
+    /// file names them: with `source`, everything its image depends on.
+    pub inputs: Vec<PathBuf>,
 
     // What is seen, and from where.
     /// The eye and the image.

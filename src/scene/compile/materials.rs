@@ -3,7 +3,7 @@
 //! patterns or textures (`patterns.rs`).
 
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use serde_saphyr::Spanned;
@@ -14,10 +14,11 @@ use crate::scene::format::{Integrator, LobeSpec, MaterialSpec, SceneFile, Varyin
 use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material, Pattern, Patterns};
 
 /// The file's materials, and each one's index by name. Texture images are found relative to
-/// the folder of the scene file (`source`).
+/// the folder of the scene file (`source`); each image read is added to `inputs`.
 pub fn of(
     file: &SceneFile,
     source: Option<&Path>,
+    inputs: &mut Vec<PathBuf>,
 ) -> Result<(Vec<Material>, BTreeMap<String, u32>), Invalid> {
     let base = source.and_then(Path::parent).unwrap_or(Path::new(""));
     let mut textures = Textures::new(base);
@@ -28,6 +29,7 @@ pub fn of(
         material_index.insert(name.clone(), materials.len() as u32);
         materials.push(material(name, &m.value, &mut textures)?);
     }
+    inputs.extend(textures.into_files());
     Ok((materials, material_index))
 }
 

@@ -91,7 +91,8 @@ pub fn compile(
 ) -> Result<Scene, Invalid> {
     let camera = camera::of(&file, limits)?;
     let settings = settings::Settings::of(&file, limits)?;
-    let (materials, by_name) = materials::of(&file, source.as_deref())?;
+    let mut inputs = Vec::new();
+    let (materials, by_name) = materials::of(&file, source.as_deref(), &mut inputs)?;
     let lights = lights::of(&file, &by_name)?;
     let mut warnings = materials::warnings(&file, &materials, settings.integrator);
     let (leaves, objects) = objects::of(
@@ -101,6 +102,7 @@ pub fn compile(
         source.as_deref(),
         limits,
         &mut warnings,
+        &mut inputs,
     )?;
     let background = file.background.as_ref().map_or(Ok(DVec3::ZERO), |b| {
         not_negative(b.value.0, pos(b), "background")
@@ -110,6 +112,7 @@ pub fn compile(
     })?;
     let scene = Scene {
         source,
+        inputs,
         camera,
         background,
         ambient,

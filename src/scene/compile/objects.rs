@@ -3,7 +3,7 @@
 //! and no pattern needs the object's own space) and objects (their trees, groups and bounds).
 
 use std::collections::{BTreeMap, HashSet};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::{DAffine3, DVec3};
 use serde_saphyr::Spanned;
@@ -24,6 +24,7 @@ pub fn of(
     source: Option<&Path>,
     limits: &Limits,
     warnings: &mut Vec<(Pos, String)>,
+    inputs: &mut Vec<PathBuf>,
 ) -> Result<(Vec<Leaf>, Vec<Object>), Invalid> {
     if file.objects.len() > limits.max_objects {
         return invalid(
@@ -50,6 +51,7 @@ pub fn of(
         base: &base,
         triangles: 0,
         warnings,
+        inputs,
     };
     let mut objects = Vec::with_capacity(file.objects.len());
     let mut names = HashSet::with_capacity(file.objects.len());
@@ -124,6 +126,8 @@ struct Builder<'a> {
     /// Triangles in the meshes built so far (budgeted by `Limits::max_triangles`).
     triangles: u64,
     warnings: &'a mut Vec<(Pos, String)>,
+    /// The mesh files read, each once.
+    inputs: &'a mut Vec<PathBuf>,
 }
 
 /// Where in an object's CSG tree the builder is.
@@ -458,6 +462,9 @@ impl Builder<'_> {
                 ));
             }
             self.triangles += mesh.triangles.len() as u64;
+            if !self.inputs.contains(&path) {
+                self.inputs.push(path);
+            }
             return Ok(Shape::Mesh(mesh));
         }
         if let Some(i) = &spec.icosphere {

@@ -20,6 +20,8 @@ use crate::shading::Pattern;
 pub struct Textures<'a> {
     base: &'a Path,
     loaded: HashMap<PathBuf, Arc<Image>>,
+    /// The images' files, in the order first named.
+    files: Vec<PathBuf>,
 }
 
 /// What a pattern's values are: colours, or one coefficient (grey values).
@@ -41,7 +43,13 @@ impl<'a> Textures<'a> {
         Textures {
             base,
             loaded: HashMap::new(),
+            files: Vec::new(),
         }
+    }
+
+    /// The image files read, each once, in the order first named.
+    pub fn into_files(self) -> Vec<PathBuf> {
+        self.files
     }
 
     /// A value: a constant, or a pattern.
@@ -170,6 +178,7 @@ impl<'a> Textures<'a> {
         }
         let image = Image::load(&path, &file.value).or_else(|e| invalid(pos(file), of.say(e)))?;
         let image = Arc::new(image);
+        self.files.push(path.clone());
         self.loaded.insert(path, image.clone());
         Ok(image)
     }
