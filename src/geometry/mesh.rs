@@ -342,14 +342,14 @@ impl Mesh {
             let p = &m.mesh.positions;
             positions.extend(
                 p.chunks_exact(3)
-                    .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)),
+                    .map(|v| DVec3::new(v[0], v[1], v[2])),
             );
             if smooth && m.mesh.normals.len() == p.len() {
                 normals.extend(
                     m.mesh
                         .normals
                         .chunks_exact(3)
-                        .map(|v| DVec3::new(v[0] as f64, v[1] as f64, v[2] as f64)),
+                        .map(|v| DVec3::new(v[0], v[1], v[2])),
                 );
             }
             if m.mesh.texcoords.len() / 2 == p.len() / 3 {
@@ -357,7 +357,7 @@ impl Mesh {
                     m.mesh
                         .texcoords
                         .chunks_exact(2)
-                        .map(|t| DVec2::new(t[0] as f64, t[1] as f64)),
+                        .map(|t| DVec2::new(t[0], t[1])),
                 );
             }
             triangles.extend(
@@ -400,8 +400,7 @@ struct ObjMistake {
 const MAX_OBJ_NUMBER: f64 = super::MAX_MAGNITUDE;
 
 /// Checks what the OBJ parser would refuse without a line, or accept though it is wrong: the
-/// numbers of `v`, `vn` and `vt` lines and the indices of `f` lines. The parser keeps
-/// positions in single precision, so numbers beyond its range are refused here too.
+/// numbers of `v`, `vn` and `vt` lines and the indices of `f` lines.
 fn check_obj(text: &[u8]) -> Result<(), ObjMistake> {
     let lines = || {
         text.split(|&b| b == b'\n').enumerate().map(|(i, line)| {
@@ -498,11 +497,6 @@ fn check_obj_number(word: &[u8]) -> Result<(), String> {
         Err(format!(
             "number {x:e} is too large: numbers must lie within ±1e100"
         ))
-    } else if x.abs() > f32::MAX as f64 {
-        Err(format!(
-            "number {x:e} is too large for a mesh: its numbers are read in single precision, which reaches ±{:.1e}",
-            f32::MAX
-        ))
     } else {
         Ok(())
     }
@@ -587,6 +581,21 @@ pub(crate) mod tests {
         assert_eq!(b.triangles, vec![[0, 1, 2]]);
     }
 
+    /// An OBJ's numbers are read as a scene's are, in double precision: 100 000 000.5 and 0.1
+    /// stay what the file says (single precision has a step of 8 at 10⁸ and reads 0.1 as
+    /// 0.100000001490116), and 10⁵⁰, beyond single precision's range, is a number like another.
+    #[test]
+    fn obj_numbers_are_read_in_double_precision() {
+        let text = b"v 100000000.5 0.1 0\nv 100000001.5 0.1 0\nv 100000000.5 1e50 0\nvt 0.1 0.3\n\
+                     vt 1 0.3\nvt 0.1 1\nf 1/1 2/2 3/3\n";
+        let (m, dropped) = Mesh::load_obj(&obj("precise.obj", text), false, &BUDGET).unwrap();
+        assert_eq!(dropped, 0);
+        assert_eq!(m.positions[0], DVec3::new(100_000_000.5, 0.1, 0.0));
+        assert_eq!(m.positions[1].x, 100_000_001.5);
+        assert_eq!(m.positions[2].y, 1e50);
+        assert_eq!(m.texcoords[0], DVec2::new(0.1, 0.3));
+    }
+
     /// Where the check points, and a piece of what it says.
     fn mistake(text: &str) -> (usize, usize, String) {
         let e = check_obj(text.as_bytes()).unwrap_err();
@@ -608,9 +617,6 @@ pub(crate) mod tests {
         let (line, column, m) = mistake("v 1e300 0 0\n");
         assert_eq!((line, column), (1, 3), "{m}");
         assert!(m.contains("±1e100") && !m.contains("finite"), "{m}");
-        // Within the scene's range, yet beyond single precision, in which positions are read.
-        let (_, _, m) = mistake("v 1e50 0 0\n");
-        assert!(m.contains("single precision"), "{m}");
         let (_, _, m) = mistake("v nan 0 0\n");
         assert!(m.contains("non-finite"), "{m}");
         let (line, column, m) = mistake(&format!("{tri}f 1 2 0\n"));

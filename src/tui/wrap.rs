@@ -26,6 +26,62 @@ pub fn cut(line: &str, max: usize) -> String {
     out
 }
 
+/// A pane's title (" name · part · part ") within `max` cells: whole parts, never a part cut
+/// in the middle of a word. The first part, the pane's name, always stays; each later part
+/// stays where it fits after those kept before it, in order. Parts are separated by " · "
+/// outside brackets, so "(C: met only · c closes)" is one part. A name wider than `max` is cut
+/// at a word's end, with "…".
+pub fn title_to_fit(title: &str, max: usize) -> String {
+    if width(title) <= max {
+        return title.to_string();
+    }
+    let parts = title_parts(title.trim());
+    let mut kept = format!(" {} ", parts[0]);
+    if width(&kept) > max {
+        return cut_at_word(&kept, max);
+    }
+    for part in &parts[1..] {
+        let longer = format!("{}· {part} ", kept);
+        if width(&longer) <= max {
+            kept = longer;
+        }
+    }
+    kept
+}
+
+/// The " · "-separated parts of a title, not split inside brackets.
+fn title_parts(title: &str) -> Vec<&str> {
+    let (mut parts, mut depth, mut start) = (vec![], 0i32, 0);
+    for (i, c) in title.char_indices() {
+        match c {
+            '(' | '[' => depth += 1,
+            ')' | ']' => depth -= 1,
+            _ if depth == 0 && title[i..].starts_with(" · ") => {
+                parts.push(&title[start..i]);
+                start = i + " · ".len();
+            }
+            _ => {}
+        }
+    }
+    parts.push(&title[start..]);
+    parts
+}
+
+/// `line` cut to `max` cells at the end of a word, ending in "…" (mid-word only when its first
+/// word alone is too wide).
+fn cut_at_word(line: &str, max: usize) -> String {
+    let cut = cut(line, max);
+    let kept = cut.trim_end_matches('…');
+    let next = line[kept.len()..].chars().next();
+    if next.is_none_or(|c| c == ' ') {
+        return cut;
+    }
+    match kept.trim_end().rfind(' ') {
+        Some(i) if !kept[..i].trim().is_empty() => format!("{}…", &kept[..i]),
+        _ => cut,
+    }
+}
+
 /// Word-wraps a line to `max` cells; continuation lines keep the line's indentation (plus
 /// two cells), so wrapped formulas stay readable.
 pub fn wrap(line: &str, max: usize) -> Vec<String> {
@@ -84,4 +140,53 @@ pub fn wrap_hang(line: &str, max: usize, hang: &str) -> Vec<String> {
         out.push(cur);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The words of a title, "…" marks aside.
+    fn words(s: &str) -> Vec<&str> {
+        s.split_whitespace()
+            .map(|w| w.trim_end_matches('…'))
+            .filter(|w| !w.is_empty())
+            .collect()
+    }
+
+    /// A title that fits is kept as it is; one that does not loses whole parts, from those
+    /// that do not fit after the ones before them, and never a part cut mid-word.
+    #[test]
+    fn a_title_keeps_the_whole_parts_that_fit() {
+        let title = " ray tree · pixel 30,30 · level 2 of 5 ";
+        assert_eq!(width(title), 39);
+        assert_eq!(title_to_fit(title, 39), title);
+        assert_eq!(title_to_fit(title, 30), " ray tree · pixel 30,30 ");
+        // A part that does not fit is left out; a shorter one after it still fits.
+        assert_eq!(
+            title_to_fit(" ray tree · pixel 130,130 · level 2 ", 22),
+            " ray tree · level 2 "
+        );
+        assert_eq!(title_to_fit(title, 12), " ray tree ");
+        // The name alone too wide: cut after a whole word.
+        assert_eq!(title_to_fit(title, 7), " ray…");
+        // Brackets hold their " · ".
+        assert_eq!(title_to_fit(" a · b (c · d) · e ", 8), " a · e ");
+        let csg = " CSG segment lists [t_in, t_out] · every object · C: met only · c closes ";
+        assert_eq!(
+            title_to_fit(csg, 60),
+            " CSG segment lists [t_in, t_out] · every object · c closes "
+        );
+        for max in 0..=width(csg) {
+            let fitted = title_to_fit(csg, max);
+            assert!(width(&fitted) <= max, "{max}: {fitted:?}");
+            for w in words(&fitted) {
+                assert!(
+                    csg.split_whitespace().any(|whole| whole == w)
+                        || fitted.ends_with(&format!("{w}…")),
+                    "{max}: {fitted:?} cuts {w:?}"
+                );
+            }
+        }
+    }
 }

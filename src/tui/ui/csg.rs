@@ -37,11 +37,11 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let total = lines.len();
     let (shown, start) = scroll_window(&lines, app.csg.scroll(), inner(area).height);
     let title = if app.csg.all() {
-        " CSG segment lists [t_in, t_out] · every object (C: met only · c closes) "
+        " CSG segment lists [t_in, t_out] · every object · C: met only · c closes "
     } else {
-        " CSG segment lists [t_in, t_out] (C: every object · c closes) "
+        " CSG segment lists [t_in, t_out] · C: every object · c closes "
     };
-    let mut block = pane(app, title, Some(Focus::Lower));
+    let mut block = pane(app, title, area, Some(Focus::Lower));
     if let Some(note) = position_note(start, shown.len(), total) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }

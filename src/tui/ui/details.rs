@@ -34,7 +34,7 @@ pub fn lines(app: &App, width: usize) -> Vec<Line<'static>> {
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let Some(root) = app.tree.shown_tree() else {
-        f.render_widget(pane(app, " details ", Some(Focus::Lower)), area);
+        f.render_widget(pane(app, " details ", area, Some(Focus::Lower)), area);
         return;
     };
     let at = tree::kinds_of_path(root, app.tree.selected());
@@ -47,7 +47,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let h = inner(area).height;
     let total = lines.len();
     let (shown, start) = scroll_window(&lines, app.tree.details_scroll(), h);
-    let mut block = pane(app, title, Some(Focus::Lower));
+    let mut block = pane(app, &title, area, Some(Focus::Lower));
     if let Some(note) = position_note(start, shown.len(), total) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }

@@ -53,7 +53,7 @@ pub fn drawing(app: &App) -> Option<Drawing> {
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let Some(d) = drawing(app) else {
         f.render_widget(
-            Paragraph::new("no scene").block(pane(app, " rays ", Some(Focus::Diagram))),
+            Paragraph::new("no scene").block(pane(app, " rays ", area, Some(Focus::Diagram))),
             area,
         );
         return;
@@ -64,7 +64,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         format!(" · zoom ×{:.2}", app.diagram.zoom)
     };
     let title = format!(" rays · {}{zoom} ", d.view.caption());
-    let mut block = pane(app, title, Some(Focus::Diagram));
+    let mut block = pane(app, &title, area, Some(Focus::Diagram));
     // The BVH boxes the selected ray's search visited.
     let boxes = app.diagram.bvh.then(|| {
         let scene = app.file.scene.as_deref().expect("a drawing has a scene");

@@ -46,7 +46,7 @@ fn readme(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
         " {} · {} · README (r closes, a: exercises) ",
         l.lesson.id, l.lesson.title
     );
-    let mut block = pane(app, title, Some(Focus::Lesson));
+    let mut block = pane(app, &title, area, Some(Focus::Lesson));
     let note = position_note(start, shown.len(), total);
     if cut {
         let keys = if app.focus == Focus::Lesson {
@@ -84,7 +84,7 @@ fn exercises(f: &mut Frame, app: &App, l: &LessonPanel, area: Rect) {
     let view = exercises::view(l, inner(area));
     let title = format!(" {} · exercises (Enter answer · w worked) ", l.lesson.id);
     let (text, start) = scroll_window(&view.text, l.exercise_scroll, view.room as u16);
-    let mut block = pane(app, title, Some(Focus::Lesson));
+    let mut block = pane(app, &title, area, Some(Focus::Lesson));
     let width = (area.width as usize).saturating_sub(2);
     if let Some(note) = view.footer(l.exercise, start, text.len(), width) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));

@@ -14,8 +14,9 @@ mod tree_view;
 use glam::DVec3;
 use ratatui::backend::TestBackend;
 use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
 use ratatui::style::{Color, Modifier, Style};
-use ratatui::text::{Line, Span};
+use ratatui::text::Span;
 use ratatui::widgets::{Block, BorderType, Paragraph, Wrap};
 use ratatui::{Frame, Terminal};
 
@@ -122,8 +123,10 @@ pub(crate) fn swatch(app: &App, c: DVec3) -> Span<'static> {
     }
 }
 
-/// A pane's frame; the focused pane's is drawn bold and thick.
-pub(crate) fn pane<'a>(app: &App, title: impl Into<Line<'a>>, focus: Option<Focus>) -> Block<'a> {
+/// A pane's frame for `area`, its title kept to whole parts that fit between the corners; the
+/// focused pane's is drawn bold and thick.
+pub(crate) fn pane(app: &App, title: &str, area: Rect, focus: Option<Focus>) -> Block<'static> {
+    let title = crate::tui::wrap::title_to_fit(title, area.width.saturating_sub(2) as usize);
     let focused = focus.is_some_and(|f| f == app.focus);
     let (style, kind) = if focused {
         (

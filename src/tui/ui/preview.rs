@@ -22,7 +22,7 @@ pub fn draw(f: &mut Frame, app: &App, p: &Panes) {
     } else {
         ""
     };
-    let mut block = pane(app, title, Some(Focus::Preview))
+    let mut block = pane(app, &title, p.preview, Some(Focus::Preview))
         .title_bottom(Line::from(note).alignment(Alignment::Right));
     if app.preview.marks {
         block = block.title_bottom(Line::from(" ◆ hits ").alignment(Alignment::Left));

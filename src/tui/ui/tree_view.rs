@@ -26,7 +26,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     };
     let Some(root) = t.shown_tree() else {
         f.render_widget(
-            Paragraph::new("no scene").block(pane(app, title, Some(Focus::Tree))),
+            Paragraph::new("no scene").block(pane(app, &title, area, Some(Focus::Tree))),
             area,
         );
         return;
@@ -35,7 +35,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let body = app.tree_body_height();
     let start = t.offset().min(rows.len());
     let shown = &rows[start..(start + body).min(rows.len())];
-    let mut block = pane(app, title, Some(Focus::Tree));
+    let mut block = pane(app, &title, area, Some(Focus::Tree));
     if let Some(note) = position_note(start, shown.len(), rows.len()) {
         block = block.title_bottom(Line::from(note).alignment(Alignment::Right));
     }
