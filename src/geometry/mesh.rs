@@ -340,10 +340,7 @@ impl Mesh {
         for m in models {
             let base = positions.len() as u32;
             let p = &m.mesh.positions;
-            positions.extend(
-                p.chunks_exact(3)
-                    .map(|v| DVec3::new(v[0], v[1], v[2])),
-            );
+            positions.extend(p.chunks_exact(3).map(|v| DVec3::new(v[0], v[1], v[2])));
             if smooth && m.mesh.normals.len() == p.len() {
                 normals.extend(
                     m.mesh

@@ -28,22 +28,47 @@ use super::{cylinder, Shape};
 
 /// Which texture coordinates of a surface run from one edge of the image to the other, as v
 /// does on a sphere from pole to pole, rather than round and round (u round a sphere) or on
-/// without end (a plane's): an image does not wrap round those edges.
+/// without end (a plane's): an image does not wrap round those edges. On a face of the cube
+/// cross, the image ends at the edges of the face's own cell: its neighbours in the cross are
+/// blank or, for most edges, not its neighbours on the cube.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Edges {
     /// u ends at the image's left and right edges.
     pub u: bool,
     /// v ends at the image's bottom and top edges.
     pub v: bool,
+    /// The face of the cube cross the point lies on, whose cell ends the image both ways.
+    pub cell: Option<CubeFace>,
 }
 
 impl Edges {
     /// Neither coordinate ends: the image repeats both ways.
-    pub const NONE: Edges = Edges { u: false, v: false };
+    pub const NONE: Edges = Edges {
+        u: false,
+        v: false,
+        cell: None,
+    };
     /// v ends (pole to pole, base to top), u goes round.
-    pub const V: Edges = Edges { u: false, v: true };
+    pub const V: Edges = Edges {
+        u: false,
+        v: true,
+        cell: None,
+    };
     /// Both end: a disc or a triangle filling the unit square.
-    pub const BOTH: Edges = Edges { u: true, v: true };
+    pub const BOTH: Edges = Edges {
+        u: true,
+        v: true,
+        cell: None,
+    };
+
+    /// The cell of `face` in the cube cross: the image ends at its four edges.
+    pub fn cell(face: CubeFace) -> Edges {
+        Edges {
+            u: true,
+            v: true,
+            cell: Some(face),
+        }
+    }
 }
 
 /// x − ⌊x⌋, in [0, 1) (a value that rounds to 1 wraps to 0).
@@ -147,7 +172,7 @@ impl CubeFace {
     ///        down
     /// ```
     /// Neighbouring faces of the cross share their edge on the cube too.
-    fn cell(self) -> (f64, f64) {
+    pub fn cell(self) -> (f64, f64) {
         match self {
             CubeFace::Left => (0.0, 1.0),
             CubeFace::Front => (1.0, 1.0),
@@ -201,14 +226,7 @@ impl Shape {
                 let q = (p - 0.5 * (b.min + b.max)) / (0.5 * (b.max - b.min));
                 // Mirrored in z: the face at z = −1 (face 4) is read as the cube's front.
                 let q = DVec3::new(q.x, q.y, -q.z);
-                let face = match face {
-                    0 => CubeFace::Left,
-                    1 => CubeFace::Right,
-                    2 => CubeFace::Down,
-                    3 => CubeFace::Up,
-                    4 => CubeFace::Front,
-                    _ => CubeFace::Back,
-                };
+                let face = box_face(face);
                 face.unfolded(face.uv(q))
             }
             Shape::Cylinder(c) | Shape::OpenCylinder(c) => {
@@ -237,7 +255,8 @@ impl Shape {
     pub fn uv_edges(&self, face: u32) -> Edges {
         match self {
             Shape::Plane(_) | Shape::Mesh(_) => Edges::NONE,
-            Shape::Sphere(_) | Shape::Box(_) => Edges::V,
+            Shape::Sphere(_) => Edges::V,
+            Shape::Box(_) => Edges::cell(box_face(face)),
             Shape::Cylinder(_) | Shape::OpenCylinder(_) | Shape::Cone(_) | Shape::OpenCone(_) => {
                 if face == cylinder::SIDE as u32 {
                     Edges::V
@@ -247,6 +266,19 @@ impl Shape {
             }
             Shape::Triangle(_) => Edges::BOTH,
         }
+    }
+}
+
+/// The cube face a box's face is read as: the box is mirrored in z, so that its face at z = −1
+/// (face 4), the one a camera at −z sees, is the cross's middle face.
+fn box_face(face: u32) -> CubeFace {
+    match face {
+        0 => CubeFace::Left,
+        1 => CubeFace::Right,
+        2 => CubeFace::Down,
+        3 => CubeFace::Up,
+        4 => CubeFace::Front,
+        _ => CubeFace::Back,
     }
 }
 

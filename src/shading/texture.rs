@@ -11,7 +11,7 @@ use serde::Deserialize;
 
 use super::pattern::PatternPoint;
 use crate::geometry::floor::floor;
-use crate::geometry::uv::{cube, cylindrical, planar, spherical, wrap, Edges};
+use crate::geometry::uv::{cube, cylindrical, planar, spherical, wrap, CubeFace, Edges};
 
 /// How a point of a surface gets its (u, v).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
@@ -48,7 +48,8 @@ impl Mapping {
     /// unit tile or unit of height); the surface's own for `uv`.
     pub fn edges(self, at: &PatternPoint) -> Edges {
         match self {
-            Mapping::Spherical | Mapping::Cube => Edges::V,
+            Mapping::Spherical => Edges::V,
+            Mapping::Cube => Edges::cell(CubeFace::of(at.point)),
             Mapping::Planar | Mapping::Cylindrical => Edges::NONE,
             Mapping::Uv => at.edges,
         }
@@ -226,8 +227,22 @@ impl Image {
 
     /// The column and row of the texel at column i, row j of the grid the image repeats in:
     /// wrapped round the image, or, across an edge where the coordinate ends (`edges`), the
-    /// edge's own column or row.
+    /// edge's own column or row; on a face of the cube cross, the nearest texel of the face's
+    /// cell.
     pub fn texel_at(&self, i: i64, j: i64, edges: Edges) -> (usize, usize) {
+        if let Some(face) = edges.cell {
+            // The cell's texels: those whose centres lie within its quarter of the width and
+            // third of the height (column `col` from the left, row `row` from the bottom).
+            let (col, row) = face.cell();
+            let span = |from: f64, to: f64, n: u32| {
+                let first = (from * n as f64 - 0.5).ceil().max(0.0) as i64;
+                let last = ((to * n as f64 - 0.5).floor() as i64).min(n as i64 - 1);
+                (first, last.max(first))
+            };
+            let (i0, i1) = span(col / 4.0, (col + 1.0) / 4.0, self.width);
+            let (j0, j1) = span((2.0 - row) / 3.0, (3.0 - row) / 3.0, self.height);
+            return (i.clamp(i0, i1) as usize, j.clamp(j0, j1) as usize);
+        }
         let place = |k: i64, n: u32, ends: bool| {
             if ends {
                 k.clamp(0, n as i64 - 1) as usize
@@ -364,6 +379,39 @@ mod tests {
         // Between the rows' centres both blend the same.
         let inside = DVec2::new(0.5, 0.5);
         assert_eq!(img.bilinear(inside, ends), img.bilinear(inside, repeats));
+    }
+
+    /// A cube cross of 2 × 2 texels a face, only the up face painted (red) and every other
+    /// cell black: at the up face's left and right edges, and at its top, the filter reads the
+    /// up face's own texels alone, never the blank cells beside it in the cross (which the
+    /// cube's left, right and back faces are not), so the face stays red to its edges. The
+    /// front face, whose cell lies below, keeps its own black up to its top edge: each face
+    /// is filtered within its cell, as a cube map without seamless filtering is.
+    #[test]
+    fn a_cube_faces_filter_reads_its_own_cell_only() {
+        let red = [1.0, 0.0, 0.0];
+        let mut texels = vec![[0.0; 3]; 8 * 6];
+        // The up face's cell: column 1 of 4, the top row of 3 (texels 2–3, rows 0–1).
+        for (j, i) in [(0, 2), (0, 3), (1, 2), (1, 3)] {
+            texels[j * 8 + i] = red;
+        }
+        let img = Image::new("cross", 8, 6, texels);
+        let at = |p: DVec3| {
+            let at = PatternPoint::at(p);
+            img.bilinear(Mapping::Cube.uv(&at), Mapping::Cube.edges(&at))
+        };
+        for p in [
+            DVec3::new(-0.999, 1.0, 0.0),
+            DVec3::new(0.999, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.999),
+            DVec3::new(-0.999, 1.0, 0.999),
+        ] {
+            assert_eq!(at(p), DVec3::X, "up face at {p}");
+        }
+        assert_eq!(at(DVec3::new(0.0, 0.999, 1.0)), DVec3::ZERO);
+        // Without the cell's edges the up face's left edge would blend in the blank cell.
+        let uv = Mapping::Cube.uv(&PatternPoint::at(DVec3::new(-0.999, 1.0, 0.0)));
+        assert!(img.bilinear(uv, Edges::V).x < 0.6);
     }
 
     /// The sRGB curve: 0 and 1 stay, mid grey 0.5 (128/255 stored) is 0.2158 of full
