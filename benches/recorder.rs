@@ -197,12 +197,12 @@ impl Bare<'_> {
         let mirror = reflect(d, n);
         let mut sum = DVec3::ZERO;
         if kr > 0.0 {
-            let r = self.spawn(si, mirror, ray.origin);
+            let r = self.spawn(si, mirror);
             sum += kr * self.child(&r, Kind::Reflection, depth + 1, weight * kr, media, stats);
         }
         if kt > 0.0 {
             let (r, kind, media) = match transmitted {
-                Some(dir) => (self.spawn(si, dir, ray.origin), Kind::Refraction, &beyond),
+                Some(dir) => (self.spawn(si, dir), Kind::Refraction, &beyond),
                 // Total internal reflection: the refraction ray turns into a mirror ray inside
                 // (or is cut off, and counted as such, like any secondary ray).
                 None => {
@@ -211,7 +211,7 @@ impl Bare<'_> {
                     if !cut {
                         stats.total_internal_reflections += 1;
                     }
-                    (self.spawn(si, mirror, ray.origin), Kind::Reflection, media)
+                    (self.spawn(si, mirror), Kind::Reflection, media)
                 }
             };
             sum += kt * self.child(&r, kind, depth + 1, weight * kt, media, stats);
@@ -269,7 +269,7 @@ impl Bare<'_> {
                 None => (l, distance),
             };
             stats.shadow_rays += 1;
-            let (from, moved) = self.scene.offset(si, dir, si.point);
+            let (from, moved) = self.scene.offset(si, dir);
             let t_max = shadow_reach(dist, moved);
             let ray = Ray { origin: from, dir };
             if self.scene.blocker(&ray, 0.0, t_max, stats).is_none() {
@@ -279,9 +279,9 @@ impl Bare<'_> {
         visible as f64 / count as f64
     }
 
-    fn spawn(&self, si: &Interaction, dir: DVec3, from: DVec3) -> Ray {
+    fn spawn(&self, si: &Interaction, dir: DVec3) -> Ray {
         Ray {
-            origin: self.scene.offset(si, dir, from).0,
+            origin: self.scene.offset(si, dir).0,
             dir,
         }
     }

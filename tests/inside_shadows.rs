@@ -159,7 +159,7 @@ fn a_shadow_ray_from_inside_a_convex_solid_is_blocked_wherever_the_rule_skips_it
             if si.normal.dot(l) <= 0.0 {
                 continue;
             }
-            let (from, moved) = s.offset(&si, l, si.point);
+            let (from, moved) = s.offset(&si, l);
             let reach = to_light.length() - moved;
             let shadow = Ray {
                 origin: from,

@@ -9,20 +9,29 @@ use raytree::scene::{parse, Limits, Scene};
 /// A unit sphere resting on a floor, one point light, matte surfaces: everything a pixel
 /// shows can be worked out in closed form.
 fn scene(scale: f64, offset: DVec3) -> Scene {
+    scene_seen_from(scale, offset, 1.0)
+}
+
+/// `scene`, its eye moved `away` times as far from the point it looks at, and its field of
+/// view narrowed to frame the same (tan(fov/2) divided by `away`).
+fn scene_seen_from(scale: f64, offset: DVec3, away: f64) -> Scene {
     let p = |v: DVec3| {
         let w = v * scale + offset;
         format!("[{:e}, {:e}, {:e}]", w.x, w.y, w.z)
     };
+    let look_at = DVec3::new(0.0, 0.8, 0.0);
+    let eye = look_at + away * (DVec3::new(0.0, 2.0, -6.0) - look_at);
+    let fov = 2.0 * (20f64.to_radians().tan() / away).atan().to_degrees();
     let yaml = format!(
-        "camera: {{ eye: {}, look_at: {}, fov: 40, width: 64, height: 48 }}\n\
+        "camera: {{ eye: {}, look_at: {}, fov: {fov:e}, width: 64, height: 48 }}\n\
          background: 0.1\nambient: 0.2\n\
          lights: [ {{ name: L, point: {}, intensity: 1 }} ]\n\
          materials: {{ m: {{ ka: 1, kd: 0.7 }} }}\n\
          objects:\n\
          \x20 - {{ name: ball, sphere: {{ center: {}, radius: {:e} }}, material: m }}\n\
          \x20 - {{ name: floor, plane: {{ point: {}, normal: [0, 1, 0] }}, material: m }}\n",
-        p(DVec3::new(0.0, 2.0, -6.0)),
-        p(DVec3::new(0.0, 0.8, 0.0)),
+        p(eye),
+        p(look_at),
         p(LIGHT),
         p(DVec3::new(0.0, 1.0, 0.0)),
         scale,
@@ -34,8 +43,12 @@ fn scene(scale: f64, offset: DVec3) -> Scene {
 const LIGHT: DVec3 = DVec3::new(4.0, 6.0, -3.0);
 const CENTER: DVec3 = DVec3::new(0.0, 1.0, 0.0);
 
-/// Ray–unit-sphere in the unscaled frame: (nearest t, |discriminant| as a margin).
-fn sphere(o: DVec3, d: DVec3) -> (Option<f64>, f64) {
+/// Ray–unit-sphere in the unscaled frame: (the nearest hit point, |discriminant| as a margin).
+/// The ray is first followed to 2 units short of the centre's distance along it, so that from
+/// far away b² − c does not cancel: the quadratic is solved near the sphere.
+fn sphere(o: DVec3, d: DVec3) -> (Option<DVec3>, f64) {
+    let ahead = (d.dot(CENTER - o) - 2.0).max(0.0);
+    let o = o + ahead * d;
     let oc = o - CENTER;
     let b = d.dot(oc);
     let disc = b * b - (oc.length_squared() - 1.0);
@@ -43,7 +56,7 @@ fn sphere(o: DVec3, d: DVec3) -> (Option<f64>, f64) {
         return (None, -disc);
     }
     let t = -b - disc.sqrt();
-    ((t > 0.0).then_some(t), disc)
+    ((ahead + t > 0.0).then(|| o + t * d), disc)
 }
 
 /// The expected intensity of a ray, and how far it is from any edge (silhouette, shadow
@@ -56,8 +69,7 @@ fn expected(o: DVec3, d: DVec3) -> (f64, f64) {
         0.2 + if lit { 0.7 * n.dot(l).max(0.0) } else { 0.0 }
     };
     match (ball, floor) {
-        (Some(t), _) => {
-            let p = o + t * d;
+        (Some(p), _) => {
             let n = p - CENTER;
             let l = (LIGHT - p).normalize();
             (shade(p, n, true), ball_margin.min(n.dot(l).abs()))
@@ -76,8 +88,11 @@ fn expected(o: DVec3, d: DVec3) -> (f64, f64) {
 }
 
 fn wrong_pixels(scale: f64, offset: DVec3) -> (usize, usize) {
-    let s = scene(scale, offset);
-    let (image, _) = render_simple(&s, RenderOptions::of(&s));
+    wrong_pixels_of(&scene(scale, offset), scale, offset)
+}
+
+fn wrong_pixels_of(s: &Scene, scale: f64, offset: DVec3) -> (usize, usize) {
+    let (image, _) = render_simple(s, RenderOptions::of(s));
     let (mut wrong, mut judged) = (0, 0);
     for y in 0..s.camera.height {
         for x in 0..s.camera.width {
@@ -114,6 +129,23 @@ fn no_acne_or_leaks_far_from_the_origin() {
         assert_eq!(
             wrong, 0,
             "scale {scale} offset {offset}: {wrong} of {judged} pixels wrong"
+        );
+    }
+}
+
+/// A point found by a ray from far away carries that ray's rounding (a few ulps of its
+/// origin's coordinates), so the rays leaving it, shadow rays as well as reflected ones, are
+/// moved off the surface by a bias relative to that origin too: an eye 10⁷ times as far away,
+/// through a telescope's field of view, sees the same ball with no shadow acne.
+#[test]
+fn no_acne_seen_from_far_away() {
+    for away in [1e3, 1e5, 1e7] {
+        let s = scene_seen_from(1.0, DVec3::ZERO, away);
+        let (wrong, judged) = wrong_pixels_of(&s, 1.0, DVec3::ZERO);
+        assert!(judged > 3000, "{away}: only {judged} pixels judged");
+        assert_eq!(
+            wrong, 0,
+            "eye {away} times as far: {wrong} of {judged} pixels wrong"
         );
     }
 }

@@ -106,14 +106,15 @@ impl Frame {
                 }
             }
         }
-        // Ends inside the frame are kept exactly as they are.
+        // Ends inside the frame are kept exactly as they are; a cut end lies on the frame's
+        // edge, where rounding may leave it a hair outside: it is put on the edge.
         let at = |t: f64, end: DVec2| {
             if t == 0.0 {
                 a
             } else if t == 1.0 {
                 end
             } else {
-                a + t * d
+                (a + t * d).clamp(self.min, self.max)
             }
         };
         (t0 <= t1).then(|| (at(t0, a), at(t1, b)))
@@ -157,6 +158,18 @@ mod tests {
         assert!(f
             .clip(DVec2::new(-1.0, 2.0), DVec2::new(2.0, 2.0))
             .is_none());
+        // A cut end lies in the frame, whatever the rounding of the cut.
+        let f = Frame {
+            min: DVec2::new(0.1, 0.3),
+            max: DVec2::new(0.7, 0.9),
+        };
+        for k in 1..200 {
+            let a = DVec2::new(-1.0 / k as f64, 0.3 + 0.6 / k as f64);
+            let b = DVec2::new(3.0, 0.31 + 0.001 * k as f64);
+            if let Some((p, q)) = f.clip(a, b) {
+                assert!(f.contains(p) && f.contains(q), "{a} {b}: {p} {q}");
+            }
+        }
         // A diagonal through a corner region that misses the square.
         assert!(f.clip(DVec2::new(1.5, 0.0), DVec2::new(2.0, 2.0)).is_none());
         let inside = (DVec2::new(0.2, 0.3), DVec2::new(0.4, 0.9));

@@ -162,6 +162,7 @@ impl<'s> DiffusePaths<'s> {
                     object: 0,
                     material,
                     paint: scene.material(material).paint(),
+                    origin_size: ray.origin.abs().max_element(),
                 }
             } else {
                 let Some(hit) = hit else {

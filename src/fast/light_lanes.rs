@@ -223,6 +223,7 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
         let v = at.map(|i| self.view[i % N]);
         let surfaces: Surfaces<V> = Surfaces {
             point: axes(si.map(|s| s.point)),
+            origin_size: lanes(si.map(|s| s.origin_size)),
             normal: axes(si.map(|s| s.normal)),
             view: axes(v),
             color: axes(si.map(|s| s.paint.color)),
@@ -303,6 +304,9 @@ impl<V> GroupLit<V> {
 /// Four surfaces in lanes: what a light's terms and shadow rays need of them.
 struct Surfaces<V> {
     point: [V; 3],
+    /// The largest |coordinate| of the origin of the ray that found each point
+    /// (`Interaction::origin_size`).
+    origin_size: V,
     normal: [V; 3],
     /// v = −d, toward the viewer.
     view: [V; 3],
@@ -392,9 +396,9 @@ fn toward<V: F64x4>(position: DVec3, [px, py, pz]: [V; 3]) -> ([V; 3], V, u32) {
 }
 
 /// `Tracer::shadow_ray` toward a light at distance d: each origin is the point moved off its
-/// surface by the bias (the scene's, or 10⁻¹⁰ of the point's size, as `Scene::offset` finds it
-/// for a ray from the point itself) to the side of the normal the light is on, and the ray
-/// reaches as far as the light less the bias; and that bias.
+/// surface by the bias (the scene's, or 10⁻¹⁰ of the sizes of the point and of the origin of
+/// the ray that found it, as `Scene::offset` finds it) to the side of the normal the light is
+/// on, and the ray reaches as far as the light less the bias; and that bias.
 #[inline(always)]
 fn shadow_rays<V: F64x4>(
     bias: Option<f64>,
@@ -411,7 +415,7 @@ fn shadow_rays<V: F64x4>(
             let (ax, ay, az) = (px.abs(), py.abs(), pz.abs());
             let xy = ax.simd_gt(ay).bitselect(ax, ay);
             let largest = xy.simd_gt(az).bitselect(xy, az);
-            let b = V::splat(1e-10) * (largest + largest);
+            let b = V::splat(1e-10) * (surfaces.origin_size + largest);
             let tiny = V::splat(1e-300);
             b.simd_gt(tiny).bitselect(b, tiny)
         }
@@ -574,6 +578,7 @@ mod tests {
         });
         let surfaces = Surfaces::<V> {
             point: [V::ZERO; 3],
+            origin_size: V::ZERO,
             normal: axes(c.map(|c| c.n)),
             view: axes(c.map(|c| c.v)),
             color: axes(c.map(|c| c.paint.color)),
@@ -668,8 +673,8 @@ mod tests {
     }
 
     /// The shadow rays' origins, reach and bias are `Tracer::shadow_ray`'s (`Scene::offset`
-    /// from the point itself, and `shadow_reach`) to the bit, with the automatic bias at every
-    /// scale and with a scene's fixed one.
+    /// and `shadow_reach`) to the bit, with the automatic bias at every scale of the point and
+    /// of the origin of the ray that found it, and with a scene's fixed one.
     #[test]
     fn the_shadow_rays_in_lanes_are_the_cores() {
         let yaml = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nobjects: []\n";
@@ -682,6 +687,8 @@ mod tests {
                     let scale = 10f64.powf(rng.uniform() * 12.0 - 6.0);
                     scale * unit(&mut rng)
                 });
+                let from: [f64; LANES] =
+                    std::array::from_fn(|_| 10f64.powf(rng.uniform() * 16.0 - 6.0));
                 let mut n: [DVec3; LANES] = std::array::from_fn(|_| unit(&mut rng));
                 let mut l: [DVec3; LANES] = std::array::from_fn(|_| unit(&mut rng));
                 // A light at the horizon (n·l = 0) is on the normal's side.
@@ -689,11 +696,11 @@ mod tests {
                 let d: [f64; LANES] = std::array::from_fn(|_| rng.uniform() * 20.0);
                 let n_dot_l: [f64; LANES] = std::array::from_fn(|j| n[j].dot(l[j]));
                 let own = with_lanes!(V => {
-                    let s = surfaces_at::<V>(p, n);
+                    let s = surfaces_at::<V>(p, from, n);
                     let (o, r, b) = shadow_rays(bias, &s, lanes(n_dot_l), lanes(d));
                     (o.map(V::to_array), r.to_array(), b.to_array())
                 });
-                let s = surfaces_at::<Wide>(p, n);
+                let s = surfaces_at::<Wide>(p, from, n);
                 let (o, r, b) = shadow_rays(bias, &s, lanes(n_dot_l), lanes(d));
                 let wide = (o.map(Wide::to_array), r.to_array(), b.to_array());
                 for (origin, reach, moved_by) in [own, wide] {
@@ -707,9 +714,10 @@ mod tests {
                             object: 0,
                             material: 0,
                             paint: Material::matte("m", DVec3::ONE).paint(),
+                            origin_size: from[j],
                         };
-                        let (from, moved) = scene.offset(&si, l[j], si.point);
-                        assert_eq!(bits(lane(origin, j)), bits(from), "{bias:?} {}", p[j]);
+                        let (start, moved) = scene.offset(&si, l[j]);
+                        assert_eq!(bits(lane(origin, j)), bits(start), "{bias:?} {}", p[j]);
                         assert_eq!(moved_by[j].to_bits(), moved.to_bits(), "{bias:?}");
                         let expected = shadow_reach(d[j], moved);
                         assert_eq!(reach[j].to_bits(), expected.to_bits(), "{bias:?}");
@@ -719,9 +727,14 @@ mod tests {
         }
     }
 
-    fn surfaces_at<V: F64x4>(p: [DVec3; LANES], n: [DVec3; LANES]) -> Surfaces<V> {
+    fn surfaces_at<V: F64x4>(
+        p: [DVec3; LANES],
+        from: [f64; LANES],
+        n: [DVec3; LANES],
+    ) -> Surfaces<V> {
         Surfaces {
             point: axes(p),
+            origin_size: lanes(from),
             normal: axes(n),
             view: [V::ZERO; 3],
             color: [V::ZERO; 3],

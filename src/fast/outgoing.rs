@@ -122,7 +122,7 @@ pub(super) fn send(
         Fate::None => {}
         Fate::CutOff => reflected.cut_off(lane),
         Fate::Traced(()) => {
-            let ray = t.spawn(si, mirror, task);
+            let ray = t.spawn(si, mirror);
             reflected.add(lane, task.reflection(ray, kr));
         }
     }
@@ -130,12 +130,12 @@ pub(super) fn send(
         Fate::None => {}
         Fate::CutOff => transmitted.cut_off(lane),
         Fate::Traced((across, Some(dir))) => {
-            let ray = t.spawn(si, *dir, task);
+            let ray = t.spawn(si, *dir);
             let child = task.refraction(ray, kt, across.beyond, across.indices());
             transmitted.add(lane, child);
         }
         Fate::Traced((_, None)) => {
-            let ray = t.spawn(si, mirror, task);
+            let ray = t.spawn(si, mirror);
             transmitted.add(lane, task.mirror_inside(ray, kt));
             t.stats.total_internal_reflections += 1;
         }

@@ -137,7 +137,7 @@ mod tests {
             normal: n,
             ..Interaction::default()
         };
-        let (origin, b) = scene.offset(&si, l, p);
+        let (origin, b) = scene.offset(&si, l);
         let reach = shadow_reach(d, b);
         let slack = slack(
             Wide::splat(b),

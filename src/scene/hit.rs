@@ -45,6 +45,10 @@ pub struct Interaction {
     pub material: u32,
     /// O, kd, ks, kr and kt here: the material's own, or its patterns looked up at the point.
     pub paint: Paint,
+    /// The largest |coordinate| of the origin of the ray that found the point: with the
+    /// point's own, the size of the numbers the point was computed from, which the bias of
+    /// every ray leaving it (shadow rays too) is relative to (`Scene::bias`).
+    pub origin_size: f64,
 }
 
 impl Scene {
@@ -89,6 +93,7 @@ impl Scene {
         // Field by field, into `si`: a record built whole would be assembled in a stack slot
         // and copied in.
         si.point = point;
+        si.origin_size = ray.origin.abs().max_element();
         si.normal = normal;
         si.inside = inside;
         si.leaf = hit.surface.leaf;
@@ -136,16 +141,22 @@ impl Scene {
     /// 1e−4…1e6 and offsets to 1e6).
     #[inline]
     pub fn bias(&self, origin: DVec3, point: DVec3) -> f64 {
-        self.shadow_bias.unwrap_or_else(|| {
-            (1e-10 * (origin.abs().max_element() + point.abs().max_element())).max(1e-300)
-        })
+        self.bias_of_sizes(origin.abs().max_element(), point)
     }
 
-    /// The hit point of a ray from `from`, moved off the surface to the side `dir` leaves by
-    /// (so a ray from there cannot hit the surface again), and how far it moved.
+    /// `bias` with the origin's largest |coordinate| already found.
     #[inline]
-    pub fn offset(&self, si: &Interaction, dir: DVec3, from: DVec3) -> (DVec3, f64) {
-        let bias = self.bias(from, si.point);
+    fn bias_of_sizes(&self, origin_size: f64, point: DVec3) -> f64 {
+        self.shadow_bias
+            .unwrap_or_else(|| (1e-10 * (origin_size + point.abs().max_element())).max(1e-300))
+    }
+
+    /// The hit point moved off the surface to the side `dir` leaves by (so a ray from there
+    /// cannot hit the surface again), and how far it moved: by the bias of the ray that found
+    /// the point, whose error it must clear, whether the new ray is a shadow ray or a child.
+    #[inline]
+    pub fn offset(&self, si: &Interaction, dir: DVec3) -> (DVec3, f64) {
+        let bias = self.bias_of_sizes(si.origin_size, si.point);
         let side = if dir.dot(si.normal) >= 0.0 {
             bias
         } else {

@@ -259,6 +259,7 @@ impl<'s> PathTracer<'s> {
                     object: 0,
                     material,
                     paint: scene.material(material).paint(),
+                    origin_size: ray.origin.abs().max_element(),
                 };
                 (si, lh.light.name.as_str())
             } else {

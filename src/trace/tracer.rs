@@ -164,7 +164,7 @@ impl<'s, R: Recorder> Tracer<'s, R> {
         first_blocker: Option<(Ray, Hit)>,
     ) {
         let (l, distance) = (toward.l, toward.distance);
-        let (origin, moved) = self.scene.offset(si, l, si.point);
+        let (origin, moved) = self.scene.offset(si, l);
         self.rec.begin(RayStart {
             kind: RayKind::Shadow,
             depth: depth + 1,

@@ -256,7 +256,7 @@ impl<R: Recorder> Tracer<'_, R> {
     /// A shadow ray from the surface along `dir`, and how far it looks for blockers: up to a
     /// light `distance` away.
     pub(crate) fn shadow_ray(&self, si: &Interaction, dir: DVec3, distance: f64) -> (Ray, f64) {
-        let (from, moved) = self.scene.offset(si, dir, si.point);
+        let (from, moved) = self.scene.offset(si, dir);
         (Ray { origin: from, dir }, shadow_reach(distance, moved))
     }
 
@@ -273,24 +273,22 @@ impl<R: Recorder> Tracer<'_, R> {
         let mirror = reflect(d, si.normal);
         let mut sum = DVec3::ZERO;
         if kr > 0.0 {
-            let reflection = task.reflection(self.spawn(si, mirror, task), kr);
+            let reflection = task.reflection(self.spawn(si, mirror), kr);
             sum += kr
                 * match m.glossy {
                     None => self.child(&reflection),
-                    Some(lobe) => self.cone(&reflection, task, si, (lobe, LobeKind::Glossy)),
+                    Some(lobe) => self.cone(&reflection, si, (lobe, LobeKind::Glossy)),
                 };
         }
         if kt > 0.0 {
             sum += kt
                 * match refract(d, si.normal, indices.n1, indices.n2) {
                     Some(dir) => {
-                        let ray = self.spawn(si, dir, task);
+                        let ray = self.spawn(si, dir);
                         let refraction = task.refraction(ray, kt, across.beyond, indices);
                         match m.frosted {
                             None => self.child(&refraction),
-                            Some(lobe) => {
-                                self.cone(&refraction, task, si, (lobe, LobeKind::Frosted))
-                            }
+                            Some(lobe) => self.cone(&refraction, si, (lobe, LobeKind::Frosted)),
                         }
                     }
                     None => self.total_internal_reflection(task, si, mirror, kt, indices),
@@ -341,10 +339,10 @@ impl<R: Recorder> Tracer<'_, R> {
         }
         self.stats.total_internal_reflections += 1;
         refraction.begin(&mut self.rec);
-        let inside = task.mirror_inside(self.spawn(si, mirror, task), kt);
+        let inside = task.mirror_inside(self.spawn(si, mirror), kt);
         let color = match self.scene.material(si.material).frosted {
             None => self.child(&inside),
-            Some(lobe) => self.cone(&inside, task, si, (lobe, LobeKind::Frosted)),
+            Some(lobe) => self.cone(&inside, si, (lobe, LobeKind::Frosted)),
         };
         self.rec
             .end(color, Some(Termination::TotalInternalReflection));
@@ -424,7 +422,6 @@ impl<R: Recorder> Tracer<'_, R> {
     fn cone(
         &mut self,
         principal: &Task,
-        parent: &Task,
         si: &Interaction,
         (lobe, kind): (Lobe, LobeKind),
     ) -> DVec3 {
@@ -438,7 +435,7 @@ impl<R: Recorder> Tracer<'_, R> {
             let (u1, u2) = (self.rng.uniform(), self.rng.uniform());
             let dir = lobe::spread(lobe.shape, principal.ray.dir, si.normal, u1, u2);
             let sample = Task {
-                ray: self.spawn(si, dir, parent),
+                ray: self.spawn(si, dir),
                 coefficient: 1.0 / n as f64,
                 split: true,
                 ..*principal
@@ -456,9 +453,9 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// The one place secondary rays leave a surface: the origin moves off the surface, along
     /// the normal, to the side the new ray travels into, so it cannot hit its own surface.
-    pub(crate) fn spawn(&self, si: &Interaction, dir: DVec3, parent: &Task) -> Ray {
+    pub(crate) fn spawn(&self, si: &Interaction, dir: DVec3) -> Ray {
         Ray {
-            origin: self.scene.offset(si, dir, parent.ray.origin).0,
+            origin: self.scene.offset(si, dir).0,
             dir,
         }
     }
