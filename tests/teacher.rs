@@ -1216,3 +1216,164 @@ fn a_question_quoting_an_unvaried_value_is_refused() {
         out(&o)
     );
 }
+
+/// A mistake in a lesson's exercises.yaml found after it parses is named at its line and
+/// column, as a YAML mistake is: a duplicate id at the second `id`, an exercise with both a
+/// pixel and a ray (the ray would be left unused) at its `ray`, a depth outside 1 to 64 (a
+/// scene's own range) at its `depth`, a scene outside the lesson's folder at its `scene`
+/// (`homework` writes each scene into the student's folder under that name), and a varied
+/// value no scene writes at its `vary` key.
+#[test]
+fn a_mistake_in_exercises_yaml_is_named_at_its_line_and_column() {
+    let lines = std::fs::read_to_string("lessons/02-intersection/exercises.yaml")
+        .unwrap()
+        .lines()
+        .count();
+    let exercise = |extra: &str| {
+        format!("  - id: extra\n    question: Which t?\n    ask: hit_t\n    pixel: [1, 1]\n{extra}")
+    };
+    let cases = [
+        (
+            "  - id: floor-t\n    question: Again?\n    ask: hit_t\n    pixel: [1, 1]\n".to_string(),
+            (1, 9),
+            "duplicate exercise id `floor-t`",
+        ),
+        (
+            exercise("    ray: { origin: [0, 0, -5], direction: [0, 0, 1] }\n"),
+            (5, 10),
+            "exercise `extra`: give `pixel` or `ray`, not both",
+        ),
+        (
+            exercise("    depth: 0\n"),
+            (5, 12),
+            "exercise `extra`: depth 0: a depth is from 1 (the primary ray alone) to 64",
+        ),
+        (
+            exercise("    depth: 100000\n"),
+            (5, 12),
+            "depth 100000",
+        ),
+        (
+            exercise("    scene: ../shared/other.yaml\n"),
+            (5, 12),
+            "exercise `extra`: scene `../shared/other.yaml`: an exercise's scene is a file of the lesson's folder",
+        ),
+        (
+            exercise("    scene: /tmp/other.yaml\n"),
+            (5, 12),
+            "scene `/tmp/other.yaml`",
+        ),
+        (
+            "vary:\n  materials.nothing.kd: [0.1, 0.2]\n".to_string(),
+            (2, 25),
+            "vary `materials.nothing.kd`: no scene of the lesson writes that value",
+        ),
+    ];
+    for (i, (extra, (line, column), says)) in cases.iter().enumerate() {
+        let dir = lesson02_with(&format!("located-{i}"), extra);
+        let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(1), "{extra}: {}{}", out(&o), err(&o));
+        let at = format!(
+            "{}:{}:{column}: ",
+            dir.join("exercises.yaml").display(),
+            lines + line
+        );
+        let report = out(&o);
+        assert!(
+            report.lines().any(|l| l.contains(&at) && l.contains(says)),
+            "{extra}: want {at}…{says} in\n{report}"
+        );
+    }
+}
+
+/// An exercise's pixel outside its scene's image is named with the image's size and the
+/// pixels it has.
+#[test]
+fn a_pixel_outside_the_image_is_named_with_the_images_size() {
+    let dir = lesson02_with(
+        "pixel-outside",
+        "  - id: far\n    question: Which t?\n    ask: hit_t\n    pixel: [160, 7]\n",
+    );
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    assert!(
+        out(&o).contains(
+            "exercise `far`: pixel 160,7 is outside its scene's 160 × 120 image (x from 0 to 159, y from 0 to 119)"
+        ),
+        "{}",
+        out(&o)
+    );
+}
+
+/// A homework folder holds the lesson's subfolders too (a texture kept in `tex/`), so its
+/// scene loads and its exercise checks there; a scene that reads a file from outside the
+/// lesson's folder is refused before anything is written, naming the scene and the file.
+#[test]
+fn homework_copies_the_lessons_subfolders_and_refuses_files_from_outside() {
+    let root = scratch("homework-subfolders");
+    let dir = root.join("16-textures");
+    std::fs::create_dir_all(dir.join("tex")).unwrap();
+    for f in std::fs::read_dir("lessons/16-textures").unwrap() {
+        let f = f.unwrap();
+        if f.path().is_file() {
+            std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+        }
+    }
+    std::fs::rename(dir.join("tiles.png"), dir.join("tex/tiles.png")).unwrap();
+    let scene = dir.join("scene.yaml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert!(text.contains("image: tiles.png"));
+    std::fs::write(
+        &scene,
+        text.replace("image: tiles.png", "image: tex/tiles.png"),
+    )
+    .unwrap();
+    let homework = root.join("hw-s1");
+    let o = raytree(&[
+        "homework",
+        dir.to_str().unwrap(),
+        "--student",
+        "s1",
+        "-o",
+        homework.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    assert_eq!(
+        std::fs::read(homework.join("tex/tiles.png")).unwrap(),
+        std::fs::read(dir.join("tex/tiles.png")).unwrap()
+    );
+    let png = root.join("hw-s1.png");
+    let o = raytree(&[
+        "render",
+        homework.join("scene.yaml").to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+
+    std::fs::rename(dir.join("tex/tiles.png"), root.join("tiles.png")).unwrap();
+    std::fs::write(
+        &scene,
+        text.replace("image: tiles.png", "image: ../tiles.png"),
+    )
+    .unwrap();
+    let refused = root.join("hw-s2");
+    let o = raytree(&[
+        "homework",
+        dir.to_str().unwrap(),
+        "--student",
+        "s2",
+        "-o",
+        refused.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", err(&o));
+    assert!(
+        err(&o).contains(&format!(
+            "{}: reads ../tiles.png, outside the lesson's folder",
+            scene.display()
+        )),
+        "{}",
+        err(&o)
+    );
+    assert!(!refused.exists());
+}

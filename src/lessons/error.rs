@@ -91,6 +91,19 @@ pub enum LessonError {
     /// A homework folder would be written over a folder that has files in it.
     #[error("{}: already exists (remove it, or choose another folder)", .0.display())]
     Exists(PathBuf),
+    /// A lesson's scene reads a file from outside the lesson's folder, which a homework folder
+    /// (a copy of the lesson's folder) would not hold.
+    #[error(
+        "{}: reads {}, outside the lesson's folder: a homework folder holds the lesson's own files only (keep the scene's meshes and images in the lesson's folder)",
+        scene.display(),
+        input.display()
+    )]
+    Outside {
+        /// The scene file.
+        scene: PathBuf,
+        /// The file it reads, as the scene names it from its folder.
+        input: PathBuf,
+    },
     /// A homework folder given as a path that names no folder (`..`, `/`).
     #[error("{}: not a folder name", .0.display())]
     NotAFolderName(PathBuf),

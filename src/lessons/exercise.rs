@@ -10,6 +10,7 @@ use serde::{Deserialize, Serialize};
 use super::error::LessonError;
 use super::tolerance::Tolerance;
 use super::vary::{self, Range};
+use super::yaml_spans;
 use crate::files::{read_text, ReadError, TEXT_BUDGET};
 use crate::shading::Highlight;
 
@@ -189,6 +190,28 @@ pub struct Lesson {
     pub templates: Vec<String>,
 }
 
+/// The node at `steps` of a parsed exercises.yaml: a key of a mapping (taken whole: a `vary`
+/// key holds dots), or an index into a list.
+fn node_at<'n>(root: &'n yaml_spans::Node, steps: &[&str]) -> Option<&'n yaml_spans::Node> {
+    steps.iter().try_fold(root, |node, step| match &node.value {
+        yaml_spans::Kind::Map(entries) => entries.iter().find(|(k, _)| k == step).map(|(_, v)| v),
+        yaml_spans::Kind::Seq(items) => items.get(step.parse::<usize>().ok()?),
+        yaml_spans::Kind::Scalar(_) => None,
+    })
+}
+
+/// Whether a file name stays inside the folder it is read from: relative, and without `..`.
+fn inside_the_folder(name: &str) -> bool {
+    let path = Path::new(name);
+    !name.is_empty()
+        && path.components().all(|c| {
+            matches!(
+                c,
+                std::path::Component::Normal(_) | std::path::Component::CurDir
+            )
+        })
+}
+
 impl Lesson {
     /// The lesson a user names: its folder, or its name in the lessons folder (`find_lesson`).
     pub fn named(folder_or_name: &Path) -> Result<Lesson, LessonError> {
@@ -224,20 +247,39 @@ impl Lesson {
             read => read.map_err(|e| LessonError::io(&path, "read", e.into()))?,
         };
         let path = dir.join("exercises.yaml");
+        // Where in the file a mistake found after parsing lies (the file parsed, it parses
+        // again; where a node cannot be found, the file alone is named).
+        let spans = yaml_spans::parse(&text).ok();
+        let at = |steps: &[&str], message: String| -> LessonError {
+            match spans.as_ref().and_then(|root| node_at(root, steps)) {
+                Some(node) => LessonError::Format {
+                    file: path.clone(),
+                    line: node.referenced.line(),
+                    column: node.referenced.column(),
+                    message,
+                },
+                None => LessonError::Invalid {
+                    file: path.clone(),
+                    message,
+                },
+            }
+        };
         let mut seen = std::collections::HashSet::new();
-        for ex in &file.exercises {
+        for (i, ex) in file.exercises.iter().enumerate() {
+            let i = i.to_string();
+            let field = |key: &'static str| ["exercises", i.as_str(), key];
             if !seen.insert(&ex.id) {
-                return Err(LessonError::Invalid {
-                    file: path,
-                    message: format!("duplicate exercise id `{}`", ex.id),
-                });
+                return Err(at(
+                    &field("id"),
+                    format!("duplicate exercise id `{}`", ex.id),
+                ));
             }
             if let Some(p) = vary::placeholders(&ex.question).find(|p| !file.vary.contains_key(*p))
             {
                 let varied: Vec<&str> = file.vary.keys().map(String::as_str).collect();
-                return Err(LessonError::Invalid {
-                    file: path,
-                    message: format!(
+                return Err(at(
+                    &field("question"),
+                    format!(
                         "exercise `{}`: the question quotes `{{{p}}}`, which is not a value the lesson varies ({})",
                         ex.id,
                         match varied.is_empty() {
@@ -245,13 +287,41 @@ impl Lesson {
                             false => format!("it varies {}", varied.join(", ")),
                         }
                     ),
-                });
+                ));
             }
             if ex.pixel.is_none() && ex.ray.is_none() && !ex.ask.about_image() {
-                return Err(LessonError::Invalid {
-                    file: path,
-                    message: format!("exercise `{}` needs `pixel` or `ray`", ex.id),
-                });
+                return Err(at(
+                    &["exercises", &i],
+                    format!("exercise `{}` needs `pixel` or `ray`", ex.id),
+                ));
+            }
+            if ex.pixel.is_some() && ex.ray.is_some() {
+                return Err(at(
+                    &field("ray"),
+                    format!(
+                        "exercise `{}`: give `pixel` or `ray`, not both: the ray would be left unused",
+                        ex.id
+                    ),
+                ));
+            }
+            let most = crate::scene::Limits::default().max_depth;
+            if let Some(depth) = ex.depth.filter(|d| !(1..=most).contains(d)) {
+                return Err(at(
+                    &field("depth"),
+                    format!(
+                        "exercise `{}`: depth {depth}: a depth is from 1 (the primary ray alone) to {most}",
+                        ex.id
+                    ),
+                ));
+            }
+            if let Some(scene) = ex.scene.as_deref().filter(|s| !inside_the_folder(s)) {
+                return Err(at(
+                    &field("scene"),
+                    format!(
+                        "exercise `{}`: scene `{scene}`: an exercise's scene is a file of the lesson's folder, named from it without `..`",
+                        ex.id
+                    ),
+                ));
             }
         }
         let templates = file.exercises.iter().map(|e| e.question.clone()).collect();
@@ -270,20 +340,19 @@ impl Lesson {
         };
         if !lesson.vary.is_empty() {
             for (p, range) in &lesson.vary {
-                range.check().map_err(|e| LessonError::Invalid {
-                    file: path.clone(),
-                    message: format!("vary `{p}`: {e}"),
-                })?;
+                range
+                    .check()
+                    .map_err(|e| at(&["vary", p], format!("vary `{p}`: {e}")))?;
             }
             let files = lesson.scene_files()?;
             let base = vary::written(&files, lesson.vary.keys().cloned());
             if let Some(p) = lesson.vary.keys().find(|p| !base.contains_key(*p)) {
-                return Err(LessonError::Invalid {
-                    file: path,
-                    message: format!(
+                return Err(at(
+                    &["vary", p],
+                    format!(
                         "vary `{p}`: no scene of the lesson writes that value (write it out to vary it)"
                     ),
-                });
+                ));
             }
             lesson.fill_questions(&base);
         }

@@ -14,6 +14,7 @@ use super::exercise::Solutions;
 /// (or be empty). The folder is written whole, under a temporary name renamed at the end.
 pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, LessonError> {
     let hw = lesson.variant(student)?;
+    files_inside(lesson, &hw)?;
     if out.exists() && std::fs::read_dir(out).map_or(true, |mut d| d.next().is_some()) {
         return Err(LessonError::Exists(out.to_path_buf()));
     }
@@ -47,22 +48,11 @@ pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, Lesso
 /// Everything of the homework folder, written into `dir`.
 fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), LessonError> {
     std::fs::create_dir_all(dir).map_err(|e| LessonError::io(dir, "create the folder", e))?;
-    // The lesson's other files (meshes, textures, extra scenes) as they are. Its figures (SVG,
-    // drawn by `raytree diagram` from the lesson's own scene) are left out: they show the
-    // lesson's values and answers, not the student's, and the homework README cites none.
-    let entries = std::fs::read_dir(&lesson.dir)
-        .map_err(|e| LessonError::io(&lesson.dir, "list the lesson's files", e))?;
-    for entry in entries.flatten() {
-        let from: PathBuf = entry.path();
-        let file = entry.file_name();
-        let figure = from
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-        let skip = file == "README.md" || file == "exercises.yaml" || figure || !from.is_file();
-        if !skip {
-            std::fs::copy(&from, dir.join(&file)).map_err(|e| LessonError::io(&from, "copy", e))?;
-        }
-    }
+    // The lesson's other files (meshes, textures, extra scenes), in its subfolders too, as
+    // they are. Its figures (SVG, drawn by `raytree diagram` from the lesson's own scene) are
+    // left out: they show the lesson's values and answers, not the student's, and the homework
+    // README cites none.
+    copy_folder(&lesson.dir, dir, true)?;
     for (name, text) in &hw.sources {
         let to = dir.join(name);
         std::fs::write(&to, text).map_err(|e| LessonError::io(&to, "write", e))?;
@@ -73,6 +63,62 @@ fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), LessonError> {
     std::fs::write(&exercises, text).map_err(write_exercises)?;
     let readme = dir.join("README.md");
     std::fs::write(&readme, readme_md(hw)).map_err(|e| LessonError::io(&readme, "write", e))?;
+    Ok(())
+}
+
+/// The files of folder `from` copied into `to`, its subfolders' too; at the top
+/// (`top`), all but the lesson's README, exercises and figures, which the homework writes anew
+/// or leaves out.
+fn copy_folder(from: &Path, to: &Path, top: bool) -> Result<(), LessonError> {
+    let entries =
+        std::fs::read_dir(from).map_err(|e| LessonError::io(from, "list the lesson's files", e))?;
+    for entry in entries.flatten() {
+        let path: PathBuf = entry.path();
+        let file = entry.file_name();
+        let figure = path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+        if top && (file == "README.md" || file == "exercises.yaml" || figure) {
+            continue;
+        }
+        let into = to.join(&file);
+        if path.is_dir() {
+            std::fs::create_dir_all(&into)
+                .map_err(|e| LessonError::io(&into, "create the folder", e))?;
+            copy_folder(&path, &into, false)?;
+        } else if path.is_file() {
+            std::fs::copy(&path, &into).map_err(|e| LessonError::io(&path, "copy", e))?;
+        }
+    }
+    Ok(())
+}
+
+/// Every file the homework's scenes read (meshes, images) lies in the lesson's folder, which
+/// the homework copies: a scene reading `../textures/x.png` would not load from the homework
+/// folder.
+fn files_inside(lesson: &Lesson, hw: &Lesson) -> Result<(), LessonError> {
+    let folder = std::fs::canonicalize(&lesson.dir)
+        .map_err(|e| LessonError::io(&lesson.dir, "find the lesson's folder", e))?;
+    for (name, text) in &hw.scene_files()? {
+        let path = lesson.dir.join(name);
+        let limits = crate::scene::Limits::default();
+        // A scene that does not load is reported where it is used; here only what loads.
+        let Ok(scene) =
+            crate::scene::parse(text, &path.display().to_string(), Some(&path), &limits)
+        else {
+            continue;
+        };
+        for input in &scene.inputs {
+            let inside = std::fs::canonicalize(input).is_ok_and(|p| p.starts_with(&folder));
+            if !inside {
+                let named = input.strip_prefix(&lesson.dir).unwrap_or(input);
+                return Err(LessonError::Outside {
+                    scene: path,
+                    input: named.to_path_buf(),
+                });
+            }
+        }
+    }
     Ok(())
 }
 

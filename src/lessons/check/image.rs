@@ -123,12 +123,7 @@ fn rendered(
 ) -> Result<(DVec3, Stats), String> {
     match ex.pixel {
         Some([x, y]) => {
-            if x >= scene.camera.width || y >= scene.camera.height {
-                return Err(format!(
-                    "exercise `{}`: pixel {x},{y} is outside the image",
-                    ex.id
-                ));
-            }
+            super::pixel_inside(scene, ex, x, y)?;
             let film = Film::new(scene, options);
             let mut t = film.tracer();
             let value = film.lone_pixel(&mut t, x, y);

@@ -208,15 +208,24 @@ fn load(lesson: &Lesson, ex: &Exercise) -> Result<Scene, SceneError> {
     Ok(scene)
 }
 
+/// An exercise's pixel must lie in its scene's image.
+fn pixel_inside(scene: &Scene, ex: &Exercise, x: u32, y: u32) -> Result<(), String> {
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    if x < w && y < h {
+        return Ok(());
+    }
+    Err(format!(
+        "exercise `{}`: pixel {x},{y} is outside its scene's {w} × {h} image (x from 0 to {}, y from 0 to {})",
+        ex.id,
+        w.saturating_sub(1),
+        h.saturating_sub(1)
+    ))
+}
+
 fn exercise_ray(scene: &Scene, ex: &Exercise) -> Result<Ray, String> {
     match (&ex.pixel, &ex.ray) {
         (Some([x, y]), _) => {
-            if *x >= scene.camera.width || *y >= scene.camera.height {
-                return Err(format!(
-                    "exercise `{}`: pixel {x},{y} is outside the image",
-                    ex.id
-                ));
-            }
+            pixel_inside(scene, ex, *x, *y)?;
             Ok(scene.camera.pixel_ray(*x, *y))
         }
         (None, Some(r)) if r.direction != DVec3::ZERO => Ok(Ray::new(r.origin, r.direction)),
