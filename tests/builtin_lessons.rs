@@ -298,3 +298,53 @@ fn away_from_the_sources_the_help_examples_find_their_scenes() {
     }
     assert!(ran >= 10, "only {ran} examples found");
 }
+
+/// A `lessons/` folder in the current folder holding one lesson of a teacher's does not hide
+/// the built-in ones: `check 08-pixel-intensity` and `render 08-pixel-intensity` still find the
+/// built-in lesson 08, and the folder's own lesson is found too. A folder the user chose
+/// (`--lessons`) is the only place looked in.
+#[test]
+fn a_lessons_folder_in_the_current_folder_does_not_hide_the_built_in_lessons() {
+    let tmp = tempfile::tempdir().unwrap();
+    let mine = tmp.path().join("lessons/03-mine");
+    std::fs::create_dir_all(&mine).unwrap();
+    for f in std::fs::read_dir(source_lessons().join("03-local-illumination")).unwrap() {
+        let f = f.unwrap();
+        std::fs::copy(f.path(), mine.join(f.file_name())).unwrap();
+    }
+    let check = |lesson: &str, extra: &[&str]| {
+        let mut args = extra.to_vec();
+        args.extend([
+            "check",
+            lesson,
+            "--exercise",
+            "pixel-p",
+            "--answer",
+            "0.870161",
+        ]);
+        raytree_in(tmp.path(), &args)
+    };
+    let o = check("08-pixel-intensity", &[]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = raytree_in(
+        tmp.path(),
+        &[
+            "render",
+            "08-pixel-intensity",
+            "-o",
+            "out.png",
+            "--width",
+            "8",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = raytree_in(tmp.path(), &["lessons", "validate", "03-mine"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = check("08-pixel-intensity", &["--lessons", "lessons"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("no lesson `08-pixel-intensity`"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

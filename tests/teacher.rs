@@ -221,6 +221,40 @@ fn a_class_of_30_is_graded_as_seeded() {
 
 /// A copy of lesson 03 whose README states one answer wrong (0.093 for the Blinn specular term,
 /// 0.093623 by hand) fails validation, naming that exercise and no other; the shipped lessons pass.
+/// Every `**Answer (ID):**` line of a README is compared, not only the first of an id: a
+/// second line that says otherwise is named at its line of README.md, the first still agreeing.
+#[test]
+fn validation_compares_every_answer_line_of_an_exercise() {
+    let dir = scratch("validate-twice/03-local-illumination");
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in std::fs::read_dir("lessons/03-local-illumination").unwrap() {
+        let f = f.unwrap();
+        std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+    }
+    let readme = dir.join("README.md");
+    let text = std::fs::read_to_string(&readme).unwrap();
+    let line = "**Answer (specular-blinn):** 0.093623";
+    let at = text.lines().position(|l| l.trim() == line).unwrap() + 1;
+    std::fs::write(
+        &readme,
+        text.replace(line, &format!("{line}\n**Answer (specular-blinn):** 0.9")),
+    )
+    .unwrap();
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", out(&o));
+    let report = out(&o);
+    let problems: Vec<&str> = report.lines().filter(|l| l.starts_with('✗')).collect();
+    assert_eq!(problems.len(), 1, "{report}");
+    assert!(
+        problems[0].contains(&format!(
+            "{}:{}: exercise `specular-blinn`: the README says 0.9, raytree computes 0.093623",
+            readme.display(),
+            at + 1
+        )),
+        "{report}"
+    );
+}
+
 #[test]
 fn validation_names_a_corrupted_readme_answer() {
     let dir = scratch("validate/03-local-illumination");
@@ -705,6 +739,15 @@ fn hidden_solutions_are_not_explained() {
     ]));
     assert!(out(&o).starts_with(&wrong), "{}", out(&o));
     assert!(out(&o).contains("worked solution is hidden"), "{}", out(&o));
+    // Nor does the JSON give a wrong answer the expected one; a right one it confirms.
+    let json = |answer: &str| -> Value {
+        let args = ["check", d, "--exercise", "mirror-local", "--answer", answer];
+        serde_json::from_str(&out(&raytree(&[&args[..], &["--format", "json"]].concat()))).unwrap()
+    };
+    let v = json("0.5");
+    assert_eq!(v["correct"], false);
+    assert!(v["expected"].is_null(), "{v}");
+    assert!((json("0.23")["expected"].as_f64().unwrap() - 0.23).abs() < 1e-12);
 }
 
 /// The rows a new user got wrong: a missing answer field, a quote never closed, an answer with
@@ -863,20 +906,31 @@ fn a_lesson_that_does_not_read_is_reported_as_such() {
 }
 
 /// Names and answers come from the class's file: the report shows their control characters
-/// escaped, so a name cannot clear the teacher's terminal or fake a line of the report.
+/// escaped, so a name cannot clear the teacher's terminal or fake a line of the report; so do
+/// the JSON and the CSV forms.
 #[test]
 fn the_grade_report_shows_control_characters_escaped() {
     let file = answer_sheet("control", "s1\u{1b}[2J,pixel-p,0.5\u{7}\n");
-    let o = raytree(&[
-        "grade",
-        "08-pixel-intensity",
-        "--answers",
-        file.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert!(!out.contains('\u{1b}') && !out.contains('\u{7}'), "{out:?}");
-    assert!(out.contains("s1\\u{1b}[2J"), "{out}");
+    for format in ["text", "json", "csv"] {
+        let o = raytree(&[
+            "grade",
+            "08-pixel-intensity",
+            "--answers",
+            file.to_str().unwrap(),
+            "--format",
+            format,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(
+            !out.contains('\u{1b}') && !out.contains('\u{7}'),
+            "{format}: {out:?}"
+        );
+        assert!(
+            out.contains("s1\\u{1b}[2J") || out.contains("s1\\u001b[2J"),
+            "{format}: {out}"
+        );
+    }
 }
 
 /// A homework folder holds the student's values, never the lesson's answers: lesson 08 ships a
@@ -1300,6 +1354,22 @@ fn a_pixel_outside_the_image_is_named_with_the_images_size() {
         out(&o).contains(
             "exercise `far`: pixel 160,7 is outside its scene's 160 × 120 image (x from 0 to 159, y from 0 to 119)"
         ),
+        "{}",
+        out(&o)
+    );
+}
+
+/// An exercise naming a light the scene does not have says so, with the lights it has.
+#[test]
+fn an_exercise_naming_no_light_of_the_scene_says_so() {
+    let dir = lesson02_with(
+        "no-such-light",
+        "  - id: dark\n    question: Which s?\n    ask: shadow_factor\n    light: Lx\n    pixel: [80, 60]\n",
+    );
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    assert!(
+        out(&o).contains("exercise `dark`: the scene has no light named `Lx` (its lights: "),
         "{}",
         out(&o)
     );

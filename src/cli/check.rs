@@ -8,7 +8,7 @@ use serde_json::json;
 use super::args::Format;
 use super::Failure;
 use crate::lessons::progress::Progress;
-use crate::lessons::{check, explain, CheckError, Lesson};
+use crate::lessons::{check, explain, CheckError, Lesson, Solutions};
 
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:
@@ -81,7 +81,13 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
             if let Some(v) = &verdict {
                 doc["correct"] = json!(v.correct);
                 doc["answer"] = v.given.to_json();
-                doc["expected"] = v.expected.to_json();
+                // A lesson that hides its solutions does not give a wrong answer the right one
+                // (the text says only that it is wrong).
+                doc["expected"] = if v.correct || lesson.solutions != Solutions::Hidden {
+                    v.expected.to_json()
+                } else {
+                    serde_json::Value::Null
+                };
                 doc["tolerance"] = json!(v.expected.allowance(&v.tolerance));
                 doc["tolerance_rule"] = json!(v.tolerance);
                 doc["hint"] = json!(v.hint);

@@ -90,15 +90,18 @@ fn write_csv(r: &Report) -> Result<(), Failure> {
     w.write_record([
         "student", "exercise", "answer", "correct", "expected", "hint",
     ])?;
+    // Names and answers come from the class's file: their control characters are written
+    // escaped, as in the other formats, so that the CSV shown on a terminal cannot drive it.
+    let safe = |text: &str| super::output::escape(text, "");
     for s in &r.students {
         for g in &s.exercises {
             w.write_record([
-                s.student.as_str(),
-                g.exercise.as_str(),
-                g.answer.as_deref().unwrap_or(""),
-                if g.correct { "true" } else { "false" },
-                g.expected.as_deref().unwrap_or(""),
-                g.hint.as_deref().unwrap_or(""),
+                safe(&s.student),
+                safe(&g.exercise),
+                safe(g.answer.as_deref().unwrap_or("")),
+                (if g.correct { "true" } else { "false" }).to_string(),
+                safe(g.expected.as_deref().unwrap_or("")),
+                safe(g.hint.as_deref().unwrap_or("")),
             ])?;
         }
     }

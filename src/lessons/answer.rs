@@ -16,6 +16,9 @@ pub enum Answer {
     Segments(Vec<(f64, f64)>),
     /// Total internal reflection: no refracted direction.
     Tir,
+    /// Numbers in a count no answer has (two, four, or an odd count for a segment list): they
+    /// read, but match nothing.
+    Numbers(Vec<f64>),
 }
 
 impl Answer {
@@ -42,6 +45,7 @@ impl Answer {
                 .collect::<Vec<_>>()
                 .join("; "),
             Answer::Tir => "tir".into(),
+            Answer::Numbers(v) => v.iter().map(|x| num(*x)).collect::<Vec<_>>().join(", "),
         }
     }
 
@@ -63,6 +67,7 @@ impl Answer {
                 .map(|(a, b)| json!([t(*a), t(*b)]))
                 .collect::<Vec<_>>()),
             Answer::Tir => json!("tir"),
+            Answer::Numbers(v) => json!(v.iter().map(|x| t(*x)).collect::<Vec<_>>()),
         }
     }
 
@@ -77,6 +82,7 @@ impl Answer {
                 .filter(|x| x.is_finite())
                 .fold(0.0, f64::max),
             Answer::Tir => 0.0,
+            Answer::Numbers(v) => v.iter().map(|x| x.abs()).fold(0.0, f64::max),
         };
         tol.around(largest)
     }
@@ -106,9 +112,10 @@ impl Answer {
     }
 }
 
-/// A number as a student writes it: `0.25`, `-3`, `1/3`; `inf` and `∞` where infinite values
-/// are answers (the open ends of segment lists). A number too large for a double (`1e999`, a
-/// page of digits) is refused, not read as ∞.
+/// A number as a student writes it: `0.25`, `-3`, a fraction `1/3` (one slash: `1/2/3` could
+/// be read two ways, and is refused); `inf` and `∞` where infinite values are answers (the
+/// open ends of segment lists). A number too large for a double (`1e999`, a page of digits) is
+/// refused, not read as ∞.
 fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
     let s = s.trim();
     let shown = || {
@@ -120,6 +127,7 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
         }
     };
     let value = match s.split_once('/') {
+        Some((_, b)) if b.contains('/') => return Err(AnswerError::NotANumber(shown())),
         Some((a, b)) => number(a, false)? / number(b, false)?,
         None => match s.to_ascii_lowercase().as_str() {
             "inf" | "∞" | "+inf" | "+∞" | "-inf" | "-∞" | "−∞" | "−inf" => {
@@ -165,6 +173,12 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
         .chars()
         .map(|c| if "()[]{}".contains(c) { ' ' } else { c })
         .collect();
+    // A fraction may be written with spaces round its slash: `1 / 2`.
+    let cleaned = cleaned
+        .split('/')
+        .map(str::trim)
+        .collect::<Vec<_>>()
+        .join("/");
     let parts: Vec<f64> = cleaned
         .split([',', ';', ' '])
         .filter(|p| !p.trim().is_empty())
@@ -179,17 +193,17 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
     }
     if segments {
         if !parts.len().is_multiple_of(2) {
-            return Err(AnswerError::UnpairedSegments);
+            return Ok(Answer::Numbers(parts));
         }
         return Ok(Answer::Segments(
             parts.chunks(2).map(|p| (p[0], p[1])).collect(),
         ));
     }
-    match parts.as_slice() {
-        [x] => Ok(Answer::Number(*x)),
-        [x, y, z] => Ok(Answer::Vector(DVec3::new(*x, *y, *z))),
-        _ => Err(AnswerError::Count(parts.len())),
-    }
+    Ok(match parts.as_slice() {
+        [x] => Answer::Number(*x),
+        [x, y, z] => Answer::Vector(DVec3::new(*x, *y, *z)),
+        _ => Answer::Numbers(parts),
+    })
 }
 
 #[cfg(test)]
@@ -246,8 +260,21 @@ mod tests {
             Answer::Segments(vec![])
         );
         assert!(parse_answer("abc", false).is_err());
-        assert!(parse_answer("1, 2", false).is_err());
-        assert!(parse_answer("13, 16, 22", true).is_err());
+        // A fraction's slash may have spaces round it.
+        assert_eq!(parse_answer("1 / 4", false).unwrap(), Answer::Number(0.25));
+        assert_eq!(
+            parse_answer("1/2, 0, -3 / 4", false).unwrap(),
+            Answer::Vector(DVec3::new(0.5, 0.0, -0.75))
+        );
+        // Numbers in a count no answer has read, as numbers that match nothing.
+        assert_eq!(
+            parse_answer("1, 2", false).unwrap(),
+            Answer::Numbers(vec![1.0, 2.0])
+        );
+        assert_eq!(
+            parse_answer("13, 16, 22", true).unwrap(),
+            Answer::Numbers(vec![13.0, 16.0, 22.0])
+        );
         assert_eq!(
             parse_answer("(-inf, 16); [22, ∞)", true).unwrap(),
             Answer::Segments(vec![(f64::NEG_INFINITY, 16.0), (22.0, f64::INFINITY)])
@@ -287,15 +314,13 @@ mod tests {
             "{e:?}"
         );
         assert!(e.to_string().len() < 100, "{e}");
+        // (1/2)/3 or 1/(2/3): two readings, so neither.
         assert_eq!(
-            parse_answer("1, 2", false),
-            Err(AnswerError::Count(2)),
-            "two numbers are neither a number nor a vector"
+            parse_answer("1/2/3", false),
+            Err(AnswerError::NotANumber("1/2/3".into()))
         );
-        assert_eq!(
-            parse_answer("1, 2, 3", true),
-            Err(AnswerError::UnpairedSegments)
-        );
+        let numbers = Answer::Numbers(vec![1.0, 2.0]);
+        assert!(!numbers.matches(&numbers, &Tolerance::default()));
     }
 
     /// The JSON forms `check --format json` prints: a number, [x, y, z], a list of [t_in, t_out]

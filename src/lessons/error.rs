@@ -167,12 +167,6 @@ pub enum AnswerError {
     /// An answer without a number in it, where a segment list is asked.
     #[error("`{0}` holds no numbers: give pairs t_in, t_out (e.g. `13, 16; 22, 23`), or `none` for an empty list")]
     NoSegments(String),
-    /// A segment list with an odd count of numbers.
-    #[error("a segment list needs pairs t_in, t_out (e.g. `13, 16; 22, 23`)")]
-    UnpairedSegments,
-    /// Neither one number nor three.
-    #[error("expected one number or three (x, y, z), got {0} numbers")]
-    Count(usize),
 }
 
 /// An exercise that cannot be checked or worked out.

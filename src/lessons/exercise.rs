@@ -485,12 +485,21 @@ impl Lesson {
 
     /// The `**Answer (ID):** value` lines of the README: the hand-worked results.
     pub fn stated_answers(&self) -> Vec<(String, String)> {
+        self.stated_answer_lines()
+            .into_iter()
+            .map(|(_, id, value)| (id, value))
+            .collect()
+    }
+
+    /// `stated_answers`, each with its line number in the README (from 1).
+    pub fn stated_answer_lines(&self) -> Vec<(usize, String, String)> {
         self.readme
             .lines()
-            .filter_map(|l| {
+            .enumerate()
+            .filter_map(|(i, l)| {
                 let rest = l.trim().strip_prefix("**Answer (")?;
                 let (id, value) = rest.split_once("):**")?;
-                Some((id.trim().to_string(), value.trim().to_string()))
+                Some((i + 1, id.trim().to_string(), value.trim().to_string()))
             })
             .collect()
     }
@@ -531,10 +540,26 @@ pub fn find_lesson(path: &Path) -> PathBuf {
         return path.to_path_buf();
     }
     let name = path.strip_prefix("lessons").unwrap_or(path);
-    match lessons_root() {
-        Ok(root) if !name.as_os_str().is_empty() && root.join(name).exists() => root.join(name),
-        _ => path.to_path_buf(),
+    if name.as_os_str().is_empty() {
+        return path.to_path_buf();
     }
+    let in_root = lessons_root().ok().map(|root| root.join(name));
+    if let Some(found) = in_root.filter(|p| p.exists()) {
+        return found;
+    }
+    // A `lessons/` folder that happens to be in the current folder (not one the user chose)
+    // comes before the built-in lessons, and does not hide them.
+    let chosen = CHOSEN_ROOT.get().is_some() || std::env::var_os("RAYTREE_LESSONS").is_some();
+    if !chosen {
+        if let Some(found) = super::builtin::cached()
+            .ok()
+            .map(|root| root.join(name))
+            .filter(|p| p.exists())
+        {
+            return found;
+        }
+    }
+    path.to_path_buf()
 }
 
 /// The lesson folder a user names, as `find_lesson` finds it; a name that is neither a path

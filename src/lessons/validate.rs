@@ -75,7 +75,9 @@ fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, Les
 fn validate_lesson(l: &Lesson, v: &mut Validation) {
     v.lessons += 1;
     let name = l.dir.display();
-    let stated = l.stated_answers();
+    let stated = l.stated_answer_lines();
+    let readme = l.dir.join("README.md");
+    let readme = readme.display();
     let homework = l.variant.is_some();
     if !homework {
         match l.unloadable_variations() {
@@ -95,32 +97,37 @@ fn validate_lesson(l: &Lesson, v: &mut Validation) {
         if homework {
             continue;
         }
-        let Some((_, value)) = stated.iter().find(|(id, _)| *id == ex.id) else {
+        let lines: Vec<_> = stated.iter().filter(|(_, id, _)| *id == ex.id).collect();
+        if lines.is_empty() {
             v.problems.push(format!(
                 "{name}/{}: the README states no answer (a line **Answer ({}):** value)",
                 ex.id, ex.id
             ));
             continue;
-        };
-        v.answers += 1;
-        match check(l, ex, value) {
-            Ok(verdict) if verdict.correct => {}
-            Ok(verdict) => v.problems.push(format!(
-                "{name}/{}: the README says {value}, raytree computes {} (tolerance {})",
-                ex.id,
-                verdict.expected.show(),
-                verdict.tolerance.describe()
-            )),
-            Err(e) => v.problems.push(format!(
-                "{name}/{}: the README's answer `{value}` does not read: {e}",
-                ex.id
-            )),
+        }
+        // Every line that states the answer: a second one that says otherwise is as wrong as
+        // a first.
+        for (line, _, value) in lines {
+            v.answers += 1;
+            match check(l, ex, value) {
+                Ok(verdict) if verdict.correct => {}
+                Ok(verdict) => v.problems.push(format!(
+                    "{readme}:{line}: exercise `{}`: the README says {value}, raytree computes {} (tolerance {})",
+                    ex.id,
+                    verdict.expected.show(),
+                    verdict.tolerance.describe()
+                )),
+                Err(e) => v.problems.push(format!(
+                    "{readme}:{line}: exercise `{}`: the README's answer `{value}` does not read: {e}",
+                    ex.id
+                )),
+            }
         }
     }
-    for (id, _) in &stated {
+    for (line, id, _) in &stated {
         if l.exercise(id).is_err() {
             v.problems.push(format!(
-                "{name}: the README states an answer for `{id}`, which is not an exercise"
+                "{readme}:{line}: the README states an answer for `{id}`, which is not an exercise"
             ));
         }
     }

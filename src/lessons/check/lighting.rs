@@ -102,6 +102,18 @@ fn light_term<'a>(q: &Traced<'a>) -> Result<&'a LightTerm, String> {
         .light
         .as_deref()
         .ok_or_else(|| format!("exercise `{}` needs `light`", ex.id))?;
+    if !q.scene.lights.iter().any(|l| l.name == name) {
+        let names: Vec<&str> = q.scene.lights.iter().map(|l| l.name.as_str()).collect();
+        return Err(format!(
+            "exercise `{}`: the scene has no light named `{name}` (its lights: {})",
+            ex.id,
+            if names.is_empty() {
+                "none".to_string()
+            } else {
+                names.join(", ")
+            }
+        ));
+    }
     q.node
         .local
         .as_ref()

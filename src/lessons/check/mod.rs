@@ -296,7 +296,13 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, CheckError> {
 pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, CheckError> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
-    let correct = given.matches(&w.expected, &w.tolerance);
+    // A vector of three equal numbers is a grey colour where a colour is asked, not a t or a
+    // count.
+    let vector_for_a_number = matches!(
+        (&given, &w.expected),
+        (Answer::Vector(_), Answer::Number(_))
+    ) && !asks_colour(ex.ask);
+    let correct = given.matches(&w.expected, &w.tolerance) && !vector_for_a_number;
     let hint = if correct {
         None
     } else {
@@ -405,6 +411,13 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
             "1 − η²(1 − c1²) is negative here: there is no refracted ray (total internal reflection, answer tir)".into()
         }
         (Answer::Tir, _) => format!("tir is an answer for a refracted direction only; {what} is asked"),
+        (Answer::Numbers(_), Answer::Segments(_)) => {
+            "a segment list is pairs t_in, t_out (e.g. `13, 16; 22, 23`): an even count of numbers".into()
+        }
+        (Answer::Numbers(v), _) if v.len() == 2 => format!(
+            "{what} is one number or three, not two (a decimal comma? decimals are written with a point)"
+        ),
+        (Answer::Numbers(v), _) => format!("{what} is one number or three, not {}", v.len()),
         _ => return None,
     })
 }
