@@ -18,7 +18,7 @@ use super::lanes::LANES;
 use super::simd::F64x4;
 use super::sphere_group::SphereGroup;
 use crate::accel::Aabb;
-use crate::geometry::csg::{CsgNode, CsgOp, CsgRay, CsgWork};
+use crate::geometry::csg::{same_end, CsgNode, CsgOp, CsgRay, CsgWork};
 use crate::geometry::{Ray, Span, Sphere, Surface};
 
 /// At most this many primitives: the inside flags fit a mask, the ends sort quickly, and the
@@ -184,7 +184,7 @@ impl FlatCsg {
             // Every end at this t, applied together.
             let t = ends[i].0;
             let first = i;
-            while i < ends.len() && ends[i].0 == t {
+            while i < ends.len() && same_end(ends[i].0, t) {
                 let (_, k, entering) = ends[i];
                 if entering {
                     inside |= 1 << k;
@@ -333,8 +333,10 @@ impl FlatCsg {
             .filter(|&k| changes & (1 << k) != 0)
             .min_by(|&i, &j| ts[i].total_cmp(&ts[j]))
             .expect("some end changes the result");
-        let at_t = t.simd_eq(V::splat(ts[k])).to_bitmask() & within;
-        if at_t.count_ones() > 1 {
+        // Another end that is one with it (`same_end`: a face shared by both operands, or a
+        // span of no thickness) is applied with it by the segment lists, which settle it.
+        let at_t = (0..4).filter(|&i| same_end(ts[i], ts[k])).count();
+        if at_t > 1 {
             return Crossing::Undecided;
         }
         let (operand, entering) = (k / 2, k % 2 == 0);

@@ -85,8 +85,12 @@ impl Scene {
         // The ray leaves the solid where it meets the outward normal at a positive cosine. A
         // tangent ray's cosine is zero up to rounding, of either sign, and it touches the solid
         // from outside (a ray inside a convex solid leaves it at an angle), so only a cosine
-        // clearly above zero means leaving.
-        let leaving = outward.dot(ray.dir) > TANGENT_COSINE;
+        // clearly above zero means leaving. A smooth mesh's blended normal can lean past the
+        // ray where its triangle does not: the triangle itself decides.
+        let crossed = leaf
+            .facet_normal(hit.surface.face, outward)
+            .unwrap_or(outward);
+        let leaving = crossed.dot(ray.dir) > TANGENT_COSINE;
         // A triangle has no inside: it is seen from whichever side the ray comes.
         let inside = leaf.shape.is_solid() && leaving;
         let normal = if leaving { -outward } else { outward };

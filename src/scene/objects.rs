@@ -113,6 +113,25 @@ impl Leaf {
             (None, shape) => shape.normal(p, face),
         }
     }
+
+    /// The outward normal of a smooth mesh's triangle `face` itself (world space), turned to
+    /// the side of its blended shading normal `shading`: the surface a ray actually crosses,
+    /// which says whether it enters or leaves. None for every other shape, whose shading
+    /// normal is its surface's.
+    pub fn facet_normal(&self, face: u32, shading: DVec3) -> Option<DVec3> {
+        let Shape::Mesh(mesh) = &self.shape else {
+            return None;
+        };
+        if mesh.normals.is_empty() {
+            return None;
+        }
+        let own = mesh.triangle(face).normal();
+        let n = self
+            .transform
+            .as_ref()
+            .map_or(own, |tf| tf.normal_to_world(own));
+        Some(if n.dot(shading) < 0.0 { -n } else { n })
+    }
 }
 
 /// What an object is made of.
