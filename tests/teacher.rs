@@ -1375,6 +1375,76 @@ fn an_exercise_naming_no_light_of_the_scene_says_so() {
     );
 }
 
+/// A ray exercise that a student's varied scene makes impossible (a ray at height 0.9 meets a
+/// ball of radius r only where r ≥ 0.9) is the lesson's fault, not the student's: their row is
+/// set aside with the reason, and the exercise does not count in their total; a student whose
+/// ball the ray meets is graded on it.
+#[test]
+fn an_exercise_a_students_values_make_impossible_is_set_aside() {
+    let dir = lesson02_with(
+        "impossible-for-some",
+        "  - id: graze\n    question: Which t?\n    ask: hit_t\n    ray: { origin: [-5, 0.9, 0], direction: [1, 0, 0] }\n\
+         vary:\n  objects.ball.sphere.radius: [0.5, 1.5]\n",
+    );
+    let students: Vec<String> = (1..=16).map(|k| format!("s{k}")).collect();
+    let rows: String = students
+        .iter()
+        .map(|s| format!("{s},graze,4.56\n"))
+        .collect();
+    let sheet = answer_sheet("impossible-sheet", &rows);
+    let o = raytree(&[
+        "grade",
+        dir.to_str().unwrap(),
+        "--answers",
+        sheet.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let v: Value = serde_json::from_str(&out(&o)).unwrap();
+    let problems: Vec<String> = v["problems"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["message"].as_str().unwrap().to_string())
+        .collect();
+    let (mut set_aside, mut graded) = (0, 0);
+    for s in &students {
+        let report = v["students"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|r| r["student"] == s.as_str())
+            .unwrap();
+        let graze = report["exercises"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|g| g["exercise"] == "graze");
+        match graze {
+            None => {
+                set_aside += 1;
+                assert_eq!(report["total"], 10, "{report}");
+                assert!(
+                    problems.iter().any(|p| p.starts_with(&format!(
+                        "{s}, graze: not graded: with this student's values the exercise cannot be worked out"
+                    ))),
+                    "{problems:?}"
+                );
+            }
+            Some(g) => {
+                graded += 1;
+                assert_eq!(report["total"], 11, "{report}");
+                assert!(!problems.iter().any(|p| p.starts_with(&format!("{s}, "))));
+                assert!(g["expected"].is_string(), "{g}");
+            }
+        }
+    }
+    assert!(
+        set_aside > 0 && graded > 0,
+        "{set_aside} set aside, {graded} graded"
+    );
+}
+
 /// A homework folder holds the lesson's subfolders too (a texture kept in `tex/`), so its
 /// scene loads and its exercise checks there; a scene that reads a file from outside the
 /// lesson's folder is refused before anything is written, naming the scene and the file.

@@ -254,8 +254,26 @@ pub fn grade(
                 .collect(),
         );
         let mut exercises = Vec::new();
-        for ex in &own.exercises {
+        for (ex, worked) in own
+            .exercises
+            .iter()
+            .zip(&expected_of[expected_of.len() - 1])
+        {
             let row = answers.get(&(student.clone(), ex.id.clone()));
+            // An exercise this student's values make impossible (the varied scene's ray
+            // hits nothing) is the lesson's fault: set aside, not counted against them.
+            if worked.is_none() {
+                if let Err(e) = super::check::work(&own, ex) {
+                    problems.extend(row.map(|r| Problem {
+                        line: r.line,
+                        message: format!(
+                            "{}, {}: not graded: with this student's values the exercise cannot be worked out: {e}",
+                            r.student, r.exercise
+                        ),
+                    }));
+                    continue;
+                }
+            }
             let graded = match row.map(|r| r.answer.as_str()) {
                 None | Some("") => Graded {
                     exercise: ex.id.clone(),
@@ -343,22 +361,23 @@ fn expected(lesson: &Lesson, ex: &super::exercise::Exercise) -> Option<String> {
 }
 
 impl Report {
-    /// Per exercise: how many students answered it right, of how many.
+    /// Per exercise: how many students answered it right, of how many were graded on it (an
+    /// exercise a student's values make impossible is set aside for that student).
     pub fn per_exercise(&self) -> Vec<(String, usize, usize)> {
-        let Some(first) = self.students.first() else {
-            return Vec::new();
-        };
-        first
-            .exercises
-            .iter()
-            .enumerate()
-            .map(|(k, g)| {
-                let right = self
+        let mut ids: Vec<&str> = Vec::new();
+        for g in self.students.iter().flat_map(|s| &s.exercises) {
+            if !ids.contains(&g.exercise.as_str()) {
+                ids.push(&g.exercise);
+            }
+        }
+        ids.into_iter()
+            .map(|id| {
+                let graded = self
                     .students
                     .iter()
-                    .filter(|s| s.exercises.get(k).is_some_and(|g| g.correct))
-                    .count();
-                (g.exercise.clone(), right, self.students.len())
+                    .filter_map(|s| s.exercises.iter().find(|g| g.exercise == id));
+                let (right, of) = graded.fold((0, 0), |(r, n), g| (r + g.correct as usize, n + 1));
+                (id.to_string(), right, of)
             })
             .collect()
     }
