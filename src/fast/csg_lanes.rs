@@ -323,14 +323,16 @@ fn walk<V: F64x4>(op: CsgOp, ends: [V; 4], t_max: V) -> Walk<V> {
         within[2] & b_in.simd_eq(first),
         within[3] & b_out.simd_eq(first),
     ];
-    // Another end that is one with the first change (`csg::same_end`: equal, or within
-    // 10⁻¹² of its size, a face shared by both operands): left to the segment lists, which
-    // apply them together.
+    // Another end that is one with the first change (`csg::same_end`: within 10⁻¹² of their
+    // size, a face shared by both operands): left to the segment lists, which apply them
+    // together. Within 2·10⁻¹² of the first change's size takes in every end `same_end` takes
+    // (and a few more, which the segment lists settle alike) for fewer operations.
+    let reach = V::splat(2e-12) * first.abs();
     let one = [
-        same_end(a_in, first),
-        same_end(a_out, first),
-        same_end(b_in, first),
-        same_end(b_out, first),
+        (a_in - first).abs().simd_le(reach),
+        (a_out - first).abs().simd_le(reach),
+        (b_in - first).abs().simd_le(reach),
+        (b_out - first).abs().simd_le(reach),
     ];
     let mut tie = V::ZERO;
     for i in 0..4 {
@@ -343,15 +345,6 @@ fn walk<V: F64x4>(op: CsgOp, ends: [V; 4], t_max: V) -> Walk<V> {
         at_first,
         tie,
     }
-}
-
-/// `csg::same_end` in lanes, for finite ends: |x − y| ≤ 10⁻¹²·max(|x|, |y|) (never for NaN).
-#[inline(always)]
-fn same_end<V: F64x4>(x: V, y: V) -> V {
-    let (ax, ay) = (x.abs(), y.abs());
-    let size = ax.simd_gt(ay).bitselect(ax, ay);
-    let finite = size.simd_lt(V::splat(f64::INFINITY));
-    finite & (x - y).abs().simd_le(V::splat(1e-12) * size)
 }
 
 /// All ones where the end t lies in the window: 0 < t < t_max, finite.

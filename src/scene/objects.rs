@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use crate::accel::{Aabb, Bvh};
 use crate::geometry::csg::CsgNode;
-use crate::geometry::{Ray, Segment, SegmentList, Shape, Span, Sphere, Surface, Transform};
+use crate::geometry::{Mesh, Ray, Segment, SegmentList, Shape, Span, Sphere, Surface, Transform};
 
 /// A primitive in the scene: a plain object, or a leaf of a CSG tree.
 #[derive(Clone, Debug)]
@@ -117,20 +117,29 @@ impl Leaf {
     /// The outward normal of a smooth mesh's triangle `face` itself (world space), turned to
     /// the side of its blended shading normal `shading`: the surface a ray actually crosses,
     /// which says whether it enters or leaves. None for every other shape, whose shading
-    /// normal is its surface's.
+    /// normal is its surface's. (Asked at every hit: the test is inlined, the mesh's work not.)
+    #[inline(always)]
     pub fn facet_normal(&self, face: u32, shading: DVec3) -> Option<DVec3> {
-        let Shape::Mesh(mesh) = &self.shape else {
-            return None;
-        };
-        if mesh.normals.is_empty() {
-            return None;
+        match &self.shape {
+            Shape::Mesh(mesh) if !mesh.normals.is_empty() => {
+                Some(self.mesh_facet_normal(mesh, face, shading))
+            }
+            _ => None,
         }
+    }
+
+    #[inline(never)]
+    fn mesh_facet_normal(&self, mesh: &Mesh, face: u32, shading: DVec3) -> DVec3 {
         let own = mesh.triangle(face).normal();
         let n = self
             .transform
             .as_ref()
             .map_or(own, |tf| tf.normal_to_world(own));
-        Some(if n.dot(shading) < 0.0 { -n } else { n })
+        if n.dot(shading) < 0.0 {
+            -n
+        } else {
+            n
+        }
     }
 }
 
