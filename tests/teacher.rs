@@ -1445,6 +1445,39 @@ fn an_exercise_a_students_values_make_impossible_is_set_aside() {
     );
 }
 
+/// A lesson folder whose exercises file is named exercises.yml is reported among the lessons
+/// that cannot be read, with what to rename, not passed over.
+#[test]
+fn an_exercises_file_named_yml_is_reported() {
+    let dir = lesson02_with("misnamed", "");
+    std::fs::rename(dir.join("exercises.yaml"), dir.join("exercises.yml")).unwrap();
+    let other = dir.parent().unwrap().join("03-local-illumination");
+    std::fs::create_dir_all(&other).unwrap();
+    for f in std::fs::read_dir("lessons/03-local-illumination").unwrap() {
+        let f = f.unwrap();
+        std::fs::copy(f.path(), other.join(f.file_name())).unwrap();
+    }
+    let o = raytree(&[
+        "lessons",
+        "validate",
+        dir.parent().unwrap().to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    assert!(
+        out(&o).contains(&format!(
+            "{}: exercises.yml: a lesson's exercises are read from exercises.yaml (rename it)",
+            dir.display()
+        )),
+        "{}",
+        out(&o)
+    );
+    assert!(
+        out(&o).contains("1 lesson could not be read"),
+        "{}",
+        out(&o)
+    );
+}
+
 /// A homework folder holds the lesson's subfolders too (a texture kept in `tex/`), so its
 /// scene loads and its exercise checks there; a scene that reads a file from outside the
 /// lesson's folder is refused before anything is written, naming the scene and the file.

@@ -56,6 +56,12 @@ pub fn validate(dir: &Path) -> Result<Validation, LessonError> {
     Ok(v)
 }
 
+/// A folder meant as a lesson whose exercises file is named `.yml`: not read, but not passed
+/// over in silence either.
+fn misnamed(dir: &Path) -> bool {
+    !crate::lessons::is_lesson_folder(dir) && dir.join("exercises.yml").is_file()
+}
+
 /// Every lesson folder of `root`, each loaded or with the reason it does not load.
 fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, LessonError> {
     // Unlike `all_lessons`, which stops at the first lesson that does not load, a validation
@@ -63,12 +69,18 @@ fn all_lessons_or_errors(root: &Path) -> Result<Vec<Result<Lesson, String>>, Les
     let mut dirs: Vec<_> = std::fs::read_dir(root)
         .map_err(|e| LessonError::io(root, "list lessons", e))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| crate::lessons::is_lesson_folder(p))
+        .filter(|p| crate::lessons::is_lesson_folder(p) || misnamed(p))
         .collect();
     dirs.sort();
     Ok(dirs
         .iter()
-        .map(|d| Lesson::load(d).map_err(String::from))
+        .map(|d| match misnamed(d) {
+            true => Err(format!(
+                "{}: exercises.yml: a lesson's exercises are read from exercises.yaml (rename it)",
+                d.display()
+            )),
+            false => Lesson::load(d).map_err(String::from),
+        })
         .collect())
 }
 
