@@ -879,12 +879,16 @@ fn inspect_reports_the_rendered_value() {
         }
     }
     // The text form says which ray the tree is, and `--sample K` follows that sample.
-    let r = run(&[
-        "inspect",
-        "lessons/13-antialiasing/grid-4.yaml",
-        "--pixel",
-        "1,0",
-    ]);
+    let grid = |extra: &[&str]| {
+        let args = [
+            "inspect",
+            "lessons/13-antialiasing/grid-4.yaml",
+            "--pixel",
+            "1,0",
+        ];
+        run(&[&args[..], extra].concat())
+    };
+    let r = grid(&[]);
     assert!(
         r.stdout
             .starts_with("pixel (1, 0) = 0.5  as rendered: 4 samples (grid)"),
@@ -897,14 +901,7 @@ fn inspect_reports_the_rendered_value() {
         "{}",
         r.stdout
     );
-    let r = run(&[
-        "inspect",
-        "lessons/13-antialiasing/grid-4.yaml",
-        "--pixel",
-        "1,0",
-        "--sample",
-        "1",
-    ]);
+    let r = grid(&["--sample", "1"]);
     assert!(
         r.stdout
             .contains("the tree of sample 1 of 4, through (1.25, 0.25)"),
@@ -923,16 +920,7 @@ fn inspect_reports_the_rendered_value() {
         r.stdout
     );
     // The Graphviz figure's title says so too: its root's I is the sample's, not the pixel's.
-    let r = run(&[
-        "inspect",
-        "lessons/13-antialiasing/grid-4.yaml",
-        "--pixel",
-        "1,0",
-        "--sample",
-        "1",
-        "--format",
-        "dot",
-    ]);
+    let r = grid(&["--sample", "1", "--format", "dot"]);
     assert!(
         r.stdout.contains(
             "label=\"pixel (1, 0): I = 0.5; the tree of sample 1 of 4, through (1.25, 0.25)"
@@ -940,14 +928,7 @@ fn inspect_reports_the_rendered_value() {
         "{}",
         r.stdout
     );
-    let r = run(&[
-        "inspect",
-        "lessons/13-antialiasing/grid-4.yaml",
-        "--pixel",
-        "1,0",
-        "--sample",
-        "5",
-    ]);
+    let r = grid(&["--sample", "5"]);
     assert_eq!(r.code(), Some(2), "{}", r.stderr);
 }
 

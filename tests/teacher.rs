@@ -226,11 +226,7 @@ fn a_class_of_30_is_graded_as_seeded() {
 #[test]
 fn validation_compares_every_answer_line_of_an_exercise() {
     let dir = scratch("validate-twice/03-local-illumination");
-    std::fs::create_dir_all(&dir).unwrap();
-    for f in std::fs::read_dir("lessons/03-local-illumination").unwrap() {
-        let f = f.unwrap();
-        std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
-    }
+    copy_lesson("03-local-illumination", &dir);
     let readme = dir.join("README.md");
     let text = std::fs::read_to_string(&readme).unwrap();
     let line = "**Answer (specular-blinn):** 0.093623";
@@ -258,11 +254,7 @@ fn validation_compares_every_answer_line_of_an_exercise() {
 #[test]
 fn validation_names_a_corrupted_readme_answer() {
     let dir = scratch("validate/03-local-illumination");
-    std::fs::create_dir_all(&dir).unwrap();
-    for f in std::fs::read_dir("lessons/03-local-illumination").unwrap() {
-        let f = f.unwrap();
-        std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
-    }
+    copy_lesson("03-local-illumination", &dir);
     let readme = dir.join("README.md");
     let text = std::fs::read_to_string(&readme).unwrap();
     let corrupted = text.replace(
@@ -1152,17 +1144,22 @@ fn a_homework_readme_quotes_none_of_the_values_its_lesson_varies() {
     assert!(lessons >= 3, "only {lessons} lessons vary values");
 }
 
-/// Lesson 02 copied into a scratch folder of lessons, its exercises.yaml with `extra` added.
-fn lesson02_with(name: &str, extra: &str) -> PathBuf {
-    let root = scratch(name);
-    let dir = root.join("02-intersection");
-    std::fs::create_dir_all(&dir).unwrap();
-    for f in std::fs::read_dir("lessons/02-intersection").unwrap() {
+/// The files of the shipped lesson `lesson` copied into `dir` (made if need be).
+fn copy_lesson(lesson: &str, dir: &Path) {
+    std::fs::create_dir_all(dir).unwrap();
+    for f in std::fs::read_dir(Path::new("lessons").join(lesson)).unwrap() {
         let f = f.unwrap();
         if f.path().is_file() {
             std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
         }
     }
+}
+
+/// Lesson 02 copied into a scratch folder of lessons, its exercises.yaml with `extra` added.
+fn lesson02_with(name: &str, extra: &str) -> PathBuf {
+    let root = scratch(name);
+    let dir = root.join("02-intersection");
+    copy_lesson("02-intersection", &dir);
     let exercises = dir.join("exercises.yaml");
     let text = std::fs::read_to_string(&exercises).unwrap();
     std::fs::write(&exercises, text + extra).unwrap();
@@ -1451,12 +1448,10 @@ fn an_exercise_a_students_values_make_impossible_is_set_aside() {
 fn an_exercises_file_named_yml_is_reported() {
     let dir = lesson02_with("misnamed", "");
     std::fs::rename(dir.join("exercises.yaml"), dir.join("exercises.yml")).unwrap();
-    let other = dir.parent().unwrap().join("03-local-illumination");
-    std::fs::create_dir_all(&other).unwrap();
-    for f in std::fs::read_dir("lessons/03-local-illumination").unwrap() {
-        let f = f.unwrap();
-        std::fs::copy(f.path(), other.join(f.file_name())).unwrap();
-    }
+    copy_lesson(
+        "03-local-illumination",
+        &dir.parent().unwrap().join("03-local-illumination"),
+    );
     let o = raytree(&[
         "lessons",
         "validate",
@@ -1485,13 +1480,8 @@ fn an_exercises_file_named_yml_is_reported() {
 fn homework_copies_the_lessons_subfolders_and_refuses_files_from_outside() {
     let root = scratch("homework-subfolders");
     let dir = root.join("16-textures");
+    copy_lesson("16-textures", &dir);
     std::fs::create_dir_all(dir.join("tex")).unwrap();
-    for f in std::fs::read_dir("lessons/16-textures").unwrap() {
-        let f = f.unwrap();
-        if f.path().is_file() {
-            std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
-        }
-    }
     std::fs::rename(dir.join("tiles.png"), dir.join("tex/tiles.png")).unwrap();
     let scene = dir.join("scene.yaml");
     let text = std::fs::read_to_string(&scene).unwrap();
@@ -1501,24 +1491,30 @@ fn homework_copies_the_lessons_subfolders_and_refuses_files_from_outside() {
         text.replace("image: tiles.png", "image: tex/tiles.png"),
     )
     .unwrap();
-    let homework = root.join("hw-s1");
-    let o = raytree(&[
-        "homework",
-        dir.to_str().unwrap(),
-        "--student",
-        "s1",
-        "-o",
-        homework.to_str().unwrap(),
-    ]);
+    let homework = |student: &str| {
+        let out = root.join(format!("hw-{student}"));
+        let args = [
+            "homework",
+            dir.to_str().unwrap(),
+            "--student",
+            student,
+            "-o",
+        ];
+        (
+            raytree(&[&args[..], &[out.to_str().unwrap()]].concat()),
+            out,
+        )
+    };
+    let (o, homework_dir) = homework("s1");
     assert_eq!(o.status.code(), Some(0), "{}", err(&o));
     assert_eq!(
-        std::fs::read(homework.join("tex/tiles.png")).unwrap(),
+        std::fs::read(homework_dir.join("tex/tiles.png")).unwrap(),
         std::fs::read(dir.join("tex/tiles.png")).unwrap()
     );
     let png = root.join("hw-s1.png");
     let o = raytree(&[
         "render",
-        homework.join("scene.yaml").to_str().unwrap(),
+        homework_dir.join("scene.yaml").to_str().unwrap(),
         "-o",
         png.to_str().unwrap(),
     ]);
@@ -1530,15 +1526,7 @@ fn homework_copies_the_lessons_subfolders_and_refuses_files_from_outside() {
         text.replace("image: tiles.png", "image: ../tiles.png"),
     )
     .unwrap();
-    let refused = root.join("hw-s2");
-    let o = raytree(&[
-        "homework",
-        dir.to_str().unwrap(),
-        "--student",
-        "s2",
-        "-o",
-        refused.to_str().unwrap(),
-    ]);
+    let (o, refused) = homework("s2");
     assert_eq!(o.status.code(), Some(2), "{}", err(&o));
     assert!(
         err(&o).contains(&format!(
