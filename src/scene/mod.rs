@@ -47,8 +47,8 @@ use crate::shading::{Light, Material};
 pub struct Scene {
     /// The file the scene was read from, if any.
     pub source: Option<PathBuf>,
-    /// The other files the scene read (meshes, texture images), each once, in the order the
-    /// file names them: with `source`, everything its image depends on.
+    /// The other files the scene read, each once: its texture images, then its meshes. With
+    /// `source`, every file its image depends on.
     pub inputs: Vec<PathBuf>,
 
     // What is seen, and from where.
