@@ -285,3 +285,29 @@ fn a_ray_entering_a_smooth_mesh_enters_it() {
     );
     assert!(!hit.inside, "the ray enters the glass");
 }
+
+/// At the limiting angle Snell's law gives a refracted ray along the surface (k = 0): from
+/// inside a glass ball of index 1.5, a ray meeting the surface at sin θ1 = 1/1.5 leaves along
+/// the tangent. It starts on the far side of the surface, the side it goes through to, so it
+/// meets the background and not the ball it has just left.
+#[test]
+fn a_ray_refracted_along_the_surface_leaves_it() {
+    let yaml = "camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nbackground: 0.25\nmax_depth: 3\n\
+                materials: { glass: { kd: 0, kt: 1, ior: 1.5 } }\n\
+                objects: [ { name: G, sphere: { center: [0, 0, 0], radius: 1 }, material: glass } ]\n";
+    let s = parse(yaml, "limiting.yaml", None, &Limits::default()).unwrap();
+    let ray = raytree::geometry::Ray::new(DVec3::new(0.0, 2.0 / 3.0, -0.1), DVec3::Z);
+    let tree = raytree::trace::Tracer::new(&s).with_depth(3).inspect(&ray);
+    assert!(
+        tree.hit.as_ref().unwrap().inside,
+        "the ray starts inside the ball"
+    );
+    let refracted = tree
+        .children
+        .iter()
+        .find(|c| c.kind == raytree::trace::RayKind::Refraction)
+        .expect("a refracted ray, not total internal reflection");
+    assert!(refracted.direction.z > 0.66 && refracted.direction.y < -0.74);
+    assert!(refracted.hit.is_none(), "{:?}", refracted.hit);
+    assert_eq!(refracted.color, DVec3::splat(0.25));
+}

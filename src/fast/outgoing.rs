@@ -130,7 +130,7 @@ pub(super) fn send(
         Fate::None => {}
         Fate::CutOff => transmitted.cut_off(lane),
         Fate::Traced((across, Some(dir))) => {
-            let ray = t.spawn(si, *dir);
+            let ray = t.spawn_through(si, *dir);
             let child = task.refraction(ray, kt, across.beyond, across.indices());
             transmitted.add(lane, child);
         }

@@ -160,12 +160,15 @@ impl Scene {
     /// the point, whose error it must clear, whether the new ray is a shadow ray or a child.
     #[inline]
     pub fn offset(&self, si: &Interaction, dir: DVec3) -> (DVec3, f64) {
+        self.offset_to(si, dir.dot(si.normal) >= 0.0)
+    }
+
+    /// The hit point moved off the surface by the bias: to the side the normal faces (the
+    /// incoming ray's), or `through` to the other.
+    #[inline]
+    pub fn offset_to(&self, si: &Interaction, facing: bool) -> (DVec3, f64) {
         let bias = self.bias_of_sizes(si.origin_size, si.point);
-        let side = if dir.dot(si.normal) >= 0.0 {
-            bias
-        } else {
-            -bias
-        };
+        let side = if facing { bias } else { -bias };
         (si.point + side * si.normal, bias)
     }
 }

@@ -284,7 +284,7 @@ impl<R: Recorder> Tracer<'_, R> {
             sum += kt
                 * match refract(d, si.normal, indices.n1, indices.n2) {
                     Some(dir) => {
-                        let ray = self.spawn(si, dir);
+                        let ray = self.spawn_through(si, dir);
                         let refraction = task.refraction(ray, kt, across.beyond, indices);
                         match m.frosted {
                             None => self.child(&refraction),
@@ -456,6 +456,16 @@ impl<R: Recorder> Tracer<'_, R> {
     pub(crate) fn spawn(&self, si: &Interaction, dir: DVec3) -> Ray {
         Ray {
             origin: self.scene.offset(si, dir).0,
+            dir,
+        }
+    }
+
+    /// A refracted ray leaves from the far side of the surface, the side it goes through to:
+    /// also at the limiting angle, where it runs along the surface (Snell's k = 0) and its
+    /// direction alone would not say which side.
+    pub(crate) fn spawn_through(&self, si: &Interaction, dir: DVec3) -> Ray {
+        Ray {
+            origin: self.scene.offset_to(si, false).0,
             dir,
         }
     }
