@@ -159,6 +159,17 @@ impl FlatCsg {
             spans.push(span);
         }
 
+        // An end that is one with a bound of the window (`same_end`) belongs to a group of ends
+        // the segment lists apply together whatever the window: they settle it.
+        let at_bound = |e: f64| e.is_finite() && (same_end(e, r.t_min) || same_end(e, r.t_max));
+        if spans
+            .iter()
+            .flatten()
+            .any(|s| at_bound(s.t_in) || at_bound(s.t_out))
+        {
+            return Crossing::Undecided;
+        }
+
         // The walk: inside flags just after t_min, and the span ends beyond it, in order.
         let mut inside = 0u32;
         let mut ends: ArrayVec<(f64, usize, bool), { 2 * MAX_LEAVES }> = ArrayVec::new();
