@@ -941,3 +941,56 @@ fn a_directional_lights_arrows_and_name_lie_inside_the_section() {
         }
     }
 }
+
+/// A ray seen end on (along the view's axis) projects to a point: the frame keeps the scale
+/// of the rays' own length, so the ball it hits is drawn whole at a sensible size (its outline
+/// within a few hundred pixels of the figure, not 10¹² across), and the PNG is drawn too.
+#[test]
+fn a_ray_seen_end_on_keeps_the_drawing_to_scale() {
+    let scene = temp("end-on.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 64, height: 48 }\n\
+         lights: [ { name: L, point: [0, 0, -5] } ]\nmaterials: { m: { kd: 1 } }\n\
+         objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: m } ]\n",
+    )
+    .unwrap();
+    for (ray, view) in [
+        ("0,0,-5:0,0,1", "front"),
+        ("0,5,0:0,-1,0", "top"),
+        ("5,0,0:-1,0,0", "side"),
+        ("0,0,-5:1e-9,0,1", "front"),
+    ] {
+        let svg = temp("end-on.svg");
+        let png = temp("end-on.png");
+        for out in [&svg, &png] {
+            let o = raytree(&[
+                "diagram",
+                scene.to_str().unwrap(),
+                "--ray",
+                ray,
+                "--view",
+                view,
+                "-o",
+                out.to_str().unwrap(),
+            ]);
+            assert!(
+                o.status.success(),
+                "{ray} {view}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+        }
+        let text = std::fs::read_to_string(&svg).unwrap();
+        // Every number of every attribute's value (coordinates, sizes, point lists), colours
+        // aside.
+        let largest = text
+            .split('"')
+            .skip(1)
+            .step_by(2)
+            .filter(|value| !value.starts_with('#'))
+            .flat_map(|value| value.split([' ', ',']))
+            .filter_map(|w| w.parse::<f64>().ok())
+            .fold(0.0, |m: f64, x| m.max(x.abs()));
+        assert!(largest < 1e5, "{ray} {view}: a number {largest} in the SVG");
+    }
+}

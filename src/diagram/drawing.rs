@@ -165,7 +165,14 @@ fn frame_around(scene: &Scene, all: &[Segment], eye: Option<&Eye>, view: View) -
             near.push(view.project(o.bounds.max));
         }
     }
-    let core = Frame::around(near.iter().copied(), 0.0);
+    // Rays seen end on (along the view's axis) project to a point or nearly: the frame is at
+    // least a fifth of the rays' own length across, so the drawing keeps its scale.
+    let longest = all
+        .iter()
+        .filter_map(|s| s.to.map(|p| (p - s.from).length()))
+        .filter(|l| l.is_finite())
+        .fold(0.0, f64::max);
+    let core = Frame::around(near.iter().copied(), 0.0).at_least(0.2 * longest);
     let big = core.size().max_element();
     let reach = Frame {
         min: core.min - big,
@@ -191,5 +198,5 @@ fn frame_around(scene: &Scene, all: &[Segment], eye: Option<&Eye>, view: View) -
     for s in all.iter().filter(|s| s.kind == SegKind::Missed) {
         near.push(view.project(s.from + s.dir * 0.5 * big.max(1.0)));
     }
-    Frame::around(near, 0.08)
+    Frame::around(near, 0.08).at_least(0.2 * longest)
 }

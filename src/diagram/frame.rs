@@ -38,6 +38,16 @@ impl Frame {
         }
     }
 
+    /// The same centre, each side at least `side` long.
+    pub fn at_least(&self, side: f64) -> Frame {
+        let half = (self.size().max(DVec2::splat(side))) / 2.0;
+        let c = self.center();
+        Frame {
+            min: c - half,
+            max: c + half,
+        }
+    }
+
     /// Width and height, in world units.
     pub fn size(&self) -> DVec2 {
         self.max - self.min
