@@ -343,6 +343,34 @@ fn bad_input_exits_2_with_one_line_and_no_panic() {
     assert_eq!(err.lines().count(), 1);
 }
 
+/// A tall image (1 × 1 000 000 pixels, within the budget) is previewed at most 1000 lines
+/// high, a column wide, not rendered 40 × 40 000 000 pixels large.
+#[test]
+fn a_tall_image_is_previewed_a_thousand_lines_high() {
+    let scene = temp("tall.yaml");
+    std::fs::write(
+        &scene,
+        [
+            "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 1, height: 1000000 }",
+            "materials: { m: { kd: 1 } }",
+            "objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: m } ]",
+        ]
+        .join("\n"),
+    )
+    .unwrap();
+    let o = raytree(&[
+        "preview",
+        scene.to_str().unwrap(),
+        "--ascii",
+        "--columns",
+        "40",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert_eq!(text.lines().count(), 1000);
+    assert!(text.lines().all(|l| l.chars().count() == 1), "{text}");
+}
+
 #[test]
 fn preview_and_lessons_list() {
     let o = raytree(&["preview", LESSON_SCENE, "--columns", "40", "--ascii"]);

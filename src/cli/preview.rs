@@ -73,6 +73,9 @@ fn color_mode(
     }
 }
 
+/// The most pixel rows a preview has: 1000 lines of half blocks.
+const MAX_ROWS: u32 = 2000;
+
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let scene = a.scene.load()?;
     let columns = a
@@ -82,8 +85,16 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         // A terminal's own width, which no flag checked.
         .clamp(4, 1000);
     let (w, h) = (scene.camera.width as f64, scene.camera.height as f64);
-    // Two pixels per character cell vertically; cells are about twice as tall as wide.
+    // Two pixels per character cell vertically; cells are about twice as tall as wide. A tall
+    // image is previewed at most 1000 lines (2000 pixels) high, its columns fewer to keep its
+    // shape.
     let rows = ((columns as f64 * h / w).round() as u32).max(2);
+    let (columns, rows) = if rows > MAX_ROWS {
+        let narrower = (columns as f64 * MAX_ROWS as f64 / rows as f64).round();
+        (narrower.max(1.0) as u32, MAX_ROWS)
+    } else {
+        (columns, rows)
+    };
     let mut small = scene.clone();
     small.camera = scene.camera.resized(columns, rows);
     let options = RenderOptions {
