@@ -6,12 +6,14 @@ use std::process::ExitCode;
 
 use super::args::{depth, SceneArgs, Target};
 use super::inspect::centre_ray_is_the_pixel;
+use super::output::eprintln;
 use super::Failure;
 use crate::diagram::figure::Figure;
 use crate::diagram::{raster, Drawing, ViewChoice};
 use crate::render::{write_atomically, RenderOptions};
 use crate::sampling::Rng;
 use crate::scene::Integrator;
+use crate::trace::budget::{affordable_depth, budget_note};
 use crate::trace::{text, Tracer};
 
 #[derive(clap::Args, Debug)]
@@ -73,8 +75,14 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         Some([x, y]) => Rng::for_pixel(0, x, y),
         None => Rng::for_pixel(0, 0, 0),
     };
+    // Drawn as deep as the tree stays within the budget of rays.
+    let asked = depth(&scene, a.depth)?;
+    let shown_depth = affordable_depth(&scene, &ray, asked, &|| rng.clone());
+    if shown_depth < asked {
+        eprintln(&format!("warning: {}", budget_note(shown_depth)));
+    }
     let tree = Tracer::new(&scene)
-        .with_depth(depth(&scene, a.depth)?)
+        .with_depth(shown_depth)
         .with_rng(rng)
         .inspect(&ray);
     let pixel = a.target.pixel.map(|[x, y]| (x, y));

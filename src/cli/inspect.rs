@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use glam::{DVec2, DVec3};
 
 use super::args::{depth, SceneArgs, Target};
-use super::output::print;
+use super::output::{eprintln, print};
 use super::Failure;
 use crate::diagram::dot::dot;
 use crate::render::antialias::{cell, grid_offsets, jitter};
@@ -17,6 +17,7 @@ use crate::render::film::Film;
 use crate::render::{Engine, RenderOptions};
 use crate::sampling::Rng;
 use crate::scene::{Antialias, Filter, Scene};
+use crate::trace::budget::{affordable_depth, budget_note};
 use crate::trace::tree::Inspection;
 use crate::trace::{text, Tracer};
 
@@ -273,8 +274,14 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
         // An explicit ray's glossy and frosted rays come from pixel (0, 0)'s generator.
         None => (ray, Rng::for_pixel(a.seed, 0, 0), Traced::Centre, None),
     };
+    // A tree of every ray to a deep recursion could fill the memory: it is shown as deep as
+    // it stays within the budget of rays (the pixel's value is rendered at the full depth).
+    let shown_depth = affordable_depth(&scene, &ray, max_depth, &|| rng.clone());
+    if shown_depth < max_depth {
+        eprintln(&format!("warning: {}", budget_note(shown_depth)));
+    }
     let tree = Tracer::new(&scene)
-        .with_depth(max_depth)
+        .with_depth(shown_depth)
         .with_rng(rng)
         .inspect(&ray);
     let inspection = Inspection {

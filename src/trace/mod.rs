@@ -1,6 +1,7 @@
 //! Tracing: the Whitted recursion (`whitted.rs`, the textbook core), the path tracer, the
 //! recorders that watch them, and the ray tree they record.
 
+pub mod budget;
 mod media;
 pub mod path;
 pub mod recorder;

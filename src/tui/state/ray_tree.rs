@@ -26,13 +26,8 @@ use crate::tui::tree::{self, Row};
 /// (`Limits::max_depth`), so a scene is explored at the depth it renders at.
 pub const MAX_DEPTH: u32 = 64;
 
-/// Depths up to this are always traced. Deeper, each level can double the tree, so the tree is
-/// traced only as deep as it stays within `TREE_BUDGET` rays: a corridor of mirrors goes to
-/// its scene's depth, a glass sphere's tree of 2ᵈ rays stops in time.
-pub const FREE_DEPTH: u32 = 16;
-
-/// The most rays a tree deeper than `FREE_DEPTH` may hold.
-pub const TREE_BUDGET: u64 = 100_000;
+use crate::trace::budget::{affordable_depth, budget_note};
+pub use crate::trace::budget::{FREE_DEPTH, TREE_BUDGET};
 
 /// The most rays the picked pixel's tree may hold for the preview to go deeper than
 /// `FREE_DEPTH` with it: the preview traces thousands of pixels, each about as deep.
@@ -518,30 +513,6 @@ impl RayTree {
 
 /// The rendered value of pixel (x, y) and how it was sampled, when the pixel is more than its
 /// centre ray: several samples or corners.
-/// The deepest depth up to `asked` whose tree from `ray` holds at most `TREE_BUDGET` rays, or
-/// `asked` itself up to `FREE_DEPTH`. A tree one level deeper holds at most a few times the
-/// rays of the last (two rays on per surface, a shadow ray per light), so finding where the
-/// budget is passed costs a few budgets' worth of rays, however deep the scene asks to go.
-fn affordable_depth(scene: &Scene, ray: &Ray, asked: u32, rng: &dyn Fn() -> Rng) -> u32 {
-    let mut depth = asked.min(FREE_DEPTH);
-    while depth < asked {
-        let mut tracer = Tracer::new(scene).with_depth(depth + 1).with_rng(rng());
-        tracer.radiance(ray);
-        if tracer.stats.rays() > TREE_BUDGET {
-            break;
-        }
-        depth += 1;
-    }
-    depth
-}
-
-/// Why the tree stops at `depth`.
-pub fn budget_note(depth: u32) -> String {
-    format!(
-        "a tree deeper than {depth} holds over {TREE_BUDGET} rays: the explorer traces to depth {depth}"
-    )
-}
-
 fn pixel_value(scene: &Scene, depth: u32, x: u32, y: u32) -> Option<(DVec3, String)> {
     use crate::render::film::Film;
     use crate::render::{Engine, RenderOptions};
