@@ -247,32 +247,27 @@ pub fn grade(
             }
             Err(e) => return Err(e),
         };
-        expected_of.push(
-            own.exercises
-                .iter()
-                .map(|ex| super::check::work(&own, ex).ok().map(|w| w.expected))
-                .collect(),
-        );
-        let mut exercises = Vec::new();
-        for (ex, worked) in own
+        // Each exercise worked out once for this student: its answer, or why it cannot be.
+        let worked: Vec<_> = own
             .exercises
             .iter()
-            .zip(&expected_of[expected_of.len() - 1])
-        {
+            .map(|ex| super::check::work(&own, ex).map(|w| w.expected))
+            .collect();
+        expected_of.push(worked.iter().map(|w| w.as_ref().ok().cloned()).collect());
+        let mut exercises = Vec::new();
+        for (ex, worked) in own.exercises.iter().zip(&worked) {
             let row = answers.get(&(student.clone(), ex.id.clone()));
             // An exercise this student's values make impossible (the varied scene's ray
             // hits nothing) is the lesson's fault: set aside, not counted against them.
-            if worked.is_none() {
-                if let Err(e) = super::check::work(&own, ex) {
-                    problems.extend(row.map(|r| Problem {
-                        line: r.line,
-                        message: format!(
-                            "{}, {}: not graded: with this student's values the exercise cannot be worked out: {e}",
-                            r.student, r.exercise
-                        ),
-                    }));
-                    continue;
-                }
+            if let Err(e) = worked {
+                problems.extend(row.map(|r| Problem {
+                    line: r.line,
+                    message: format!(
+                        "{}, {}: not graded: with this student's values the exercise cannot be worked out: {e}",
+                        r.student, r.exercise
+                    ),
+                }));
+                continue;
             }
             let graded = match row.map(|r| r.answer.as_str()) {
                 None | Some("") => Graded {
