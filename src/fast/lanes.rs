@@ -130,6 +130,15 @@ impl<V: F64x4> SlabLanes<V> {
     pub fn inv_dir(&self, lane: usize) -> DVec3 {
         DVec3::from_array(self.inv_dir.map(|axis| axis.to_array()[lane]))
     }
+
+    /// The ray in one lane, as it was put in.
+    #[inline(always)]
+    pub fn ray(&self, lane: usize) -> Ray {
+        Ray {
+            origin: DVec3::from_array(self.origin.map(|axis| axis.to_array()[lane])),
+            dir: DVec3::from_array(self.dir.map(|axis| axis.to_array()[lane])),
+        }
+    }
 }
 
 /// `Aabb::hit_slabs` for four rays at once, each lane with its own t_max: the bits of the lanes

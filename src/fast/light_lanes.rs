@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use super::lanes::{lane_mask, RayLanes, LANES, UNUSED};
+use super::lanes::{lane_mask, RayLanes, LANES};
 use super::packet_trace::ShadowPacket;
 use super::search::FastScene;
 use super::shadow_cones::{self, TowardLight};
@@ -124,11 +124,6 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
             let mut blocked = 0;
             if lit.cast != 0 {
                 let rays = RayLanes::from_lanes(lit.origin, lit.l);
-                let one_by_one = if fast.boxes_outside_bvh {
-                    one_by_one(&rays)
-                } else {
-                    [UNUSED; LANES]
-                };
                 // Written out, not `Option::map`: a closure holding lanes may be compiled
                 // outside the wing's copy.
                 let toward = match fast.shadow_cones.get(k) {
@@ -139,14 +134,8 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
                     }),
                     None => None,
                 };
-                blocked = fast.occluded_lanes(
-                    &rays,
-                    &one_by_one,
-                    lit.reach,
-                    lit.cast,
-                    toward.as_ref(),
-                    &mut t.stats,
-                );
+                blocked =
+                    fast.occluded_lanes(&rays, lit.reach, lit.cast, toward.as_ref(), &mut t.stats);
             }
             // color += s·terms: s = 1 where the shadow ray reaches the light, else 0.
             let s = lane_mask::<V>(lit.cast & !blocked).bitselect(V::ONE, V::ZERO);
@@ -449,17 +438,6 @@ fn axes<V: F64x4>(v: [DVec3; LANES]) -> [V; 3] {
 #[inline(always)]
 fn lane_bits(at: [usize; LANES], f: impl Fn(usize) -> bool) -> u32 {
     (0..LANES).fold(0, |bits, j| bits | (f(at[j]) as u32) << j)
-}
-
-/// The rays in lanes, one by one.
-#[inline(always)]
-fn one_by_one<V: F64x4>(rays: &RayLanes<V>) -> [Ray; LANES] {
-    let [ox, oy, oz] = rays.origin.map(V::to_array);
-    let [dx, dy, dz] = rays.dir.map(V::to_array);
-    std::array::from_fn(|j| Ray {
-        origin: DVec3::new(ox[j], oy[j], oz[j]),
-        dir: DVec3::new(dx[j], dy[j], dz[j]),
-    })
 }
 
 /// `highlight_power` in lanes: cos^m by repeated squaring, each lane with its own exponent m

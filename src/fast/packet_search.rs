@@ -551,18 +551,16 @@ impl FastScene<'_> {
         let reach = |i: usize| t_max.get(i).copied().unwrap_or(0.0);
         let reach = V::setr(reach(0), reach(1), reach(2), reach(3));
         let all = (1u32 << rays.len()) - 1;
-        self.occluded_lanes(&lanes, rays, reach, all, None, stats)
+        self.occluded_lanes(&lanes, reach, all, None, stats)
     }
 
-    /// The lanes of `open` whose ray is blocked before `reach`, for rays already in lanes
-    /// (`rays` are the same rays one by one, read only for the objects tested ray by ray).
+    /// The lanes of `open` whose ray is blocked before `reach`, for rays already in lanes.
     /// Shadow rays `toward` a point light skip the boxes their directions alone say they miss
     /// (`shadow_cones`).
     #[inline(always)]
     pub(super) fn occluded_lanes<V: F64x4>(
         &self,
         lanes: &RayLanes<V>,
-        rays: &[Ray],
         reach: V,
         all: u32,
         toward: Option<&TowardLight<V>>,
@@ -618,7 +616,7 @@ impl FastScene<'_> {
                             Some(slabs) => slabs,
                             None => slabs.insert(SlabLanes::new(lanes)),
                         };
-                        open &= !self.object_blocks_lanes(*o, rays, slabs, reach, tested, stats);
+                        open &= !self.object_blocks_lanes(*o, slabs, reach, tested, stats);
                     }
                 }
             }
@@ -671,13 +669,13 @@ impl FastScene<'_> {
     }
 
     /// Object o against the shadow rays of a packet still `open` (bit i: ray i), behind its
-    /// box tried against all of them at once: the bits of the rays it blocks.
+    /// box tried against all of them at once: the bits of the rays it blocks. A ray the
+    /// object is tested against alone is taken out of its lane then (most are decided in lanes).
     /// Out of line, as `object_in_lanes`.
     #[inline(always)]
     fn object_blocks_lanes<V: F64x4>(
         &self,
         o: u32,
-        rays: &[Ray],
         slabs: &SlabLanes<V>,
         t_max: V,
         open: u32,
@@ -695,7 +693,7 @@ impl FastScene<'_> {
                 }
                 for i in ones(passed & open) {
                     if self
-                        .object_hit::<V>(o, &rays[i], slabs.inv_dir(i), 0.0, reach[i], stats)
+                        .object_hit::<V>(o, &slabs.ray(i), slabs.inv_dir(i), 0.0, reach[i], stats)
                         .is_some()
                     {
                         blocked |= 1 << i;
