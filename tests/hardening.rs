@@ -602,6 +602,51 @@ fn a_signal_during_the_write_leaves_the_old_image_and_no_temporary_file() {
     }
 }
 
+/// A render whose one pixel would take longer than the universe has (two glass spheres, one
+/// inside the other, each hit sending a reflection and a refraction on, 64 levels deep) still
+/// ends soon after SIGINT or SIGTERM, killed by it, and writes nothing.
+#[cfg(unix)]
+#[test]
+fn a_signal_ends_a_render_stuck_in_one_pixel() {
+    let scene = write(
+        "endless.yaml",
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 1, height: 1, fov: 30 }
+max_depth: 64
+lights:
+  - { name: l, point: [0, 4, -4] }
+materials:
+  g: { color: 1, kd: 0.1, kr: 0.5, kt: 0.5, ior: 1.5 }
+objects:
+  - { name: a, sphere: { center: [0, 0, 0], radius: 1 }, material: g }
+  - { name: b, sphere: { center: [0, 0, 0], radius: 0.5 }, material: g }
+",
+    );
+    let out = scratch("endless.png");
+    for signal in ["INT", "TERM"] {
+        let child = command(&[
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("-o"),
+            out.as_os_str(),
+        ])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+        std::thread::sleep(Duration::from_millis(500));
+        let killed = Command::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(killed.success());
+        let r = finish(child, Duration::from_secs(30));
+        use std::os::unix::process::ExitStatusExt;
+        let want = if signal == "INT" { 2 } else { 15 };
+        assert_eq!(r.status.signal(), Some(want), "SIG{signal}: {:?}", r.status);
+        assert!(!out.exists(), "SIG{signal}: an image was written");
+    }
+}
+
 // ---------------------------------------------------------------------------------------
 // Temporary files and awkward outputs
 

@@ -529,6 +529,46 @@ objects: []
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A floating-point image with an infinite or NaN texel is refused at the `image:` key,
+/// naming the texel: the colour it would give is no colour, and the pixels it reached would
+/// come out NaN. (A negative texel, a filter's ringing, counts as no light.)
+#[test]
+fn an_image_with_a_texel_that_is_no_number_is_a_scene_error() {
+    let dir = std::env::temp_dir().join(format!("raytree-inftexture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (value, shown_value) in [
+        (f32::INFINITY, "is inf"),
+        (f32::NEG_INFINITY, "is -inf"),
+        (f32::NAN, "is NaN"),
+    ] {
+        let mut texels = image::Rgb32FImage::from_pixel(3, 2, image::Rgb([0.5, 0.5, 0.5]));
+        texels.put_pixel(2, 1, image::Rgb([0.5, value, 0.5]));
+        image::DynamicImage::ImageRgb32F(texels)
+            .save(dir.join("t.exr"))
+            .unwrap();
+        let path = dir.join("scene.yaml");
+        std::fs::write(
+            &path,
+            "camera: { eye: [0, 0, -10], look_at: [0, 0, 0] }
+materials:
+  m: { color: { image: t.exr }, ka: 1 }
+objects: []
+",
+        )
+        .unwrap();
+        let shown = raytree::scene::load(&path, &Limits::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            shown.contains(":3:24: ")
+                && shown.contains("column 2, row 1")
+                && shown.contains(shown_value),
+            "{shown}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// Bad pattern specifications name their place.
 #[test]
 fn bad_patterns_name_line_and_column() {

@@ -11,6 +11,7 @@ use super::output::eprintln;
 use super::Failure;
 use crate::render::{render, Encoding, Engine, ImageFormat, RenderOptions};
 use crate::scene::Antialias;
+use crate::signals::Signals;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Gamma {
@@ -222,7 +223,7 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     // From here on an interrupted render winds down (and leaves no temporary file behind)
     // before the process ends as the signal asks.
     let signals = crate::signals::Signals::catch()?;
-    let result = render_to_file(&a, signals.stop());
+    let result = render_to_file(&a, &signals);
     signals.finish();
     result
 }
@@ -290,7 +291,8 @@ fn destination(a: &Args) -> Result<Destination, Failure> {
     }))
 }
 
-fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
+fn render_to_file(a: &Args, signals: &Signals) -> Result<ExitCode, Failure> {
+    let stop = signals.stop();
     let destination = destination(a)?;
     if a.depth_strip.is_some() && a.depth.is_some() {
         return Err(Failure(
@@ -395,10 +397,12 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
             b.inc(1)
         }
     };
-    let (image, stats) = match a.depth_strip {
+    // Until the image is written nothing is left to undo: a render a signal cannot stop
+    // between pixels (one pixel's tree may be astronomically large) is ended at once.
+    let rendered = signals.impatient(|| match a.depth_strip {
         None => pool
             .install(|| render(&scene, options, &on_row, stop))
-            .ok_or_else(interrupted)?,
+            .ok_or_else(interrupted),
         Some(n) => {
             let mut frames = Vec::new();
             let mut total = crate::stats::Stats::default();
@@ -416,9 +420,10 @@ fn render_to_file(a: &Args, stop: &AtomicBool) -> Result<ExitCode, Failure> {
                     b.set_position(depth as u64 * h as u64 / n as u64);
                 }
             }
-            (strip(&frames)?, total)
+            Ok((strip(&frames)?, total))
         }
-    };
+    });
+    let (image, stats) = rendered?;
     let elapsed = start.elapsed();
     if let Some(b) = bar {
         b.finish_and_clear();

@@ -315,6 +315,9 @@ impl Mesh {
         })?;
         // A UTF-8 byte-order mark (as some Windows editors write) is not part of the first line.
         let text = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(&bytes);
+        // The parser takes `#` as a comment only at the start of a line; files put them after
+        // statements too.
+        let text = &*without_comments(text);
         let triangles = face_triangles(text);
         if triangles > budget.max_triangles {
             return Err(format!(
@@ -397,14 +400,13 @@ struct ObjMistake {
 const MAX_OBJ_NUMBER: f64 = super::MAX_MAGNITUDE;
 
 /// Checks what the OBJ parser would refuse without a line, or accept though it is wrong: the
-/// numbers of `v`, `vn` and `vt` lines and the indices of `f` lines.
+/// numbers of `v`, `vn` and `vt` lines and the vertices and indices of `f` lines. The text is
+/// `without_comments`.
 fn check_obj(text: &[u8]) -> Result<(), ObjMistake> {
     let lines = || {
-        text.split(|&b| b == b'\n').enumerate().map(|(i, line)| {
-            // A comment runs to the end of its line, as the parser reads it.
-            let end = line.iter().position(|&b| b == b'#').unwrap_or(line.len());
-            (i + 1, &line[..end])
-        })
+        text.split(|&b| b == b'\n')
+            .enumerate()
+            .map(|(i, line)| (i + 1, line))
     };
     // An index may name an element written later in the file (the parser resolves them once
     // it has read it all); one counted back (negative) names one written before.
@@ -443,6 +445,13 @@ fn check_obj(text: &[u8]) -> Result<(), ObjMistake> {
                 ));
             }
         } else if keyword == b"f" {
+            let corners = words(line).count() - 1;
+            if corners < 3 {
+                return Err(at(
+                    0,
+                    format!("a face needs at least 3 vertices, this one has {corners}"),
+                ));
+            }
             for (offset, word) in ws {
                 let mut part_offset = offset;
                 for (kind, part) in word.split(|&b| b == b'/').enumerate() {
@@ -456,6 +465,23 @@ fn check_obj(text: &[u8]) -> Result<(), ObjMistake> {
         }
     }
     Ok(())
+}
+
+/// The text with every comment (from `#` to the end of its line) taken out; borrowed where it
+/// has none.
+fn without_comments(text: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+    if !text.contains(&b'#') {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut kept = Vec::with_capacity(text.len());
+    for (i, line) in text.split(|&b| b == b'\n').enumerate() {
+        if i > 0 {
+            kept.push(b'\n');
+        }
+        let end = line.iter().position(|&b| b == b'#').unwrap_or(line.len());
+        kept.extend_from_slice(&line[..end]);
+    }
+    std::borrow::Cow::Owned(kept)
 }
 
 /// The words of a line with their byte offsets.
@@ -595,7 +621,7 @@ pub(crate) mod tests {
 
     /// Where the check points, and a piece of what it says.
     fn mistake(text: &str) -> (usize, usize, String) {
-        let e = check_obj(text.as_bytes()).unwrap_err();
+        let e = check_obj(&without_comments(text.as_bytes())).unwrap_err();
         (e.line, e.column, e.message)
     }
 
@@ -631,6 +657,32 @@ pub(crate) mod tests {
         let (line, column, m) = mistake("v 1 2\n");
         assert_eq!((line, column), (1, 1), "{m}");
         assert!(m.contains("needs 3 numbers"), "{m}");
+        for (face, corners) in [("f 1 2", 2), ("f 3 # a triangle", 1), ("f", 0)] {
+            let (line, column, m) = mistake(&format!("{tri}{face}\n"));
+            assert_eq!((line, column), (4, 1), "{m}");
+            assert!(
+                m.contains(&format!("at least 3 vertices, this one has {corners}")),
+                "{m}"
+            );
+        }
+    }
+
+    /// A comment may follow a statement on its line, as many exporters write them: the
+    /// statement is read up to it.
+    #[test]
+    fn comments_after_statements_are_comments() {
+        let text = b"# a triangle\nv 5 0 0 # first\nv 6 0 0\nv 5 1 0#last\nf 1 2 3 # the face\n";
+        let (m, dropped) = Mesh::load_obj(&obj("comments.obj", text), false, &BUDGET).unwrap();
+        assert_eq!(dropped, 0);
+        assert_eq!(m.triangles.len(), 1);
+        assert_eq!(
+            m.positions,
+            [
+                DVec3::new(5.0, 0.0, 0.0),
+                DVec3::new(6.0, 0.0, 0.0),
+                DVec3::new(5.0, 1.0, 0.0)
+            ]
+        );
     }
 
     #[test]
@@ -642,7 +694,7 @@ pub(crate) mod tests {
             "v 0 0 0 1\nv 1 0 0\r\nv 0 1 0 # corner\nvt 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n",
             "v -1e30 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
         ] {
-            assert_eq!(check_obj(text.as_bytes()), Ok(()), "{text:?}");
+            assert_eq!(check_obj(&without_comments(text.as_bytes())), Ok(()), "{text:?}");
         }
     }
 

@@ -139,6 +139,22 @@ pub enum TextureError {
         /// The file's path.
         path: PathBuf,
     },
+    /// A texel of a floating-point image is infinite or NaN: no colour.
+    #[error(
+        "`{name}`: the texel at column {x}, row {y} (from the top left) is {value}, not a colour"
+    )]
+    NotFinite {
+        /// The file as the scene wrote it.
+        name: String,
+        /// The file's path.
+        path: PathBuf,
+        /// Its column.
+        x: u32,
+        /// Its row.
+        y: u32,
+        /// The channel's value: inf, -inf or NaN.
+        value: f32,
+    },
 }
 
 impl Image {
@@ -190,11 +206,21 @@ impl Image {
             });
         }
         let texels = if linear {
-            decoded
-                .to_rgb32f()
-                .pixels()
-                .map(|p| p.0.map(|c| c.max(0.0)))
-                .collect()
+            let rgb = decoded.to_rgb32f();
+            if let Some((x, y, value)) = rgb
+                .enumerate_pixels()
+                .find_map(|(x, y, p)| p.0.into_iter().find(|c| !c.is_finite()).map(|c| (x, y, c)))
+            {
+                return Err(TextureError::NotFinite {
+                    name: name.into(),
+                    path: path.to_path_buf(),
+                    x,
+                    y,
+                    value,
+                });
+            }
+            // A filtered image's ringing can dip below zero: no light is less than none.
+            rgb.pixels().map(|p| p.0.map(|c| c.max(0.0))).collect()
         } else if let image::DynamicImage::ImageRgb8(_)
         | image::DynamicImage::ImageRgba8(_)
         | image::DynamicImage::ImageLuma8(_)
