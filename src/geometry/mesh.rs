@@ -345,6 +345,7 @@ impl Mesh {
             let p = &m.mesh.positions;
             positions.extend(p.chunks_exact(3).map(|v| DVec3::new(v[0], v[1], v[2])));
             if smooth && m.mesh.normals.len() == p.len() {
+                normals.resize(base as usize, DVec3::ZERO);
                 normals.extend(
                     m.mesh
                         .normals
@@ -369,6 +370,12 @@ impl Mesh {
         }
         if triangles.is_empty() {
             return Err(format!("{shown}: the OBJ file has no triangles"));
+        }
+        // An object of the file without `vn` lines stays flat beside smooth ones: its vertices'
+        // normals are zero, and a triangle whose blended normal is zero is shaded by its own
+        // (`normal`).
+        if !normals.is_empty() {
+            normals.resize(positions.len(), DVec3::ZERO);
         }
         let (mesh, dropped) = Mesh::new(positions, normals, triangles);
         Ok((mesh.with_texcoords(texcoords), dropped))
@@ -664,6 +671,34 @@ pub(crate) mod tests {
                 m.contains(&format!("at least 3 vertices, this one has {corners}")),
                 "{m}"
             );
+        }
+    }
+
+    /// In a file of several objects, one without normals is flat and the others keep theirs.
+    #[test]
+    fn an_object_without_normals_leaves_the_others_smooth() {
+        let smooth = "o A\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nvn 0.6 0 -0.8\n";
+        let flat = "o B\nv 5 5 5\nv 6 5 5\nv 5 6 5\n";
+        for (name, text) in [
+            (
+                "smooth-first.obj",
+                format!("{smooth}f 1//1 2//1 3//1\n{flat}f 4 5 6\n"),
+            ),
+            (
+                "flat-first.obj",
+                format!("{flat}f 1 2 3\n{smooth}f 4//1 5//1 6//1\n"),
+            ),
+        ] {
+            let (m, _) = Mesh::load_obj(&obj(name, text.as_bytes()), true, &BUDGET).unwrap();
+            let face_at = |x: f64| {
+                (0..m.triangles.len() as u32)
+                    .find(|&f| m.triangle(f).a.x == x)
+                    .unwrap()
+            };
+            let (a, b) = (face_at(-1.0), face_at(5.0));
+            let at_a = m.normal(DVec3::new(0.0, -0.5, 0.0), a);
+            assert_eq!(at_a, DVec3::new(0.6, 0.0, -0.8), "{name}");
+            assert_eq!(m.normal(DVec3::new(5.2, 5.2, 5.0), b), DVec3::Z, "{name}");
         }
     }
 
