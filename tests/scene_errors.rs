@@ -30,6 +30,12 @@ const CASES: &[(&str, &str, &str)] = &[
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, -.inf] }", "1:44", "non-finite"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 1e999] }", "1:44", "expected a number within floating point's range here, got `1e999`"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nambient: \"abc\"", "2:1", "number or a list"),
+    // Extreme numbers are shown short, not in hundreds of digits.
+    ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 1e50 }", "1:53", "180 degrees (exclusive), got 1e50"),
+    ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: -1e-300 } }", "2:23", "kd must be ≥ 0, got -1e-300"),
+    ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: -0.25 } }", "2:23", "kd must be ≥ 0, got -0.25"),
+    // A triangle is no more collinear for being large (its cross product's length squared is 10⁶⁴⁰).
+    ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects:\n  - { name: t, triangle: [[-1e80, -1e80, 5], [1e80, -1e80, 5], [0, 1e80, 5]], material: m }\n  - { name: t, sphere: { center: [0, 0, 0], radius: 1 }, material: m }", "5:5", "duplicate object name `t`"),
 ];
 
 #[test]

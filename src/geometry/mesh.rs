@@ -76,7 +76,7 @@ impl Mesh {
             .into_iter()
             .filter(|t| {
                 let [a, b, c] = t.map(|i| positions[i as usize]);
-                (b - a).cross(c - a).length_squared() > 0.0
+                Triangle { a, b, c }.normal() != DVec3::ZERO
             })
             .collect();
         let dropped = before - triangles.len();

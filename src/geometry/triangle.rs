@@ -72,23 +72,60 @@ impl Triangle {
 
     /// Geometric normal (b − a) × (c − a), unit; zero for a degenerate triangle.
     pub fn normal(&self) -> DVec3 {
-        (self.b - self.a).cross(self.c - self.a).normalize_or_zero()
+        let (e1, e2) = (self.b - self.a, self.c - self.a);
+        let s = tame(e1.abs().max_element().max(e2.abs().max_element()));
+        (s * e1).cross(s * e2).normalize_or_zero()
     }
 
     /// Barycentric coordinates (λ1, λ2, λ3) of a point in the triangle's plane, from the ratios of
     /// the sub-triangle areas, as seed 002 defines them.
     pub fn barycentric(&self, p: DVec3) -> DVec3 {
-        let n = (self.b - self.a).cross(self.c - self.a);
+        // Ratios of products of four coordinates: the same for the triangle scaled.
+        let size = [self.a, self.b, self.c, p].map(|v| v.abs().max_element());
+        let s = tame(size.into_iter().fold(0.0, f64::max));
+        let (a, b, c, p) = (s * self.a, s * self.b, s * self.c, s * p);
+        let n = (b - a).cross(c - a);
         let area = n.length_squared();
-        let l1 = (self.b - p).cross(self.c - p).dot(n) / area;
-        let l2 = (self.c - p).cross(self.a - p).dot(n) / area;
+        let l1 = (b - p).cross(c - p).dot(n) / area;
+        let l2 = (c - p).cross(a - p).dot(n) / area;
         DVec3::new(l1, l2, 1.0 - l1 - l2)
     }
+}
+
+/// A factor that brings coordinates as large as `size` near 1 where a product of four of
+/// them (a cross product's length squared) would overflow or underflow, else 1. A power of
+/// two: multiplying by it is exact, and the directions and ratios found are as they were.
+fn tame(size: f64) -> f64 {
+    if !size.is_finite() || size == 0.0 || (1e-60..=1e60).contains(&size) {
+        return 1.0;
+    }
+    2f64.powi(-(size.log2().floor() as i32))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A triangle is the same figure at 1e−80 and at 1e80 as at 1: its normal and a point's
+    /// barycentric coordinates do not overflow or vanish with the cross product's
+    /// length squared (10⁶⁴⁰ and 10⁻⁶⁴⁰ there).
+    #[test]
+    fn huge_and_tiny_triangles_keep_their_normal_and_barycentrics() {
+        for scale in [1e-80, 1e-40, 1.0, 1e40, 1e80, 1e100] {
+            let tri = Triangle {
+                a: DVec3::new(-1.0, -1.0, 5.0) * scale,
+                b: DVec3::new(1.0, -1.0, 5.0) * scale,
+                c: DVec3::new(0.0, 1.0, 5.0) * scale,
+            };
+            assert_eq!(tri.normal(), DVec3::Z, "{scale:e}");
+            // (0, −0.5, 5): λ3 = 0.25 (a quarter of the way up), λ1 = λ2 = 0.375.
+            let l = tri.barycentric(DVec3::new(0.0, -0.5, 5.0) * scale);
+            assert!(
+                (l - DVec3::new(0.375, 0.375, 0.25)).abs().max_element() < 1e-15,
+                "{scale:e}: {l}"
+            );
+        }
+    }
 
     #[test]
     fn barycentrics_match_the_hit_point() {

@@ -97,9 +97,16 @@ impl std::ops::Deref for Num {
     }
 }
 
+/// As written where it is of a usual size (0.25, 180, 0), in scientific notation where its
+/// digits would run on in a message (1e50, not fifty zeros; 1e-300).
 impl std::fmt::Display for Num {
     fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        self.0.fmt(f)
+        let x = self.0;
+        if x == 0.0 || !x.is_finite() || (1e-4..1e7).contains(&x.abs()) {
+            write!(f, "{x}")
+        } else {
+            write!(f, "{x:e}")
+        }
     }
 }
 

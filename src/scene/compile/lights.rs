@@ -6,7 +6,7 @@ use std::collections::{BTreeMap, HashSet};
 use glam::DVec3;
 use serde_saphyr::Spanned;
 
-use super::{invalid, nonzero, pos, printable_name, Invalid, Pos};
+use super::{invalid, nonzero, number, pos, printable_name, Invalid, Pos};
 use crate::scene::format::{LightSpec, Num, SceneFile};
 use crate::shading::{Light, LightKind};
 
@@ -119,7 +119,10 @@ fn light(l: &LightSpec, p: Pos, i: usize) -> Result<Light, Invalid> {
         if radius <= 0.0 {
             return invalid(
                 pos(&sphere.value.radius),
-                format!("light `{name}`: the sphere's radius must be > 0, got {radius}"),
+                format!(
+                    "light `{name}`: the sphere's radius must be > 0, got {}",
+                    number(radius)
+                ),
             );
         }
         LightKind::Sphere {

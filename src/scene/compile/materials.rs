@@ -9,7 +9,7 @@ use glam::DVec3;
 use serde_saphyr::Spanned;
 
 use super::patterns::{Of, Textures};
-use super::{invalid, pos, printable_name, Invalid};
+use super::{invalid, number, pos, printable_name, Invalid};
 use crate::scene::format::{Integrator, LobeSpec, MaterialSpec, SceneFile, Varying};
 use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material, Pattern, Patterns};
 
@@ -169,7 +169,7 @@ fn lobe(material: &str, key: &str, spec: &Spanned<LobeSpec>) -> Result<Lobe, Inv
                     pos(s),
                     format!(
                         "material `{material}`: {key} spread must be between 0 and 45 degrees, got {}",
-                        s.value
+                        number(s.value.0)
                     ),
                 );
             }
@@ -183,7 +183,7 @@ fn lobe(material: &str, key: &str, spec: &Spanned<LobeSpec>) -> Result<Lobe, Inv
                     pos(e),
                     format!(
                         "material `{material}`: {key} exponent must be ≥ 1, got {}",
-                        e.value
+                        number(e.value.0)
                     ),
                 );
             }

@@ -151,10 +151,15 @@ fn not_negative(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {
 /// `[r, g, b]` as written (a grey one as one number).
 fn vec3(v: DVec3) -> String {
     if v.x == v.y && v.y == v.z {
-        format!("{}", v.x)
+        number(v.x)
     } else {
-        format!("[{}, {}, {}]", v.x, v.y, v.z)
+        format!("[{}, {}, {}]", number(v.x), number(v.y), number(v.z))
     }
+}
+
+/// A number in a message, as a scene's numbers are shown (`Num`).
+fn number(x: f64) -> String {
+    crate::scene::format::Num(x).to_string()
 }
 
 /// A name as given in the file: one line of printable text, so that it can be shown in a

@@ -10,7 +10,7 @@ use glam::{DAffine3, DVec3};
 use serde_saphyr::Spanned;
 
 use super::objects::transform;
-use super::{invalid, pos, Invalid, Pos};
+use super::{invalid, number, pos, Invalid, Pos};
 use crate::scene::format::{PatternName, PatternSpec, Varying};
 use crate::shading::pattern::{Kind, Placed};
 use crate::shading::texture::{Image, Mapping};
@@ -198,7 +198,7 @@ fn constant(v: DVec3, p: Pos, of: Of) -> Result<DVec3, Invalid> {
         return invalid(
             p,
             if of.scalar {
-                format!("{whose} must be ≥ 0, got {}", v.x)
+                format!("{whose} must be ≥ 0, got {}", number(v.x))
             } else {
                 format!("{whose} must be ≥ 0")
             },

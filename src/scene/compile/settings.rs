@@ -5,7 +5,7 @@
 use serde_saphyr::Spanned;
 
 use super::lights::attenuation;
-use super::{invalid, pos, Invalid, Limits};
+use super::{invalid, number, pos, Invalid, Limits};
 use crate::scene::format::{AntialiasMode, Bias, FilterKind, SceneFile, StopRule};
 use crate::scene::{Antialias, Filter, Integrator, StopRules, DEFAULT_THRESHOLD};
 
@@ -56,7 +56,7 @@ impl Settings {
                     pos(a),
                     format!(
                         "adaptive_threshold must be between 0 and 1, got {}",
-                        a.value
+                        number(a.value.0)
                     ),
                 )
             }
@@ -75,7 +75,7 @@ impl Settings {
             ) if *v < 0.0 => {
                 return invalid(
                     pos(b),
-                    format!("shadow_bias must be `auto` or ≥ 0, got {v}"),
+                    format!("shadow_bias must be `auto` or ≥ 0, got {}", number(*v)),
                 )
             }
             Some(Spanned {
