@@ -440,6 +440,85 @@ fn diagram_svg(args: &[&str], name: &str) -> String {
     std::fs::read_to_string(&out).unwrap()
 }
 
+/// The rectangle the figure is clipped to (its panel).
+fn clip_rect(svg: &str) -> (DVec2, DVec2) {
+    let from = svg.find("<clipPath").unwrap();
+    let tag = svg[from..]
+        .split("<rect ")
+        .nth(1)
+        .unwrap()
+        .split_once('>')
+        .unwrap()
+        .0;
+    let (x, y) = (attr(tag, "x"), attr(tag, "y"));
+    let (w, h) = (attr(tag, "width"), attr(tag, "height"));
+    (DVec2::new(x, y), DVec2::new(x + w, y + h))
+}
+
+/// A ray's label and the image plane's name are drawn inside the figure's panel, also where
+/// the ray leaves it for a light far off the figure (its label once went along the whole
+/// ray, to above the page) and where the image plane reaches the panel's edge.
+#[test]
+fn ray_labels_and_the_image_planes_name_lie_inside_the_panel() {
+    let scene = temp("far-light.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 60, width: 80, height: 60 }
+lights:
+  - { name: L, point: [0, 5, -5] }
+materials:
+  m: { color: 1, kd: 1 }
+objects:
+  - { name: wall, plane: { point: [0, 0, 0], normal: [0, 0, -1] }, material: m }
+  - { name: ball, sphere: { center: [0, 0, -12], radius: 2 }, material: m }
+",
+    )
+    .unwrap();
+    let cases = [
+        (scene.to_str().unwrap(), "20,15", "far-light.svg"),
+        (
+            "lessons/07-recursion-depth/scene.yaml",
+            "40,30",
+            "l07-front.svg",
+        ),
+        (
+            "lessons/12-acceleration/scene.yaml",
+            "40,30",
+            "l12-front.svg",
+        ),
+    ];
+    for (scene, pixel, name) in cases {
+        let svg = diagram_svg(&[scene, "--pixel", pixel, "--view", "front"], name);
+        let (min, max) = clip_rect(&svg);
+        let labels: Vec<(String, (DVec2, DVec2))> = texts(&svg)
+            .filter(|(tag, said)| {
+                // (The title, "… · pixel (x, y) · I = … · …", is above the panel.)
+                let ray =
+                    said.starts_with("s = ") || said.contains(" I = ") && !said.contains(" · ");
+                (ray || said == "image plane") && attr(tag, "x") < max.x
+            })
+            .map(|(tag, said)| {
+                let bx = text_box(tag, &said);
+                (said, bx)
+            })
+            .collect();
+        assert!(
+            labels.iter().any(|(said, _)| said == "image plane"),
+            "{name}"
+        );
+        assert!(
+            labels.iter().any(|(said, _)| said.starts_with("s = ")),
+            "{name}: {labels:?}"
+        );
+        for (said, (lo, hi)) in &labels {
+            assert!(
+                lo.x >= min.x && lo.y >= min.y && hi.x <= max.x && hi.y <= max.y,
+                "{name}: `{said}` at {lo}–{hi}, outside {min}–{max}"
+            );
+        }
+    }
+}
+
 /// Lesson 10 holds its CSG exercises as objects made of the same three spheres A, B and C, all
 /// in one place: the figure names each sphere once (by the first object, the plain sphere),
 /// on top of the silhouettes, and no two names are drawn over each other.

@@ -84,7 +84,6 @@ pub(super) fn beside_rays(
     taken: &[Box2],
 ) -> Option<(Box2, bool)> {
     let width = text_width(s, size);
-    let (left, right) = (p.origin.x + 4.0, p.origin.x + p.size.x - 4.0);
     [false, true].into_iter().find_map(|end| {
         let x0 = if end { at.x - width } else { at.x };
         let bx = (
@@ -93,7 +92,7 @@ pub(super) fn beside_rays(
         );
         let clear = !paths.iter().any(|&(a, b)| crosses(&bx, a, b))
             && !taken.iter().any(|t| overlap(t, &bx));
-        (x0 >= left && x0 + width <= right && clear).then_some((bx, end))
+        (into_panel(p, bx, 4.0) == DVec2::ZERO && clear).then_some((bx, end))
     })
 }
 

@@ -7,6 +7,7 @@ use svg::node::element::{Group, Polygon, Rectangle, Text};
 
 use super::drawing::{Eye, LightMark};
 use super::figure::Figure;
+use super::frame::Frame;
 use super::ink::{arrowhead, dot, line, points, r, ray_color, text, text_width, Panel};
 use super::ink::{FILL, INK, NORMAL, OUTLINE};
 use super::labels::Box2;
@@ -134,6 +135,18 @@ impl Figure<'_> {
         let eye = p.px(d.at(e.at));
         let pixel = p.px(d.at(e.pixel));
         let (at, anchor) = image_plane_label(&hull, eye, pixel);
+        // Moved in where the plane's end lies at the panel's edge.
+        let width = text_width("image plane", 12.0);
+        let x0 = if anchor == "middle" {
+            at.x - width / 2.0
+        } else {
+            at.x
+        };
+        let covered = (
+            DVec2::new(x0, at.y - 12.0),
+            DVec2::new(x0 + width, at.y + 2.0),
+        );
+        let at = at + into_panel(p, covered, 4.0);
         g = g
             .add(text(at, "image plane", 12.0, "#666666").set("text-anchor", anchor))
             .add(dot(eye, 5.0, INK))
@@ -464,6 +477,13 @@ fn ray_label(
     lines: &[(DVec2, DVec2)],
     taken: &[Box2],
 ) -> Option<(Text, Box2)> {
+    // The label goes along the part of the ray the panel shows: a shadow ray toward a light
+    // off the figure runs on far past its edge.
+    let (pa, pb) = Frame {
+        min: p.origin,
+        max: p.origin + p.size,
+    }
+    .clip(pa, pb)?;
     let dir = pb - pa;
     let room = if s.kind == SegKind::Primary {
         30.0
@@ -497,7 +517,8 @@ fn ray_label(
     let anywhere = |spots: &[DVec2]| {
         spots.iter().find_map(|&at| {
             let bx = label_box(p, at, &label, 12.0);
-            (!taken.iter().any(|b| overlap(b, &bx))).then_some((at, bx, false))
+            let inside = into_panel(p, bx, 0.0).y == 0.0;
+            (inside && !taken.iter().any(|b| overlap(b, &bx))).then_some((at, bx, false))
         })
     };
     let further: Vec<DVec2> = [along + 0.25, along - 0.25]
