@@ -603,8 +603,8 @@ fn a_signal_during_the_write_leaves_the_old_image_and_no_temporary_file() {
 }
 
 /// A render whose one pixel would take longer than the universe has (two glass spheres, one
-/// inside the other, each hit sending a reflection and a refraction on, 64 levels deep) still
-/// ends soon after SIGINT or SIGTERM, killed by it, and writes nothing.
+/// inside the other, each hit sending a reflection and a refraction on, 64 levels deep) says
+/// so first, and still ends soon after SIGINT or SIGTERM, killed by it, and writes nothing.
 #[cfg(unix)]
 #[test]
 fn a_signal_ends_a_render_stuck_in_one_pixel() {
@@ -644,6 +644,14 @@ objects:
         let want = if signal == "INT" { 2 } else { 15 };
         assert_eq!(r.status.signal(), Some(want), "SIG{signal}: {:?}", r.status);
         assert!(!out.exists(), "SIG{signal}: an image was written");
+        // Said before the render began.
+        let said = |s: &str| r.stderr.contains(s);
+        assert!(
+            said("warning: pixel 0,0's ray tree holds over 100000 rays deeper than ")
+                && said("at depth 64 this render may take very long"),
+            "{}",
+            r.stderr
+        );
     }
 }
 

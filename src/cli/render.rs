@@ -10,8 +10,10 @@ use super::args::{depth, Format, SceneArgs};
 use super::output::eprintln;
 use super::Failure;
 use crate::render::{render, Encoding, Engine, ImageFormat, RenderOptions};
+use crate::sampling::Rng;
 use crate::scene::Antialias;
 use crate::signals::Signals;
+use crate::trace::budget::{affordable_depth, FREE_DEPTH, TREE_BUDGET};
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Gamma {
@@ -228,6 +230,30 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     result
 }
 
+/// A warning where some pixel's ray tree at `depth` is far beyond what a render can trace:
+/// each level can double a tree, and a scene may ask for 64. A 5 × 5 grid of pixels is tried
+/// as `inspect` shows a tree (`affordable_depth`); depths up to `FREE_DEPTH` are not.
+fn tree_too_large(scene: &crate::scene::Scene, depth: u32, seed: u64) -> Option<String> {
+    if depth <= FREE_DEPTH || scene.integrator != crate::scene::Integrator::Whitted {
+        return None;
+    }
+    let (w, h) = (scene.camera.width, scene.camera.height);
+    let grid =
+        (0..5).flat_map(|j| (0..5).map(move |i| ((2 * i + 1) * w / 10, (2 * j + 1) * h / 10)));
+    grid.into_iter().find_map(|(x, y)| {
+        let rng = Rng::for_pixel(seed, x, y);
+        let ray = scene.camera.pixel_ray(x, y);
+        let fits = affordable_depth(scene, &ray, depth, &|| rng.clone());
+        (fits < depth).then(|| {
+            format!(
+                "warning: pixel {x},{y}'s ray tree holds over {TREE_BUDGET} rays deeper than {fits}: \
+                 at depth {depth} this render may take very long (lower max_depth or --depth, \
+                 or set adaptive_threshold)"
+            )
+        })
+    })
+}
+
 /// What a render stopped by a signal reports.
 fn interrupted() -> Failure {
     Failure("interrupted".into())
@@ -380,6 +406,12 @@ fn render_to_file(a: &Args, signals: &Signals) -> Result<ExitCode, Failure> {
             EngineArg::Core => Engine::Core,
         },
     };
+    let deepest = a
+        .depth_strip
+        .map_or(options.max_depth, |n| n.max(options.max_depth));
+    if let Some(warning) = pool.install(|| tree_too_large(&scene, deepest, a.seed)) {
+        eprintln(&warning);
+    }
     let bar = std::io::stderr().is_terminal().then(|| {
         let bar = indicatif::ProgressBar::new(h as u64);
         bar.set_style(
