@@ -238,9 +238,9 @@ fn tree_too_large(scene: &crate::scene::Scene, depth: u32, seed: u64) -> Option<
         return None;
     }
     let (w, h) = (scene.camera.width, scene.camera.height);
-    let grid =
+    let mut grid =
         (0..5).flat_map(|j| (0..5).map(move |i| ((2 * i + 1) * w / 10, (2 * j + 1) * h / 10)));
-    grid.into_iter().find_map(|(x, y)| {
+    grid.find_map(|(x, y)| {
         let rng = Rng::for_pixel(seed, x, y);
         let ray = scene.camera.pixel_ray(x, y);
         let fits = affordable_depth(scene, &ray, depth, &|| rng.clone());

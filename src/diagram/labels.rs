@@ -128,8 +128,34 @@ pub(super) fn overlap(a: &Box2, b: &Box2) -> bool {
 /// Where the image plane's label goes, and its anchor: beyond the end of the plane (as drawn,
 /// the points of `hull`) that lies across the primary ray from the eye to the pixel, to the
 /// right where the plane runs sideways and below where it runs up and down; the eye sits
-/// behind the plane's middle, so the label stays clear of it and of the ray.
-pub(super) fn image_plane_label(hull: &[DVec2], eye: DVec2, pix: DVec2) -> (DVec2, &'static str) {
+/// behind the plane's middle, so the label stays clear of it and of the ray. Moved in where
+/// that end lies at the panel's edge.
+pub(super) fn image_plane_label(
+    p: &Panel,
+    hull: &[DVec2],
+    eye: DVec2,
+    pix: DVec2,
+) -> (DVec2, &'static str) {
+    let (at, anchor) = beyond_the_plane(hull, eye, pix);
+    (at + into_panel(p, image_plane_box(at, anchor), 4.0), anchor)
+}
+
+/// The box the image plane's label covers at 12 px, drawn at `at` with `anchor`.
+pub(super) fn image_plane_box(at: DVec2, anchor: &str) -> Box2 {
+    let width = text_width("image plane", 12.0);
+    let x0 = if anchor == "middle" {
+        at.x - width / 2.0
+    } else {
+        at.x
+    };
+    (
+        DVec2::new(x0, at.y - 12.0),
+        DVec2::new(x0 + width, at.y + 2.0),
+    )
+}
+
+/// `image_plane_label`'s spot before it is moved into the panel.
+fn beyond_the_plane(hull: &[DVec2], eye: DVec2, pix: DVec2) -> (DVec2, &'static str) {
     let across = (pix - eye).normalize_or(DVec2::NEG_Y).perp();
     let sideways = across.x.abs() >= 0.5;
     let across = if (sideways && across.x < 0.0) || (!sideways && across.y < 0.0) {
@@ -152,20 +178,6 @@ pub(super) fn image_plane_label(hull: &[DVec2], eye: DVec2, pix: DVec2) -> (DVec
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The box "image plane" covers at 12 px, from where `image_plane_label` puts it.
-    fn covered(at: DVec2, anchor: &str) -> Box2 {
-        let width = text_width("image plane", 12.0);
-        let x0 = if anchor == "middle" {
-            at.x - width / 2.0
-        } else {
-            at.x
-        };
-        (
-            DVec2::new(x0, at.y - 12.0),
-            DVec2::new(x0 + width, at.y + 2.0),
-        )
-    }
 
     fn distance_to_box(q: DVec2, (lo, hi): Box2) -> f64 {
         (q.clamp(lo, hi) - q).length()
@@ -276,8 +288,8 @@ mod tests {
             ),
         ];
         for (k, (plane, eye, pix)) in cases.into_iter().enumerate() {
-            let (at, anchor) = image_plane_label(&plane, eye, pix);
-            let bx = covered(at, anchor);
+            let (at, anchor) = image_plane_label(&panel(), &plane, eye, pix);
+            let bx = image_plane_box(at, anchor);
             assert!(
                 distance_to_box(eye, bx) > 5.0,
                 "case {k}: label at {at} ({anchor}) covers the eye at {eye}"

@@ -134,19 +134,7 @@ impl Figure<'_> {
         }
         let eye = p.px(d.at(e.at));
         let pixel = p.px(d.at(e.pixel));
-        let (at, anchor) = image_plane_label(&hull, eye, pixel);
-        // Moved in where the plane's end lies at the panel's edge.
-        let width = text_width("image plane", 12.0);
-        let x0 = if anchor == "middle" {
-            at.x - width / 2.0
-        } else {
-            at.x
-        };
-        let covered = (
-            DVec2::new(x0, at.y - 12.0),
-            DVec2::new(x0 + width, at.y + 2.0),
-        );
-        let at = at + into_panel(p, covered, 4.0);
+        let (at, anchor) = image_plane_label(p, &hull, eye, pixel);
         g = g
             .add(text(at, "image plane", 12.0, "#666666").set("text-anchor", anchor))
             .add(dot(eye, 5.0, INK))

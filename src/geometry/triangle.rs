@@ -73,6 +73,12 @@ impl Triangle {
     /// Geometric normal (b − a) × (c − a), unit; zero for a degenerate triangle.
     pub fn normal(&self) -> DVec3 {
         let (e1, e2) = (self.b - self.a, self.c - self.a);
+        let n = e1.cross(e2);
+        if n.length_squared().is_normal() {
+            return n.normalize();
+        }
+        // Edges so long or short that the length squared overflows or loses its digits to
+        // underflow: the direction is the same for the edges scaled.
         let s = tame(e1.abs().max_element().max(e2.abs().max_element()));
         (s * e1).cross(s * e2).normalize_or_zero()
     }
@@ -80,21 +86,31 @@ impl Triangle {
     /// Barycentric coordinates (λ1, λ2, λ3) of a point in the triangle's plane, from the ratios of
     /// the sub-triangle areas, as seed 002 defines them.
     pub fn barycentric(&self, p: DVec3) -> DVec3 {
-        // Ratios of products of four coordinates: the same for the triangle scaled.
+        let (l, area) = area_ratios(self.a, self.b, self.c, p);
+        if area.is_normal() {
+            return l;
+        }
+        // Coordinates so large or small that a product of four of them overflows or loses
+        // its digits: the ratios are the same for the figure scaled.
         let size = [self.a, self.b, self.c, p].map(|v| v.abs().max_element());
         let s = tame(size.into_iter().fold(0.0, f64::max));
-        let (a, b, c, p) = (s * self.a, s * self.b, s * self.c, s * p);
-        let n = (b - a).cross(c - a);
-        let area = n.length_squared();
-        let l1 = (b - p).cross(c - p).dot(n) / area;
-        let l2 = (c - p).cross(a - p).dot(n) / area;
-        DVec3::new(l1, l2, 1.0 - l1 - l2)
+        area_ratios(s * self.a, s * self.b, s * self.c, s * p).0
     }
+}
+
+/// (λ1, λ2, λ3) of p in the triangle a, b, c: the areas of the triangles p makes with each
+/// edge over the whole one's; and |n|², the whole one's doubled area squared.
+fn area_ratios(a: DVec3, b: DVec3, c: DVec3, p: DVec3) -> (DVec3, f64) {
+    let n = (b - a).cross(c - a);
+    let area = n.length_squared();
+    let l1 = (b - p).cross(c - p).dot(n) / area;
+    let l2 = (c - p).cross(a - p).dot(n) / area;
+    (DVec3::new(l1, l2, 1.0 - l1 - l2), area)
 }
 
 /// A factor that brings coordinates as large as `size` near 1 where a product of four of
 /// them (a cross product's length squared) would overflow or underflow, else 1. A power of
-/// two: multiplying by it is exact, and the directions and ratios found are as they were.
+/// two: multiplying by it is exact.
 fn tame(size: f64) -> f64 {
     if !size.is_finite() || size == 0.0 || (1e-60..=1e60).contains(&size) {
         return 1.0;

@@ -206,21 +206,21 @@ impl Image {
             });
         }
         let texels = if linear {
-            let rgb = decoded.to_rgb32f();
-            if let Some((x, y, value)) = rgb
+            decoded
+                .to_rgb32f()
                 .enumerate_pixels()
-                .find_map(|(x, y, p)| p.0.into_iter().find(|c| !c.is_finite()).map(|c| (x, y, c)))
-            {
-                return Err(TextureError::NotFinite {
-                    name: name.into(),
-                    path: path.to_path_buf(),
-                    x,
-                    y,
-                    value,
-                });
-            }
-            // A filtered image's ringing can dip below zero: no light is less than none.
-            rgb.pixels().map(|p| p.0.map(|c| c.max(0.0))).collect()
+                .map(|(x, y, p)| match p.0.into_iter().find(|c| !c.is_finite()) {
+                    Some(value) => Err(TextureError::NotFinite {
+                        name: name.into(),
+                        path: path.to_path_buf(),
+                        x,
+                        y,
+                        value,
+                    }),
+                    // A filtered image's ringing can dip below zero: no light is less than none.
+                    None => Ok(p.0.map(|c| c.max(0.0))),
+                })
+                .collect::<Result<_, _>>()?
         } else if let image::DynamicImage::ImageRgb8(_)
         | image::DynamicImage::ImageRgba8(_)
         | image::DynamicImage::ImageLuma8(_)
