@@ -455,15 +455,9 @@ fn clip_rect(svg: &str) -> (DVec2, DVec2) {
     (DVec2::new(x, y), DVec2::new(x + w, y + h))
 }
 
-/// A ray's label and the image plane's name are drawn inside the figure's panel, also where
-/// the ray leaves it for a light far off the figure (its label once went along the whole
-/// ray, to above the page) and where the image plane reaches the panel's edge.
-#[test]
-fn ray_labels_and_the_image_planes_name_lie_inside_the_panel() {
-    let scene = temp("far-light.yaml");
-    std::fs::write(
-        &scene,
-        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 60, width: 80, height: 60 }
+/// A wall lit by a light far above the eye: pixel 20,15's shadow ray leaves the figure's top.
+const FAR_LIGHT: &str =
+    "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], fov: 60, width: 80, height: 60 }
 lights:
   - { name: L, point: [0, 5, -5] }
 materials:
@@ -471,9 +465,72 @@ materials:
 objects:
   - { name: wall, plane: { point: [0, 0, 0], normal: [0, 0, -1] }, material: m }
   - { name: ball, sphere: { center: [0, 0, -12], radius: 2 }, material: m }
-",
-    )
-    .unwrap();
+";
+
+/// A light off the figure is drawn inside the panel, on the shadow ray that reaches it, where
+/// that ray leaves the panel: the student sees the ray arrive at it.
+#[test]
+fn a_light_off_the_figure_sits_on_its_shadow_ray() {
+    let scene = temp("far-light-sun.yaml");
+    std::fs::write(&scene, FAR_LIGHT).unwrap();
+    let svg = diagram_svg(
+        &[
+            scene.to_str().unwrap(),
+            "--pixel",
+            "20,15",
+            "--view",
+            "front",
+        ],
+        "far-light-sun.svg",
+    );
+    let (min, max) = clip_rect(&svg);
+    let tag = |element: &str, colour: &str| -> Vec<String> {
+        svg.split(&format!("<{element} "))
+            .skip(1)
+            .map(|t| t.split_once('>').unwrap().0.to_string())
+            .filter(|t| t.contains(colour))
+            .collect()
+    };
+    let suns = tag("circle", "fill=\"#f2b705\"");
+    assert_eq!(suns.len(), 1, "{suns:?}");
+    let sun = DVec2::new(attr(&suns[0], "cx"), attr(&suns[0], "cy"));
+    assert!(
+        sun.cmpge(min).all() && sun.cmple(max).all(),
+        "{sun} outside {min}–{max}"
+    );
+    assert!(svg.contains("L (off the figure)"));
+    // The shadow ray: the thin line in the colour of clear shadow rays (the legend's is 3 wide).
+    let rays: Vec<(DVec2, DVec2)> = tag("line", "stroke=\"#e09a00\"")
+        .iter()
+        .filter(|t| attr(t, "stroke-width") < 2.0 && attr(t, "y2") < min.y)
+        .map(|t| {
+            let a = DVec2::new(attr(t, "x1"), attr(t, "y1"));
+            (a, DVec2::new(attr(t, "x2"), attr(t, "y2")))
+        })
+        .collect();
+    assert_eq!(rays.len(), 1, "one shadow ray runs off the top: {rays:?}");
+    let (a, b) = rays[0];
+    let along = (b - a).normalize();
+    let off = (sun - a).perp_dot(along).abs();
+    assert!(
+        off < 0.5,
+        "the sun at {sun} is {off} px off the ray {a}–{b}"
+    );
+    // Near the panel's edge, where the ray leaves it.
+    let to_top = sun.y - min.y;
+    assert!(
+        to_top < 0.05 * (max - min).length(),
+        "{sun} is {to_top} px below the top"
+    );
+}
+
+/// A ray's label and the image plane's name are drawn inside the figure's panel, also where
+/// the ray leaves it for a light far off the figure (its label once went along the whole
+/// ray, to above the page) and where the image plane reaches the panel's edge.
+#[test]
+fn ray_labels_and_the_image_planes_name_lie_inside_the_panel() {
+    let scene = temp("far-light.yaml");
+    std::fs::write(&scene, FAR_LIGHT).unwrap();
     let cases = [
         (scene.to_str().unwrap(), "20,15", "far-light.svg"),
         (

@@ -23,6 +23,9 @@ pub struct LightMark {
     pub at: Option<DVec3>,
     /// The unit direction its light travels, for a directional light; None otherwise.
     pub direction: Option<DVec3>,
+    /// The first shadow ray of the whole tree that reaches it, from its start to its end: a
+    /// light off the figure is drawn where that ray leaves it, so the ray is seen to arrive.
+    pub reached_by: Option<(DVec3, DVec3)>,
 }
 
 /// The eye of a pixel's primary ray, the image plane and the pixel's point on it.
@@ -101,7 +104,7 @@ impl Drawing {
             section,
             segments: segments(shown),
             outlines: outlines(scene, view, section),
-            lights: scene.lights.iter().map(light_mark).collect(),
+            lights: scene.lights.iter().map(|l| light_mark(l, &all)).collect(),
             eye,
         }
     }
@@ -127,17 +130,22 @@ impl Drawing {
     }
 }
 
-fn light_mark(l: &crate::shading::Light) -> LightMark {
+fn light_mark(l: &crate::shading::Light, all: &[Segment]) -> LightMark {
     let (at, direction) = match &l.kind {
         LightKind::Point { position, .. } => (Some(*position), None),
         LightKind::Directional { direction } => (None, Some(*direction)),
         LightKind::Rect { corner, u, v, .. } => (Some(*corner + 0.5 * (*u + *v)), None),
         LightKind::Sphere { center, .. } => (Some(*center), None),
     };
+    let reached_by = all
+        .iter()
+        .filter(|s| s.kind == SegKind::ShadowClear && s.object.as_ref() == Some(&l.name))
+        .find_map(|s| Some((s.from, s.to?)));
     LightMark {
         name: l.name.clone(),
         at,
         direction,
+        reached_by,
     }
 }
 

@@ -249,15 +249,20 @@ impl Figure<'_> {
     }
 
     /// Where a light at a point is drawn, and its name there (one off the figure is drawn at
-    /// the edge, towards it, and says so).
+    /// the edge, on the first shadow ray that reaches it, else towards it from the figure's
+    /// middle, and says so).
     fn light_spot(&self, p: &Panel, l: &LightMark) -> Option<(DVec2, String)> {
         let q = self.drawing.at(l.at?);
         if p.frame.contains(q) {
             return Some((p.px(q), l.name.clone()));
         }
-        let centre = p.frame.center();
-        let edge = p.frame.exit(centre, q - centre);
-        let inward = (centre - edge).normalize_or_zero() * 0.03 * p.frame.size().length();
+        let d = self.drawing;
+        let (from, toward) = match l.reached_by.map(|(a, b)| (d.at(a), d.at(b))) {
+            Some((a, b)) if p.frame.contains(a) && a != b => (a, b),
+            _ => (p.frame.center(), q),
+        };
+        let edge = p.frame.exit(from, toward - from);
+        let inward = (from - edge).normalize_or_zero() * 0.03 * p.frame.size().length();
         Some((p.px(edge + inward), format!("{} (off the figure)", l.name)))
     }
 
