@@ -739,7 +739,15 @@ fn hidden_solutions_are_not_explained() {
     let v = json("0.5");
     assert_eq!(v["correct"], false);
     assert!(v["expected"].is_null(), "{v}");
-    assert!((json("0.23")["expected"].as_f64().unwrap() - 0.23).abs() < 1e-12);
+    // Nor its allowance: 0.1 % of the answer would give the answer away.
+    assert!(v["tolerance"].is_null(), "{v}");
+    assert!(v["tolerance_rule"].is_object(), "{v}");
+    let right = json("0.23");
+    assert!((right["expected"].as_f64().unwrap() - 0.23).abs() < 1e-12);
+    assert!(
+        (right["tolerance"].as_f64().unwrap() - 0.23e-3).abs() < 1e-12,
+        "{right}"
+    );
 }
 
 /// The rows a new user got wrong: a missing answer field, a quote never closed, an answer with
@@ -1537,4 +1545,63 @@ fn homework_copies_the_lessons_subfolders_and_refuses_files_from_outside() {
         err(&o)
     );
     assert!(!refused.exists());
+}
+
+/// An exercise's ray direction is a direction whatever its length: (0, 1e-200, 0) and
+/// (0, 1e200, 0) are lesson 03's ray straight up (which has only the ambient term left, 0.08,
+/// as the lesson works it), and a direction with no number in it is refused by name.
+#[test]
+fn an_exercises_ray_direction_of_any_length_is_that_direction() {
+    let exercises =
+        std::fs::read_to_string("lessons/03-local-illumination/exercises.yaml").unwrap();
+    let up = "ray: { origin: [0, -5, 0], direction: [0, 1, 0] }";
+    assert!(exercises.contains(up));
+    let lesson = |name: &str, direction: &str| {
+        let dir = scratch(name);
+        std::fs::create_dir_all(&dir).unwrap();
+        for f in ["scene.yaml", "phong.yaml", "color.yaml", "README.md"] {
+            std::fs::copy(
+                Path::new("lessons/03-local-illumination").join(f),
+                dir.join(f),
+            )
+            .unwrap();
+        }
+        let changed = format!("ray: {{ origin: [0, -5, 0], direction: {direction} }}");
+        std::fs::write(
+            dir.join("exercises.yaml"),
+            exercises.replacen(up, &changed, 1),
+        )
+        .unwrap();
+        dir
+    };
+    for (name, direction) in [
+        ("tiny-dir", "[0, 1e-200, 0]"),
+        ("huge-dir", "[0, 1e200, 0]"),
+    ] {
+        let dir = lesson(name, direction);
+        let d = dir.to_str().unwrap();
+        let o = raytree(&["check", d, "--exercise", "local-unlit", "--answer", "0.08"]);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{direction}: {}{}",
+            out(&o),
+            err(&o)
+        );
+    }
+    let dir = lesson("nan-dir", "[0, .nan, 0]");
+    let o = raytree(&[
+        "check",
+        dir.to_str().unwrap(),
+        "--exercise",
+        "local-unlit",
+        "--answer",
+        "0",
+    ]);
+    assert!(!o.status.success(), "{}", out(&o));
+    assert!(
+        err(&o).contains("finite, non-zero direction"),
+        "{}",
+        err(&o)
+    );
 }

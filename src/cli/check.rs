@@ -82,13 +82,19 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 doc["correct"] = json!(v.correct);
                 doc["answer"] = v.given.to_json();
                 // A lesson that hides its solutions does not give a wrong answer the right one
-                // (the text says only that it is wrong).
-                doc["expected"] = if v.correct || lesson.solutions != Solutions::Hidden {
+                // (the text says only that it is wrong), nor the allowance around it, which a
+                // relative rule makes a multiple of the answer: only the rule.
+                let shown = v.correct || lesson.solutions != Solutions::Hidden;
+                doc["expected"] = if shown {
                     v.expected.to_json()
                 } else {
                     serde_json::Value::Null
                 };
-                doc["tolerance"] = json!(v.expected.allowance(&v.tolerance));
+                doc["tolerance"] = if shown {
+                    json!(v.expected.allowance(&v.tolerance))
+                } else {
+                    serde_json::Value::Null
+                };
                 doc["tolerance_rule"] = json!(v.tolerance);
                 doc["hint"] = json!(v.hint);
                 doc["model"] = json!(v.model);

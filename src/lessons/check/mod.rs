@@ -228,11 +228,23 @@ fn exercise_ray(scene: &Scene, ex: &Exercise) -> Result<Ray, String> {
             pixel_inside(scene, ex, *x, *y)?;
             Ok(scene.camera.pixel_ray(*x, *y))
         }
-        (None, Some(r)) if r.direction != DVec3::ZERO => Ok(Ray::new(r.origin, r.direction)),
+        (None, Some(r))
+            if r.origin.is_finite() && r.direction.is_finite() && r.direction != DVec3::ZERO =>
+        {
+            // A direction too short or too long to square (1e-200, 1e200) is first brought
+            // near unit length by its largest component: the same direction.
+            let d = r.direction;
+            let d = if d.length_squared().is_normal() {
+                d
+            } else {
+                d / d.abs().max_element()
+            };
+            Ok(Ray::new(r.origin, d))
+        }
         // A question about the whole image: the tree shown is that of the first pixel.
         (None, None) if ex.ask.about_image() => Ok(scene.camera.pixel_ray(0, 0)),
         _ => Err(format!(
-            "exercise `{}` needs a pixel or a ray with a non-zero direction",
+            "exercise `{}` needs a pixel or a ray with a finite origin and a finite, non-zero direction",
             ex.id
         )),
     }
