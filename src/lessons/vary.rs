@@ -54,6 +54,12 @@ pub enum Pick {
     Vector([f64; 3]),
 }
 
+/// How many whole steps from lo stay within hi (allowing for the rounding of decimal steps):
+/// the values drawn are lo + k·step for k from 0 to that.
+fn steps(lo: f64, hi: f64, step: f64) -> u64 {
+    ((hi - lo) / step + 1e-9).floor() as u64
+}
+
 /// The step of a range written without one.
 const STEP: f64 = 0.01;
 
@@ -76,10 +82,14 @@ impl Range {
         }
     }
 
-    /// The values a validation tries: the range's low end, its first step and its high end
-    /// (each coordinate of a vector at once), or every value a `one_of` lists.
+    /// The values a validation tries: the range's low end, its first step and the last step
+    /// that stays within it (each coordinate of a vector at once): the ends of what students
+    /// draw. Or every value a `one_of` lists.
     pub fn probes(&self) -> Vec<Vec<String>> {
-        let ends = |lo: f64, hi: f64, step: f64| [lo, (lo + step).min(hi), hi].map(num);
+        let ends = |lo: f64, hi: f64, step: f64| {
+            let n = steps(lo, hi, step);
+            [lo, lo + n.min(1) as f64 * step, lo + n as f64 * step].map(num)
+        };
         let column = |k: usize, columns: &[[String; 3]]| -> Vec<String> {
             columns.iter().map(|c| c[k].clone()).collect()
         };
@@ -107,7 +117,7 @@ impl Range {
     /// One value drawn from the range, as the texts of its numbers.
     fn draw(&self, rng: &mut Rng) -> Vec<String> {
         let stepped = |lo: f64, hi: f64, step: f64, rng: &mut Rng| {
-            let steps = ((hi - lo) / step + 1e-9).floor() as u64;
+            let steps = steps(lo, hi, step);
             let k = ((rng.uniform() * (steps + 1) as f64) as u64).min(steps);
             num(lo + k as f64 * step)
         };
@@ -274,6 +284,19 @@ mod tests {
         let distinct: std::collections::HashSet<String> =
             students.iter().map(|s| format!("{s:?}")).collect();
         assert!(distinct.len() >= 19, "{} distinct of 20", distinct.len());
+    }
+
+    /// A validation tries the values students draw: lo + k·step up to the last step within
+    /// the range (180 of 40 to 200 in steps of 70), never the range's end where no step lands.
+    #[test]
+    fn the_probes_are_the_ends_of_what_is_drawn() {
+        let v = vary("camera.fov: { between: [40, 200], step: 70 }\nambient: [0.1, 0.4]\n");
+        assert_eq!(v["camera.fov"].probes(), [["40"], ["110"], ["180"]]);
+        assert_eq!(v["ambient"].probes(), [["0.1"], ["0.11"], ["0.4"]]);
+        let drawn: std::collections::BTreeSet<String> = (0..200)
+            .map(|k| draw("03", &format!("s{k}"), &v)["camera.fov"][0].clone())
+            .collect();
+        assert_eq!(drawn, ["110", "180", "40"].map(String::from).into());
     }
 
     #[test]
