@@ -1605,3 +1605,27 @@ fn an_exercises_ray_direction_of_any_length_is_that_direction() {
         err(&o)
     );
 }
+
+/// One number given for a colour is a grey, whatever its value: right within the tolerance of
+/// every channel, else wrong by the tolerance like any colour (with the hint to give r, g, b),
+/// never "not the kind of answer asked" (lesson 14's edge mean is about (0.271, 0.265, 0.259)).
+#[test]
+fn one_number_for_a_colour_is_a_grey_colour() {
+    let check = |answer: &str| {
+        raytree(&[
+            "check",
+            "14-monte-carlo-glossy",
+            "--exercise",
+            "edge-mean",
+            "--answer",
+            answer,
+        ])
+    };
+    let o = check("0.25");
+    assert_eq!(o.status.code(), Some(0), "{}{}", out(&o), err(&o));
+    let o = check("0.35");
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    let said = out(&o);
+    assert!(said.contains("wrong: 0.35 is not within"), "{said}");
+    assert!(said.contains("give it as r, g, b"), "{said}");
+}

@@ -70,6 +70,8 @@ pub struct Verdict {
     pub expected: Answer,
     /// The rule the answer was held to.
     pub tolerance: Tolerance,
+    /// Whether the answer is of the kind asked (one number for a grey colour is).
+    pub of_the_kind: bool,
     /// A common mistake that explains a wrong answer.
     pub hint: Option<String>,
     /// The highlight model an intensity was computed in, and why (stated by the exercise,
@@ -89,9 +91,7 @@ impl Verdict {
                 self.tolerance.describe()
             )
         } else {
-            let same_kind =
-                std::mem::discriminant(&self.given) == std::mem::discriminant(&self.expected);
-            let mut s = if same_kind {
+            let mut s = if self.of_the_kind {
                 format!(
                     "wrong: {} is not within {} of the expected answer",
                     self.given.show(),
@@ -308,13 +308,15 @@ pub fn work(lesson: &Lesson, ex: &Exercise) -> Result<Worked, CheckError> {
 pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, CheckError> {
     let given = parse_answer(input, ex.ask == Ask::Segments)?;
     let w = work(lesson, ex)?;
-    // A vector of three equal numbers is a grey colour where a colour is asked, not a t or a
-    // count.
-    let vector_for_a_number = matches!(
-        (&given, &w.expected),
-        (Answer::Vector(_), Answer::Number(_))
-    ) && !asks_colour(ex.ask);
-    let correct = given.matches(&w.expected, &w.tolerance) && !vector_for_a_number;
+    // One number and a vector of three equal ones are the same grey where a colour is asked;
+    // elsewhere a number is not a point or a direction, nor a vector a t or a count.
+    let grey = asks_colour(ex.ask)
+        && matches!(
+            (&given, &w.expected),
+            (Answer::Vector(_), Answer::Number(_)) | (Answer::Number(_), Answer::Vector(_))
+        );
+    let of_the_kind = grey || std::mem::discriminant(&given) == std::mem::discriminant(&w.expected);
+    let correct = of_the_kind && given.matches(&w.expected, &w.tolerance);
     let hint = if correct {
         None
     } else {
@@ -326,6 +328,7 @@ pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, Che
         given,
         expected: w.expected,
         tolerance: w.tolerance,
+        of_the_kind,
         hint,
         model,
     })
