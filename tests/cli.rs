@@ -1221,3 +1221,61 @@ fn a_lesson_that_is_none_is_said_to_be_none() {
         stderr(&o)
     );
 }
+
+/// `--sample K` picks one of a pixel's samples: with a ray given by hand there are none, and
+/// the flag is refused as a usage error rather than ignored.
+#[test]
+fn a_sample_of_a_ray_given_by_hand_is_a_usage_error() {
+    let o = raytree(&[
+        "inspect",
+        "lessons/05-reflection/scene.yaml",
+        "--ray",
+        "0,0,-10:0,0,1",
+        "--sample",
+        "99",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stdout(&o));
+    let err = stderr(&o);
+    assert!(err.contains("--sample") && err.contains("--ray"), "{err}");
+}
+
+/// A sphere in the middle of a square image is previewed symmetric top to bottom, at odd
+/// widths too: the preview has an even number of pixel rows, two to a line.
+#[test]
+fn a_centred_sphere_is_previewed_symmetric_top_to_bottom() {
+    let scene = temp("centred-ball.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 0, -10], look_at: [0, 0, 0], fov: 30, width: 40, height: 40 }
+ambient: 1
+max_depth: 1
+materials:
+  m: { color: 1, ka: 1 }
+objects:
+  - { name: ball, sphere: { center: [0, 0, 0], radius: 2 }, material: m }
+",
+    )
+    .unwrap();
+    for columns in ["5", "11", "20", "21", "41"] {
+        let args = [
+            "preview",
+            scene.to_str().unwrap(),
+            "--ascii",
+            "--columns",
+            columns,
+        ];
+        let o = raytree(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let text = stdout(&o);
+        let lines: Vec<&str> = text.lines().collect();
+        // Each line's shape: where the ball is drawn (any character but a blank).
+        let shape = |l: &str| -> Vec<bool> { l.chars().map(|c| c != ' ').collect() };
+        let down: Vec<Vec<bool>> = lines.iter().map(|l| shape(l)).collect();
+        let up: Vec<Vec<bool>> = lines.iter().rev().map(|l| shape(l)).collect();
+        assert_eq!(down, up, "--columns {columns}:\n{text}");
+        assert!(
+            down.iter().flatten().any(|&b| b),
+            "--columns {columns}: no ball\n{text}"
+        );
+    }
+}

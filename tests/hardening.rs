@@ -655,6 +655,61 @@ objects:
     }
 }
 
+/// `inspect` of a pixel whose value takes that long to render says so first, then renders it
+/// (Ctrl-C stops it): the warning is read while the process still runs.
+#[cfg(unix)]
+#[test]
+fn inspect_warns_before_rendering_an_endless_pixel() {
+    use std::io::BufRead;
+    let scene = write(
+        "endless-inspect.yaml",
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 1, height: 1, fov: 30 }
+max_depth: 64
+lights:
+  - { name: l, point: [0, 4, -4] }
+materials:
+  g: { color: 1, kd: 0.1, kr: 0.5, kt: 0.5, ior: 1.5 }
+objects:
+  - { name: a, sphere: { center: [0, 0, 0], radius: 1 }, material: g }
+  - { name: b, sphere: { center: [0, 0, 0], radius: 0.5 }, material: g }
+",
+    );
+    let mut child = command(&[
+        OsStr::new("inspect"),
+        scene.as_os_str(),
+        OsStr::new("--pixel"),
+        OsStr::new("0,0"),
+    ])
+    .stdout(Stdio::null())
+    .stderr(Stdio::piped())
+    .spawn()
+    .unwrap();
+    let stderr = child.stderr.take().unwrap();
+    let (send, lines) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(stderr)
+            .lines()
+            .map_while(Result::ok)
+        {
+            let _ = send.send(line);
+        }
+    });
+    // Far longer than finding the depth the tree can be shown to takes; the pixel's value at
+    // depth 64 would take for ever.
+    let warning = lines.recv_timeout(Duration::from_secs(120));
+    let running = child.try_wait().unwrap().is_none();
+    let _ = child.kill();
+    let _ = child.wait();
+    let warning = warning.expect("a warning while the pixel renders");
+    assert!(running, "the process ended: {warning}");
+    assert!(
+        warning.starts_with("warning: a tree deeper than ")
+            && warning
+                .contains("the pixel's value is rendered at depth 64, which may take very long"),
+        "{warning}"
+    );
+}
+
 // ---------------------------------------------------------------------------------------
 // Temporary files and awkward outputs
 

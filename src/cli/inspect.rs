@@ -39,7 +39,7 @@ pub struct Args {
     seed: u64,
     /// Show the tree of the pixel's K-th sample (1 … spp) instead of its centre ray (on a
     /// path-traced scene: sample K's path instead of the first four).
-    #[arg(long, value_name = "K", requires = "pixel")]
+    #[arg(long, value_name = "K", requires = "pixel", conflicts_with = "ray")]
     sample: Option<u32>,
     /// Output: text to read, JSON for programs, or Graphviz (dot).
     #[arg(long, value_enum, default_value_t = Format::Text)]
@@ -253,33 +253,41 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     }
     let ray = a.target.ray(&scene)?;
     let max_depth = depth(&scene, a.depth)?;
-    let (ray, rng, traced, rendered) = match a.target.pixel {
-        Some([x, y]) => {
-            let options = RenderOptions {
-                max_depth,
-                seed: a.seed,
-                engine: Engine::Core,
-                ..RenderOptions::of(&scene)
-            };
-            let film = Film::new(&scene, options);
-            let value = film.lone_pixel(&mut film.tracer(), x, y);
-            let (ray, rng, traced) = pixel_ray(&scene, &film, &options, [x, y], a.sample)?;
-            let rendered = Rendered {
-                value,
-                options,
-                filter: scene.filter,
-            };
-            (ray, rng, traced, Some(rendered))
+    let film_options = a.target.pixel.map(|_| RenderOptions {
+        max_depth,
+        seed: a.seed,
+        engine: Engine::Core,
+        ..RenderOptions::of(&scene)
+    });
+    let film = film_options.map(|options| Film::new(&scene, options));
+    let (ray, rng, traced) = match (&film, &film_options, a.target.pixel) {
+        (Some(film), Some(options), Some(pixel)) => {
+            pixel_ray(&scene, film, options, pixel, a.sample)?
         }
         // An explicit ray's glossy and frosted rays come from pixel (0, 0)'s generator.
-        None => (ray, Rng::for_pixel(a.seed, 0, 0), Traced::Centre, None),
+        _ => (ray, Rng::for_pixel(a.seed, 0, 0), Traced::Centre),
     };
     // A tree of every ray to a deep recursion could fill the memory: it is shown as deep as
-    // it stays within the budget of rays (the pixel's value is rendered at the full depth).
+    // it stays within the budget of rays. Said before the pixel's value is rendered at the
+    // full depth, which then takes as long as the tree is large.
     let shown_depth = affordable_depth(&scene, &ray, max_depth, &|| rng.clone());
     if shown_depth < max_depth {
-        eprintln(&format!("warning: {}", budget_note(shown_depth)));
+        let mut note = budget_note(shown_depth);
+        if a.target.pixel.is_some() {
+            note.push_str(&format!(
+                "; the pixel's value is rendered at depth {max_depth}, which may take very long (Ctrl-C stops it; a smaller --depth is quick)"
+            ));
+        }
+        eprintln(&format!("warning: {note}"));
     }
+    let rendered = match (&film, film_options, a.target.pixel) {
+        (Some(film), Some(options), Some([x, y])) => Some(Rendered {
+            value: film.lone_pixel(&mut film.tracer(), x, y),
+            options,
+            filter: scene.filter,
+        }),
+        _ => None,
+    };
     let tree = Tracer::new(&scene)
         .with_depth(shown_depth)
         .with_rng(rng)

@@ -87,8 +87,9 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let (w, h) = (scene.camera.width as f64, scene.camera.height as f64);
     // Two pixels per character cell vertically; cells are about twice as tall as wide. A tall
     // image is previewed at most 1000 lines (2000 pixels) high, its columns fewer to keep its
-    // shape.
-    let rows = ((columns as f64 * h / w).round() as u32).max(2);
+    // shape. The rows are even: each line shows two, and an odd last one would draw a picture
+    // symmetric top to bottom lopsided.
+    let rows = (((columns as f64 * h / w / 2.0).round() as u32) * 2).max(2);
     let (columns, rows) = if rows > MAX_ROWS {
         let narrower = (columns as f64 * MAX_ROWS as f64 / rows as f64).round();
         (narrower.max(1.0) as u32, MAX_ROWS)
