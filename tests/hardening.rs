@@ -602,15 +602,10 @@ fn a_signal_during_the_write_leaves_the_old_image_and_no_temporary_file() {
     }
 }
 
-/// A render whose one pixel would take longer than the universe has (two glass spheres, one
-/// inside the other, each hit sending a reflection and a refraction on, 64 levels deep) says
-/// so first, and still ends soon after SIGINT or SIGTERM, killed by it, and writes nothing.
-#[cfg(unix)]
-#[test]
-fn a_signal_ends_a_render_stuck_in_one_pixel() {
-    let scene = write(
-        "endless.yaml",
-        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 1, height: 1, fov: 30 }
+/// One pixel whose tree would take longer than the universe has to trace: two glass spheres,
+/// one inside the other, each hit sending a reflection and a refraction on, 64 levels deep.
+const ENDLESS: &str =
+    "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 1, height: 1, fov: 30 }
 max_depth: 64
 lights:
   - { name: l, point: [0, 4, -4] }
@@ -619,8 +614,14 @@ materials:
 objects:
   - { name: a, sphere: { center: [0, 0, 0], radius: 1 }, material: g }
   - { name: b, sphere: { center: [0, 0, 0], radius: 0.5 }, material: g }
-",
-    );
+";
+
+/// A render whose one pixel would take longer than the universe has (`ENDLESS`) says so
+/// first, and still ends soon after SIGINT or SIGTERM, killed by it, and writes nothing.
+#[cfg(unix)]
+#[test]
+fn a_signal_ends_a_render_stuck_in_one_pixel() {
+    let scene = write("endless.yaml", ENDLESS);
     let out = scratch("endless.png");
     for signal in ["INT", "TERM"] {
         let child = command(&[
@@ -661,19 +662,7 @@ objects:
 #[test]
 fn inspect_warns_before_rendering_an_endless_pixel() {
     use std::io::BufRead;
-    let scene = write(
-        "endless-inspect.yaml",
-        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 1, height: 1, fov: 30 }
-max_depth: 64
-lights:
-  - { name: l, point: [0, 4, -4] }
-materials:
-  g: { color: 1, kd: 0.1, kr: 0.5, kt: 0.5, ior: 1.5 }
-objects:
-  - { name: a, sphere: { center: [0, 0, 0], radius: 1 }, material: g }
-  - { name: b, sphere: { center: [0, 0, 0], radius: 0.5 }, material: g }
-",
-    );
+    let scene = write("endless-inspect.yaml", ENDLESS);
     let mut child = command(&[
         OsStr::new("inspect"),
         scene.as_os_str(),
