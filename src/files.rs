@@ -42,6 +42,14 @@ pub enum ReadError {
         /// The most bytes that may be read.
         budget: u64,
     },
+    /// Bytes that are not UTF-8 text, the first of them at this line and column (from 1; the
+    /// column counts characters).
+    NotUtf8 {
+        /// The line of the first byte that is not UTF-8.
+        line: u64,
+        /// Its column.
+        column: u64,
+    },
     /// Opening, inspecting or reading the file failed.
     Io(std::io::Error),
 }
@@ -56,6 +64,10 @@ impl std::fmt::Display for ReadError {
             ReadError::TooLarge { budget } => {
                 write!(f, "larger than the budget of {}", bytes(*budget))
             }
+            ReadError::NotUtf8 { line, column } => write!(
+                f,
+                "not UTF-8 text at line {line}, column {column} (save the file as UTF-8)"
+            ),
             ReadError::Io(e) => write!(f, "cannot read: {e}"),
         }
     }
@@ -128,14 +140,19 @@ pub fn read_bounded(path: &Path, budget: u64) -> Result<Vec<u8>, ReadError> {
 /// would trouble a laptop.
 pub const TEXT_BUDGET: u64 = 16 << 20;
 
-/// `read_bounded` as UTF-8 text (bytes that are not give the `InvalidData` error that
-/// `std::fs::read_to_string` gives).
+/// `read_bounded` as UTF-8 text; other bytes are refused with the place of the first.
 pub fn read_text(path: &Path, budget: u64) -> Result<String, ReadError> {
-    String::from_utf8(read_bounded(path, budget)?).map_err(|_| {
-        ReadError::Io(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            "stream did not contain valid UTF-8",
-        ))
+    String::from_utf8(read_bounded(path, budget)?).map_err(|e| {
+        let before = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line_start = before
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |i| i + 1);
+        let this_line = std::str::from_utf8(&before[line_start..]).expect("valid up to here");
+        ReadError::NotUtf8 {
+            line: before.iter().filter(|&&b| b == b'\n').count() as u64 + 1,
+            column: this_line.chars().count() as u64 + 1,
+        }
     })
 }
 

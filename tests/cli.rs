@@ -167,6 +167,73 @@ fn csg_json_follows_the_contract() {
     assert_eq!(diff["node"]["pruned"], false);
 }
 
+/// The lists run along the ray's whole line, but only crossings ahead of its origin are hits:
+/// `csg` says which, as `inspect` does. Seed 000's spheres: A (centre z = 8, r = 5) spans
+/// z ∈ [3, 13], B (z = 9, r = 3) spans z ∈ [6, 12], along the z axis.
+#[test]
+fn csg_says_what_the_ray_hits_ahead_of_its_origin() {
+    let csg = |ray: &str| {
+        let o = raytree(&[
+            "csg",
+            "lessons/10-csg/scene.yaml",
+            "--ray",
+            ray,
+            "--format",
+            "json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_str::<serde_json::Value>(&stdout(&o)).unwrap()
+    };
+    let hit_of = |v: &serde_json::Value, name: &str| {
+        let objects = v["objects"].as_array().unwrap();
+        objects.iter().find(|o| o["object"] == name).unwrap()["hit"].clone()
+    };
+    // From z = 30 every segment lies behind the origin (A's at t ∈ [−27, −17]): no hit, as
+    // inspect finds the background.
+    let behind = csg("0,0,30:0,0,1");
+    assert!(!behind["objects"].as_array().unwrap().is_empty());
+    for o in behind["objects"].as_array().unwrap() {
+        assert!(o["hit"].is_null(), "{o}");
+    }
+    assert!(behind["nearest"].is_null());
+    let text = stdout(&raytree(&[
+        "csg",
+        "lessons/10-csg/scene.yaml",
+        "--ray",
+        "0,0,30:0,0,1",
+    ]));
+    assert!(
+        text.contains("not hit: its segments lie behind the ray's origin"),
+        "{text}"
+    );
+    assert!(
+        text.contains("the ray hits nothing ahead of its origin"),
+        "{text}"
+    );
+    let inspect = stdout(&raytree(&[
+        "inspect",
+        "lessons/10-csg/scene.yaml",
+        "--ray",
+        "0,0,30:0,0,1",
+    ]));
+    assert!(inspect.contains("background"), "{inspect}");
+    // From z = 10, inside A and B: A is left at z = 13 (t = 3), B at z = 12 (t = 2), and A − B
+    // is entered again at z = 12: B and A − B are hit first.
+    let inside = csg("0,0,10:0,0,1");
+    assert_eq!(hit_of(&inside, "A")["t"], 3.0);
+    assert_eq!(hit_of(&inside, "B")["t"], 2.0);
+    assert_eq!(hit_of(&inside, "AminusB")["t"], 2.0);
+    assert_eq!(inside["nearest"]["t"], 2.0);
+    assert_eq!(
+        inside["nearest"]["point"],
+        serde_json::json!([0.0, 0.0, 12.0])
+    );
+    // The notes' ray from z = −10 meets A first at z = 3, t = 13.
+    let notes = csg("0,0,-10:0,0,1");
+    assert_eq!(notes["nearest"]["object"], "A");
+    assert_eq!(notes["nearest"]["t"], 13.0);
+}
+
 #[test]
 fn check_exit_status_says_right_wrong_or_usage() {
     let right = raytree(&[

@@ -32,7 +32,7 @@ fn raytree(args: &[&str]) -> Output {
 }
 
 /// A class's answers, `rows` of CSV, written as c.csv in a scratch folder of its own.
-fn answer_sheet(name: &str, rows: &str) -> PathBuf {
+fn answer_sheet(name: &str, rows: impl AsRef<[u8]>) -> PathBuf {
     let dir = scratch(name);
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("c.csv");
@@ -1628,4 +1628,27 @@ fn one_number_for_a_colour_is_a_grey_colour() {
     let said = out(&o);
     assert!(said.contains("wrong: 0.35 is not within"), "{said}");
     assert!(said.contains("give it as r, g, b"), "{said}");
+}
+
+/// A sheet saved as Latin-1 (a spreadsheet's plain "CSV" on some systems) is refused with the
+/// place of its first byte that is not UTF-8, counted in characters, and how to save it.
+#[test]
+fn an_answer_sheet_that_is_not_utf8_is_refused_at_its_line_and_column() {
+    // Line 3: "Zoë M" in UTF-8 (five characters), then ü in Latin-1 (0xFC).
+    let mut rows = b"s1,tangent-t,8\ns2,tangent-t,8\nZo\xc3\xab M".to_vec();
+    rows.extend_from_slice(b"\xfcller,tangent-t,8\n");
+    let file = answer_sheet("latin1", rows);
+    let o = raytree(&[
+        "grade",
+        "lessons/02-intersection",
+        "--answers",
+        file.to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        err(&o).contains("c.csv:3:6: not UTF-8 text: save the answers as UTF-8"),
+        "{}",
+        err(&o)
+    );
+    assert!(out(&o).is_empty(), "{}", out(&o));
 }

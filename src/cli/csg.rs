@@ -64,6 +64,11 @@ pub fn trace_json(scene: &Scene, ray: &Ray, t: &CsgTrace) -> Value {
     node
 }
 
+/// Where the ray crosses a surface at `t`: `{ "t", "point" }`.
+fn hit_json(ray: &Ray, t: f64) -> Value {
+    json!({ "t": t, "point": ray.at(t).to_array() })
+}
+
 /// Runs `raytree csg`: the CSG segment lists a ray meets, as a tree of text or as JSON.
 pub(crate) fn run(a: Args) -> Result<ExitCode, Failure> {
     let scene = a.scene.load()?;
@@ -73,8 +78,17 @@ pub(crate) fn run(a: Args) -> Result<ExitCode, Failure> {
         Format::Json => {
             let doc = json!({
                 "ray": { "origin": ray.origin.to_array(), "direction": ray.dir.to_array() },
-                "objects": survey.met.iter().map(|(name, t)| json!({ "object": name, "node": trace_json(&scene, &ray, t) })).collect::<Vec<_>>(),
+                "objects": survey.met.iter().map(|m| json!({
+                    "object": m.name,
+                    "node": trace_json(&scene, &ray, &m.trace),
+                    "hit": m.hit.map(|h| hit_json(&ray, h.t)),
+                })).collect::<Vec<_>>(),
                 "not_met": survey.unmet,
+                "nearest": survey.nearest.as_ref().map(|(name, h)| {
+                    let mut hit = hit_json(&ray, h.t);
+                    hit["object"] = json!(name);
+                    hit
+                }),
             });
             super::output::print_json(doc)?;
         }
@@ -87,9 +101,10 @@ pub(crate) fn run(a: Args) -> Result<ExitCode, Failure> {
             if survey.met.is_empty() {
                 super::output::println("the ray meets no object")?;
             }
-            for (name, t) in &survey.met {
-                super::output::println(&format!("\nobject {name}"))?;
-                super::output::print(&text::csg_trace(&scene, &ray, t).to_string())?;
+            for m in &survey.met {
+                super::output::println(&format!("\nobject {}", m.name))?;
+                super::output::print(&text::csg_trace(&scene, &ray, &m.trace))?;
+                super::output::println(&format!("→ {}", m.verdict(&ray)))?;
             }
             if !survey.unmet.is_empty() {
                 super::output::println("")?;
@@ -101,6 +116,9 @@ pub(crate) fn run(a: Args) -> Result<ExitCode, Failure> {
                 super::output::println(
                     "(--all evaluates every object whole, without bounding boxes)",
                 )?;
+            }
+            if !survey.met.is_empty() {
+                super::output::println(&format!("\n{}", survey.nearest_line(&ray)))?;
             }
         }
     }

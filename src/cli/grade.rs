@@ -8,6 +8,7 @@ use std::process::ExitCode;
 use serde_json::json;
 
 use super::Failure;
+use crate::files::ReadError;
 use crate::lessons::grade::{grade, read_answers, Report};
 use crate::lessons::Lesson;
 
@@ -43,8 +44,16 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let lesson = Lesson::named(&a.lesson)?;
-    let text = crate::files::read_text(&a.answers, crate::files::TEXT_BUDGET)
-        .map_err(|e| Failure(format!("{}: {e}", a.answers.display())))?;
+    let shown = a.answers.display();
+    let text = crate::files::read_text(&a.answers, crate::files::TEXT_BUDGET).map_err(|e| {
+        Failure(match e {
+            ReadError::NotUtf8 { line, column } => format!(
+                "{shown}:{line}:{column}: not UTF-8 text: save the answers as UTF-8 \
+                 (a spreadsheet's \"CSV UTF-8\")"
+            ),
+            e => format!("{shown}: {e}"),
+        })
+    })?;
     let (rows, problems) = read_answers(&text);
     let report = grade(&lesson, &rows, problems)?;
     let file = a.answers.display().to_string();

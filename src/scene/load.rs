@@ -35,35 +35,36 @@ fn parse_options(file_len: usize) -> serde_saphyr::Options {
     options
 }
 
+/// Why a scene file could not be read (anything but its text's encoding, which has a place).
+fn unread(path: &Path, e: ReadError) -> String {
+    match e {
+        ReadError::Directory => "is a directory, not a scene file".into(),
+        ReadError::NotRegular => {
+            "not a regular file (a pipe, a socket or a device): give a scene file".into()
+        }
+        ReadError::TooLarge { budget } => format!(
+            "the file is larger than the budget of {} for scene files (use --allow-huge to load it)",
+            crate::files::bytes(budget)
+        ),
+        ReadError::Io(e) if e.kind() == std::io::ErrorKind::NotFound => match path.extension() {
+            Some(_) => "no such file".into(),
+            None => "no such file, nor a lesson of that name (`raytree lessons` lists them)".into(),
+        },
+        e => e.to_string(),
+    }
+}
+
 /// Reads and compiles a scene file.
 pub fn load(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
     let file = path.display().to_string();
-    let fail = |message: String| SceneError::new(&file, error::Pos::default(), message);
-    let bytes = crate::files::read_bounded(path, limits.max_file_bytes).map_err(|e| {
-        fail(match e {
-            ReadError::Directory => "is a directory, not a scene file".into(),
-            ReadError::NotRegular => {
-                "not a regular file (a pipe, a socket or a device): give a scene file".into()
+    let text = crate::files::read_text(path, limits.max_file_bytes).map_err(|e| {
+        let (at, message) = match e {
+            ReadError::NotUtf8 { line, column } => {
+                (error::Pos { line, column }, "not valid UTF-8 text".into())
             }
-            ReadError::TooLarge { budget } => format!(
-                "the file is larger than the budget of {} for scene files (use --allow-huge to load it)",
-                crate::files::bytes(budget)
-            ),
-            ReadError::Io(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                match path.extension() {
-                    Some(_) => "no such file".into(),
-                    None => "no such file, nor a lesson of that name (`raytree lessons` lists them)"
-                        .into(),
-                }
-            }
-            ReadError::Io(e) => format!("cannot read: {e}"),
-        })
-    })?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let before = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-        let line = before.iter().filter(|&&b| b == b'\n').count() as u64 + 1;
-        let column = before.iter().rev().take_while(|&&b| b != b'\n').count() as u64 + 1;
-        SceneError::new(&file, error::Pos { line, column }, "not valid UTF-8 text")
+            e => (error::Pos::default(), unread(path, e)),
+        };
+        SceneError::new(&file, at, message)
     })?;
     parse(&text, &file, Some(path), limits)
 }

@@ -5,7 +5,8 @@ use glam::DVec3;
 use super::tree::{LightTerm, PatternLookup, RayKind, RayNode};
 use crate::geometry::csg::{CsgTrace, Pruned};
 use crate::geometry::Ray;
-use crate::scene::Scene;
+use crate::scene::{Hit, Scene, Search};
+use crate::stats::Stats;
 
 /// A number with at most six decimals, trailing zeros dropped ("0.4125", "13", "-0.6").
 pub fn num(x: f64) -> String {
@@ -337,13 +338,53 @@ pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String 
 /// What the CSG listing of one ray holds: the objects it meets, each with its trace, and a
 /// line for every other object saying why it is not shown.
 pub struct CsgSurvey {
-    /// The objects the ray meets, by name, each with its CSG trace (also one whose list is
+    /// The objects the ray's line meets, each with its CSG trace (also one whose list is
     /// empty because parts of it were pruned).
-    pub met: Vec<(String, CsgTrace)>,
+    pub met: Vec<MetObject>,
     /// "object X (op): culled: …" for a CSG object skipped whole, "object X: the ray meets none
     /// of its parts" for one evaluated to nothing, and one line naming the plain shapes the
     /// ray misses.
     pub unmet: Vec<String>,
+    /// The object the ray hits first, ahead of its origin, as the tracer finds it (none when
+    /// every segment lies behind the origin).
+    pub nearest: Option<(String, Hit)>,
+}
+
+/// An object whose segment lists the listing shows.
+pub struct MetObject {
+    /// The object's name.
+    pub name: String,
+    /// Its segment list at every node of its tree.
+    pub trace: CsgTrace,
+    /// Its first surface crossing ahead of the ray's origin (t > 0), as the tracer's search
+    /// finds it: the lists run along the whole line, and a segment behind the origin is not hit.
+    pub hit: Option<Hit>,
+}
+
+impl MetObject {
+    /// What the ray hits of the object, in words: where it crosses its surface first ahead of
+    /// its origin, or why it does not.
+    pub fn verdict(&self, ray: &Ray) -> String {
+        match &self.hit {
+            Some(h) => format!("hit ahead: t = {} at {}", num(h.t), vec3(ray.at(h.t))),
+            None if self.trace.segments.is_empty() => "not hit: its segment list is empty".into(),
+            None => "not hit: its segments lie behind the ray's origin (t ≤ 0)".into(),
+        }
+    }
+}
+
+impl CsgSurvey {
+    /// The ray's nearest hit, in words (as `raytree inspect` finds it).
+    pub fn nearest_line(&self, ray: &Ray) -> String {
+        match &self.nearest {
+            Some((name, h)) => format!(
+                "nearest hit: object {name} at t = {}, {}",
+                num(h.t),
+                vec3(ray.at(h.t))
+            ),
+            None => "nearest hit: none, the ray hits nothing ahead of its origin".into(),
+        }
+    }
 }
 
 /// The plain shapes the ray misses are named up to this many.
@@ -362,9 +403,15 @@ pub fn csg_survey(scene: &Scene, ray: &Ray, all: bool) -> CsgSurvey {
             .iter()
             .any(|c| c.pruned.is_some() || has_pruned(c))
     }
+    let stats = &mut Stats::default();
+    let nearest = scene.nearest(ray, 0.0, f64::INFINITY, stats).map(|h| {
+        let name = scene.objects[h.object as usize].name.clone();
+        (name, h)
+    });
     let mut survey = CsgSurvey {
         met: vec![],
         unmet: vec![],
+        nearest,
     };
     let mut missed = vec![];
     for o in 0..scene.objects.len() as u32 {
@@ -372,7 +419,8 @@ pub fn csg_survey(scene: &Scene, ray: &Ray, all: bool) -> CsgSurvey {
         let (list, trace) = scene.object_trace(o, ray, !all);
         let pruned_inside = trace.pruned.is_none() && has_pruned(&trace);
         if all || !list.is_empty() || has_segments(&trace) || pruned_inside {
-            survey.met.push((name, trace));
+            let hit = scene.object_hit(o, ray, ray.dir.recip(), 0.0, f64::INFINITY, stats);
+            survey.met.push(MetObject { name, trace, hit });
         } else if let Some(p) = trace.pruned {
             survey.unmet.push(format!(
                 "object {name} ({}): culled: {}",

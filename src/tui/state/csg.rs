@@ -132,33 +132,28 @@ impl CsgPanel {
                 ),
             });
             let survey = text::csg_survey(scene, &ray, self.all);
+            let mut line = |text: String| {
+                lines.push(CsgLine {
+                    node: path.clone(),
+                    header: false,
+                    text,
+                })
+            };
             if survey.met.is_empty() {
-                lines.push(CsgLine {
-                    node: path.clone(),
-                    header: false,
-                    text: "  meets no object".into(),
-                });
+                line("  meets no object".into());
             }
-            for (object, t) in survey.met {
-                lines.push(CsgLine {
-                    node: path.clone(),
-                    header: false,
-                    text: format!("  object {object}"),
-                });
-                for l in text::csg_trace(scene, &ray, &t).lines() {
-                    lines.push(CsgLine {
-                        node: path.clone(),
-                        header: false,
-                        text: format!("    {l}"),
-                    });
+            for m in &survey.met {
+                line(format!("  object {}", m.name));
+                for l in text::csg_trace(scene, &ray, &m.trace).lines() {
+                    line(format!("    {l}"));
                 }
+                line(format!("    → {}", m.verdict(&ray)));
             }
-            for l in survey.unmet {
-                lines.push(CsgLine {
-                    node: path.clone(),
-                    header: false,
-                    text: format!("  {l}"),
-                });
+            for l in &survey.unmet {
+                line(format!("  {l}"));
+            }
+            if !survey.met.is_empty() {
+                line(format!("  {}", survey.nearest_line(&ray)));
             }
         }
         if more > 0 {
