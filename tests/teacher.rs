@@ -1174,6 +1174,39 @@ fn lesson02_with(name: &str, extra: &str) -> PathBuf {
     dir
 }
 
+/// Two values that are fine on their own can clash together: a box's corners varied apart
+/// (min.x in [1.5, 2.5], max.x in [2.2, 3.2]) cross where min.x > max.x, which 2.5 with the
+/// others as written (max.x = 3) and 2.2 with them (min.x = 2) never show. Validation tries
+/// the ends together and names exactly the two clashing combinations: min.x = 2.5 with
+/// max.x = 2.2 and with its first step, 2.21.
+#[test]
+fn values_that_clash_only_together_are_named_together() {
+    let dir = lesson02_with(
+        "vary-clash",
+        "vary:\n  objects.crate.box.min: [[1.5, -2, 20], [2.5, -2, 20]]\n  objects.crate.box.max: [[2.2, -1, 21], [3.2, -1, 21]]\n",
+    );
+    let scene = dir.join("scene.yaml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    // Far behind the ball, out of every exercise's way.
+    let crate_box =
+        "  - { name: crate, box: { min: [2, -2, 20], max: [3, -1, 21] }, material: chalk }\n";
+    std::fs::write(&scene, text.trim_end().to_string() + "\n" + crate_box).unwrap();
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    let report = out(&o);
+    let problems: Vec<&str> = report.lines().filter(|l| l.starts_with('✗')).collect();
+    assert_eq!(problems.len(), 2, "{report}");
+    for (p, max_x) in problems.iter().zip(["2.2", "2.21"]) {
+        assert!(
+            p.contains("vary `objects.crate.box.max` = [")
+                && p.contains(&format!("[{max_x}, -1, 21]"))
+                && p.contains("`objects.crate.box.min` = [2.5, -2, 20] together")
+                && p.contains("box min must be smaller than max"),
+            "{report}"
+        );
+    }
+}
+
 /// A `vary:` range that reaches values the scene refuses: `max_depth` in [1, 4] in the
 /// default steps of 0.01 draws fractions (1.01 is its first step), and a radius from 0 gives
 /// a sphere of radius 0. `lessons validate` tries each range's ends and first step and names

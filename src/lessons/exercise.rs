@@ -14,6 +14,12 @@ use super::yaml_spans;
 use crate::files::{read_text, ReadError, TEXT_BUDGET};
 use crate::shading::Highlight;
 
+/// A validation tries the varied values in every combination up to this many, else in pairs.
+const COMBINATIONS: usize = 4096;
+
+/// Combinations of varied values that keep a scene from loading are named up to this many.
+const CLASHES_NAMED: usize = 8;
+
 /// What an exercise asks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -438,23 +444,76 @@ impl Lesson {
         Ok(())
     }
 
-    /// The varied values that keep a scene from loading, each as a line naming the path, the
-    /// value and the scene's error. Each range is tried at its ends and its first step (a
-    /// range of whole numbers written without `step` draws fractions there), and each listed
-    /// value of a `one_of`, the other values as the lesson writes them.
+    /// The varied values that keep a scene from loading, each as a line naming the values and
+    /// the scene's error. Each range is tried at its ends and its first step (a range of whole
+    /// numbers written without `step` draws fractions there), and each listed value of a
+    /// `one_of`: first each path on its own, the others as the lesson writes them, then those
+    /// values together, every combination of them (or, where there would be more than
+    /// `COMBINATIONS`, every pair of paths): two values that are fine alone may clash together
+    /// (a box's corners varied apart can cross).
     pub fn unloadable_variations(&self) -> Result<Vec<String>, LessonError> {
         let files = self.scene_files()?;
+        let probes: Vec<(&String, Vec<Vec<String>>)> = self
+            .vary
+            .iter()
+            .map(|(path, r)| (path, r.probes()))
+            .collect();
         let mut problems = Vec::new();
-        for (path, range) in &self.vary {
-            for value in range.probes() {
-                let one = BTreeMap::from([(path.clone(), value.clone())]);
-                let sources = vary::rewrite(&files, &one).map_err(LessonError::Scenes)?;
-                if let Err(e) = self.load_sources(&sources) {
-                    problems.push(format!("vary `{path}` = {}: {e}", vary::show(&value)));
+        let mut fails_alone: Vec<Vec<bool>> = Vec::new();
+        for (path, values) in &probes {
+            let mut fails = Vec::new();
+            for value in values {
+                let one = BTreeMap::from([((*path).clone(), value.clone())]);
+                let error = self.load_error(&files, &one)?;
+                if let Some(e) = &error {
+                    problems.push(format!("vary `{path}` = {}: {e}", vary::show(value)));
                 }
+                fails.push(error.is_some());
+            }
+            fails_alone.push(fails);
+        }
+        let counts: Vec<usize> = probes.iter().map(|(_, v)| v.len()).collect();
+        let mut clashes = Vec::new();
+        for picks in vary::combinations(&counts, COMBINATIONS) {
+            // A value that fails alone fails in every combination: it is named once, above.
+            let chosen: Vec<(usize, usize)> = picks
+                .iter()
+                .enumerate()
+                .filter_map(|(p, k)| k.map(|k| (p, k)))
+                .collect();
+            if chosen.iter().any(|&(p, k)| fails_alone[p][k]) {
+                continue;
+            }
+            let values: BTreeMap<String, Vec<String>> = chosen
+                .iter()
+                .map(|&(p, k)| (probes[p].0.clone(), probes[p].1[k].clone()))
+                .collect();
+            if let Some(e) = self.load_error(&files, &values)? {
+                let together: Vec<String> = values
+                    .iter()
+                    .map(|(path, v)| format!("`{path}` = {}", vary::show(v)))
+                    .collect();
+                clashes.push(format!("vary {} together: {e}", together.join(", ")));
             }
         }
+        let more = clashes.len().saturating_sub(CLASHES_NAMED);
+        problems.extend(clashes.into_iter().take(CLASHES_NAMED));
+        if more > 0 {
+            problems.push(format!(
+                "… and {more} more combinations of varied values that keep a scene from loading"
+            ));
+        }
         Ok(problems)
+    }
+
+    /// Why the lesson's scenes, with `values` written in, do not load (None where they do).
+    fn load_error(
+        &self,
+        files: &BTreeMap<String, String>,
+        values: &BTreeMap<String, Vec<String>>,
+    ) -> Result<Option<String>, LessonError> {
+        let sources = vary::rewrite(files, values).map_err(LessonError::Scenes)?;
+        Ok(self.load_sources(&sources).err())
     }
 
     /// The text of an exercise's scene when the lesson holds it in memory (a variant).

@@ -136,6 +136,50 @@ impl Range {
     }
 }
 
+/// The combinations of probes a validation tries together, for paths with `counts` probes
+/// each: per path the index of its probe, or None for the value the lesson writes. Every
+/// combination of all the paths where there are at most `limit` (students draw a value for
+/// every path), else each pair of paths in every combination of their probes, the others as
+/// written. None for a single path: its values are tried alone.
+pub fn combinations(counts: &[usize], limit: usize) -> Vec<Vec<Option<usize>>> {
+    if counts.len() < 2 {
+        return vec![];
+    }
+    let all = counts
+        .iter()
+        .try_fold(1usize, |n, &c| n.checked_mul(c))
+        .filter(|&n| n <= limit);
+    if all.is_some() {
+        let mut out: Vec<Vec<Option<usize>>> = vec![vec![]];
+        for &c in counts {
+            out = out
+                .into_iter()
+                .flat_map(|head| {
+                    (0..c).map(move |k| {
+                        let mut picks = head.clone();
+                        picks.push(Some(k));
+                        picks
+                    })
+                })
+                .collect();
+        }
+        return out;
+    }
+    let mut out = Vec::new();
+    for a in 0..counts.len() {
+        for b in a + 1..counts.len() {
+            for i in 0..counts[a] {
+                for j in 0..counts[b] {
+                    let mut picks = vec![None; counts.len()];
+                    (picks[a], picks[b]) = (Some(i), Some(j));
+                    out.push(picks);
+                }
+            }
+        }
+    }
+    out
+}
+
 /// A number from a text, stable across platforms and versions (FNV-1a, 64 bits).
 fn fnv1a(text: &str) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
@@ -297,6 +341,23 @@ mod tests {
             .map(|k| draw("03", &format!("s{k}"), &v)["camera.fov"][0].clone())
             .collect();
         assert_eq!(drawn, ["110", "180", "40"].map(String::from).into());
+    }
+
+    /// Every combination of all the paths while there are few (3 × 2 × 2 = 12, each once),
+    /// else every pair of paths in all their combinations (3 paths of 3: 3 pairs × 9).
+    #[test]
+    fn combinations_are_all_of_them_or_every_pair() {
+        let all = combinations(&[3, 2, 2], 12);
+        assert_eq!(all.len(), 12);
+        let distinct: std::collections::BTreeSet<_> = all.iter().collect();
+        assert_eq!(distinct.len(), 12);
+        assert!(all.iter().all(|p| p.iter().all(Option::is_some)));
+        assert!(all.contains(&vec![Some(2), Some(1), Some(0)]));
+        let pairs = combinations(&[3, 3, 3], 26);
+        assert_eq!(pairs.len(), 27);
+        assert!(pairs.iter().all(|p| p.iter().flatten().count() == 2));
+        assert!(pairs.contains(&vec![Some(2), None, Some(0)]));
+        assert!(combinations(&[3], 100).is_empty());
     }
 
     #[test]
