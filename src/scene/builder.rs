@@ -279,7 +279,7 @@ impl SceneBuilder {
             shininess: m.shininess.map(|x| at(self.num(x, "shininess"))),
             ior: m.ior.map(|x| at(self.num(x, "ior"))),
             color: Some(at(Varying::Value(self.triple(m.color, "color")))),
-            emission: m.emission.map(|e| self.triple(e, "emission")),
+            emission: m.emission.map(|e| at(self.triple(e, "emission"))),
             highlight: None,
             fresnel: None,
             transmitted_highlight: None,

@@ -294,7 +294,8 @@ pub struct MaterialSpec {
     pub fresnel: Option<Fresnel>,
     /// Hall's transmitted highlight H′ for lights behind a transparent surface (default false).
     pub transmitted_highlight: Option<bool>,
-    pub emission: Option<Triple>,
+    /// Light the surface gives off itself (r, g, b ≥ 0; path tracing).
+    pub emission: Option<Spanned<Triple>>,
     /// Glossy reflection: the reflection ray becomes `samples` rays about the mirror direction.
     pub glossy: Option<Spanned<LobeSpec>>,
     /// Frosted refraction: the refraction ray becomes `samples` rays about Snell's direction.

@@ -112,6 +112,16 @@ fn material(name: &str, m: &MaterialSpec, textures: &mut Textures) -> Result<Mat
         None => 1.0,
         Some(s) => coefficient(&Some(s.clone()), "shininess")?,
     };
+    let emission = match &m.emission {
+        None => DVec3::ZERO,
+        Some(e) if e.value.0.min_element() < 0.0 => {
+            return invalid(
+                pos(e),
+                format!("material `{name}`: emission must be ≥ 0 in every channel"),
+            )
+        }
+        Some(e) => e.value.0,
+    };
     let mut patterns = Patterns::default();
     let mut vary =
         |v: &Option<Spanned<Varying>>, key: &str, default: f64, slot: &mut Option<Pattern>| {
@@ -143,7 +153,7 @@ fn material(name: &str, m: &MaterialSpec, textures: &mut Textures) -> Result<Mat
         ior,
         fresnel: m.fresnel.unwrap_or(Fresnel::None),
         transmitted_highlight: m.transmitted_highlight.unwrap_or(false),
-        emission: m.emission.map_or(DVec3::ZERO, |t| t.0),
+        emission,
         glossy: m
             .glossy
             .as_ref()
