@@ -1260,6 +1260,40 @@ fn in_tmux_the_diagram_pane_draws_braille_and_its_legend() {
     );
 }
 
+/// `preview` in a terminal that reports 0 columns (as some containers' and CI runners' do)
+/// takes that as unknown: `COLUMNS` where it is set, else 80, not the narrowest preview of 4.
+#[test]
+fn in_tmux_a_terminal_of_zero_columns_previews_at_columns_or_80() {
+    if !have_tmux() {
+        return;
+    }
+    let bin = env!("CARGO_BIN_EXE_raytree");
+    let dir = scratch("tmux-zero-columns");
+    let (with, without) = (dir.join("with"), dir.join("without"));
+    let tmux = Tmux::new("tmux-zero-columns");
+    tmux.start(&format!(
+        "stty cols 0 rows 0; NO_COLOR=1 COLUMNS=100 '{bin}' preview {MIRROR} --ascii > '{}'; \
+         NO_COLOR=1 COLUMNS= '{bin}' preview {MIRROR} --ascii > '{}'; echo DONE; sleep 60",
+        with.display(),
+        without.display()
+    ));
+    tmux.wait_for(&["DONE"]);
+    let widths = |file: &Path| -> Vec<usize> {
+        let text = std::fs::read_to_string(file).unwrap();
+        text.lines().map(|l| l.chars().count()).collect()
+    };
+    assert!(
+        widths(&with).iter().all(|&w| w == 100),
+        "{:?}",
+        widths(&with)
+    );
+    assert!(
+        widths(&without).iter().all(|&w| w == 80),
+        "{:?}",
+        widths(&without)
+    );
+}
+
 /// Ctrl-Z stops the explorer as it stops any program in a shell, and so does SIGTSTP from
 /// outside: while it is stopped the terminal is the shell's again (main screen, no mouse
 /// reports, the cursor shown), and `fg` brings back the full screen, drawn whole, its keys

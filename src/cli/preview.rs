@@ -76,12 +76,23 @@ fn color_mode(
 /// The most pixel rows a preview has: 1000 lines of half blocks.
 const MAX_ROWS: u32 = 2000;
 
+/// The terminal's width as it reports it, else `COLUMNS`, else 80. A terminal that reports 0
+/// columns (as the terminals of some containers and CI runners do) has not said.
+fn terminal_columns() -> u32 {
+    let reported = crossterm::terminal::size().ok().map(|(c, _)| c as u32);
+    let from_env = || std::env::var("COLUMNS").ok()?.trim().parse::<u32>().ok();
+    reported
+        .filter(|&c| c > 0)
+        .or_else(from_env)
+        .filter(|&c| c > 0)
+        .unwrap_or(80)
+}
+
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let scene = a.scene.load()?;
     let columns = a
         .columns
-        .or_else(|| crossterm::terminal::size().ok().map(|(c, _)| c as u32))
-        .unwrap_or(80)
+        .unwrap_or_else(terminal_columns)
         // A terminal's own width, which no flag checked.
         .clamp(4, 1000);
     let (w, h) = (scene.camera.width as f64, scene.camera.height as f64);
