@@ -1685,3 +1685,75 @@ fn an_answer_sheet_that_is_not_utf8_is_refused_at_its_line_and_column() {
     );
     assert!(out(&o).is_empty(), "{}", out(&o));
 }
+
+/// Homework written inside the lesson's own folder (`-o hw/s1` from there) leaves itself out
+/// of the copy of the lesson's files: it used to copy its own temporary folder into itself
+/// until the path was too long.
+#[test]
+fn homework_written_inside_the_lesson_leaves_itself_out() {
+    let dir = scratch("hw-inside").join("03-local-illumination");
+    copy_lesson("03-local-illumination", &dir);
+    let out = dir.join("hw").join("s1");
+    let o = raytree(&[
+        "homework",
+        dir.to_str().unwrap(),
+        "--student",
+        "s1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", err(&o));
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let mut lesson: Vec<String> = std::fs::read_dir("lessons/03-local-illumination")
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.ends_with(".svg"))
+        .collect();
+    lesson.sort();
+    assert_eq!(
+        names, lesson,
+        "the homework holds the lesson's files and nothing else"
+    );
+}
+
+/// Links in a lesson's folder are not followed: one to a file of the lesson is copied as that
+/// file; a loop (a link to the folder itself) and a link to a file outside the lesson are
+/// left out, each named on stderr.
+#[cfg(unix)]
+#[test]
+fn homework_copies_no_link_out_of_the_lesson() {
+    let root = scratch("hw-links");
+    let dir = root.join("03-local-illumination");
+    copy_lesson("03-local-illumination", &dir);
+    let secret = root.join("secret.txt");
+    std::fs::write(&secret, "not the lesson's\n").unwrap();
+    std::os::unix::fs::symlink(".", dir.join("loop")).unwrap();
+    std::os::unix::fs::symlink(&secret, dir.join("secret.txt")).unwrap();
+    std::os::unix::fs::symlink("color.yaml", dir.join("alias.yaml")).unwrap();
+    let out = root.join("hw");
+    let o = raytree(&[
+        "homework",
+        dir.to_str().unwrap(),
+        "--student",
+        "s1",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(!out.join("secret.txt").exists());
+    assert!(!out.join("loop").exists());
+    assert_eq!(
+        std::fs::read_to_string(out.join("alias.yaml")).unwrap(),
+        std::fs::read_to_string(dir.join("color.yaml")).unwrap()
+    );
+    let e = err(&o);
+    assert!(
+        e.contains("secret.txt: a link out of the lesson's folder"),
+        "{e}"
+    );
+    assert!(e.contains("loop: a link to a folder"), "{e}");
+}

@@ -23,7 +23,10 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let lesson = Lesson::named(&a.lesson)?;
-    let hw = homework::write(&lesson, &a.student, &a.output)?;
+    let (hw, left_out) = homework::write(&lesson, &a.student, &a.output)?;
+    for link in &left_out {
+        super::output::eprintln(&format!("left out {link}"));
+    }
     super::output::println(&format!(
         "{}: homework of {} ({} exercises) from {}",
         a.output.display(),

@@ -12,7 +12,13 @@ use super::exercise::Solutions;
 
 /// Writes the homework of `student` for `lesson` into `out`, a folder that must not exist yet
 /// (or be empty). The folder is written whole, under a temporary name renamed at the end.
-pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, LessonError> {
+/// Returns the homework, and the links in the lesson's folder that were left out (each named,
+/// with why).
+pub fn write(
+    lesson: &Lesson,
+    student: &str,
+    out: &Path,
+) -> Result<(Lesson, Vec<String>), LessonError> {
     let hw = lesson.variant(student)?;
     files_inside(lesson, &hw)?;
     if out.exists() && std::fs::read_dir(out).map_or(true, |mut d| d.next().is_some()) {
@@ -31,7 +37,8 @@ pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, Lesso
         name.to_string_lossy(),
         std::process::id()
     ));
-    let written = fill(lesson, &hw, &tmp).and_then(|()| {
+    let mut left_out = Vec::new();
+    let written = fill(lesson, &hw, &tmp, out, &mut left_out).and_then(|()| {
         if out.exists() {
             std::fs::remove_dir(out).map_err(|e| LessonError::io(out, "replace the folder", e))?;
         }
@@ -42,17 +49,30 @@ pub fn write(lesson: &Lesson, student: &str, out: &Path) -> Result<Lesson, Lesso
         let _ = std::fs::remove_dir_all(&tmp);
         return Err(e);
     }
-    Lesson::load(out)
+    Ok((Lesson::load(out)?, left_out))
 }
 
-/// Everything of the homework folder, written into `dir`.
-fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), LessonError> {
+/// Everything of the homework folder, written into `dir` (to become `out`); the links left
+/// out go to `left_out`.
+fn fill(
+    lesson: &Lesson,
+    hw: &Lesson,
+    dir: &Path,
+    out: &Path,
+    left_out: &mut Vec<String>,
+) -> Result<(), LessonError> {
     std::fs::create_dir_all(dir).map_err(|e| LessonError::io(dir, "create the folder", e))?;
     // The lesson's other files (meshes, textures, extra scenes), in its subfolders too, as
     // they are. Its figures (SVG, drawn by `raytree diagram` from the lesson's own scene) are
     // left out: they show the lesson's values and answers, not the student's, and the homework
-    // README cites none.
-    copy_folder(&lesson.dir, dir, true)?;
+    // README cites none. So is the homework itself where it is written inside the lesson.
+    let lesson_dir = std::fs::canonicalize(&lesson.dir)
+        .map_err(|e| LessonError::io(&lesson.dir, "find the lesson's folder", e))?;
+    let copy = Copy {
+        lesson: &lesson_dir,
+        skip: [dir, out].map(|p| std::fs::canonicalize(p).ok()),
+    };
+    copy.folder(&lesson.dir, dir, true, left_out)?;
     for (name, text) in &hw.sources {
         let to = dir.join(name);
         std::fs::write(&to, text).map_err(|e| LessonError::io(&to, "write", e))?;
@@ -66,31 +86,77 @@ fn fill(lesson: &Lesson, hw: &Lesson, dir: &Path) -> Result<(), LessonError> {
     Ok(())
 }
 
-/// The files of folder `from` copied into `to`, its subfolders' too; at the top
-/// (`top`), all but the lesson's README, exercises and figures, which the homework writes anew
-/// or leaves out.
-fn copy_folder(from: &Path, to: &Path, top: bool) -> Result<(), LessonError> {
-    let entries =
-        std::fs::read_dir(from).map_err(|e| LessonError::io(from, "list the lesson's files", e))?;
-    for entry in entries.flatten() {
-        let path: PathBuf = entry.path();
-        let file = entry.file_name();
-        let figure = path
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
-        if top && (file == "README.md" || file == "exercises.yaml" || figure) {
-            continue;
+/// How the lesson's files are copied: only what lies in its folder, `lesson` (canonical),
+/// leaving out the folders the homework is being written to.
+struct Copy<'a> {
+    lesson: &'a Path,
+    skip: [Option<PathBuf>; 2],
+}
+
+impl Copy<'_> {
+    /// The files of folder `from` copied into `to`, its subfolders' too; at the top (`top`),
+    /// all but the lesson's README, exercises and figures, which the homework writes anew or
+    /// leaves out. Links are not followed: one to a file of the lesson is copied as that file;
+    /// one to a folder (which may hold the link itself) or out of the lesson is left out, and
+    /// named in `left_out`.
+    fn folder(
+        &self,
+        from: &Path,
+        to: &Path,
+        top: bool,
+        left_out: &mut Vec<String>,
+    ) -> Result<(), LessonError> {
+        let entries = std::fs::read_dir(from)
+            .map_err(|e| LessonError::io(from, "list the lesson's files", e))?;
+        for entry in entries.flatten() {
+            let path: PathBuf = entry.path();
+            let file = entry.file_name();
+            let figure = path
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("svg"));
+            if top && (file == "README.md" || file == "exercises.yaml" || figure) {
+                continue;
+            }
+            let Ok(kind) = entry.file_type() else {
+                continue;
+            };
+            let into = to.join(&file);
+            if kind.is_symlink() {
+                match std::fs::canonicalize(&path) {
+                    Ok(target) if target.starts_with(self.lesson) && target.is_file() => {
+                        std::fs::copy(&target, &into)
+                            .map_err(|e| LessonError::io(&path, "copy", e))?;
+                    }
+                    Ok(target) if target.starts_with(self.lesson) => {
+                        left_out.push(format!("{}: a link to a folder", path.display()))
+                    }
+                    _ => left_out.push(format!(
+                        "{}: a link out of the lesson's folder",
+                        path.display()
+                    )),
+                }
+            } else if kind.is_dir() {
+                let Ok(here) = std::fs::canonicalize(&path) else {
+                    continue;
+                };
+                let skipped = self.skip.iter().flatten();
+                if skipped.clone().any(|s| *s == here) {
+                    continue;
+                }
+                std::fs::create_dir_all(&into)
+                    .map_err(|e| LessonError::io(&into, "create the folder", e))?;
+                self.folder(&path, &into, false, left_out)?;
+                // A folder that only holds the homework being written (`-o hw/s1` inside
+                // the lesson) is not part of it.
+                if skipped.clone().any(|s| s.starts_with(&here)) {
+                    let _ = std::fs::remove_dir(&into);
+                }
+            } else if kind.is_file() {
+                std::fs::copy(&path, &into).map_err(|e| LessonError::io(&path, "copy", e))?;
+            }
         }
-        let into = to.join(&file);
-        if path.is_dir() {
-            std::fs::create_dir_all(&into)
-                .map_err(|e| LessonError::io(&into, "create the folder", e))?;
-            copy_folder(&path, &into, false)?;
-        } else if path.is_file() {
-            std::fs::copy(&path, &into).map_err(|e| LessonError::io(&path, "copy", e))?;
-        }
+        Ok(())
     }
-    Ok(())
 }
 
 /// Every file the homework's scenes read (meshes, images) lies in the lesson's folder, which
