@@ -234,6 +234,44 @@ fn csg_says_what_the_ray_hits_ahead_of_its_origin() {
     assert_eq!(notes["nearest"]["t"], 13.0);
 }
 
+/// The command a render suggests for a pixel that is not finite computes that pixel: it
+/// carries the render's --depth and image size. kr = kt = 10¹⁰⁰ makes a ray of depth d weigh
+/// 10¹⁰⁰ᵈ: finite to the scene's own max_depth 2, past f64's 1.8·10³⁰⁸ from depth 4 on.
+#[test]
+fn the_replay_of_a_pixel_that_is_not_finite_computes_it() {
+    let scene = temp("replay-huge.yaml");
+    std::fs::write(
+        &scene,
+        "camera: { eye: [0, 0, -5], look_at: [0, 0, 0], width: 8, height: 6 }\n\
+         background: 1\nmax_depth: 2\n\
+         materials: { g: { kr: 1e100, kt: 1e100, ior: 1.5 } }\n\
+         objects: [ { name: b, sphere: { center: [0, 0, 0], radius: 1 }, material: g } ]\n",
+    )
+    .unwrap();
+    let image = temp("replay-huge.exr");
+    let (scene, image) = (scene.to_str().unwrap(), image.to_str().unwrap());
+    let args = [
+        "render", scene, "-o", image, "--depth", "5", "--width", "40", "--height", "30",
+    ];
+    let o = raytree(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    let (_, command) = err
+        .split_once("replay it with: raytree ")
+        .expect("a replay command");
+    let replay: Vec<&str> = command.split_whitespace().collect();
+    assert!(
+        command.contains("--depth 5") && command.contains("--width 40"),
+        "{command}"
+    );
+    let shown = stdout(&raytree(&replay));
+    let first = shown.lines().next().unwrap_or_default();
+    assert!(
+        first.ends_with("= ∞") || first.ends_with("= NaN"),
+        "{shown}"
+    );
+}
+
 #[test]
 fn check_exit_status_says_right_wrong_or_usage() {
     let right = raytree(&[

@@ -225,3 +225,75 @@ pub fn depth(scene: &Scene, depth: Option<u32>) -> Result<u32, Failure> {
         ))),
     }
 }
+
+/// The image a render makes, as `render` and `inspect` take it: its size and how its pixels
+/// are sampled, each the scene's unless given.
+#[derive(clap::Args, Debug, Default)]
+pub struct FilmArgs {
+    /// Image width in pixels (default: the scene camera's); the field of view is kept.
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels (default: the scene camera's).
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Primary rays per pixel (a square number gives a regular grid).
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Where a pixel's primary rays go: grid, jittered or adaptive (default: the scene's); a
+    /// path-traced scene takes adaptive only (else its samples form a Sobol net).
+    #[arg(long, value_enum)]
+    pub aa: Option<super::render::AaArg>,
+    /// Adaptive antialiasing: split a square whose corners differ by more than this (sum of
+    /// |Δr| + |Δg| + |Δb|; default the scene's aa_threshold, else 0.3 as POV-Ray).
+    #[arg(long, value_name = "T")]
+    pub aa_threshold: Option<f64>,
+}
+
+impl FilmArgs {
+    /// The image's width and height.
+    pub fn size(&self, scene: &Scene) -> Result<(u32, u32), Failure> {
+        let w = self.width.unwrap_or(scene.camera.width);
+        let h = self.height.unwrap_or(scene.camera.height);
+        if w == 0 || h == 0 || w > 1_000_000 || h > 1_000_000 {
+            return Err(Failure(format!(
+                "image size {w} × {h} must be between 1 and 1000000 pixels each way"
+            )));
+        }
+        Ok((w, h))
+    }
+
+    /// The scene with its camera resized and its sampling set as given.
+    pub fn apply(&self, scene: &mut Scene, limits: &Limits) -> Result<(), Failure> {
+        let (w, h) = self.size(scene)?;
+        let spp = self.spp.unwrap_or(scene.spp);
+        if !(1..=limits.max_spp).contains(&spp) {
+            return Err(Failure(format!(
+                "--spp must be between 1 and {}, got {spp}",
+                limits.max_spp
+            )));
+        }
+        scene.antialias = super::render::antialias(scene, self.aa, self.aa_threshold)?;
+        scene.camera = scene.camera.resized(w, h);
+        scene.spp = spp;
+        Ok(())
+    }
+
+    /// The flags as given, for a command line that repeats them.
+    pub fn flags(&self) -> String {
+        let mut flags = String::new();
+        let mut add = |name: &str, value: Option<String>| {
+            if let Some(v) = value {
+                flags += &format!(" --{name} {v}");
+            }
+        };
+        add("width", self.width.map(|w| w.to_string()));
+        add("height", self.height.map(|h| h.to_string()));
+        add("spp", self.spp.map(|s| s.to_string()));
+        let aa = self
+            .aa
+            .and_then(|aa| clap::ValueEnum::to_possible_value(&aa));
+        add("aa", aa.map(|v| v.get_name().to_string()));
+        add("aa-threshold", self.aa_threshold.map(|t| t.to_string()));
+        flags
+    }
+}

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 
 use glam::{DVec2, DVec3};
 
-use super::args::{depth, SceneArgs, Target};
+use super::args::{depth, FilmArgs, SceneArgs, Target};
 use super::output::{eprintln, print};
 use super::Failure;
 use crate::diagram::dot::dot;
@@ -31,6 +31,9 @@ pub struct Args {
     scene: SceneArgs,
     #[command(flatten)]
     target: Target,
+    /// The image the pixel is one of, as `render` makes it.
+    #[command(flatten)]
+    film: FilmArgs,
     /// Rays per path, primary included (overrides the scene's max_depth).
     #[arg(long)]
     depth: Option<u32>,
@@ -246,7 +249,9 @@ fn pixel_ray(
 }
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
-    let scene = a.scene.load()?;
+    let mut scene = a.scene.load()?;
+    a.film
+        .apply(&mut scene, &super::args::limits(a.scene.allow_huge))?;
     let path_traced = scene.integrator == crate::scene::Integrator::Path;
     if let (true, Some(pixel)) = (path_traced, a.target.pixel) {
         return paths(&a, &scene, pixel);

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
 
-use super::args::{depth, Format, SceneArgs};
+use super::args::{depth, FilmArgs, Format, SceneArgs};
 use super::output::eprintln;
 use super::Failure;
 use crate::render::{render, Encoding, Engine, ImageFormat, RenderOptions};
@@ -40,32 +40,17 @@ pub struct Args {
     /// its extension's.
     #[arg(long, value_enum, value_name = "FORMAT")]
     image_format: Option<ImageFormatArg>,
-    /// Image width in pixels (default: the scene camera's); the field of view is kept.
-    #[arg(long)]
-    width: Option<u32>,
-    /// Image height in pixels (default: the scene camera's).
-    #[arg(long)]
-    height: Option<u32>,
+    #[command(flatten)]
+    film: FilmArgs,
     /// Rays per path, primary included (overrides the scene's max_depth).
     #[arg(long)]
     depth: Option<u32>,
-    /// Primary rays per pixel (a square number gives a regular grid).
-    #[arg(long)]
-    spp: Option<u32>,
     /// Worker threads (default: all cores). The image is identical for any count.
     #[arg(long)]
     threads: Option<usize>,
     /// Seed of the random numbers (jittered antialiasing, glossy and frosted rays, paths).
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Where a pixel's primary rays go: grid, jittered or adaptive (default: the scene's); a
-    /// path-traced scene takes adaptive only (else its samples form a Sobol net).
-    #[arg(long, value_enum)]
-    aa: Option<AaArg>,
-    /// Adaptive antialiasing: split a square whose corners differ by more than this (sum of
-    /// |Δr| + |Δg| + |Δb|; default the scene's aa_threshold, else 0.3 as POV-Ray).
-    #[arg(long, value_name = "T")]
-    aa_threshold: Option<f64>,
     /// Render depths 1, 2, …, N side by side into one strip image (the recursion lesson); the
     /// frames set their own depths, so --depth does not go with it.
     #[arg(long, value_name = "N")]
@@ -349,15 +334,7 @@ fn render_to_file(a: &Args, signals: &Signals) -> Result<ExitCode, Failure> {
         )));
     }
     scene.csg_pruning = !a.no_csg_pruning;
-    let (w, h) = (
-        a.width.unwrap_or(scene.camera.width),
-        a.height.unwrap_or(scene.camera.height),
-    );
-    if w == 0 || h == 0 || w > 1_000_000 || h > 1_000_000 {
-        return Err(Failure(format!(
-            "image size {w} × {h} must be between 1 and 1000000 pixels each way"
-        )));
-    }
+    let (w, h) = a.film.size(&scene)?;
     let limits = super::args::limits(a.scene.allow_huge);
     // The image (three f64 per pixel), the rows rendered before they are joined, and 8-bit
     // values for encoding; a strip keeps all its frames and the strip besides.
@@ -388,23 +365,16 @@ fn render_to_file(a: &Args, signals: &Signals) -> Result<ExitCode, Failure> {
             BYTES_PER_PIXEL,
         )?;
     }
-    scene.camera = scene.camera.resized(w, h);
-    let spp = a.spp.unwrap_or(scene.spp);
-    if !(1..=limits.max_spp).contains(&spp) {
-        return Err(Failure(format!(
-            "--spp must be between 1 and {}, got {spp}",
-            limits.max_spp
-        )));
-    }
+    a.film.apply(&mut scene, &limits)?;
+    let spp = scene.spp;
     let options = RenderOptions {
         max_depth: depth(&scene, a.depth)?,
-        spp,
         seed: a.seed,
-        antialias: antialias(&scene, a.aa, a.aa_threshold)?,
         engine: match a.engine {
             EngineArg::Fast => Engine::Fast,
             EngineArg::Core => Engine::Core,
         },
+        ..RenderOptions::of(&scene)
     };
     let deepest = a
         .depth_strip
@@ -477,8 +447,8 @@ fn render_to_file(a: &Args, signals: &Signals) -> Result<ExitCode, Failure> {
     written?;
     if let Some((x, y)) = non_finite {
         eprintln(&format!(
-            "warning: pixel {x},{y} is not finite (NaN or ∞); replay it with: raytree inspect {} --pixel {x},{y}",
-            a.scene.scene.display()
+            "warning: pixel {x},{y} is not finite (NaN or ∞); replay it with: {}",
+            replay(&a, [x, y])
         ));
     }
     if a.stats && a.format == Format::Json {
@@ -547,6 +517,23 @@ fn sampling_name(scene: &crate::scene::Scene, antialias: Antialias) -> &'static 
         }
         a => a.name(),
     }
+}
+
+/// The `raytree inspect` command that computes pixel `[x, y]` of this render: the same scene,
+/// with the render's settings that change the pixel's value.
+fn replay(a: &Args, [x, y]: [u32; 2]) -> String {
+    let mut command = format!(
+        "raytree inspect {} --pixel {x},{y}",
+        a.scene.scene.display()
+    );
+    command += &a.film.flags();
+    if let Some(d) = a.depth {
+        command += &format!(" --depth {d}");
+    }
+    if a.seed != 0 {
+        command += &format!(" --seed {}", a.seed);
+    }
+    command
 }
 
 /// `--aa`: the antialiasing modes.
