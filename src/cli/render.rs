@@ -448,7 +448,7 @@ fn render_to_file(a: &Args, signals: &Signals) -> Result<ExitCode, Failure> {
     if let Some((x, y)) = non_finite {
         eprintln(&format!(
             "warning: pixel {x},{y} is not finite (NaN or ∞); replay it with: {}",
-            replay(&a, [x, y])
+            replay(a, [x, y])
         ));
     }
     if a.stats && a.format == Format::Json {
