@@ -524,6 +524,45 @@ fn a_light_off_the_figure_sits_on_its_shadow_ray() {
     );
 }
 
+/// A light however far off leaves the figure at the scale of the rays it draws: the ball hit
+/// is drawn as wide with its light 10⁶ away as with it 5 away (the shadow ray's length once
+/// set the figure's least size, and the ball shrank to a dot).
+#[test]
+fn a_distant_light_does_not_shrink_the_figure() {
+    let width_of_ball = |light: &str| {
+        let scene = temp(&format!("distant-{light}.yaml"));
+        std::fs::write(
+            &scene,
+            format!(
+                "camera: {{ eye: [0, 0, -5], look_at: [0, 0, 0], width: 40, height: 30 }}\n\
+                 lights: [ {{ name: L, point: [{light}, {light}, -{light}] }} ]\n\
+                 materials: {{ m: {{ kd: 0.8 }} }}\n\
+                 objects: [ {{ name: ball, sphere: {{ center: [0, 0, 0], radius: 1 }}, material: m }} ]\n"
+            ),
+        )
+        .unwrap();
+        let args = [scene.to_str().unwrap(), "--pixel", "22,17", "--view", "top"];
+        let svg = diagram_svg(&args, &format!("distant-{light}.svg"));
+        let outline = svg.split("<polygon fill=\"#e4e4e4\"").nth(1).unwrap();
+        let (_, points) = outline.split_once("points=\"").unwrap();
+        let (points, _) = points.split_once('"').unwrap();
+        let xs: Vec<f64> = points
+            .split_whitespace()
+            .map(|p| p.split_once(',').unwrap().0.parse().unwrap())
+            .collect();
+        xs.iter().fold(f64::MIN, |a, &b| a.max(b)) - xs.iter().fold(f64::MAX, |a, &b| a.min(b))
+    };
+    let near = width_of_ball("5");
+    assert!(near > 50.0, "the ball is {near} px wide");
+    for far in ["1000", "1e6"] {
+        let w = width_of_ball(far);
+        assert!(
+            (w - near).abs() < 0.25 * near,
+            "{w} px with the light at {far}, {near} at 5"
+        );
+    }
+}
+
 /// A ray's label and the image plane's name are drawn inside the figure's panel, also where
 /// the ray leaves it for a light far off the figure (its label once went along the whole
 /// ray, to above the page) and where the image plane reaches the panel's edge.

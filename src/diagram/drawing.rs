@@ -174,9 +174,11 @@ fn frame_around(scene: &Scene, all: &[Segment], eye: Option<&Eye>, view: View) -
         }
     }
     // Rays seen end on (along the view's axis) project to a point or nearly: the frame is at
-    // least a fifth of the rays' own length across, so the drawing keeps its scale.
+    // least a fifth of the rays' own length across, so the drawing keeps its scale. Not of a
+    // shadow ray that reaches its light, which may be far off.
     let longest = all
         .iter()
+        .filter(|s| s.kind != SegKind::ShadowClear)
         .filter_map(|s| s.to.map(|p| (p - s.from).length()))
         .filter(|l| l.is_finite())
         .fold(0.0, f64::max);
