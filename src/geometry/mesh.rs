@@ -425,14 +425,18 @@ fn check_obj(text: &[u8]) -> Result<(), ObjMistake> {
     }
     let mut so_far = [0usize; 3];
     for (number, line) in lines() {
-        let mut ws = words(line);
-        let Some((_, keyword)) = ws.next() else {
-            continue;
-        };
         let at = |offset: usize, message: String| ObjMistake {
             line: number,
             column: String::from_utf8_lossy(&line[..offset]).chars().count() + 1,
             message,
+        };
+        if let Err(e) = std::str::from_utf8(line) {
+            let message = "not UTF-8 text (save the file as UTF-8)".to_string();
+            return Err(at(e.valid_up_to(), message));
+        }
+        let mut ws = words(line);
+        let Some((_, keyword)) = ws.next() else {
+            continue;
         };
         if let Some(kind) = element_kind(Some(keyword)) {
             so_far[kind] += 1;
