@@ -1686,6 +1686,14 @@ fn an_answer_sheet_that_is_not_utf8_is_refused_at_its_line_and_column() {
     assert!(out(&o).is_empty(), "{}", out(&o));
 }
 
+/// `raytree homework DIR --student s1 -o OUT`, which must succeed.
+fn homework_of_s1(dir: &Path, out: &Path) -> Output {
+    let (dir, out) = (dir.to_str().unwrap(), out.to_str().unwrap());
+    let o = raytree(&["homework", dir, "--student", "s1", "-o", out]);
+    assert!(o.status.success(), "{}", err(&o));
+    o
+}
+
 /// Homework written inside the lesson's own folder (`-o hw/s1` from there) leaves itself out
 /// of the copy of the lesson's files: it used to copy its own temporary folder into itself
 /// until the path was too long.
@@ -1694,26 +1702,20 @@ fn homework_written_inside_the_lesson_leaves_itself_out() {
     let dir = scratch("hw-inside").join("03-local-illumination");
     copy_lesson("03-local-illumination", &dir);
     let out = dir.join("hw").join("s1");
-    let o = raytree(&[
-        "homework",
-        dir.to_str().unwrap(),
-        "--student",
-        "s1",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", err(&o));
-    let mut names: Vec<String> = std::fs::read_dir(&out)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    let mut lesson: Vec<String> = std::fs::read_dir("lessons/03-local-illumination")
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| !n.ends_with(".svg"))
-        .collect();
-    lesson.sort();
+    homework_of_s1(&dir, &out);
+    let names = |d: &Path| -> Vec<String> {
+        let mut names: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| !n.ends_with(".svg"))
+            .collect();
+        names.sort();
+        names
+    };
+    let (names, lesson) = (
+        names(&out),
+        names(Path::new("lessons/03-local-illumination")),
+    );
     assert_eq!(
         names, lesson,
         "the homework holds the lesson's files and nothing else"
@@ -1735,15 +1737,7 @@ fn homework_copies_no_link_out_of_the_lesson() {
     std::os::unix::fs::symlink(&secret, dir.join("secret.txt")).unwrap();
     std::os::unix::fs::symlink("color.yaml", dir.join("alias.yaml")).unwrap();
     let out = root.join("hw");
-    let o = raytree(&[
-        "homework",
-        dir.to_str().unwrap(),
-        "--student",
-        "s1",
-        "-o",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", err(&o));
+    let o = homework_of_s1(&dir, &out);
     assert!(!out.join("secret.txt").exists());
     assert!(!out.join("loop").exists());
     assert_eq!(
