@@ -260,6 +260,13 @@ fn from_yaml_sized<T: serde::de::DeserializeOwned>(
     })
 }
 
+/// Why a tag is refused.
+fn tag_refused(tag: &str) -> String {
+    format!(
+        "YAML tags such as `{tag}` are not part of the scene format: remove it (a shape is given by its key, e.g. `sphere: {{ … }}`)"
+    )
+}
+
 /// A value of the wrong kind (`width: 20.5`, `spp: four`, `max_depth: 99999999999999999999`),
 /// said with the key and the value as written: the parser knows only the type it wanted.
 fn invalid_scalar(e: &serde_saphyr::Error, text: &str, pos: error::Pos) -> Option<String> {
@@ -275,6 +282,12 @@ fn invalid_scalar(e: &serde_saphyr::Error, text: &str, pos: error::Pos) -> Optio
         .nth(pos.column.checked_sub(1)? as usize)
         .map_or(line.len(), |(i, _)| i);
     let (before, after) = line.split_at(at);
+    // A tag before the value (`radius: !!int 1`), which the parser took as asking for its
+    // kind of value.
+    let tag = before.trim_end().rsplit([' ', '{', ',', '[']).next();
+    if let Some(tag) = tag.filter(|t| t.starts_with('!')) {
+        return Some(tag_refused(tag));
+    }
     let value = after
         .split([',', '}', ']', '#'])
         .next()
@@ -385,9 +398,7 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
         | E::AliasReplayLimitExceeded { .. }
         | E::AliasExpansionLimitExceeded { .. }
         | E::AliasReplayStackDepthExceeded { .. } => ALIAS_BOMB.into(),
-        E::UnsupportedTag { tag, .. } | E::TaggedStructFieldName { tag, .. } => format!(
-            "YAML tags such as `{tag}` are not part of the scene format: remove it (a shape is given by its key, e.g. `sphere: {{ … }}`)"
-        ),
+        E::UnsupportedTag { tag, .. } | E::TaggedStructFieldName { tag, .. } => tag_refused(tag),
         E::NonFiniteFloat { value, .. } => format!(
             "non-finite number `{value}`: every number in a scene must be finite"
         ),
