@@ -7,7 +7,7 @@ use glam::DVec3;
 use super::Failure;
 use crate::geometry::Ray;
 use crate::scene::format::MAX_MAGNITUDE;
-use crate::scene::{Accel, Limits, Scene};
+use crate::scene::{Accel, Antialias, Integrator, Limits, Scene, DEFAULT_THRESHOLD};
 
 /// `X,Y`
 pub fn parse_pixel(s: &str) -> Result<[u32; 2], String> {
@@ -242,7 +242,7 @@ pub struct FilmArgs {
     /// Where a pixel's primary rays go: grid, jittered or adaptive (default: the scene's); a
     /// path-traced scene takes adaptive only (else its samples form a Sobol net).
     #[arg(long, value_enum)]
-    pub aa: Option<super::render::AaArg>,
+    pub aa: Option<AaArg>,
     /// Adaptive antialiasing: split a square whose corners differ by more than this (sum of
     /// |Δr| + |Δg| + |Δb|; default the scene's aa_threshold, else 0.3 as POV-Ray).
     #[arg(long, value_name = "T")]
@@ -272,7 +272,7 @@ impl FilmArgs {
                 limits.max_spp
             )));
         }
-        scene.antialias = super::render::antialias(scene, self.aa, self.aa_threshold)?;
+        scene.antialias = antialias(scene, self.aa, self.aa_threshold)?;
         scene.camera = scene.camera.resized(w, h);
         scene.spp = spp;
         Ok(())
@@ -296,4 +296,60 @@ impl FilmArgs {
         add("aa-threshold", self.aa_threshold.map(|t| t.to_string()));
         flags
     }
+}
+
+/// `--aa`: the antialiasing modes.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum AaArg {
+    /// A regular √spp × √spp grid in each pixel.
+    Grid,
+    /// One random point in each cell of that grid.
+    Jittered,
+    /// Corners first, squares split where they differ by more than --aa-threshold.
+    Adaptive,
+}
+
+/// The scene's antialiasing, changed by `--aa` and `--aa-threshold`.
+fn antialias(
+    scene: &Scene,
+    mode: Option<AaArg>,
+    threshold: Option<f64>,
+) -> Result<Antialias, Failure> {
+    let scene_threshold = match scene.antialias {
+        Antialias::Adaptive { threshold } => threshold,
+        _ => DEFAULT_THRESHOLD,
+    };
+    let threshold_given = threshold.is_some();
+    let threshold = match threshold {
+        Some(t) if !(0.0..=3.0).contains(&t) => {
+            return Err(Failure(format!(
+                "--aa-threshold must be between 0 and 3, got {t}"
+            )))
+        }
+        Some(t) => t,
+        None => scene_threshold,
+    };
+    let chosen = match mode {
+        None => match scene.antialias {
+            Antialias::Adaptive { .. } => Antialias::Adaptive { threshold },
+            other => other,
+        },
+        Some(AaArg::Grid) => Antialias::Grid,
+        Some(AaArg::Jittered) => Antialias::Jittered,
+        Some(AaArg::Adaptive) => Antialias::Adaptive { threshold },
+    };
+    if scene.integrator == Integrator::Path {
+        if let Some(AaArg::Grid | AaArg::Jittered) = mode {
+            return Err(Failure(format!(
+                "--aa {} is not for a path-traced scene: the path tracer spreads a pixel's samples as a scrambled Sobol net (only --aa adaptive changes how it samples)",
+                chosen.name()
+            )));
+        }
+    }
+    if threshold_given && !matches!(chosen, Antialias::Adaptive { .. }) {
+        return Err(Failure(
+            "--aa-threshold is for adaptive antialiasing: add --aa adaptive".into(),
+        ));
+    }
+    Ok(chosen)
 }

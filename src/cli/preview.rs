@@ -81,10 +81,10 @@ const MAX_ROWS: u32 = 2000;
 fn terminal_columns() -> u32 {
     let reported = crossterm::terminal::size().ok().map(|(c, _)| c as u32);
     let from_env = || std::env::var("COLUMNS").ok()?.trim().parse::<u32>().ok();
+    let said = |c: &u32| *c > 0;
     reported
-        .filter(|&c| c > 0)
-        .or_else(from_env)
-        .filter(|&c| c > 0)
+        .filter(said)
+        .or_else(|| from_env().filter(said))
         .unwrap_or(80)
 }
 
