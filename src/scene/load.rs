@@ -282,9 +282,13 @@ fn invalid_scalar(e: &serde_saphyr::Error, text: &str, pos: error::Pos) -> Optio
         .nth(pos.column.checked_sub(1)? as usize)
         .map_or(line.len(), |(i, _)| i);
     let (before, after) = line.split_at(at);
-    // A tag before the value (`radius: !!int 1`), which the parser took as asking for its
-    // kind of value.
-    let tag = before.trim_end().rsplit([' ', '{', ',', '[']).next();
+    // A tag before the value (`radius: !!int 1`, or verbatim, `!<tag:yaml.org,2002:int> 1`,
+    // whose commas do not end it), which the parser took as asking for its kind of value.
+    let before_value = before.trim_end();
+    let tag = match before_value.strip_suffix('>') {
+        Some(_) => before_value.rfind("!<").map(|i| &before_value[i..]),
+        None => before_value.rsplit([' ', '{', ',', '[']).next(),
+    };
     if let Some(tag) = tag.filter(|t| t.starts_with('!')) {
         return Some(tag_refused(tag));
     }
