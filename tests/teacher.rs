@@ -1740,9 +1740,16 @@ fn homework_copies_no_link_out_of_the_lesson() {
     let o = homework_of_s1(&dir, &out);
     assert!(!out.join("secret.txt").exists());
     assert!(!out.join("loop").exists());
+    // The link to a scene holds the student's variant of it, as the scene's own copy does.
+    let alias = std::fs::read_to_string(out.join("alias.yaml")).unwrap();
     assert_eq!(
-        std::fs::read_to_string(out.join("alias.yaml")).unwrap(),
-        std::fs::read_to_string(dir.join("color.yaml")).unwrap()
+        alias,
+        std::fs::read_to_string(out.join("color.yaml")).unwrap()
+    );
+    assert_ne!(
+        alias,
+        std::fs::read_to_string(dir.join("color.yaml")).unwrap(),
+        "the student's values, not the lesson's"
     );
     let e = err(&o);
     assert!(

@@ -2,6 +2,7 @@
 //! exercises (the questions quoting those values, no `vary:` left, and a `variant:` record of
 //! whose homework it is), and a README with the questions and without the answers.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde_json::Value;
@@ -71,6 +72,7 @@ fn fill(
     let copy = Copy {
         lesson: &lesson_dir,
         skip: [dir, out].map(|p| std::fs::canonicalize(p).ok()),
+        sources: &hw.sources,
     };
     copy.folder(&lesson.dir, dir, true, left_out)?;
     for (name, text) in &hw.sources {
@@ -87,18 +89,20 @@ fn fill(
 }
 
 /// How the lesson's files are copied: only what lies in its folder, `lesson` (canonical),
-/// leaving out the folders the homework is being written to.
+/// leaving out the folders the homework is being written to; a link to one of the student's
+/// scenes (`sources`, by their names in the lesson) gets the student's text.
 struct Copy<'a> {
     lesson: &'a Path,
     skip: [Option<PathBuf>; 2],
+    sources: &'a BTreeMap<String, String>,
 }
 
 impl Copy<'_> {
     /// The files of folder `from` copied into `to`, its subfolders' too; at the top (`top`),
     /// all but the lesson's README, exercises and figures, which the homework writes anew or
-    /// leaves out. Links are not followed: one to a file of the lesson is copied as that file;
-    /// one to a folder (which may hold the link itself) or out of the lesson is left out, and
-    /// named in `left_out`.
+    /// leaves out. Links are not followed: one to a file of the lesson is copied as that file
+    /// (as the student's variant of it, for a scene); one to a folder (which may hold the link
+    /// itself) or out of the lesson is left out, and named in `left_out`.
     fn folder(
         &self,
         from: &Path,
@@ -124,8 +128,18 @@ impl Copy<'_> {
             if kind.is_symlink() {
                 match std::fs::canonicalize(&path) {
                     Ok(target) if target.starts_with(self.lesson) && target.is_file() => {
-                        std::fs::copy(&target, &into)
-                            .map_err(|e| LessonError::io(&path, "copy", e))?;
+                        let varied = target
+                            .strip_prefix(self.lesson)
+                            .ok()
+                            .and_then(|name| self.sources.get(name.to_str()?));
+                        match varied {
+                            Some(text) => std::fs::write(&into, text)
+                                .map_err(|e| LessonError::io(&into, "write", e))?,
+                            None => {
+                                std::fs::copy(&target, &into)
+                                    .map_err(|e| LessonError::io(&path, "copy", e))?;
+                            }
+                        }
                     }
                     Ok(target) if target.starts_with(self.lesson) => {
                         left_out.push(format!("{}: a link to a folder", path.display()))
