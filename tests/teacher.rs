@@ -1663,6 +1663,28 @@ fn one_number_for_a_colour_is_a_grey_colour() {
     assert!(said.contains("give it as r, g, b"), "{said}");
 }
 
+/// The number of numbers a hint asks for is the exercise's: t is one number (never three),
+/// a direction three (never one), a colour one (grey) or three.
+#[test]
+fn a_hint_on_how_many_numbers_names_the_exercises_own_count() {
+    let hint = |lesson: &str, exercise: &str, answer: &str| {
+        let o = raytree(&["check", lesson, "--exercise", exercise, "--answer", answer]);
+        assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+        out(&o)
+    };
+    let said = hint("02-intersection", "chord-t", "2.2,2.2");
+    assert!(said.contains("t is one number, not two"), "{said}");
+    let said = hint("02-intersection", "chord-t", "2.2,2.2,2.2");
+    assert!(said.contains("t is one number, not a vector"), "{said}");
+    let said = hint("06-refraction", "entry-direction", "0.6, -0.8");
+    assert!(
+        said.contains("a direction is three numbers, not two"),
+        "{said}"
+    );
+    let said = hint("14-monte-carlo-glossy", "edge-mean", "0.25, 0.25");
+    assert!(said.contains("is one number or three, not two"), "{said}");
+}
+
 /// A sheet saved as Latin-1 (a spreadsheet's plain "CSV" on some systems) is refused with the
 /// place of its first byte that is not UTF-8, counted in characters, and how to save it.
 #[test]

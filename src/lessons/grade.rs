@@ -91,12 +91,31 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
     // them, else in that order.
     let mut order = [0, 1, 2];
     // Line by line, so that a quote left open costs its own row and not every row after it.
-    for (k, raw) in text.lines().enumerate() {
+    let lines: Vec<&str> = text.lines().collect();
+    let mut k = 0;
+    while k < lines.len() {
         let line = k as u64 + 1;
+        let raw = lines[k];
+        k += 1;
         let fields = match split_row(raw) {
             Ok(fields) => fields,
             Err(message) => {
-                problems.push(Problem { line, message });
+                // A cell with a line break in it (CSV lets a quoted field run over lines): the
+                // whole record is set aside, not read as rows of its own from the break on.
+                match spans_lines(&lines[k - 1..]) {
+                    Some(more) => {
+                        let last = line + more as u64;
+                        problems.push(Problem {
+                            line,
+                            message: format!(
+                                "a quoted field runs on to line {last} (a line break in a \
+                                 cell): answers hold none, so lines {line}–{last} are not graded"
+                            ),
+                        });
+                        k += more;
+                    }
+                    None => problems.push(Problem { line, message }),
+                }
                 first = false;
                 continue;
             }
@@ -141,6 +160,22 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
         }
     }
     (rows, problems)
+}
+
+/// How many lines after the first of `lines` a record runs on for, when the first line leaves
+/// a quote open that a later line closes (the quotes in them together are even in number) and
+/// the lines joined read as a record: a quoted field with line breaks in it. None when no line
+/// closes the quote so: then the quote is a mistake of the first line alone.
+fn spans_lines(lines: &[&str]) -> Option<usize> {
+    let quotes = |l: &str| l.matches('"').count();
+    let mut open = quotes(lines[0]) % 2 == 1;
+    for more in 1..lines.len() {
+        open ^= quotes(lines[more]) % 2 == 1;
+        if !open {
+            return split_row(&lines[..=more].join("\n")).ok().map(|_| more);
+        }
+    }
+    None
 }
 
 /// Where student, exercise and answer stand, if the row is a header: those three names, in
@@ -436,6 +471,20 @@ mod tests {
         assert!(problems[0].message.contains("never closed"), "{problems:?}");
         assert_eq!(rows.len(), 1);
         assert_eq!((rows[0].line, rows[0].student.as_str()), (2, "s6"));
+    }
+
+    /// A cell with a line break (RFC 4180 lets a quoted field hold one) is one record over
+    /// several lines: it is set aside whole, and its second line is no row of a student "x\"".
+    #[test]
+    fn a_quoted_field_over_two_lines_is_one_record_set_aside() {
+        let (rows, problems) = read_answers("\"s1\nx\",diffuse,0.5\ns2,diffuse,0.5\n");
+        assert_eq!(lines(&problems), vec![1]);
+        assert!(
+            problems[0].message.contains("lines 1–2 are not graded"),
+            "{problems:?}"
+        );
+        assert_eq!(rows.len(), 1, "{rows:?}");
+        assert_eq!((rows[0].line, rows[0].student.as_str()), (3, "s2"));
     }
 
     #[test]

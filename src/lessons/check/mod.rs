@@ -430,11 +430,24 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
             "a segment list is pairs t_in, t_out (e.g. `13, 16; 22, 23`): an even count of numbers".into()
         }
         (Answer::Numbers(v), _) if v.len() == 2 => format!(
-            "{what} is one number or three, not two (a decimal comma? decimals are written with a point)"
+            "{what} is {}, not two (a decimal comma? decimals are written with a point)",
+            numbers_of(ask, expected)
         ),
-        (Answer::Numbers(v), _) => format!("{what} is one number or three, not {}", v.len()),
+        (Answer::Numbers(v), _) => {
+            format!("{what} is {}, not {}", numbers_of(ask, expected), v.len())
+        }
         _ => return None,
     })
+}
+
+/// How many numbers an answer to `ask` is: a colour may be given grey, as one.
+fn numbers_of(ask: Ask, expected: &Answer) -> &'static str {
+    match expected {
+        _ if asks_colour(ask) => "one number or three",
+        Answer::Number(_) => "one number",
+        Answer::Vector(_) => "three numbers",
+        _ => "one number or three",
+    }
 }
 
 fn asks_colour(ask: Ask) -> bool {
