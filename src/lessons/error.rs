@@ -190,7 +190,13 @@ pub enum CheckError {
     },
 }
 
-/// A `vary:` range that cannot be drawn from (empty, reversed, not finite, a step ≤ 0).
+/// A `vary:` range that cannot be drawn from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
-#[error("a range is [lo, hi] with lo ≤ hi, [[x, y, z], [x, y, z]], {{ between: [lo, hi], step: s > 0 }} or {{ one_of: [...] }} (not empty)")]
-pub struct RangeError;
+pub enum RangeError {
+    /// Empty, reversed, not finite, or a step ≤ 0.
+    #[error("a range is [lo, hi] with lo ≤ hi, [[x, y, z], [x, y, z]], {{ between: [lo, hi], step: s > 0 }} or {{ one_of: [...] }} (not empty)")]
+    Shape,
+    /// A step finer than the values are written with.
+    #[error("the step is finer than the values drawn are written with (six decimals, seven significant digits from 10¹⁵ on): students would get values off its grid, or all the same one")]
+    StepTooFine,
+}

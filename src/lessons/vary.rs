@@ -27,7 +27,10 @@ use crate::trace::text::num;
 
 /// How one value varies.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a range: [lo, hi], [[x, y, z], [x, y, z]], { between: [lo, hi], step: s } or { one_of: [...] } of numbers or of [x, y, z]"
+)]
 pub enum Range {
     /// `[lo, hi]`, in steps of 0.01.
     Numbers([f64; 2]),
@@ -60,6 +63,15 @@ fn steps(lo: f64, hi: f64, step: f64) -> u64 {
     ((hi - lo) / step + 1e-9).floor() as u64
 }
 
+/// Whether the values lo + k·step are written apart from their neighbours (`num`: six
+/// decimals, seven significant digits from 10¹⁵ on) at both ends of the range: a finer step
+/// would give students values off its grid, or all the same one.
+fn written_apart(lo: f64, hi: f64, step: f64) -> bool {
+    let n = steps(lo, hi, step) as f64;
+    let at = |k: f64| num(lo + k * step);
+    n == 0.0 || (at(0.0) != at(1.0) && at(n - 1.0) != at(n))
+}
+
 /// The step of a range written without one.
 const STEP: f64 = 0.01;
 
@@ -72,13 +84,19 @@ impl Range {
         let fine = match self {
             Range::Numbers([lo, hi]) => ok(*lo, *hi, STEP),
             Range::Vectors([lo, hi]) => (0..3).all(|i| ok(lo[i], hi[i], STEP)),
-            Range::Stepped { between, step } => ok(between[0], between[1], *step),
+            Range::Stepped { between, step } => {
+                let [lo, hi] = *between;
+                if ok(lo, hi, *step) && !written_apart(lo, hi, *step) {
+                    return Err(RangeError::StepTooFine);
+                }
+                ok(lo, hi, *step)
+            }
             Range::OneOf { one_of } => !one_of.is_empty(),
         };
         if fine {
             Ok(())
         } else {
-            Err(RangeError)
+            Err(RangeError::Shape)
         }
     }
 
@@ -118,7 +136,7 @@ impl Range {
     fn draw(&self, rng: &mut Rng) -> Vec<String> {
         let stepped = |lo: f64, hi: f64, step: f64, rng: &mut Rng| {
             let steps = steps(lo, hi, step);
-            let k = ((rng.uniform() * (steps + 1) as f64) as u64).min(steps);
+            let k = ((rng.uniform() * (steps as f64 + 1.0)) as u64).min(steps);
             num(lo + k as f64 * step)
         };
         match self {
@@ -328,6 +346,36 @@ mod tests {
         let distinct: std::collections::HashSet<String> =
             students.iter().map(|s| format!("{s:?}")).collect();
         assert!(distinct.len() >= 19, "{} distinct of 20", distinct.len());
+    }
+
+    /// A step finer than the values are written with is refused (students would all get lo,
+    /// or values off the step's grid); a range of more steps than u64 counts draws without
+    /// overflowing.
+    #[test]
+    fn a_step_finer_than_six_decimals_is_refused_and_huge_ranges_draw() {
+        let v = vary("a: { between: [0.1, 0.2], step: 1e-21 }\nb: { between: [0.1, 0.2], step: 1e-6 }\nc: { between: [-1e300, 1e300], step: 1 }\nd: { between: [-1e300, 1e300], step: 1e299 }\n");
+        assert_eq!(v["a"].check(), Err(RangeError::StepTooFine));
+        assert_eq!(v["b"].check(), Ok(()));
+        assert_eq!(
+            v["c"].check(),
+            Err(RangeError::StepTooFine),
+            "1 is lost in 1e300"
+        );
+        assert_eq!(v["d"].check(), Ok(()));
+        let drawn: std::collections::BTreeSet<String> = (0..40)
+            .map(|k| draw("03", &format!("s{k}"), &v)["d"][0].clone())
+            .collect();
+        assert!(drawn.len() > 10, "{drawn:?}");
+    }
+
+    /// A value that is no range is refused with the forms a range takes, not serde's words.
+    #[test]
+    fn a_value_that_is_no_range_is_refused_with_the_forms_of_a_range() {
+        let e = serde_saphyr::from_str::<BTreeMap<String, Range>>("ambient: [1, \"x\"]\n")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("a range: [lo, hi]"), "{e}");
+        assert!(!e.contains("untagged"), "{e}");
     }
 
     /// A validation tries the values students draw: lo + k·step up to the last step within
