@@ -195,7 +195,13 @@ impl PlotKind {
 /// encoded to 8-bit sRGB and decoded again before they are measured against it, as `render`
 /// writes them); a 16-bit PNG decoded from sRGB.
 fn load_reference(path: &std::path::Path, w: u32, h: u32) -> Result<Reference, Failure> {
-    let img = image::open(path).map_err(|e| Failure(format!("{}: {e}", path.display())))?;
+    let img = image::open(path).map_err(|e| {
+        let why = match e {
+            image::ImageError::IoError(e) => e.to_string(),
+            e => crate::shading::texture::decode_reason(&e),
+        };
+        Failure(format!("{}: {why}", path.display()))
+    })?;
     if img.width() != w || img.height() != h {
         return Err(Failure(format!(
             "{}: reference is {}×{}, the scene renders {w}×{h}",

@@ -378,6 +378,7 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
     use serde_saphyr::{Error as E, MessageFormatter};
     const ALIAS_BOMB: &str = "YAML aliases expand too far (an alias bomb?): refused";
     const MORE_THAN_ONE: &str = MORE_THAN_ONE_DOCUMENT;
+    const TOO_DEEP: &str = "nested more than 64 YAML levels deep (a CSG tree or a pattern of about 30 levels, each a mapping and its list, or lists in lists): make it shallower";
     const SELF_ALIAS: &str =
         "an alias (*name) refers to the node it is inside of: a scene cannot contain itself";
     match e {
@@ -391,9 +392,7 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
         E::MultipleDocuments { .. } => MORE_THAN_ONE.into(),
         E::RecursiveReferencesRequireWeakTypes { .. } => SELF_ALIAS.into(),
         E::Budget { breach, .. } => match breach {
-            BudgetBreach::Depth { .. } => {
-                "nested more than 64 YAML levels deep, about 30 levels of a CSG tree (each level is a mapping and its list): make the tree shallower".into()
-            }
+            BudgetBreach::Depth { .. } => TOO_DEEP.into(),
             BudgetBreach::Aliases { .. } | BudgetBreach::Anchors { .. } => ALIAS_BOMB.into(),
             BudgetBreach::Documents { .. } => MORE_THAN_ONE.into(),
             _ => "the file is too large for the parser's limits (nodes, events or bytes)".into(),
@@ -403,9 +402,9 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
         | E::AliasExpansionLimitExceeded { .. }
         | E::AliasReplayStackDepthExceeded { .. } => ALIAS_BOMB.into(),
         E::UnsupportedTag { tag, .. } | E::TaggedStructFieldName { tag, .. } => tag_refused(tag),
-        E::NonFiniteFloat { value, .. } => format!(
-            "non-finite number `{value}`: every number in a scene must be finite"
-        ),
+        E::NonFiniteFloat { value, .. } => {
+            format!("non-finite number `{value}`: every number in a scene must be finite")
+        }
         E::Unexpected {
             expected: "string scalar",
             ..
@@ -425,6 +424,10 @@ fn parser_message(e: &serde_saphyr::Error) -> String {
             // The same refusal, raised as a plain message where the parser resolves an alias.
             if first.contains("recursive references require weak recursion types") {
                 return SELF_ALIAS.into();
+            }
+            // The parser's own limit on lists in lists, met before the depth budget.
+            if first.contains("recursion limit exceeded") {
+                return TOO_DEEP.into();
             }
             first.to_string()
         }

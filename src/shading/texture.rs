@@ -122,7 +122,7 @@ pub enum TextureError {
         path: PathBuf,
     },
     /// The file is not a PNG or EXR image that decodes.
-    #[error("cannot read `{name}`: {source}")]
+    #[error("cannot read `{name}`: {}", decode_reason(.source))]
     Decode {
         /// The file as the scene wrote it.
         name: String,
@@ -155,6 +155,17 @@ pub enum TextureError {
         /// The channel's value: inf, -inf or NaN.
         value: f32,
     },
+}
+
+/// Why an image file does not decode, in words: a file of another kind is named as such (the
+/// decoder's own words quote its extension oddly).
+pub fn decode_reason(e: &image::ImageError) -> String {
+    match e {
+        image::ImageError::Unsupported(_) => {
+            "not an image raytree reads: give a PNG or an EXR file".into()
+        }
+        e => e.to_string(),
+    }
 }
 
 impl Image {
