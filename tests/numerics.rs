@@ -265,3 +265,52 @@ objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: cha
         "{h:?}"
     );
 }
+
+/// A sphere far smaller than the rounding of the points around it (radius 10⁻¹² to 10⁻³⁰⁰,
+/// seen from 6 away, where a point is known to some 10⁻¹⁵): the hit point rounds off the
+/// surface, or onto the centre itself, yet the normal is the unit one facing the eye, and the
+/// intensity is the one worked by hand for a point at the origin with n = (0, 0, −1):
+/// l = (−4, 6, −6)/√88, n·l = 6/√88; h = (l + v)/|l + v| with v = (0, 0, −1);
+/// I = ka·Ia·O + kd·O·(n·l) + ks·(h·n)^20.
+#[test]
+fn a_sphere_smaller_than_its_points_rounding_keeps_a_unit_normal() {
+    let l = DVec3::new(-4.0, 6.0, -6.0).normalize();
+    let (n, v) = (DVec3::new(0.0, 0.0, -1.0), DVec3::new(0.0, 0.0, -1.0));
+    let h = (l + v).normalize();
+    let by_hand = 0.3 * 0.3 * 0.9 + 0.7 * 0.9 * n.dot(l) + 0.5 * h.dot(n).powi(20);
+    for radius in ["1e-10", "1e-12", "1e-15", "1e-16", "1e-300"] {
+        let s = scene(&format!(
+            "camera: {{ eye: [0, 0, -6], look_at: [0, 0, 0] }}
+ambient: 0.3
+lights: [ {{ name: L, point: [-4, 6, -6] }} ]
+materials: {{ chalk: {{ color: 0.9, ka: 0.3, kd: 0.7, ks: 0.5, shininess: 20 }} }}
+objects: [ {{ name: s, sphere: {{ center: [0, 0, 0], radius: {radius} }}, material: chalk }} ]
+"
+        ));
+        let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 0.0, -6.0), DVec3::Z));
+        let hit = tree.hit.as_ref().expect("the ray hits the sphere");
+        assert_eq!(hit.normal, n, "radius {radius}");
+        assert!(
+            (tree.color.x - by_hand).abs() < 1e-9,
+            "radius {radius}: I = {} against {by_hand}",
+            tree.color.x
+        );
+    }
+}
+
+/// A ray from 10¹⁰⁰ away meets the unit sphere where its point rounds to the centre (the
+/// point's rounding is 10⁸⁴): the normal still faces the ray.
+#[test]
+fn a_ray_from_far_beyond_a_sphere_sees_a_normal_facing_it() {
+    let s = scene(
+        "camera: { eye: [0, 0, -6], look_at: [0, 0, 0] }
+lights: [ { point: [-4, 6, -6] } ]
+materials: { chalk: { kd: 0.7 } }
+objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: chalk } ]
+",
+    );
+    let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(1e100, 0.0, 0.0), -DVec3::X));
+    let hit = tree.hit.expect("the ray hits the ball");
+    assert_eq!(hit.normal, DVec3::X, "{hit:?}");
+    assert!(!hit.inside, "{hit:?}");
+}

@@ -33,10 +33,37 @@ impl Sphere {
     }
 
     /// Outward unit normal at a point `p` on the sphere: (p − c)/r.
+    #[inline]
     pub fn normal(&self, p: DVec3) -> DVec3 {
-        (p - self.center) / self.radius
+        self.normal_facing(p, DVec3::ZERO)
+    }
+
+    /// `normal`, or `facing` where p rounds to the centre itself and has no normal: a ray's
+    /// hit record passes −d, so that the surface faces the ray.
+    #[inline]
+    pub fn normal_facing(&self, p: DVec3, facing: DVec3) -> DVec3 {
+        let n = (p - self.center) / self.radius;
+        if (n.length_squared() - 1.0).abs() <= UNIT_TOLERANCE {
+            n
+        } else {
+            self.normal_off_surface(p, facing)
+        }
+    }
+
+    /// The normal at a point found off the surface: where the point's rounding is as large as
+    /// the sphere (a tiny sphere seen from afar, a point 10¹⁰⁰ away), (p − c)/r is not of
+    /// unit length, and (p − c)/|p − c| is the normal of the nearest point that is on it.
+    #[cold]
+    #[inline(never)]
+    fn normal_off_surface(&self, p: DVec3, facing: DVec3) -> DVec3 {
+        (p - self.center).try_normalize().unwrap_or(facing)
     }
 }
+
+/// How far |(p − c)/r|² may be from 1 for (p − c)/r to be the normal: a point on the
+/// surface to rounding is off by some 10⁻¹⁶ of its coordinates, which moves |n|² by 10⁻⁹ only
+/// where the sphere is 10⁻⁷ of the point's distance from the origin.
+const UNIT_TOLERANCE: f64 = 1e-9;
 
 /// Margin of the division-free miss test, relative to the size of the terms involved. Rounding
 /// moves those terms by ~1e−15 of their size, so anything the test rejects is missed by a factor

@@ -78,7 +78,7 @@ impl Scene {
     pub fn record_surface(&self, ray: &Ray, hit: &Hit, si: &mut Interaction) -> &Material {
         let leaf = &self.leaves[hit.surface.leaf as usize];
         let point = ray.at(hit.t);
-        let mut outward = leaf.normal(point, hit.surface.face);
+        let mut outward = leaf.normal(point, hit.surface.face, -ray.dir);
         if hit.surface.flip {
             outward = -outward;
         }

@@ -101,11 +101,13 @@ impl Leaf {
     }
 
     /// The outward unit normal in world space at a world point on `face`. A plain sphere's or
-    /// plane's is found here, inline: it is wanted at every shaded hit.
+    /// plane's is found here, inline: it is wanted at every shaded hit. `facing` stands in
+    /// where the point has no normal (a sphere smaller than the point's rounding, which it
+    /// rounds to the centre of): the hit record passes −d, the surface facing the ray.
     #[inline(always)]
-    pub fn normal(&self, p: DVec3, face: u32) -> DVec3 {
+    pub fn normal(&self, p: DVec3, face: u32, facing: DVec3) -> DVec3 {
         match (&self.transform, &self.shape) {
-            (None, Shape::Sphere(s)) => s.normal(p),
+            (None, Shape::Sphere(s)) => s.normal_facing(p, facing),
             (None, Shape::Plane(s)) => s.normal,
             (Some(tf), shape) => {
                 tf.normal_to_world(shape.normal(tf.to_local.transform_point3(p), face))
