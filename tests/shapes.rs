@@ -265,7 +265,7 @@ fn transforms_keep_t_and_turn_normals_by_the_inverse_transpose() {
     assert!((h.t - 9.0).abs() < E, "t is a world distance");
     // On the ellipse x = 2cos θ, y = sin θ (cos θ = 0.6) the normal is ∝ (x/4, y, 0).
     let p = DVec3::new(2.0 * 0.6, 0.8, 10.0);
-    let n = s.leaves[0].normal(p, 0);
+    let n = s.leaves[0].normal(p, 0, -r.dir);
     assert!(
         (n - DVec3::new(0.3, 0.8, 0.0).normalize()).length() < 1e-12,
         "{n}"
