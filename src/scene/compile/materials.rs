@@ -13,6 +13,9 @@ use super::{invalid, number, pos, printable_name, Invalid};
 use crate::scene::format::{Integrator, LobeSpec, MaterialSpec, SceneFile, Varying};
 use crate::shading::{Fresnel, Highlight, Lobe, LobeShape, Material, Pattern, Patterns};
 
+/// The indices of refraction a material may have (`ior`).
+const IOR_RANGE: (f64, f64) = (0.01, 100.0);
+
 /// The file's materials, and each one's index by name. Texture images are found relative to
 /// the folder of the scene file (`source`); each image read is added to `inputs`.
 pub fn of(
@@ -100,10 +103,16 @@ fn material(name: &str, m: &MaterialSpec, textures: &mut Textures) -> Result<Mat
         };
     let ior = match &m.ior {
         None => 1.0,
-        Some(i) if i.value.0 <= 0.0 => {
+        // Real media lie between 1 and about 4. Within 0.01 to 100, η = n1/n2 stays within
+        // 10⁴, where Snell's law in floating point still gives a unit direction; at ior 10⁻¹⁶
+        // the refracted direction rounds to zero.
+        Some(i) if !(IOR_RANGE.0..=IOR_RANGE.1).contains(&i.value.0) => {
             return invalid(
                 pos(i),
-                format!("material `{name}`: ior must be > 0, got {}", i.value),
+                format!(
+                    "material `{name}`: ior must be between {} and {} (real media lie between 1 and about 4), got {}",
+                    IOR_RANGE.0, IOR_RANGE.1, i.value
+                ),
             )
         }
         Some(i) => i.value.0,
