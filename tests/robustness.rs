@@ -311,3 +311,39 @@ fn a_ray_refracted_along_the_surface_leaves_it() {
     assert!(refracted.hit.is_none(), "{:?}", refracted.hit);
     assert_eq!(refracted.color, DVec3::splat(0.25));
 }
+
+/// A whole scene scaled by k (eye, sphere, floor) renders the same image at any scale, up to
+/// an eye 10⁶⁰ from the origin: the primary rays' directions are found from the camera's axes,
+/// not as (e + offset) − e, which loses the offset once the spacing of doubles near e
+/// outgrows the image plane (from 10¹⁶ on, where every ray came out NaN or sideways).
+#[test]
+fn a_scaled_scene_renders_alike_with_the_eye_far_out() {
+    let image = |k: f64| {
+        let yaml = format!(
+            "camera: {{ eye: [0, 0, {:e}], look_at: [0, 0, 0], fov: 40, width: 40, height: 30 }}
+lights: [ {{ direction: [0.3, -1, 0.5] }} ]
+materials: {{ m: {{ kd: 0.8, ka: 0.1 }} }}
+objects:
+  - {{ sphere: {{ center: [0, 0, 0], radius: {:e} }}, material: m }}
+  - {{ plane: {{ point: [0, {:e}, 0], normal: [0, 1, 0] }}, material: m }}
+",
+            -10.0 * k,
+            k,
+            -k
+        );
+        let s = parse(&yaml, "scaled.yaml", None, &Limits::default()).unwrap();
+        render_simple(&s, RenderOptions::of(&s)).0.pixels
+    };
+    let unit = image(1.0);
+    let lit = unit.iter().filter(|p| p.x > 0.0).count();
+    assert!(lit > unit.len() / 2, "the ball and the floor fill the view");
+    for k in [1e-20, 1e16, 1e20, 1e60] {
+        let far = image(k);
+        let off = unit
+            .iter()
+            .zip(&far)
+            .filter(|(a, b)| (**a - **b).abs().max_element() > 1e-9)
+            .count();
+        assert_eq!(off, 0, "scale {k:e}: {off} pixels differ");
+    }
+}

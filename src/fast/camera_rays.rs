@@ -1,12 +1,12 @@
 //! A film's primary rays four at a time: the core's `Camera::ray` for the look-at camera, lane
-//! by lane, with the same operations in the same order (the point on the image plane, its
-//! offset from the eye, and `DVec3::normalize`'s square root, reciprocal and products), so each
+//! by lane, with the same operations in the same order (the offset of the point on the image
+//! plane from the eye, and `DVec3::normalize`'s square root, reciprocal and products), so each
 //! ray is the core's to the bit. The window model takes the core's own steps.
 //!
-//! A grid sample's point on the image plane, e + forward + x·right + y·up, takes a division
-//! for x and one for y. Every pixel of a column has the same x at its samples, and every pixel
-//! of a row the same y, so the sums' parts are worked out once a film (`ImagePlane::new`):
-//! e + forward + x·right for each column and offset, y·up for each row and offset.
+//! A grid sample's offset on the image plane, forward + x·right + y·up, takes a division for x
+//! and one for y. Every pixel of a column has the same x at its samples, and every pixel of a
+//! row the same y, so the sums' parts are worked out once a film (`ImagePlane::new`):
+//! forward + x·right for each column and offset, y·up for each row and offset.
 
 use std::ops::Range;
 
@@ -26,7 +26,7 @@ pub struct ImagePlane {
     width: u32,
     height: u32,
     offsets: usize,
-    /// Axis by axis, e + forward + x·right for column c and offset k at c·offsets + k.
+    /// Axis by axis, forward + x·right for column c and offset k at c·offsets + k.
     columns: [Vec<f64>; 3],
     /// Axis by axis, y·up for row r and offset k at r·offsets + k.
     rows: [Vec<f64>; 3],
@@ -83,9 +83,9 @@ impl ImagePlane {
         let mut columns = [(); 3].map(|_| Vec::with_capacity(camera.width as usize * n + LANES));
         for c in 0..camera.width {
             for o in offsets {
-                // `image_point`'s x, and its sum's first terms.
+                // `image_offset`'s x, and its sum's first terms.
                 let x = plane_x(c as f64 + o.x, (w, h), tan_half_fov);
-                let part = eye + forward + x * right;
+                let part = forward + x * right;
                 for (axis, column) in columns.iter_mut().enumerate() {
                     column.push(part[axis]);
                 }
@@ -146,11 +146,10 @@ impl ImagePlane {
                 let at = at + first;
                 V::new(v[at..at + LANES].try_into().unwrap())
             };
-            // p = (e + forward + x·right) + y·up, and d = p − e, one axis at a time.
+            // d = (forward + x·right) + y·up, one axis at a time.
             let mut d = [V::ZERO; 3];
             for (axis, d) in d.iter_mut().enumerate() {
-                let p = lanes(&self.columns[axis], column) + lanes(&self.rows[axis], row);
-                *d = p - V::splat(self.eye[axis]);
+                *d = lanes(&self.columns[axis], column) + lanes(&self.rows[axis], row);
             }
             // `DVec3::normalize`: d · (1 / √(d·d)).
             let length = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();

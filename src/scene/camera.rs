@@ -135,26 +135,34 @@ impl Camera {
     /// The world point on the image plane at continuous image coordinates (sx, sy); the centre
     /// of pixel (x, y) is (x + ½, y + ½) and (0, 0) is the top-left corner.
     pub fn image_point(&self, sx: f64, sy: f64) -> DVec3 {
+        self.eye() + self.image_offset(sx, sy)
+    }
+
+    /// Where the image plane's point at (sx, sy) lies from the eye: p − e, found from the
+    /// camera's axes alone (p − e = forward + x·right + y·up; seed 001's p_C.x·u + p_C.y·v +
+    /// p_C.z·w). Subtracting e from p itself would lose the offset next to an eye 10¹⁶ from
+    /// the origin, where the spacing of doubles outgrows the image plane.
+    pub fn image_offset(&self, sx: f64, sy: f64) -> DVec3 {
         let (w, h) = (self.width as f64, self.height as f64);
         match &self.projection {
             Projection::LookAt {
-                eye,
                 forward,
                 right,
                 up,
                 tan_half_fov,
+                ..
             } => {
                 let x = plane_x(sx, (w, h), *tan_half_fov);
                 let y = plane_y(sy, h, *tan_half_fov);
-                *eye + *forward + x * *right + y * *up
+                *forward + x * *right + y * *up
             }
             Projection::Window {
-                eye,
                 u,
                 v,
                 w: axis_w,
                 f,
                 window: [wl, wr, wt, wb],
+                ..
             } => {
                 let along = |s: f64, n: f64, lo: f64, hi: f64| {
                     // Δ = (hi − lo)/(n − 1); with a single pixel, the window's centre.
@@ -165,16 +173,15 @@ impl Camera {
                     }
                 };
                 let pc = DVec3::new(along(sx, w, *wl, *wr), along(sy, h, *wt, *wb), *f);
-                *eye + pc.x * *u + pc.y * *v + pc.z * *axis_w
+                pc.x * *u + pc.y * *v + pc.z * *axis_w
             }
         }
     }
 
     /// The primary ray from the eye through image coordinates (sx, sy) (pixel (x, y)'s centre is (x
-    /// + ½, y + ½)), with a unit direction.
+    /// + ½, y + ½)), with a unit direction: d = p − e, normalised.
     pub fn ray(&self, sx: f64, sy: f64) -> Ray {
-        let eye = self.eye();
-        Ray::new(eye, self.image_point(sx, sy) - eye)
+        Ray::new(self.eye(), self.image_offset(sx, sy))
     }
 
     /// The primary ray through the centre of pixel (x, y).
