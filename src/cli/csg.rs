@@ -95,7 +95,7 @@ pub(crate) fn run(a: Args) -> Result<ExitCode, Failure> {
         Format::Text => {
             super::output::println(&format!(
                 "ray {} → {}",
-                text::vec3(ray.origin),
+                text::point(ray.origin),
                 text::vec3(ray.dir)
             ))?;
             if survey.met.is_empty() {

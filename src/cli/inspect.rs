@@ -123,7 +123,7 @@ fn paths(a: &Args, scene: &Scene, [x, y]: [u32; 2]) -> Result<ExitCode, Failure>
                     // A path that leaves the scene meets no point: it goes off in a direction.
                     let place = match v.toward {
                         Some(d) => format!("toward {}", text::vec3(d)),
-                        None => format!("at {}", text::vec3(v.point)),
+                        None => format!("at {}", text::point(v.point)),
                     };
                     out += &format!(
                         "  {:<10} {:<14} {place}  throughput {}  adds {}\n",
@@ -353,10 +353,10 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
                 },
                 None if path_traced => format!(
                     "ray {} → {}: its Whitted reading (the scene is path traced)",
-                    text::vec3(ray.origin),
+                    text::point(ray.origin),
                     text::vec3(ray.dir)
                 ),
-                None => format!("ray {} → {}", text::vec3(ray.origin), text::vec3(ray.dir)),
+                None => format!("ray {} → {}", text::point(ray.origin), text::vec3(ray.dir)),
             };
             print(&dot(&inspection.tree, Some(&scene), &title))?;
         }

@@ -41,6 +41,39 @@ pub fn vec3(v: DVec3) -> String {
     format!("({}, {}, {})", num(v.x), num(v.y), num(v.z))
 }
 
+/// A length or coordinate (t, a segment's end): as `num`, but one that six decimals would
+/// write as 0 is written with its own digits ("5.12e-10"): a scene can be 10⁻¹⁰ across, and
+/// its distances are not 0. (Intensities and cosines stay `num`'s: 10⁻²⁵ of a light is none.)
+pub fn length(x: f64) -> String {
+    let fixed = num(x);
+    if fixed != "0" || x == 0.0 {
+        return fixed;
+    }
+    let s = format!("{x:.5e}");
+    let (mantissa, exponent) = s.split_once('e').expect("`e` formatting has an exponent");
+    let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+    format!("{mantissa}e{exponent}")
+}
+
+/// A point as "(x, y, z)" with `length`'s digits, where a coordinate 10¹² times smaller than
+/// the largest is the rounding of a 0 and written so.
+pub fn point(p: DVec3) -> String {
+    let size = p.abs().max_element();
+    let coordinate = |c: f64| {
+        if c.abs() < 1e-12 * size {
+            "0".to_string()
+        } else {
+            length(c)
+        }
+    };
+    format!(
+        "({}, {}, {})",
+        coordinate(p.x),
+        coordinate(p.y),
+        coordinate(p.z)
+    )
+}
+
 /// A grey colour as one number, others as (r, g, b).
 pub fn color(c: DVec3) -> String {
     if c.x == c.y && c.y == c.z {
@@ -114,10 +147,10 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
     let mut out = vec![match n.samples {
         Some(_) => format!(
             "principal direction from {} → {}",
-            vec3(n.origin),
+            point(n.origin),
             vec3(n.direction)
         ),
-        None => format!("ray {} → {}", vec3(n.origin), vec3(n.direction)),
+        None => format!("ray {} → {}", point(n.origin), vec3(n.direction)),
     }];
     if n.kind != RayKind::Primary && n.kind != RayKind::Shadow {
         out.push(format!(
@@ -145,8 +178,8 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
         out.push(format!("hit {}{leaf}, material {}", h.object, h.material));
         out.push(format!(
             "t = {}  point {}  normal {}  {}",
-            num(h.t),
-            vec3(h.point),
+            length(h.t),
+            point(h.point),
             vec3(h.normal),
             if h.inside {
                 "inside (leaving)"
@@ -209,7 +242,7 @@ pub fn secondary_term(c: &RayNode) -> String {
             color(c.color),
             num(a),
             color(c.coefficient * received(c)),
-            c.hit.as_ref().map_or("?".into(), |h| num(h.t))
+            c.hit.as_ref().map_or("?".into(), |h| length(h.t))
         ),
     }
 }
@@ -318,15 +351,15 @@ pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String 
         .map(|s| {
             let p = |t: f64| {
                 if t.is_finite() {
-                    vec3(ray.at(t))
+                    point(ray.at(t))
                 } else {
                     num(t)
                 }
             };
             format!(
                 "[{}, {}] {} → {}",
-                num(s.t_in),
-                num(s.t_out),
+                length(s.t_in),
+                length(s.t_out),
                 p(s.t_in),
                 p(s.t_out)
             )
@@ -366,7 +399,7 @@ impl MetObject {
     /// its origin, or why it does not.
     pub fn verdict(&self, ray: &Ray) -> String {
         match &self.hit {
-            Some(h) => format!("hit ahead: t = {} at {}", num(h.t), vec3(ray.at(h.t))),
+            Some(h) => format!("hit ahead: t = {} at {}", length(h.t), point(ray.at(h.t))),
             None if self.trace.segments.is_empty() => "not hit: its segment list is empty".into(),
             None => "not hit: its segments lie behind the ray's origin (t ≤ 0)".into(),
         }
@@ -379,8 +412,8 @@ impl CsgSurvey {
         match &self.nearest {
             Some((name, h)) => format!(
                 "nearest hit: object {name} at t = {}, {}",
-                num(h.t),
-                vec3(ray.at(h.t))
+                length(h.t),
+                point(ray.at(h.t))
             ),
             None => "nearest hit: none, the ray hits nothing ahead of its origin".into(),
         }
@@ -503,7 +536,7 @@ fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out
 pub fn pattern(p: &PatternLookup) -> String {
     let at = match p.uv {
         Some(uv) => format!("(u, v) = ({}, {})", num(uv.x), num(uv.y)),
-        None => format!("p = {}", vec3(p.point)),
+        None => format!("p = {}", point(p.point)),
     };
     format!("{} = {}  ({} at {at})", p.varies, color(p.value), p.pattern)
 }
@@ -530,5 +563,28 @@ mod tests {
         for (x, shown) in cases {
             assert_eq!(num(x), shown, "{x:e}");
         }
+    }
+
+    /// Lengths too small for six decimals keep their digits; points drop only the rounding
+    /// of a zero, 10¹² times below their largest coordinate.
+    #[test]
+    fn small_lengths_and_points_keep_their_digits() {
+        let cases = [
+            (5.119556e-10, "5.11956e-10"),
+            (-6e-10, "-6e-10"),
+            (0.4, "0.4"),
+            (0.0, "0"),
+            (4e-7, "4e-7"),
+            (6e-7, "0.000001"),
+        ];
+        for (x, shown) in cases {
+            assert_eq!(length(x), shown, "{x:e}");
+        }
+        assert_eq!(point(DVec3::new(0.0, 0.0, -6e-10)), "(0, 0, -6e-10)");
+        assert_eq!(point(DVec3::new(1e-17, 0.6, -0.8)), "(0, 0.6, -0.8)");
+        assert_eq!(
+            point(DVec3::new(3e-11, -3e-11, 9e-11)),
+            "(3e-11, -3e-11, 9e-11)"
+        );
     }
 }

@@ -127,7 +127,7 @@ impl CsgPanel {
                 header: true,
                 text: format!(
                     "{name} {} → {}",
-                    text::vec3(ray.origin),
+                    text::point(ray.origin),
                     text::vec3(ray.dir)
                 ),
             });

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::trace::text::{color, node_details, num, received, vec3};
+use crate::trace::text::{color, length, node_details, num, point, received, vec3};
 use crate::trace::{RayKind, RayNode, Termination};
 use crate::tui::wrap::wrap;
 
@@ -31,7 +31,7 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
             Some(n.color),
         )),
     }
-    out.push(plain(format!("origin    {}", vec3(n.origin))));
+    out.push(plain(format!("origin    {}", point(n.origin))));
     out.push(plain(format!("direction {}", vec3(n.direction))));
     // node_details starts with "ray o → d", said above in two lines.
     for l in node_details(n).into_iter().skip(1) {
@@ -48,7 +48,7 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
     match n.kind {
         RayKind::Shadow => {
             if let Some(t) = n.t_max {
-                out.push(plain(format!("looks for blockers up to t = {}", num(t))));
+                out.push(plain(format!("looks for blockers up to t = {}", length(t))));
             }
             let s = n.shadow.unwrap_or(0.0);
             out.push(plain(match (&n.hit, n.shadow_rays) {
@@ -56,14 +56,14 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
                     "{} of {rays} shadow rays reach the light (the first blocked meets {} at t = {}): s = {}",
                     (s * rays as f64).round(),
                     h.object,
-                    num(h.t),
+                    length(h.t),
                     num(s)
                 ),
                 (None, Some(rays)) => format!("all {rays} shadow rays reach the light: s = 1"),
                 (Some(h), None) => format!(
                     "blocked by {} at t = {}: s = {}",
                     h.object,
-                    num(h.t),
+                    length(h.t),
                     num(n.shadow.unwrap_or(0.0))
                 ),
                 (None, None) => format!(

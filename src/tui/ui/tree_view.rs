@@ -17,7 +17,7 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let t = &app.tree;
     let (x, y) = t.pixel();
     let at = match t.aimed_ray() {
-        Some(r) => format!("ray {} → {}", text::vec3(r.origin), text::vec3(r.dir)),
+        Some(r) => format!("ray {} → {}", text::point(r.origin), text::vec3(r.dir)),
         None => format!("pixel {x},{y}"),
     };
     let title = match t.level() {
