@@ -543,7 +543,8 @@ pub fn pattern(p: &PatternLookup) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::num;
+    use super::{length, num, point};
+    use glam::DVec3;
 
     /// Six decimals at most, trailing zeros dropped; beyond 10¹⁵ six significant decimals and
     /// an exponent, so the largest coordinates a scene allows stay one short number.
