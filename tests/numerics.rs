@@ -314,3 +314,26 @@ objects: [ { name: ball, sphere: { center: [0, 0, 0], radius: 1 }, material: cha
     assert_eq!(hit.normal, DVec3::X, "{hit:?}");
     assert!(!hit.inside, "{hit:?}");
 }
+
+/// A sphere much larger than the distance to it, met from 6 units off its surface: t = 6
+/// within the README's bounds for radii up to 10¹², as the quadratic's c = |o − c|² − r²
+/// cancels ever more, and always from outside.
+#[test]
+fn a_huge_sphere_is_met_within_the_documented_error() {
+    for (radius, error) in [(1e3, 1e-12), (1e6, 1e-9), (1e9, 1e-7), (1e12, 1e-5)] {
+        let s = scene(&format!(
+            "camera: {{ eye: [0, 0, -6], look_at: [0, 0, 0] }}
+materials: {{ m: {{ kd: 0.5 }} }}
+objects: [ {{ name: s, sphere: {{ center: [0, 0, {radius:e}], radius: {radius:e} }}, material: m }} ]
+"
+        ));
+        let tree = Tracer::new(&s).inspect(&Ray::new(DVec3::new(0.0, 0.0, -6.0), DVec3::Z));
+        let hit = tree.hit.expect("the ray meets the sphere");
+        assert!(
+            (hit.t - 6.0).abs() < error,
+            "radius {radius:e}: t = {}",
+            hit.t
+        );
+        assert!(!hit.inside, "radius {radius:e}: met from outside");
+    }
+}
