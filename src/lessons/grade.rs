@@ -81,7 +81,8 @@ pub struct Report {
 /// first line that names the three columns (`student,exercise,answer`, or in another order)
 /// is a header, and the rows follow its order. A line with fewer or more fields, or with a
 /// quote left open, is a problem: guessing what it meant could grade an answer the student did
-/// not give.
+/// not give. So is a quoted field that a later line closes (a cell with a line break): its
+/// lines are one record, set aside whole.
 pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
     let mut rows = Vec::new();
     let mut problems = Vec::new();
