@@ -162,7 +162,7 @@ objects:
     assert!((r.attenuation.unwrap() - 7.25).abs() < 1e-12);
     let expected = 0.1 + 0.8 * 0.58 / 7.25;
     assert!((tree.color.x - expected).abs() < 1e-12);
-    let details = text::node_details(&tree).join("\n");
+    let details = text::node_details(&tree, text::tree_scale(&tree)).join("\n");
     assert!(
         details.contains("0.8 × 0.58 / 7.25 = 0.064"),
         "the factor is in the term:\n{details}"

@@ -1207,10 +1207,48 @@ fn values_that_clash_only_together_are_named_together() {
     }
 }
 
+/// A varied value that loads can still leave exercises without an answer: the ball moved 3
+/// to the left, the ray from inside it (`inside-t`, `inside-normal`) misses it, and a student
+/// who drew that value could not be graded. `lessons validate` works every exercise out at
+/// each range's ends and first step and names the values (one line each, the exercises
+/// listed); at x = 3 every exercise's ray still meets the ball. A `local` exercise whose ray
+/// hits nothing is refused too: it has no local term.
+#[test]
+fn a_variation_that_leaves_exercises_without_an_answer_is_named() {
+    let dir = lesson02_with(
+        "vary-misses",
+        "vary:\n  objects.ball.sphere.center: [[-3, 0, 0], [3, 0, 0]]\n",
+    );
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    let report = out(&o);
+    let problems: Vec<&str> = report.lines().filter(|l| l.starts_with('✗')).collect();
+    assert_eq!(problems.len(), 2, "{report}");
+    for (p, x) in problems.iter().zip(["-3", "-2.99"]) {
+        assert!(
+            p.contains(&format!(
+                "with vary `objects.ball.sphere.center` = [{x}, 0, 0], exercise `inside-t` (and inside-normal) cannot be worked out: the ray hits nothing"
+            )),
+            "{report}"
+        );
+    }
+    let dir = lesson02_with(
+        "local-misses",
+        "  - id: local-miss\n    question: What is the local term of the ray straight up?\n    ask: local\n    model: blinn\n    ray: { origin: [0, 5, 0], direction: [0, 1, 0] }\n",
+    );
+    let o = raytree(&["lessons", "validate", dir.to_str().unwrap()]);
+    let report = out(&o);
+    assert!(
+        report.contains("local-miss: cannot be worked out: exercise `local-miss`: the ray hits nothing, so it has no local term"),
+        "{report}"
+    );
+}
+
 /// A `vary:` range that reaches values the scene refuses: `max_depth` in [1, 4] in the
 /// default steps of 0.01 draws fractions (1.01 is its first step), and a radius from 0 gives
 /// a sphere of radius 0. `lessons validate` tries each range's ends and first step and names
-/// both; a lesson whose every student gets a refused value (`one_of: [1.5]`) hands out no
+/// both, and the first step of the radius, 0.01, which loads but leaves the lesson's rays
+/// missing the ball; a lesson whose every student gets a refused value (`one_of: [1.5]`) hands out no
 /// homework, and its rows in a class's sheet are set aside, not marked wrong or copied.
 #[test]
 fn a_variation_that_breaks_the_scene_is_refused_not_handed_out() {
@@ -1222,7 +1260,7 @@ fn a_variation_that_breaks_the_scene_is_refused_not_handed_out() {
     assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
     let report = out(&o);
     let problems: Vec<&str> = report.lines().filter(|l| l.starts_with('✗')).collect();
-    assert_eq!(problems.len(), 2, "{report}");
+    assert_eq!(problems.len(), 3, "{report}");
     assert!(
         problems[0].contains("vary `max_depth` = 1.01") && problems[0].contains("whole number"),
         "{report}"
@@ -1230,6 +1268,11 @@ fn a_variation_that_breaks_the_scene_is_refused_not_handed_out() {
     assert!(
         problems[1].contains("vary `objects.ball.sphere.radius` = 0")
             && problems[1].contains("radius must be > 0"),
+        "{report}"
+    );
+    assert!(
+        problems[2].contains("with vary `objects.ball.sphere.radius` = 0.01, exercise `chord-t`")
+            && problems[2].contains("the ray hits nothing"),
         "{report}"
     );
 

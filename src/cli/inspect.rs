@@ -123,7 +123,10 @@ fn paths(a: &Args, scene: &Scene, [x, y]: [u32; 2]) -> Result<ExitCode, Failure>
                     // A path that leaves the scene meets no point: it goes off in a direction.
                     let place = match v.toward {
                         Some(d) => format!("toward {}", text::vec3(d)),
-                        None => format!("at {}", text::point(v.point)),
+                        None => format!(
+                            "at {}",
+                            text::point_at(v.point, v.point.abs().max_element())
+                        ),
                     };
                     out += &format!(
                         "  {:<10} {:<14} {place}  throughput {}  adds {}\n",

@@ -506,6 +506,28 @@ impl Lesson {
         Ok(problems)
     }
 
+    /// The lesson as it stands with each varied value at its ends and first step (each
+    /// path on its own, the others as the lesson writes them), for the values whose scenes
+    /// load: what `lessons validate` works every exercise out in, named by the value. Values
+    /// that keep a scene from loading are `unloadable_variations`' to name.
+    pub fn probe_variants(&self) -> Result<Vec<(String, Lesson)>, LessonError> {
+        let files = self.scene_files()?;
+        let mut variants = Vec::new();
+        for (path, range) in &self.vary {
+            for value in range.probes() {
+                let one = BTreeMap::from([(path.clone(), value.clone())]);
+                let sources = vary::rewrite(&files, &one).map_err(LessonError::Scenes)?;
+                if self.load_sources(&sources).is_err() {
+                    continue;
+                }
+                let mut lesson = self.clone();
+                lesson.sources = sources;
+                variants.push((format!("vary `{path}` = {}", vary::show(&value)), lesson));
+            }
+        }
+        Ok(variants)
+    }
+
     /// Why the lesson's scenes, with `values` written in, do not load (None where they do).
     fn load_error(
         &self,

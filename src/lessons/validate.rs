@@ -98,6 +98,38 @@ fn validate_lesson(l: &Lesson, v: &mut Validation) {
                 .extend(problems.into_iter().map(|p| format!("{name}: {p}"))),
             Err(e) => v.problems.push(format!("{name}: {e}")),
         }
+        // A value that loads may still leave an exercise without an answer (its ray now
+        // misses the ball): that student's row could not be graded.
+        match l.probe_variants() {
+            Ok(variants) => {
+                for (value, variant) in &variants {
+                    let failed: Vec<(&str, String)> = variant
+                        .exercises
+                        .iter()
+                        .filter_map(|ex| {
+                            work(variant, ex)
+                                .err()
+                                .map(|e| (ex.id.as_str(), e.to_string()))
+                        })
+                        .collect();
+                    let Some((first, why)) = failed.first() else {
+                        continue;
+                    };
+                    let others: Vec<&str> = failed[1..].iter().map(|(id, _)| *id).collect();
+                    let also = match others.is_empty() {
+                        true => String::new(),
+                        false => format!(" (and {})", others.join(", ")),
+                    };
+                    let why = why
+                        .strip_prefix(&format!("exercise `{first}`: "))
+                        .unwrap_or(why);
+                    v.problems.push(format!(
+                        "{name}: with {value}, exercise `{first}`{also} cannot be worked out: {why}"
+                    ));
+                }
+            }
+            Err(e) => v.problems.push(format!("{name}: {e}")),
+        }
     }
     for ex in &l.exercises {
         v.exercises += 1;

@@ -55,23 +55,50 @@ pub fn length(x: f64) -> String {
     format!("{mantissa}e{exponent}")
 }
 
-/// A point as "(x, y, z)" with `length`'s digits, where a coordinate 10¹² times smaller than
-/// the largest is the rounding of a 0 and written so.
+/// A point given as it is (a ray's origin given on the command line), as "(x, y, z)", with
+/// `length`'s digits.
 pub fn point(p: DVec3) -> String {
-    let size = p.abs().max_element();
-    let coordinate = |c: f64| {
-        if c.abs() < 1e-12 * size {
-            "0".to_string()
-        } else {
-            length(c)
-        }
-    };
+    format!("({}, {}, {})", length(p.x), length(p.y), length(p.z))
+}
+
+/// Below this share of the size of the numbers around it, a coordinate or a length is their
+/// rounding, or the bias that moves a secondary ray off its surface (10⁻¹⁰ of the
+/// coordinates), and is written as 0.
+const NOISE: f64 = 1e-9;
+
+/// A length or coordinate found by arithmetic among numbers of size `scale` (a ray tree's, a
+/// ray's): 0 below `NOISE` of it, else with `length`'s digits (a scene 10⁻¹⁰ across keeps its
+/// own).
+pub fn length_at(x: f64, scale: f64) -> String {
+    if x.abs() < NOISE * scale {
+        "0".into()
+    } else {
+        length(x)
+    }
+}
+
+/// A point found by arithmetic among numbers of size `scale`, as "(x, y, z)" (`length_at`):
+/// a floor met at the origin from 4 away is at (0, 0, 0), not at (4.4e-16, −8.9e-16, 0).
+pub fn point_at(p: DVec3, scale: f64) -> String {
     format!(
         "({}, {}, {})",
-        coordinate(p.x),
-        coordinate(p.y),
-        coordinate(p.z)
+        length_at(p.x, scale),
+        length_at(p.y, scale),
+        length_at(p.z, scale)
     )
+}
+
+/// The size of the numbers a ray tree was found from: its largest |coordinate| of a ray's
+/// origin or a hit point, and its longest finite t.
+pub fn tree_scale(n: &RayNode) -> f64 {
+    let own = n.hit.as_ref().map_or(0.0, |h| {
+        let t = if h.t.is_finite() { h.t.abs() } else { 0.0 };
+        t.max(h.point.abs().max_element())
+    });
+    n.children
+        .iter()
+        .map(tree_scale)
+        .fold(own.max(n.origin.abs().max_element()), f64::max)
 }
 
 /// A grey colour as one number, others as (r, g, b).
@@ -142,15 +169,24 @@ pub fn shadow_outcome(n: &RayNode) -> String {
     }
 }
 
-/// The formula lines of one node: hit, then every term of the illumination model.
-pub fn node_details(n: &RayNode) -> Vec<String> {
+/// Where a node's ray starts: a primary ray's origin as given (the eye, or a ray asked for),
+/// any other's as found (a hit point moved off its surface by the bias), in a tree whose
+/// numbers are of size `scale`.
+pub fn ray_origin(n: &RayNode, scale: f64) -> String {
+    match n.kind {
+        RayKind::Primary => point(n.origin),
+        _ => point_at(n.origin, scale),
+    }
+}
+
+/// The formula lines of one node: hit, then every term of the illumination model. `scale` is
+/// the size of its tree's numbers (`tree_scale`), below which its points' coordinates are
+/// rounding.
+pub fn node_details(n: &RayNode, scale: f64) -> Vec<String> {
+    let origin = ray_origin(n, scale);
     let mut out = vec![match n.samples {
-        Some(_) => format!(
-            "principal direction from {} → {}",
-            point(n.origin),
-            vec3(n.direction)
-        ),
-        None => format!("ray {} → {}", point(n.origin), vec3(n.direction)),
+        Some(_) => format!("principal direction from {origin} → {}", vec3(n.direction)),
+        None => format!("ray {origin} → {}", vec3(n.direction)),
     }];
     if n.kind != RayKind::Primary && n.kind != RayKind::Shadow {
         out.push(format!(
@@ -178,8 +214,8 @@ pub fn node_details(n: &RayNode) -> Vec<String> {
         out.push(format!("hit {}{leaf}, material {}", h.object, h.material));
         out.push(format!(
             "t = {}  point {}  normal {}  {}",
-            length(h.t),
-            point(h.point),
+            length_at(h.t, scale),
+            point_at(h.point, scale),
             vec3(h.normal),
             if h.inside {
                 "inside (leaving)"
@@ -291,17 +327,17 @@ fn light_lines(l: &LightTerm) -> Vec<String> {
 /// The whole tree, drawn with box characters, every node with its details.
 pub fn tree(root: &RayNode) -> String {
     let mut out = String::new();
-    draw(root, "", "", &mut out);
+    draw(root, tree_scale(root), "", "", &mut out);
     out
 }
 
-fn draw(n: &RayNode, first: &str, rest: &str, out: &mut String) {
+fn draw(n: &RayNode, scale: f64, first: &str, rest: &str, out: &mut String) {
     out.push_str(first);
     out.push_str(&node_title(n));
     out.push('\n');
     let has_children = !n.children.is_empty();
     if n.kind != RayKind::Shadow {
-        for line in node_details(n) {
+        for line in node_details(n, scale) {
             out.push_str(rest);
             out.push_str(if has_children { "│   " } else { "    " });
             out.push_str(&line);
@@ -326,7 +362,7 @@ fn draw(n: &RayNode, first: &str, rest: &str, out: &mut String) {
             out.push('\n');
             continue;
         }
-        draw(c, &format!("{rest}{f}"), &format!("{rest}{r}"), out);
+        draw(c, scale, &format!("{rest}{f}"), &format!("{rest}{r}"), out);
     }
 }
 
@@ -346,26 +382,43 @@ pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String 
     if segments.is_empty() {
         return "(empty)".into();
     }
+    let scale = segments
+        .iter()
+        .flat_map(|s| [s.t_in, s.t_out])
+        .filter(|t| t.is_finite())
+        .fold(ray.origin.abs().max_element(), |m, t| m.max(t.abs()));
     segments
         .iter()
         .map(|s| {
             let p = |t: f64| {
                 if t.is_finite() {
-                    point(ray.at(t))
+                    point_at(ray.at(t), scale)
+                } else {
+                    num(t)
+                }
+            };
+            let t = |t: f64| {
+                if t.is_finite() {
+                    length_at(t, scale)
                 } else {
                     num(t)
                 }
             };
             format!(
                 "[{}, {}] {} → {}",
-                length(s.t_in),
-                length(s.t_out),
+                t(s.t_in),
+                t(s.t_out),
                 p(s.t_in),
                 p(s.t_out)
             )
         })
         .collect::<Vec<_>>()
         .join("  ")
+}
+
+/// The size of the numbers a ray's hit point is found from: o and t.
+fn hit_scale(ray: &Ray, h: &Hit) -> f64 {
+    ray.origin.abs().max_element() + h.t.abs()
 }
 
 /// What the CSG listing of one ray holds: the objects it meets, each with its trace, and a
@@ -399,7 +452,11 @@ impl MetObject {
     /// its origin, or why it does not.
     pub fn verdict(&self, ray: &Ray) -> String {
         match &self.hit {
-            Some(h) => format!("hit ahead: t = {} at {}", length(h.t), point(ray.at(h.t))),
+            Some(h) => format!(
+                "hit ahead: t = {} at {}",
+                length(h.t),
+                point_at(ray.at(h.t), hit_scale(ray, h))
+            ),
             None if self.trace.segments.is_empty() => "not hit: its segment list is empty".into(),
             None => "not hit: its segments lie behind the ray's origin (t ≤ 0)".into(),
         }
@@ -413,7 +470,7 @@ impl CsgSurvey {
             Some((name, h)) => format!(
                 "nearest hit: object {name} at t = {}, {}",
                 length(h.t),
-                point(ray.at(h.t))
+                point_at(ray.at(h.t), hit_scale(ray, h))
             ),
             None => "nearest hit: none, the ray hits nothing ahead of its origin".into(),
         }
@@ -536,14 +593,14 @@ fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out
 pub fn pattern(p: &PatternLookup) -> String {
     let at = match p.uv {
         Some(uv) => format!("(u, v) = ({}, {})", num(uv.x), num(uv.y)),
-        None => format!("p = {}", point(p.point)),
+        None => format!("p = {}", point_at(p.point, p.point.abs().max_element())),
     };
     format!("{} = {}  ({} at {at})", p.varies, color(p.value), p.pattern)
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{length, num, point};
+    use super::{length, length_at, num, point, point_at};
     use glam::DVec3;
 
     /// Six decimals at most, trailing zeros dropped; beyond 10¹⁵ six significant decimals and
@@ -566,8 +623,9 @@ mod tests {
         }
     }
 
-    /// Lengths too small for six decimals keep their digits; points drop only the rounding
-    /// of a zero, 10¹² times below their largest coordinate.
+    /// Lengths too small for six decimals keep their digits; a point given keeps every
+    /// coordinate, a point found drops only the rounding of a zero, 10¹² times below the
+    /// numbers it was found from.
     #[test]
     fn small_lengths_and_points_keep_their_digits() {
         let cases = [
@@ -582,9 +640,21 @@ mod tests {
             assert_eq!(length(x), shown, "{x:e}");
         }
         assert_eq!(point(DVec3::new(0.0, 0.0, -6e-10)), "(0, 0, -6e-10)");
-        assert_eq!(point(DVec3::new(1e-17, 0.6, -0.8)), "(0, 0.6, -0.8)");
+        let near_origin = DVec3::new(4.44e-16, -8.88e-16, 0.0);
+        assert_eq!(point_at(near_origin, 4.0 + 4.0), "(0, 0, 0)");
+        // A secondary ray's origin moved off its surface by the bias, in a scene of size 5.
         assert_eq!(
-            point(DVec3::new(3e-11, -3e-11, 9e-11)),
+            point_at(DVec3::new(4.4e-16, 3.46e-10, 0.0), 5.0),
+            "(0, 0, 0)"
+        );
+        assert_eq!(length_at(5.119556e-10, 6e-10), "5.11956e-10");
+        assert_eq!(point(DVec3::new(-1e100, 3.0, 0.0)), "(-1e100, 3, 0)");
+        assert_eq!(
+            point_at(DVec3::new(1e-17, 0.6, -0.8), 0.8),
+            "(0, 0.6, -0.8)"
+        );
+        assert_eq!(
+            point_at(DVec3::new(3e-11, -3e-11, 9e-11), 6e-10),
             "(3e-11, -3e-11, 9e-11)"
         );
     }

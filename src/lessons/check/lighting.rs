@@ -2,8 +2,6 @@
 //! shadow factor, the diffuse and the specular terms) in the lecture's model
 //! `I = ka·Ia·O + Σ s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m) + kr·I_r + kt·I_t`.
 
-use glam::DVec3;
-
 use super::derive;
 use super::mistakes::tree_mistakes;
 use super::tree::tree_explanation;
@@ -33,9 +31,18 @@ pub(super) struct Local;
 
 impl Question for Local {
     fn answer(&self, q: &Traced) -> Result<Answer, String> {
-        Ok(Answer::color(
-            q.node.local.as_ref().map_or(DVec3::ZERO, |l| l.total()),
-        ))
+        // A ray that meets no surface has no local term (its intensity is the background's).
+        match (&q.node.local, &q.node.hit) {
+            (Some(l), _) => Ok(Answer::color(l.total())),
+            (None, None) => Err(format!(
+                "exercise `{}`: the ray hits nothing, so it has no local term",
+                q.ex.id
+            )),
+            (None, Some(_)) => Err(format!(
+                "exercise `{}`: the surface the ray hits is not shaded here",
+                q.ex.id
+            )),
+        }
     }
 
     fn mistakes(&self, w: &Worked, ex: &Exercise) -> Vec<Mistake> {
@@ -112,6 +119,12 @@ fn light_term<'a>(q: &Traced<'a>) -> Result<&'a LightTerm, String> {
             } else {
                 names.join(", ")
             }
+        ));
+    }
+    if q.node.hit.is_none() {
+        return Err(format!(
+            "exercise `{}`: the ray hits nothing, so no light shines on it",
+            ex.id
         ));
     }
     q.node

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use crate::trace::text::{color, length, node_details, num, point, received, vec3};
+use crate::trace::text::{color, length_at, node_details, num, ray_origin, received, vec3};
 use crate::trace::{RayKind, RayNode, Termination};
 use crate::tui::wrap::wrap;
 
@@ -12,7 +12,7 @@ use crate::tui::wrap::wrap;
 pub const FORMULA: &str = "I = ka·Ia·O + Σℓ s·fatt·Iℓ·(kd·O·(n·l) + ks·(h·n)^m) + kr·I_r + kt·I_t";
 
 /// The detail lines of a node; a line may carry a colour swatch (drawn after it).
-pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)> {
+pub fn details_lines(n: &RayNode, max_depth: u32, scale: f64) -> Vec<(String, Option<DVec3>)> {
     let mut out: Vec<(String, Option<DVec3>)> = Vec::new();
     let plain = |s: String| (s, None);
     match n.kind {
@@ -31,10 +31,10 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
             Some(n.color),
         )),
     }
-    out.push(plain(format!("origin    {}", point(n.origin))));
+    out.push(plain(format!("origin    {}", ray_origin(n, scale))));
     out.push(plain(format!("direction {}", vec3(n.direction))));
     // node_details starts with "ray o → d", said above in two lines.
-    for l in node_details(n).into_iter().skip(1) {
+    for l in node_details(n, scale).into_iter().skip(1) {
         if l.starts_with("ambient") {
             out.push(plain(FORMULA.to_string()));
         }
@@ -48,7 +48,7 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
     match n.kind {
         RayKind::Shadow => {
             if let Some(t) = n.t_max {
-                out.push(plain(format!("looks for blockers up to t = {}", length(t))));
+                out.push(plain(format!("looks for blockers up to t = {}", length_at(t, scale))));
             }
             let s = n.shadow.unwrap_or(0.0);
             out.push(plain(match (&n.hit, n.shadow_rays) {
@@ -56,14 +56,14 @@ pub fn details_lines(n: &RayNode, max_depth: u32) -> Vec<(String, Option<DVec3>)
                     "{} of {rays} shadow rays reach the light (the first blocked meets {} at t = {}): s = {}",
                     (s * rays as f64).round(),
                     h.object,
-                    length(h.t),
+                    length_at(h.t, scale),
                     num(s)
                 ),
                 (None, Some(rays)) => format!("all {rays} shadow rays reach the light: s = 1"),
                 (Some(h), None) => format!(
                     "blocked by {} at t = {}: s = {}",
                     h.object,
-                    length(h.t),
+                    length_at(h.t, scale),
                     num(n.shadow.unwrap_or(0.0))
                 ),
                 (None, None) => format!(
@@ -190,9 +190,9 @@ const I_FORMULA_START: &str = "I = ka";
 
 /// The details of a node wrapped to `width` cells (a swatch takes three of them), without the
 /// intensities when they are `hidden`.
-pub fn rows(n: &RayNode, max_depth: u32, width: usize, hidden: bool) -> Vec<DetailRow> {
+pub fn rows(n: &RayNode, max_depth: u32, scale: f64, width: usize, hidden: bool) -> Vec<DetailRow> {
     let mut rows = Vec::new();
-    let mut lines = details_lines(n, max_depth);
+    let mut lines = details_lines(n, max_depth, scale);
     if hidden {
         lines = without_intensities(n, lines);
     }

@@ -221,8 +221,9 @@ impl RayTree {
 
     /// The selected ray's details at a width.
     pub fn detail_rows(&self, width: usize) -> Vec<DetailRow> {
+        let scale = self.shown_tree().map_or(0.0, text::tree_scale);
         self.selected_node().map_or(vec![], |n| {
-            details::rows(n, self.traced, width, self.hidden)
+            details::rows(n, self.traced, scale, width, self.hidden)
         })
     }
 
