@@ -1167,8 +1167,13 @@ fn m_marks_where_the_rays_landed_on_the_preview() {
     let tree = app.tree.full_tree().unwrap();
     let glass = tree.find("reflection").unwrap().hit.as_ref().unwrap().point;
     let at = raytree::diagram::marks::image_position(&scene.camera, glass).unwrap();
-    let cell =
-        raytree::tui::layout::pixel_cell(&p, app.image_size(), (at.x as u32, at.y as u32)).unwrap();
+    // The cell that holds the landing point: the preview's pixels over the image's, and two
+    // of them a cell, stacked.
+    let ((w, h), (pw, ph)) = (app.image_size(), p.image_px);
+    let cell = (
+        p.image.x + (at.x / w as f64 * pw as f64) as u16,
+        p.image.y + (at.y / h as f64 * ph as f64 / 2.0) as u16,
+    );
     assert!(marks.contains(&cell), "{cell:?} in {marks:?}");
     press(&mut app, KeyCode::Char('m'));
     assert!(!screen(&app).contains('◆'));

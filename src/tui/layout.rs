@@ -179,15 +179,25 @@ pub fn list_offset(selected: usize, height: usize) -> usize {
     }
 }
 
-/// The cell of the image that shows pixel (x, y) of a `w` × `h` scene.
+/// The cell of the image that shows pixel (x, y) of a `w` × `h` scene: the one a click picks
+/// that pixel from (`cell_pixel`) where there is one (a preview larger than the image shows a
+/// pixel over several cells, and a cell's edges need not fall on the pixel's), else the cell
+/// that holds the pixel's centre (a smaller preview shows several pixels in one cell).
 pub fn pixel_cell(panes: &Panes, (w, h): (u32, u32), (x, y): (u32, u32)) -> Option<(u16, u16)> {
     let (pw, ph) = panes.image_px;
     if pw == 0 || ph == 0 || w == 0 || h == 0 {
         return None;
     }
-    let px = (x as u64 * pw as u64 / w as u64) as u16;
-    let py = (y as u64 * ph as u64 / h as u64) as u16;
-    Some((panes.image.x + px, panes.image.y + py / 2))
+    let r = panes.image;
+    let px = ((x as f64 + 0.5) * pw as f64 / w as f64) as u16;
+    let py = ((y as f64 + 0.5) * ph as f64 / h as f64) as u16;
+    let centre = (r.x + px.min(pw as u16 - 1), r.y + py.min(ph as u16 - 1) / 2);
+    let picks = |(c, row): (u16, u16)| cell_pixel(panes, (w, h), c, row) == Some((x, y));
+    let near = |v: u16| [v, v.saturating_sub(1), v.saturating_add(1)];
+    let mut cells = near(centre.0)
+        .into_iter()
+        .flat_map(|c| near(centre.1).map(|row| (c, row)));
+    Some(cells.find(|&cell| picks(cell)).unwrap_or(centre))
 }
 
 /// The scene pixel under a cell of the image (the centre of the cell's two pixels).
@@ -254,6 +264,40 @@ mod tests {
             let (c, r) = pixel_cell(&p, (161, 121), (x, y)).unwrap();
             let (x2, y2) = cell_pixel(&p, (161, 121), c, r).unwrap();
             assert_eq!(pixel_cell(&p, (161, 121), (x2, y2)), Some((c, r)));
+        }
+    }
+
+    /// A preview larger than the image (a 61 × 61 scene in a wide terminal, a 3 × 2 one
+    /// anywhere) shows each pixel over several cells: clicking the cell that marks a pixel
+    /// picks that pixel, for every pixel a click can pick, so clicking the marker again and
+    /// again stays put.
+    #[test]
+    fn clicking_the_marker_of_a_pixel_picks_it_in_a_preview_larger_than_the_image() {
+        for (area, (w, h)) in [
+            ((200, 90), (61, 61)),
+            ((140, 44), (3, 2)),
+            ((80, 24), (7, 5)),
+        ] {
+            let p = scene_panes(
+                Rect::new(0, 0, area.0, area.1),
+                w as f64 / h as f64,
+                Open::default(),
+                1,
+            );
+            let r = p.image;
+            let pickable: std::collections::BTreeSet<(u32, u32)> = (r.x..r.right())
+                .flat_map(|c| (r.y..r.bottom()).map(move |row| (c, row)))
+                .filter_map(|(c, row)| cell_pixel(&p, (w, h), c, row))
+                .collect();
+            assert!(pickable.len() > 1, "{area:?}");
+            for &(x, y) in &pickable {
+                let (c, row) = pixel_cell(&p, (w, h), (x, y)).unwrap();
+                assert_eq!(
+                    cell_pixel(&p, (w, h), c, row),
+                    Some((x, y)),
+                    "{area:?}, {w}×{h}: pixel {x},{y} marked at {c},{row}"
+                );
+            }
         }
     }
 }
