@@ -560,6 +560,58 @@ fn live_reload_keeps_the_last_good_scene_and_shows_the_error() {
     assert_eq!(app.preview.generation, generation);
 }
 
+/// A scene reloads when a file it reads changes, not only its own: the torus's mesh shrunk to
+/// half its size on disk, the picked pixel on its rim now sees the background. Nothing
+/// changed: nothing reloads.
+#[test]
+fn live_reload_follows_the_mesh_a_scene_reads() {
+    let dir = scratch("live-reload-mesh");
+    for file in ["torus.yaml", "torus.obj"] {
+        std::fs::copy(Path::new("lessons/11-triangles").join(file), dir.join(file)).unwrap();
+    }
+    let mut app = open(
+        dir.join("torus.yaml").to_str().unwrap(),
+        ColorMode::TrueColor,
+        (80, 24),
+    );
+    let (w, h) = app.image_size();
+    // The pixel on the torus nearest the image's left edge along the middle row.
+    let rim = (0..w)
+        .find(|&x| {
+            update(&mut app, Msg::Pick(x, h / 2));
+            app.tree.full_tree().unwrap().hit.is_some()
+        })
+        .expect("the torus crosses the middle row");
+    let generation = app.preview.generation;
+    update(&mut app, Msg::Tick);
+    assert_eq!(app.preview.generation, generation, "nothing changed");
+
+    let obj = std::fs::read_to_string(dir.join("torus.obj")).unwrap();
+    let half: String = obj
+        .lines()
+        .map(|l| match l.strip_prefix("v ") {
+            Some(xyz) => {
+                let v: Vec<f64> = xyz.split_whitespace().map(|c| c.parse().unwrap()).collect();
+                format!("v {} {} {}\n", v[0] / 2.0, v[1] / 2.0, v[2] / 2.0)
+            }
+            None => format!("{l}\n"),
+        })
+        .collect();
+    std::fs::write(dir.join("torus.obj"), half).unwrap();
+    update(&mut app, Msg::Tick);
+    assert!(app.file.error.is_none(), "{:?}", app.file.error);
+    assert_ne!(
+        app.preview.generation, generation,
+        "the preview renders again"
+    );
+    update(&mut app, Msg::Pick(rim, h / 2));
+    assert!(
+        app.tree.full_tree().unwrap().hit.is_none(),
+        "pixel {rim},{}: the shrunk torus is no longer there",
+        h / 2
+    );
+}
+
 // ---------------------------------------------------------------------------------------
 // Keys and state
 

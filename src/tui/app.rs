@@ -221,7 +221,7 @@ impl App {
             lesson,
             folder,
         } = SceneFile::open(target, &self.file.limits)?;
-        self.file.watch(path);
+        self.file.watch(path, &scene);
         self.lesson = lesson.map(|l| {
             let mut panel = LessonPanel::new(l);
             panel.open = folder;

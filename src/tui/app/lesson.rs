@@ -129,7 +129,7 @@ impl App {
         };
         let path = l.lesson.dir.join(name);
         let scene = crate::scene::load(&path, &self.file.limits).map_err(|e| e.to_string())?;
-        self.file.watch(path);
+        self.file.watch(path, &scene);
         self.tree.restart((scene.camera.width, scene.camera.height));
         self.preview.clear();
         self.set_scene(scene);

@@ -20,13 +20,24 @@ pub(crate) fn signature(path: &Path) -> Option<FileSig> {
     Some((m.modified().ok(), m.len()))
 }
 
+/// The signatures of a scene file and of the files it reads (meshes, textures): the scene
+/// changed when any of them did.
+fn signatures(path: &Path, scene: Option<&Scene>) -> Vec<Option<FileSig>> {
+    let inputs = scene.map_or(&[][..], |s| &s.inputs[..]);
+    std::iter::once(path)
+        .chain(inputs.iter().map(PathBuf::as_path))
+        .map(signature)
+        .collect()
+}
+
 pub struct SceneFile {
     pub path: Option<PathBuf>,
     /// The last scene that loaded.
     pub scene: Option<Arc<Scene>>,
     /// Why the scene file on disk does not load.
     pub error: Option<String>,
-    signature: Option<FileSig>,
+    /// The scene file's and its inputs' (`signatures`) when last loaded.
+    signature: Vec<Option<FileSig>>,
     /// A reload running on its own thread: where its scene (or error) arrives.
     loading: Option<Receiver<Result<Scene, String>>>,
     /// How long `poll` waits for a reload before leaving it to a later poll. The explorer's
@@ -44,7 +55,7 @@ impl Default for SceneFile {
             path: None,
             scene: None,
             error: None,
-            signature: None,
+            signature: Vec::new(),
             loading: None,
             reload_wait: Duration::from_secs(60),
             limits: Limits::default(),
@@ -94,9 +105,10 @@ impl SceneFile {
         })
     }
 
-    /// Watches `path` for changes from now on.
-    pub fn watch(&mut self, path: PathBuf) {
-        self.signature = signature(&path);
+    /// Watches `path`, just loaded as `scene`, for changes from now on: it and the files the
+    /// scene reads.
+    pub fn watch(&mut self, path: PathBuf, scene: &Scene) {
+        self.signature = signatures(&path, Some(scene));
         self.path = Some(path);
         self.error = None;
     }
@@ -104,7 +116,7 @@ impl SceneFile {
     /// Takes the file as changed on disk: the next poll loads it again (the explorer's latency
     /// bench times a reload this way without touching the user's file).
     pub(crate) fn mark_changed(&mut self) {
-        self.signature = None;
+        self.signature.clear();
     }
 
     /// The scene file again if it changed on disk and loads; a file that does not load is kept
@@ -113,7 +125,7 @@ impl SceneFile {
     pub fn poll(&mut self) -> Option<(Scene, Note)> {
         let path = self.path.clone()?;
         if self.loading.is_none() {
-            let sig = signature(&path);
+            let sig = signatures(&path, self.scene.as_deref());
             if sig == self.signature {
                 return None;
             }
@@ -143,6 +155,8 @@ impl SceneFile {
         self.loading = None;
         match result {
             Ok(scene) => {
+                // The files this scene reads are the ones to watch now.
+                self.signature = signatures(&path, Some(&scene));
                 let had_error = self.error.take().is_some();
                 let note = format!(
                     "reloaded {}{}",
