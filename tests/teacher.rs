@@ -674,6 +674,43 @@ fn a_corrupt_progress_file_is_left_alone_with_a_warning() {
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "{not json");
 }
 
+/// A lesson with `solutions: hidden` only says right or wrong: no hint, which would name the
+/// kind of the answer (past the limiting angle there is no refracted ray) or the mistake.
+#[test]
+fn hidden_solutions_give_no_hint() {
+    let dir = scratch("hidden-hint").join("06-refraction");
+    copy_lesson("06-refraction", &dir);
+    let exercises = std::fs::read_to_string(dir.join("exercises.yaml")).unwrap();
+    std::fs::write(
+        dir.join("exercises.yaml"),
+        exercises.replacen("exercises:", "solutions: hidden\nexercises:", 1),
+    )
+    .unwrap();
+    let d = dir.to_str().unwrap();
+    let o = raytree(&[
+        "check",
+        d,
+        "--exercise",
+        "beyond-critical",
+        "--answer",
+        "0, 1, 0",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    let said = out(&o);
+    assert!(said.contains("wrong"), "{said}");
+    assert!(!said.contains("hint") && !said.contains("tir"), "{said}");
+    // The same lesson with its solutions shown hints at it.
+    let o = raytree(&[
+        "check",
+        "06-refraction",
+        "--exercise",
+        "beyond-critical",
+        "--answer",
+        "0, 1, 0",
+    ]);
+    assert!(out(&o).contains("answer tir"), "{}", out(&o));
+}
+
 /// A lesson with `solutions: hidden` refuses --explain (a usage error) but checks answers.
 #[test]
 fn hidden_solutions_are_not_explained() {

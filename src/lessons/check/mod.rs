@@ -317,7 +317,9 @@ pub fn check(lesson: &Lesson, ex: &Exercise, input: &str) -> Result<Verdict, Che
         );
     let of_the_kind = grey || std::mem::discriminant(&given) == std::mem::discriminant(&w.expected);
     let correct = of_the_kind && given.matches(&w.expected, &w.tolerance);
-    let hint = if correct {
+    // A lesson whose solutions are hidden only says right or wrong: a hint names the kind of
+    // the answer (total internal reflection or not) or the mistake that gives it.
+    let hint = if correct || lesson.solutions == super::exercise::Solutions::Hidden {
         None
     } else {
         kind_hint(ex.ask, &given, &w.expected).or_else(|| hint(&w, ex, &given))
