@@ -1765,6 +1765,25 @@ fn a_hint_on_how_many_numbers_names_the_exercises_own_count() {
     assert!(said.contains("is one number or three, not two"), "{said}");
 }
 
+/// `none` (an empty segment list, as `--help` lists it) where a t or a direction is asked is
+/// a wrong answer of another kind (exit 1), as `tir` is, not text that does not read (exit 2).
+#[test]
+fn none_where_no_segment_list_is_asked_is_wrong() {
+    for (lesson, exercise, what) in [
+        ("02-intersection", "chord-t", "t is asked"),
+        ("06-refraction", "beyond-critical", "a direction is asked"),
+    ] {
+        let o = raytree(&["check", lesson, "--exercise", exercise, "--answer", "none"]);
+        assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+        let said = out(&o);
+        assert!(
+            said.contains("none is an answer for a segment list only"),
+            "{said}"
+        );
+        assert!(said.contains(what), "{said}");
+    }
+}
+
 /// A sheet saved as Latin-1 (a spreadsheet's plain "CSV" on some systems) is refused with the
 /// place of its first byte that is not UTF-8, counted in characters, and how to save it.
 #[test]

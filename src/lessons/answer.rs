@@ -156,7 +156,7 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
     Ok(value)
 }
 
-/// Parses an answer: `tir`, `none` (an empty segment list), a number, `x, y, z`, or a segment
+/// Parses an answer: `tir`, `none` (an empty segment list, whatever is asked), a number, `x, y, z`, or a segment
 /// list `a, b; c, d` (brackets and parentheses are ignored). An answer without a number in it
 /// (empty, or punctuation alone) is refused: an empty segment list is written `none`.
 pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
@@ -166,7 +166,9 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
     if word == "tir" {
         return Ok(Answer::Tir);
     }
-    if segments && matches!(word.as_str(), "none" | "empty") {
+    // An empty segment list, whatever is asked: where something else is, it is an answer of
+    // the wrong kind (wrong), not text that does not read.
+    if matches!(word.as_str(), "none" | "empty") {
         return Ok(Answer::Segments(vec![]));
     }
     let cleaned: String = t
