@@ -91,6 +91,8 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
     // Where each of student, exercise and answer stands in a row: as a header line puts
     // them, else in that order.
     let mut order = [0, 1, 2];
+    // How many fields a row has: three, or as many as a header names.
+    let mut width = 3;
     // Line by line, so that a quote left open costs its own row and not every row after it.
     let lines: Vec<&str> = text.lines().collect();
     let mut k = 0;
@@ -98,7 +100,7 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
         let line = k as u64 + 1;
         let raw = lines[k];
         k += 1;
-        let fields = match split_row(raw) {
+        let mut fields = match split_row(raw) {
             Ok(fields) => fields,
             Err(message) => {
                 // A cell with a line break in it (CSV lets a quoted field run over lines): the
@@ -126,13 +128,32 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
             continue;
         }
         if std::mem::replace(&mut first, false) {
+            // A sheet saved for a decimal comma separates its fields with semicolons: every
+            // row would be read wrong.
+            if fields[0].contains(';') {
+                problems.push(Problem {
+                    line,
+                    message: "the fields are separated by semicolons (a spreadsheet's CSV for \
+                              decimal commas): save the sheet as comma-separated CSV, with \
+                              decimal points; no row is graded"
+                        .into(),
+                });
+                return (Vec::new(), problems);
+            }
             if let Some(columns) = header(&fields) {
-                order = columns;
+                (order, width) = columns;
                 continue;
             }
         }
-        let in_order = <[String; 3]>::try_from(fields)
-            .map(|mut fields| order.map(|i| std::mem::take(&mut fields[i])));
+        // Spreadsheets pad rows with empty cells to the sheet's width (`s1,dir,0.5,,`).
+        while fields.len() > width && fields.last().is_some_and(String::is_empty) {
+            fields.pop();
+        }
+        let fits = fields.len() <= width && order.iter().all(|&i| i < fields.len());
+        let in_order = match fits {
+            true => Ok(order.map(|i| std::mem::take(&mut fields[i]))),
+            false => Err(fields),
+        };
         match in_order {
             Ok([student, exercise, answer]) if !student.is_empty() && !exercise.is_empty() => rows
                 .push(Row {
@@ -148,10 +169,10 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
             Err(fields) => problems.push(Problem {
                 line,
                 message: format!(
-                    "{} field{}, expected 3: student,exercise,answer{}",
+                    "{} field{}, expected {width}: student,exercise,answer{}",
                     fields.len(),
                     if fields.len() == 1 { "" } else { "s" },
-                    if fields.len() > 3 {
+                    if fields.len() > width {
                         " (quote an answer with commas: \"0.6, -0.8, 0\")"
                     } else {
                         ""
@@ -180,11 +201,16 @@ fn spans_lines(lines: &[&str]) -> Option<usize> {
 }
 
 /// Where student, exercise and answer stand, if the row is a header: those three names, in
-/// any order and any case.
-fn header(fields: &[String]) -> Option<[usize; 3]> {
+/// any order and any case, among other columns or none (a sheet may keep notes beside them);
+/// and how many columns it names (empty ones past the last named are the sheet's padding).
+fn header(fields: &[String]) -> Option<([usize; 3], usize)> {
     let at = |name: &str| fields.iter().position(|f| f.eq_ignore_ascii_case(name));
     let columns = [at("student")?, at("exercise")?, at("answer")?];
-    (fields.len() == 3).then_some(columns)
+    let named = fields
+        .iter()
+        .rposition(|f| !f.is_empty())
+        .map_or(0, |i| i + 1);
+    Some((columns, named))
 }
 
 /// The fields of one line of CSV, each trimmed: separated by commas; a field in double quotes
@@ -486,6 +512,46 @@ mod tests {
         );
         assert_eq!(rows.len(), 1, "{rows:?}");
         assert_eq!((rows[0].line, rows[0].student.as_str()), (3, "s2"));
+    }
+
+    /// Spreadsheets pad rows with empty cells (`s1,dir,0.5,`), and a sheet may keep a notes
+    /// column beside the three a header names: both are read. A cell filled past the sheet's
+    /// columns is still a problem.
+    #[test]
+    fn padded_rows_and_a_notes_column_are_read() {
+        let (rows, problems) = read_answers(
+            "student,exercise,answer,\r\ns1,diffuse,0.185764,\r\ns2,diffuse,0.2,,\r\n",
+        );
+        assert_eq!(problems, vec![]);
+        assert_eq!(rows.len(), 2, "{rows:?}");
+        assert_eq!(rows[0].answer, "0.185764");
+        let (rows, problems) =
+            read_answers("answer,student,notes,exercise\n0.5,s1,late,diffuse\n0.4,s2,,diffuse\n0.3,s3,x,diffuse,9\n");
+        assert_eq!(
+            rows.iter()
+                .map(|r| (r.student.as_str(), r.answer.as_str()))
+                .collect::<Vec<_>>(),
+            [("s1", "0.5"), ("s2", "0.4")]
+        );
+        assert_eq!(lines(&problems), vec![4]);
+        assert!(
+            problems[0].message.contains("5 fields, expected 4"),
+            "{problems:?}"
+        );
+    }
+
+    /// A sheet saved for decimal commas separates its fields with semicolons: it is refused
+    /// whole, saying so, rather than read with its answers in the wrong columns.
+    #[test]
+    fn a_sheet_separated_by_semicolons_is_refused_whole() {
+        let (rows, problems) =
+            read_answers("alice;local-color;\"0.436303, 0.270201, 0.187149\"\nbob;diffuse;0,5\n");
+        assert_eq!(rows, vec![]);
+        assert_eq!(lines(&problems), vec![1]);
+        assert!(
+            problems[0].message.contains("separated by semicolons"),
+            "{problems:?}"
+        );
     }
 
     #[test]
