@@ -34,7 +34,15 @@ impl Answer {
     /// The answer as `check` prints it and a student may type it: numbers with at most six
     /// decimals, `x, y, z`, `a, b; c, d` for a segment list (`none` when empty), or `tir`.
     pub fn show(&self) -> String {
-        use crate::trace::text::num;
+        // Six decimals, but a number below 10⁻³ keeps six significant digits: 1.1·10⁻⁶ shown
+        // as 0.000001 would seem to lie within a tolerance of 10⁻⁶ it misses.
+        let num = |x: f64| {
+            if x != 0.0 && x.abs() < 1e-3 {
+                crate::trace::text::scientific(x)
+            } else {
+                crate::trace::text::num(x)
+            }
+        };
         match self {
             Answer::Number(x) => num(*x),
             Answer::Vector(v) => format!("{}, {}, {}", num(v.x), num(v.y), num(v.z)),
@@ -211,6 +219,19 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A small answer keeps its digits where six decimals would round it onto the tolerance
+    /// it misses; others show six decimals as before.
+    #[test]
+    fn small_numbers_show_their_own_digits() {
+        assert_eq!(Answer::Number(1.1e-6).show(), "1.1e-6");
+        assert_eq!(Answer::Number(0.0).show(), "0");
+        assert_eq!(Answer::Number(0.185764).show(), "0.185764");
+        assert_eq!(
+            Answer::Vector(glam::DVec3::new(0.6, -0.00025, 0.0)).show(),
+            "0.6, -2.5e-4, 0"
+        );
+    }
 
     /// A colour is one number only when all three channels are equal; two equal channels
     /// and a third different (either side) is a colour.

@@ -49,6 +49,11 @@ pub fn length(x: f64) -> String {
     if fixed != "0" || x == 0.0 {
         return fixed;
     }
+    scientific(x)
+}
+
+/// A number with six significant digits and an exponent, trailing zeros dropped ("1.1e-6").
+pub fn scientific(x: f64) -> String {
     let s = format!("{x:.5e}");
     let (mantissa, exponent) = s.split_once('e').expect("`e` formatting has an exponent");
     let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
