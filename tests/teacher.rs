@@ -1784,6 +1784,51 @@ fn none_where_no_segment_list_is_asked_is_wrong() {
     }
 }
 
+/// "José" with é (NFC) and with e and a combining accent (NFD, as macOS and some
+/// spreadsheets write it) is one student: one variant for `check` and `grade`, one row group.
+#[test]
+fn a_student_id_is_one_student_in_either_unicode_form() {
+    let (composed, decomposed) = ("Jos\u{e9}", "Jose\u{301}");
+    let expected = |student: &str| {
+        let o = raytree(&[
+            "check",
+            "03-local-illumination",
+            "--student",
+            student,
+            "--exercise",
+            "diffuse",
+            "--answer",
+            "0",
+            "--format",
+            "json",
+        ]);
+        let v: serde_json::Value = serde_json::from_str(&out(&o)).unwrap();
+        v["expected"].as_f64().unwrap()
+    };
+    let answer = expected(composed);
+    assert_eq!(expected(decomposed), answer);
+    let dir = scratch("unicode-ids");
+    std::fs::create_dir_all(&dir).unwrap();
+    let sheet = dir.join("answers.csv");
+    std::fs::write(
+        &sheet,
+        format!("{composed},diffuse,{answer}\n{decomposed},specular-blinn,0\n"),
+    )
+    .unwrap();
+    let o = raytree(&[
+        "grade",
+        "03-local-illumination",
+        "--answers",
+        sheet.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    let report: serde_json::Value = serde_json::from_str(&out(&o)).unwrap();
+    let students = report["students"].as_array().unwrap();
+    assert_eq!(students.len(), 1, "{report}");
+    assert_eq!(students[0]["score"], 1, "{report}");
+}
+
 /// A sheet saved as Latin-1 (a spreadsheet's plain "CSV" on some systems) is refused with the
 /// place of its first byte that is not UTF-8, counted in characters, and how to save it.
 #[test]

@@ -196,6 +196,14 @@ pub struct Lesson {
     pub templates: Vec<String>,
 }
 
+/// A student's ID as it identifies them: trimmed, and in Unicode's composed form (NFC), so that
+/// "José" typed with é and with e and a combining accent (as some systems and spreadsheets
+/// write it) is one student, with one variant.
+pub fn student_id(id: &str) -> String {
+    use unicode_normalization::UnicodeNormalization;
+    id.trim().nfc().collect()
+}
+
 /// The node at `steps` of a parsed exercises.yaml: a key of a mapping (taken whole: a `vary`
 /// key holds dots), or an index into a list.
 fn node_at<'n>(root: &'n yaml_spans::Node, steps: &[&str]) -> Option<&'n yaml_spans::Node> {
@@ -388,13 +396,13 @@ impl Lesson {
     /// its scenes (in memory) and its questions. A lesson that varies nothing is the same for
     /// everyone.
     pub fn variant(&self, student: &str) -> Result<Lesson, LessonError> {
-        let student = student.trim();
+        let student = &student_id(student);
         if student.is_empty() {
             return Err(LessonError::EmptyStudent);
         }
         // A homework folder is one student's variant already: its values are its owner's.
         if let Some(of) = &self.variant {
-            if of.student != student {
+            if student_id(&of.student) != *student {
                 return Err(LessonError::OtherStudentsHomework {
                     lesson: of.lesson.clone(),
                     owner: of.student.clone(),

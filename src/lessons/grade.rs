@@ -158,7 +158,7 @@ pub fn read_answers(text: &str) -> (Vec<Row>, Vec<Problem>) {
             Ok([student, exercise, answer]) if !student.is_empty() && !exercise.is_empty() => rows
                 .push(Row {
                     line,
-                    student,
+                    student: super::exercise::student_id(&student),
                     exercise,
                     answer,
                 }),
