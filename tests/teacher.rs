@@ -1924,3 +1924,57 @@ fn homework_copies_no_link_out_of_the_lesson() {
     );
     assert!(e.contains("loop: a link to a folder"), "{e}");
 }
+
+/// A homework folder changed after `raytree homework` wrote it (the student raised kd in its
+/// scene) is no longer the variant its values name: `grade` on it refuses and points to the
+/// lesson, which works each student's variant out afresh; `check` on it checks the changed
+/// scene, and says so. The folder as written grades as before.
+#[test]
+fn a_homework_folder_changed_afterwards_is_not_graded() {
+    let root = scratch("hw-edited");
+    let (dir, hw) = (root.join("03-local-illumination"), root.join("hw"));
+    copy_lesson("03-local-illumination", &dir);
+    homework_of_s1(&dir, &hw);
+    let sheet = root.join("answers.csv");
+    std::fs::write(&sheet, "s1,diffuse,0.1\n").unwrap();
+    let grade = || {
+        raytree(&[
+            "grade",
+            hw.to_str().unwrap(),
+            "--answers",
+            sheet.to_str().unwrap(),
+        ])
+    };
+    assert_eq!(grade().status.code(), Some(0), "{}", err(&grade()));
+
+    let scene = hw.join("scene.yaml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let kd = text
+        .lines()
+        .find_map(|l| l.split("kd: ").nth(1))
+        .and_then(|rest| rest.split([',', ' ', '}']).next())
+        .expect("the scene writes kd")
+        .to_string();
+    std::fs::write(&scene, text.replacen(&format!("kd: {kd}"), "kd: 0.95", 1)).unwrap();
+    let o = grade();
+    assert_eq!(o.status.code(), Some(2), "{}{}", out(&o), err(&o));
+    assert!(
+        err(&o).contains("scene.yaml changed since `raytree homework` wrote it")
+            && err(&o).contains("raytree grade 03-local-illumination"),
+        "{}",
+        err(&o)
+    );
+    let o = raytree(&[
+        "check",
+        hw.to_str().unwrap(),
+        "--exercise",
+        "diffuse",
+        "--answer",
+        "0.1",
+    ]);
+    assert!(
+        err(&o).contains("was changed since `raytree homework` wrote it"),
+        "{}",
+        err(&o)
+    );
+}

@@ -41,6 +41,14 @@ pub fn run(a: Args) -> Result<ExitCode, Failure> {
     if let Some(student) = &a.student {
         lesson = lesson.variant(student)?;
     }
+    // A student may try their own changes in their homework folder: it is checked as it is,
+    // and said so.
+    for name in lesson.edited_scenes() {
+        super::output::eprintln(&format!(
+            "note: {} was changed since `raytree homework` wrote it: this checks against the changed scene",
+            lesson.dir.join(name).display()
+        ));
+    }
     let ex = lesson.exercise(&a.exercise)?;
     let verdict = match &a.answer {
         Some(answer) => Some(check(&lesson, ex, answer)?),

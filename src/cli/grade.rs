@@ -44,6 +44,16 @@ pub struct Args {
 
 pub fn run(a: Args) -> Result<ExitCode, Failure> {
     let lesson = Lesson::named(&a.lesson)?;
+    // A homework folder changed after it was written would grade the student's own edits.
+    let edited = lesson.edited_scenes();
+    if !edited.is_empty() {
+        let lesson_id = lesson.variant.as_ref().map_or("", |v| v.lesson.as_str());
+        return Err(Failure(format!(
+            "{}: {} changed since `raytree homework` wrote it: grade against the lesson itself (raytree grade {lesson_id} --answers …), which works out each student's own variant",
+            a.lesson.display(),
+            edited.join(", ")
+        )));
+    }
     let shown = a.answers.display();
     let text = crate::files::read_text(&a.answers, crate::files::TEXT_BUDGET).map_err(|e| {
         Failure(match e {

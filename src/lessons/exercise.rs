@@ -151,6 +151,19 @@ pub struct VariantOf {
     pub student: String,
     /// The varied values this student got, as written in the scene.
     pub values: BTreeMap<String, String>,
+    /// Each scene file of the homework as written (its name → `fingerprint`): a scene changed
+    /// afterwards is no longer the variant the values name (`Lesson::edited_scenes`).
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub scenes: BTreeMap<String, String>,
+}
+
+/// A short fingerprint of a file's text (64-bit FNV-1a, in hex): enough to see that a file was
+/// changed by hand, not a guard against forgery.
+pub fn fingerprint(text: &str) -> String {
+    let hash = text.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x0000_0100_0000_01b3)
+    });
+    format!("{hash:016x}")
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -436,6 +449,7 @@ impl Lesson {
             lesson: self.id.clone(),
             student: student.to_string(),
             values: shown,
+            scenes: BTreeMap::new(),
         });
         Ok(out)
     }
@@ -544,6 +558,22 @@ impl Lesson {
     ) -> Result<Option<String>, LessonError> {
         let sources = vary::rewrite(files, values).map_err(LessonError::Scenes)?;
         Ok(self.load_sources(&sources).err())
+    }
+
+    /// The scene files of a homework folder changed since `raytree homework` wrote them (or
+    /// missing), by name: grading such a folder would grade the student's own edits.
+    pub fn edited_scenes(&self) -> Vec<String> {
+        let Some(of) = &self.variant else {
+            return Vec::new();
+        };
+        of.scenes
+            .iter()
+            .filter(|(name, print)| {
+                let text = std::fs::read_to_string(self.dir.join(name.as_str()));
+                text.map_or(true, |t| fingerprint(&t) != **print)
+            })
+            .map(|(name, _)| name.clone())
+            .collect()
     }
 
     /// The text of an exercise's scene when the lesson holds it in memory (a variant).

@@ -20,8 +20,17 @@ pub fn write(
     student: &str,
     out: &Path,
 ) -> Result<(Lesson, Vec<String>), LessonError> {
-    let hw = lesson.variant(student)?;
+    let mut hw = lesson.variant(student)?;
     files_inside(lesson, &hw)?;
+    // Each scene as the homework writes it, fingerprinted, so that grading can tell a folder
+    // the student changed afterwards.
+    let scenes = hw.scene_files()?;
+    if let Some(v) = &mut hw.variant {
+        v.scenes = scenes
+            .iter()
+            .map(|(name, text)| (name.clone(), super::exercise::fingerprint(text)))
+            .collect();
+    }
     if out.exists() && std::fs::read_dir(out).map_or(true, |mut d| d.next().is_some()) {
         return Err(LessonError::Exists(out.to_path_buf()));
     }
