@@ -615,6 +615,32 @@ fn live_reload_follows_the_mesh_a_scene_reads() {
 // ---------------------------------------------------------------------------------------
 // Keys and state
 
+/// The message line's key hint follows the focus: arrows pick a pixel in the preview, select
+/// a ray in the tree, scroll a panel; a warning is not replaced by a hint.
+#[test]
+fn the_key_hint_follows_the_focus() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (120, 36));
+    assert!(
+        screen(&app).contains("←↑↓→ pick a pixel"),
+        "{}",
+        screen(&app)
+    );
+    press(&mut app, KeyCode::Tab);
+    let text = screen(&app);
+    assert!(
+        text.contains("↑↓ select a ray") && !text.contains("pick a pixel"),
+        "{text}"
+    );
+    press(&mut app, KeyCode::Tab);
+    assert!(
+        screen(&app).contains("scroll the panel"),
+        "{}",
+        screen(&app)
+    );
+    press(&mut app, KeyCode::BackTab);
+    assert!(screen(&app).contains("↑↓ select a ray"), "{}", screen(&app));
+}
+
 #[test]
 fn cursor_moves_and_clamps_at_the_edges() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));

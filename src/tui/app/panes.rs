@@ -34,6 +34,14 @@ impl App {
         } else {
             (i + n - 1) % n
         }];
+        // The keys' hint follows the focus (a warning or an error stays until it is read).
+        if self
+            .message
+            .as_ref()
+            .is_none_or(|(_, tone)| *tone == Tone::Info)
+        {
+            self.message = Some((focus_hint(self.focus).into(), Tone::Info));
+        }
     }
 
     /// Up, Down and Page in the focused pane (Page scrolls a panel when the preview has it).
@@ -206,5 +214,16 @@ impl App {
             Msg::Release => self.diagram.drag = None,
             _ => {}
         }
+    }
+}
+
+/// What the arrows and the other keys do where the focus is, for the message line.
+fn focus_hint(focus: Focus) -> &'static str {
+    match focus {
+        Focus::Preview => "←↑↓→ pick a pixel · Tab tree · +/- depth · n/p levels · ? keys",
+        Focus::Tree => "↑↓ select a ray · → ← open / close · Enter toggle · Tab next pane · ? keys",
+        Focus::Lower => "↑↓ PgUp PgDn scroll the panel · Tab next pane · ? keys",
+        Focus::Lesson => "↑↓ PgUp PgDn scroll · ← → figures sideways · Tab next pane · ? keys",
+        Focus::Diagram => "←↑↓→ pan the diagram · < > zoom · v view · Tab next pane · ? keys",
     }
 }
