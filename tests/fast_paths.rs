@@ -1538,6 +1538,29 @@ fn assert_flat_hit_is_the_lists_first_crossing(
     Ok(())
 }
 
+/// A ray that grazes a cone's base rim (parallel to its axis, at the base's radius) meets it
+/// in a span of no thickness; as one of three operands of a union or of two, and four rays
+/// at a time, the fast search leaves it to the segment lists, which keep it as a segment.
+#[test]
+fn a_span_of_no_thickness_is_the_segment_lists_to_settle() {
+    let cone = "{ cone: { apex: [0.5, 1, -0.5], base: [0.5, -1, -0.5], radius: 0.5 } }";
+    let objects = [
+        format!("{{ name: x, material: m, union: [{{ box: {{ min: [-0.5, -0.25, -0.25], max: [0.5, 0.25, 0.25] }} }}, {{ sphere: {{ center: [0, 0, 0], radius: 0.5 }} }}, {cone}], transform: [ {{ translate: [0, 0.5, 0] }} ] }}"),
+        format!("{{ name: x, material: m, union: [{{ sphere: {{ center: [0, 0, 0], radius: 0.5 }} }}, {cone}], transform: [ {{ translate: [0, 0.5, 0] }} ] }}"),
+        format!("{{ name: x, material: m, union: [{cone}, {{ sphere: {{ center: [0, 0, 0], radius: 0.5 }} }}] }}"),
+    ];
+    let ray = Ray {
+        origin: DVec3::new(0.5, -1.0, 0.0),
+        dir: DVec3::Y,
+    };
+    for object in &objects {
+        for pruning in [false, true] {
+            assert_flat_hit_is_the_lists_first_crossing(object, &ray, 0.0, f64::INFINITY, pruning)
+                .unwrap();
+        }
+    }
+}
+
 /// Two overlapping spheres (or one inside the other, or apart), and a ray from a point of
 /// one sphere's surface, or from anywhere, in any direction: rays that leave a lens outward,
 /// pass it by or cross it.

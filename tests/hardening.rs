@@ -563,21 +563,25 @@ fn a_signal_during_the_write_leaves_the_old_image_and_no_temporary_file() {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-        let pid = child.id().to_string();
-        // Wait for the temporary file to appear, then signal.
+        // Wait for the temporary file to appear, then signal at once (from this process: a
+        // `kill` command started now could arrive after the write has finished).
         let start = Instant::now();
-        while temporaries(&dir).is_empty() && start.elapsed() < Duration::from_secs(60) {
-            std::thread::sleep(Duration::from_millis(1));
+        let mut seen = false;
+        while !seen && start.elapsed() < Duration::from_secs(60) {
+            seen = !temporaries(&dir).is_empty();
+            if !seen {
+                std::thread::sleep(Duration::from_micros(200));
+            }
         }
-        assert!(
-            !temporaries(&dir).is_empty(),
-            "SIG{signal}: no temporary file seen"
-        );
-        let killed = Command::new("kill")
-            .args([&format!("-{signal}"), &pid])
-            .status()
-            .unwrap();
-        assert!(killed.success());
+        let number = if signal == "INT" {
+            libc::SIGINT
+        } else {
+            libc::SIGTERM
+        };
+        // SAFETY: kill(2) on the child's pid, which has not been waited for, so is still its.
+        let killed = unsafe { libc::kill(child.id() as libc::pid_t, number) };
+        assert!(seen, "SIG{signal}: no temporary file seen");
+        assert_eq!(killed, 0);
         let r = finish(child, Duration::from_secs(60));
         use std::os::unix::process::ExitStatusExt;
         let want = if signal == "INT" { 2 } else { 15 };

@@ -195,8 +195,15 @@ impl FlatCsg {
             // Every end at this t, applied together.
             let t = ends[i].0;
             let first = i;
+            let mut operands = 0u32;
             while i < ends.len() && same_end(ends[i].0, t) {
                 let (_, k, entering) = ends[i];
+                // Both ends of one operand here (a span of no thickness, a ray grazing a
+                // rim): the order they are applied in decides, and the segment lists settle it.
+                if operands & 1 << k != 0 {
+                    return Crossing::Undecided;
+                }
+                operands |= 1 << k;
                 if entering {
                     inside |= 1 << k;
                 } else {
@@ -321,6 +328,14 @@ impl FlatCsg {
     ) -> Crossing {
         let ends = |s: Option<Span>| s.map_or((f64::NAN, f64::NAN), |s| (s.t_in, s.t_out));
         let ((a_in, a_out), (b_in, b_out)) = (ends(a), ends(b));
+        // A span of no thickness in the window (a ray grazing a rim) is the segment lists' to
+        // settle: the walk never sees it inside, the lists may keep it as a segment.
+        let thin = |t_in: f64, t_out: f64| {
+            same_end(t_in, t_out) && t_in > r.t_min && t_in < r.t_max && t_in.is_finite()
+        };
+        if thin(a_in, a_out) || thin(b_in, b_out) {
+            return Crossing::Undecided;
+        }
         let t = V::setr(a_in, a_out, b_in, b_out);
         let ((a_before, a_after), (b_before, b_after)) =
             (inside_bits(a_in, a_out, t), inside_bits(b_in, b_out, t));

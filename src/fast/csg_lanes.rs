@@ -154,7 +154,10 @@ impl CsgLanes {
         };
         let reversed = a.t_in.simd_gt(a.t_out) | b.t_in.simd_gt(b.t_out);
         let odd = (!a_pruned & a.odd) | (!b_pruned & b.odd);
-        let left = open & (reversed | odd);
+        // A span of no thickness in the window (a ray grazing a rim) is the segment lists'.
+        let thin = (a.exists() & thin(a.t_in, a.t_out, t_max))
+            | (b.exists() & thin(b.t_in, b.t_out, t_max));
+        let left = open & (reversed | odd | thin);
 
         let walk = walk(self.op, [a.t_in, a.t_out, b.t_in, b.t_out], t_max);
         let faces = [a.face_in, a.face_out, b.face_in, b.face_out];
@@ -254,8 +257,10 @@ fn lens_hits<V: F64x4>(
     }
     let (a_in, a_out) = a.roots(a_disc);
     let (b_in, b_out) = b.roots(b_disc);
-    // Both spans exist here; NaN ends or reversed ones are for the segment lists.
-    let live = rest & finite & a_in.simd_le(a_out) & b_in.simd_le(b_out);
+    // Both spans exist here; NaN ends, reversed ones or ones of no thickness in the window
+    // are for the segment lists.
+    let thin = thin(a_in, a_out, t_max) | thin(b_in, b_out, t_max);
+    let live = rest & finite & a_in.simd_le(a_out) & b_in.simd_le(b_out) & !thin;
     let walk = walk(CsgOp::Intersection, [a_in, a_out, b_in, b_out], t_max);
     // A sphere has one face.
     let found = walk.hits(live, [V::ZERO; 4], rest & !live);
@@ -345,6 +350,14 @@ fn walk<V: F64x4>(op: CsgOp, ends: [V; 4], t_max: V) -> Walk<V> {
         at_first,
         tie,
     }
+}
+
+/// All ones where a span's ends are one (`csg::same_end`, within 2·10⁻¹² as the walk's ties)
+/// inside the window: a span of no thickness.
+#[inline(always)]
+fn thin<V: F64x4>(t_in: V, t_out: V, t_max: V) -> V {
+    let reach = V::splat(2e-12) * t_in.abs();
+    (t_in - t_out).abs().simd_le(reach) & in_window(t_in, t_max)
 }
 
 /// All ones where the end t lies in the window: 0 < t < t_max, finite.
