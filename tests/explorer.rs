@@ -560,6 +560,25 @@ fn live_reload_keeps_the_last_good_scene_and_shows_the_error() {
     assert_eq!(app.preview.generation, generation);
 }
 
+/// A reload error from a scene deep in folders, at 80 columns: its place wraps over the first
+/// line, and the lines below still show why (the path alone filled the two lines there were).
+#[test]
+fn a_reload_error_shows_why_below_a_long_path() {
+    let dir = scratch("reload-long-path")
+        .join("home/student/courses/computer-graphics/raytree-lessons/06-refraction");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene.yaml");
+    let good = std::fs::read_to_string(MIRROR).unwrap();
+    std::fs::write(&path, &good).unwrap();
+    let mut app = open(path.to_str().unwrap(), ColorMode::TrueColor, (80, 24));
+    std::fs::write(&path, good.replace("radius: 1 }", "radius: -1 }")).unwrap();
+    update(&mut app, Msg::Tick);
+    assert!(app.file.error.is_some());
+    let text = screen(&app);
+    assert!(text.contains("radius must be > 0"), "{text}");
+    assert!(text.contains("(the last good scene stays)"), "{text}");
+}
+
 /// A scene reloads when a file it reads changes, not only its own: the torus's mesh shrunk to
 /// half its size on disk, the picked pixel on its rim now sees the background. Nothing
 /// changed: nothing reloads.

@@ -50,6 +50,9 @@ pub enum Screen {
     Scene,
 }
 
+/// The most lines a scene error takes at the bottom of the screen.
+const ERROR_ROWS: usize = 4;
+
 /// The pane that arrow keys act on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Focus {
@@ -326,16 +329,15 @@ impl App {
         }
     }
 
-    /// Message lines at the bottom: two when a scene error does not fit on one.
+    /// Message lines at the bottom: as many as a scene error takes, wrapped as it is drawn, up
+    /// to `ERROR_ROWS` (the error's place in the file, then why: a long path must not leave
+    /// the why below the screen).
     pub fn message_rows(&self) -> u16 {
         match (&self.file.error, &self.prompt) {
             (Some(_), None) => {
-                let len = self.message_text().map_or(0, |(t, _)| t.chars().count());
-                if len > self.size.0 as usize {
-                    2
-                } else {
-                    1
-                }
+                let text = self.message_text().map_or(String::new(), |(t, _)| t);
+                let rows = crate::tui::wrap::wrap_hang(&text, self.size.0 as usize, "  ").len();
+                rows.clamp(1, ERROR_ROWS) as u16
             }
             _ => 1,
         }
