@@ -157,6 +157,15 @@ pub struct VariantOf {
     pub scenes: BTreeMap<String, String>,
 }
 
+/// What `Lesson::check_variations` finds of a lesson's varied values.
+pub struct Variations {
+    /// The values that keep a scene from loading, alone or together, each a line with the
+    /// scene's error.
+    pub unloadable: Vec<String>,
+    /// The lesson with each value on its own whose scenes load, named by the value.
+    pub loading: Vec<(String, Lesson)>,
+}
+
 /// A short fingerprint of a file's text (64-bit FNV-1a, in hex): enough to see that a file was
 /// changed by hand, not a guard against forgery.
 pub fn fingerprint(text: &str) -> String {
@@ -473,7 +482,10 @@ impl Lesson {
     /// values together, every combination of them (or, where there would be more than
     /// `COMBINATIONS`, every pair of paths): two values that are fine alone may clash together
     /// (a box's corners varied apart can cross).
-    pub fn unloadable_variations(&self) -> Result<Vec<String>, LessonError> {
+    ///
+    /// With them, the lesson as it stands with each value tried on its own whose scenes load,
+    /// named by the value: what `lessons validate` works every exercise out in.
+    pub fn check_variations(&self) -> Result<Variations, LessonError> {
         let files = self.scene_files()?;
         let probes: Vec<(&String, Vec<Vec<String>>)> = self
             .vary
@@ -481,16 +493,24 @@ impl Lesson {
             .map(|(path, r)| (path, r.probes()))
             .collect();
         let mut problems = Vec::new();
+        let mut loading = Vec::new();
         let mut fails_alone: Vec<Vec<bool>> = Vec::new();
         for (path, values) in &probes {
             let mut fails = Vec::new();
             for value in values {
                 let one = BTreeMap::from([((*path).clone(), value.clone())]);
-                let error = self.load_error(&files, &one)?;
-                if let Some(e) = &error {
-                    problems.push(format!("vary `{path}` = {}: {e}", vary::show(value)));
+                let sources = vary::rewrite(&files, &one).map_err(LessonError::Scenes)?;
+                let shown = format!("vary `{path}` = {}", vary::show(value));
+                let loads = self.load_sources(&sources);
+                fails.push(loads.is_err());
+                match loads {
+                    Err(e) => problems.push(format!("{shown}: {e}")),
+                    Ok(()) => {
+                        let mut lesson = self.clone();
+                        lesson.sources = sources;
+                        loading.push((shown, lesson));
+                    }
                 }
-                fails.push(error.is_some());
             }
             fails_alone.push(fails);
         }
@@ -525,29 +545,10 @@ impl Lesson {
                 "… and {more} more combinations of varied values that keep a scene from loading"
             ));
         }
-        Ok(problems)
-    }
-
-    /// The lesson as it stands with each varied value at its ends and first step (each
-    /// path on its own, the others as the lesson writes them), for the values whose scenes
-    /// load: what `lessons validate` works every exercise out in, named by the value. Values
-    /// that keep a scene from loading are `unloadable_variations`' to name.
-    pub fn probe_variants(&self) -> Result<Vec<(String, Lesson)>, LessonError> {
-        let files = self.scene_files()?;
-        let mut variants = Vec::new();
-        for (path, range) in &self.vary {
-            for value in range.probes() {
-                let one = BTreeMap::from([(path.clone(), value.clone())]);
-                let sources = vary::rewrite(&files, &one).map_err(LessonError::Scenes)?;
-                if self.load_sources(&sources).is_err() {
-                    continue;
-                }
-                let mut lesson = self.clone();
-                lesson.sources = sources;
-                variants.push((format!("vary `{path}` = {}", vary::show(&value)), lesson));
-            }
-        }
-        Ok(variants)
+        Ok(Variations {
+            unloadable: problems,
+            loading,
+        })
     }
 
     /// Why the lesson's scenes, with `values` written in, do not load (None where they do).

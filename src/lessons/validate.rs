@@ -92,17 +92,17 @@ fn validate_lesson(l: &Lesson, v: &mut Validation) {
     let readme = readme.display();
     let homework = l.variant.is_some();
     if !homework {
-        match l.unloadable_variations() {
-            Ok(problems) => v
-                .problems
-                .extend(problems.into_iter().map(|p| format!("{name}: {p}"))),
-            Err(e) => v.problems.push(format!("{name}: {e}")),
-        }
-        // A value that loads may still leave an exercise without an answer (its ray now
-        // misses the ball): that student's row could not be graded.
-        match l.probe_variants() {
-            Ok(variants) => {
-                for (value, variant) in &variants {
+        match l.check_variations() {
+            Ok(variations) => {
+                v.problems.extend(
+                    variations
+                        .unloadable
+                        .into_iter()
+                        .map(|p| format!("{name}: {p}")),
+                );
+                // A value that loads may still leave an exercise without an answer (its ray
+                // now misses the ball): that student's row could not be graded.
+                for (value, variant) in &variations.loading {
                     let failed: Vec<(&str, String)> = variant
                         .exercises
                         .iter()
