@@ -1819,6 +1819,27 @@ fn the_message_line_says_what_esc_and_the_tree_will_do() {
     assert!(app.quit);
 }
 
+/// Lesson 08's pixel-p-phong has a note longer than a 140-column line: its subject is cut
+/// short, not its keys, so "Esc: back" stays on screen (it used to be the part cut off).
+#[test]
+fn a_long_exercise_note_keeps_its_keys_on_screen() {
+    let mut app = open(
+        "lessons/08-pixel-intensity",
+        ColorMode::TrueColor,
+        (140, 40),
+    );
+    select_exercise(&mut app, 8);
+    let (note, _) = app.message_text().unwrap();
+    assert!(note.chars().count() > 140, "{note}");
+    let text = screen(&app);
+    let last = text.lines().last().unwrap().trim_end();
+    assert!(
+        last.starts_with("exercise pixel-p-phong: pixel 30,30, worked in Phong's")
+            && last.ends_with("… · Enter: answer · w: worked solution · Esc: back"),
+        "{last}"
+    );
+}
+
 /// Defect 7: a ray exercise shows the tree of its ray and selects the node asked about. In
 /// lesson 06, the ray from (−3, 4, 0) along (0.6, −0.8, 0) meets the slab's top at t = 5 and its
 /// refraction leaves the bottom at (0.436436, −1, 0) (README).

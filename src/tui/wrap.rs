@@ -49,6 +49,34 @@ pub fn title_to_fit(title: &str, max: usize) -> String {
     kept
 }
 
+/// How few cells a message's first part may be cut to before its key hints give way.
+const SUBJECT_CELLS: usize = 24;
+
+/// A one-line message ("subject · key hint · key hint") within `max` cells. The key hints are
+/// what the student acts on next, so where the whole line does not fit, the subject is cut at
+/// a word's end ("…") to keep every hint, down to `SUBJECT_CELLS` of it (or all of it, where
+/// shorter); past that, the hints that do not fit are left out, as a title's parts are.
+pub fn message_to_fit(message: &str, max: usize) -> String {
+    if width(message) <= max {
+        return message.to_string();
+    }
+    let parts = title_parts(message);
+    let subject = parts[0];
+    let hints: String = parts[1..].iter().map(|h| format!(" · {h}")).collect();
+    let room = max.saturating_sub(width(&hints));
+    if !hints.is_empty() && room >= width(subject).min(SUBJECT_CELLS) {
+        return format!("{}{hints}", cut_at_word(subject, room));
+    }
+    let mut kept = cut_at_word(subject, max);
+    for hint in &parts[1..] {
+        let longer = format!("{kept} · {hint}");
+        if width(&longer) <= max {
+            kept = longer;
+        }
+    }
+    kept
+}
+
 /// The " · "-separated parts of a title, not split inside brackets.
 fn title_parts(title: &str) -> Vec<&str> {
     let (mut parts, mut depth, mut start) = (vec![], 0i32, 0);
@@ -152,6 +180,36 @@ mod tests {
             .map(|w| w.trim_end_matches('…'))
             .filter(|w| !w.is_empty())
             .collect()
+    }
+
+    /// A message too long for its line keeps its key hints and cuts its subject at a word;
+    /// a subject that would be cut too short keeps its place and the hints that fit after it.
+    #[test]
+    fn a_message_keeps_its_key_hints() {
+        let note = "exercise exit-point: ray (-3, 4, 0) → (0.6, -0.8, 0), the primary ray of \
+                    pixel 3,7, node refraction · Enter: answer · w: worked solution · Esc: back";
+        assert_eq!(message_to_fit(note, 200), note);
+        let fitted = message_to_fit(note, 100);
+        assert_eq!(
+            fitted,
+            "exercise exit-point: ray (-3, 4, 0) → (0.6,… · Enter: answer · w: worked \
+             solution · Esc: back"
+        );
+        assert!(width(&fitted) <= 100);
+        // At 70 cells the subject would keep 22: it stays, with the hints that fit after it.
+        assert_eq!(
+            message_to_fit(note, 70),
+            "exercise exit-point: ray (-3, 4, 0) → (0.6, -0.8, 0), the primary ray…"
+        );
+        for max in 0..=width(note) {
+            assert!(width(&message_to_fit(note, max)) <= max, "{max}");
+        }
+        // A line of key hints alone keeps those that fit, in order.
+        let keys = "←↑↓→ pick a pixel · Tab tree · +/- depth · n/p levels · ? keys";
+        assert_eq!(
+            message_to_fit(keys, 40),
+            "←↑↓→ pick a pixel · Tab tree · +/- depth"
+        );
     }
 
     /// A title that fits is kept as it is; one that does not loses whole parts, from those

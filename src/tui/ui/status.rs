@@ -10,7 +10,7 @@ use super::themed;
 use crate::tui::app::App;
 use crate::tui::state::prompt::Prompt;
 use crate::tui::state::Tone;
-use crate::tui::wrap::wrap_hang;
+use crate::tui::wrap::{message_to_fit, wrap_hang};
 
 /// 1234567 → "1,234,567".
 pub fn grouped(n: u64) -> String {
@@ -143,7 +143,13 @@ pub fn draw(f: &mut Frame, app: &App, status: Rect, message: Rect) {
                 Tone::Bad => Style::new().fg(Color::Red).add_modifier(Modifier::BOLD),
             };
             let style = themed(app, style);
-            let lines = wrap_hang(&text, message.width as usize, "  ");
+            // A message of one row keeps its key hints; a scene error has the rows it wraps to
+            // (`App::message_rows`).
+            let lines = if message.height == 1 {
+                vec![message_to_fit(&text, message.width as usize)]
+            } else {
+                wrap_hang(&text, message.width as usize, "  ")
+            };
             for (i, l) in lines.iter().take(message.height as usize).enumerate() {
                 buf.set_stringn(
                     message.x,
