@@ -210,6 +210,19 @@ fn csg_says_what_the_ray_hits_ahead_of_its_origin() {
         text.contains("the ray hits nothing ahead of its origin"),
         "{text}"
     );
+    // A ray that meets no object at all ends its listing with the same last line.
+    let away = stdout(&raytree(&[
+        "csg",
+        "lessons/10-csg/scene.yaml",
+        "--ray",
+        "0,50,0:1,0,0",
+    ]));
+    assert!(away.contains("the ray meets no object"), "{away}");
+    assert_eq!(
+        away.trim_end().lines().last(),
+        Some("nearest hit: none, the ray hits nothing ahead of its origin"),
+        "{away}"
+    );
     let inspect = stdout(&raytree(&[
         "inspect",
         "lessons/10-csg/scene.yaml",

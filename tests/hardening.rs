@@ -457,6 +457,26 @@ fn images_beyond_the_budget_or_memory_are_refused_at_once() {
     assert!(!Path::new(out).exists());
 }
 
+/// `inspect --width/--height` is held to the image budget as `render` and a scene file's own
+/// size are (it used to trace a pixel of a 10 000 × 10 000 image without a word), and
+/// `--allow-huge` lifts it there too.
+#[test]
+fn inspect_holds_its_image_size_to_the_budget() {
+    let size = ["--pixel", "1,1", "--width", "10000", "--height", "10000"];
+    let r = run(&[&["inspect", L08][..], &size].concat());
+    assert_eq!(r.code(), Some(2), "{}", r.stderr);
+    assert!(
+        r.stderr.contains(
+            "an image of 10000 × 10000 holds 100000000 pixels, over the budget of 64000000 pixels"
+        ) && r.stderr.contains("--allow-huge"),
+        "{}",
+        r.stderr
+    );
+    let r = run(&[&["inspect", L08, "--allow-huge"][..], &size].concat());
+    assert_eq!(r.code(), Some(0), "{}", r.stderr);
+    assert!(r.stdout.contains("pixel (1, 1)"), "{}", r.stdout);
+}
+
 /// A depth strip keeps its frames and the strip they are joined into: the refusal counts both
 /// and says so, with the strip's own size (the frames, 4-pixel gaps and a label band).
 #[test]

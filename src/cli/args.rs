@@ -265,6 +265,15 @@ impl FilmArgs {
     /// The scene with its camera resized and its sampling set as given.
     pub fn apply(&self, scene: &mut Scene, limits: &Limits) -> Result<(), Failure> {
         let (w, h) = self.size(scene)?;
+        // The budget a scene file's own size is held to (`render` checks its frames first).
+        let pixels = w as u64 * h as u64;
+        if pixels > limits.max_pixels {
+            return Err(Failure(format!(
+                "an image of {w} × {h} holds {pixels} pixels, over the budget of {} pixels ({})",
+                limits.max_pixels,
+                Limits::RAISE
+            )));
+        }
         let spp = self.spp.unwrap_or(scene.spp);
         if !(1..=limits.max_spp).contains(&spp) {
             return Err(Failure(format!(

@@ -117,9 +117,8 @@ pub(crate) fn run(a: Args) -> Result<ExitCode, Failure> {
                     "(--all evaluates every object whole, without bounding boxes)",
                 )?;
             }
-            if !survey.met.is_empty() {
-                super::output::println(&format!("\n{}", survey.nearest_line(&ray)))?;
-            }
+            // The last line is always the nearest hit, "none" included.
+            super::output::println(&format!("\n{}", survey.nearest_line(&ray)))?;
         }
     }
     Ok(ExitCode::SUCCESS)

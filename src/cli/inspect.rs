@@ -24,7 +24,7 @@ use crate::trace::{text, Tracer};
 #[derive(clap::Args, Debug)]
 #[command(after_help = "Examples:
   raytree inspect lessons/08-pixel-intensity/scene.yaml --pixel 30,30
-  raytree inspect lessons/05-reflection/scene.yaml --ray 0,0,-10:0,0,1 --format json
+  raytree inspect lessons/05-reflection/scene.yaml --ray 0,3,-4:0,-3,4 --format json
   raytree inspect lessons/08-pixel-intensity/scene.yaml --pixel 30,30 --format dot | dot -Tsvg > tree.svg")]
 pub struct Args {
     #[command(flatten)]

@@ -51,7 +51,8 @@ enum Command {
     Preview(preview::Args),
     /// The terminal explorer: pick a pixel, see its ray tree (no argument: the lesson list).
     Explore(explore::Args),
-    /// Measured sweeps: run time against error (sweep), time per ray against scene size (scaling).
+    /// Measurements: run time against error (sweep), time per ray against scene size (scaling),
+    /// speed against threads (threads), the explorer's waits (explorer).
     Bench(bench::Args),
     /// List the lessons and their exercises (or a folder's); `lessons validate DIR` checks them.
     Lessons(lessons::Args),
