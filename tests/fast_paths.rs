@@ -1201,6 +1201,28 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    /// The same from origins far back along the rays (hundreds to a million times the pair's
+    /// size), where cylinders and cones form their quadratics from the point of each ray
+    /// nearest them (`cylinder::near_start`): the lanes move their origins as the one-ray
+    /// evaluation does, to the last bit.
+    #[test]
+    fn a_csg_pair_in_lanes_finds_what_its_rays_find_from_far_away(
+        (scene, rays) in csg_pair_scene_and_rays(),
+        back in prop::sample::select(vec![300.0, 1e4, 1e6]),
+    ) {
+        let rays: Vec<Ray> = rays
+            .iter()
+            .map(|r| Ray { origin: r.origin - back * r.dir, dir: r.dir })
+            .collect();
+        assert_packet_is_one_by_one(&scene, &rays)?;
+        let reach = vec![f64::INFINITY; rays.len()];
+        assert_shadow_packet_is_one_by_one(&scene, &rays, &reach)?;
+    }
+}
+
 // --- Searches: one ray ---
 
 /// What a nearest-hit search takes from a span: its first finite end inside (t_min, t_max).

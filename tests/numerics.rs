@@ -337,3 +337,82 @@ objects: [ {{ name: s, sphere: {{ center: [0, 0, {radius:e}], radius: {radius:e}
         assert!(!hit.inside, "radius {radius:e}: met from outside");
     }
 }
+
+/// A cylinder and a cone of unit size met by rays from 10³ to 10⁹ away, parallel to z: t is
+/// D − √(r(y)² − x²) (r(y) the radius at the ray's height) to the rounding of D, and the
+/// point lies on the side. Formed from the far origin, the quadratic's qb² − qa·qc cancelled
+/// all but a few digits: at D = 10⁶ the point of x = 0.99999 came out at z = 0, 10⁻⁵ inside.
+#[test]
+fn a_cylinder_and_a_cone_far_off_are_met_on_their_sides() {
+    let shapes = [
+        (
+            "cylinder: { base: [0, -1, 0], top: [0, 1, 0], radius: 1 }",
+            1.0,
+        ),
+        // At y = 0 the cone from apex y = 1 to a base of radius 1 at y = −1 has radius 1/2.
+        (
+            "cone: { apex: [0, 1, 0], base: [0, -1, 0], radius: 1 }",
+            0.5,
+        ),
+    ];
+    for (shape, r) in shapes {
+        let s = scene(&format!(
+            "camera: {{ eye: [0, 0, -6], look_at: [0, 0, 0] }}
+materials: {{ m: {{ kd: 0.5 }} }}
+objects: [ {{ name: s, {shape}, material: m }} ]
+"
+        ));
+        for d in [1e3, 1e6, 1e9] {
+            for x in [0.0, 0.5 * r, 0.9999 * r, 0.99999 * r] {
+                let ray = Ray::new(DVec3::new(x, 0.0, -d), DVec3::Z);
+                let hit = Tracer::new(&s)
+                    .inspect(&ray)
+                    .hit
+                    .expect("the ray meets the side");
+                let depth = (r * r - x * x).sqrt();
+                let rounding = 4.0 * d * f64::EPSILON;
+                assert!(
+                    (hit.t - (d - depth)).abs() <= rounding,
+                    "{shape} from {d:e}, x = {x}: t = {}, not {}",
+                    hit.t,
+                    d - depth
+                );
+                assert!(
+                    (hit.point.z + depth).abs() <= rounding,
+                    "{shape} from {d:e}, x = {x}: z = {}, not {}",
+                    hit.point.z,
+                    -depth
+                );
+            }
+        }
+    }
+}
+
+/// A ray at a cone's tip sees the apex's normal, −a, however the cone was placed: turned by
+/// 90° about z, its tip's point is the rounding of cos 90° away from the apex, and the normal
+/// used to take that leftover's direction, 90° off the one the cone written in place gives.
+#[test]
+fn a_cones_tip_has_one_normal_however_the_cone_is_placed() {
+    let placed = [
+        "cone: { apex: [0, 1, 0], base: [0, -1, 0], radius: 1 }, transform: [ { rotate_z: 90 } ]",
+        "cone: { apex: [-1, 0, 0], base: [1, 0, 0], radius: 1 }",
+    ];
+    for shape in placed {
+        let s = scene(&format!(
+            "camera: {{ eye: [-1, 0, -5], look_at: [-1, 0, 0] }}
+materials: {{ m: {{ kd: 0.5 }} }}
+objects: [ {{ name: k, {shape}, material: m }} ]
+"
+        ));
+        let ray = Ray::new(DVec3::new(-1.0, 0.0, -5.0), DVec3::Z);
+        let hit = Tracer::new(&s)
+            .inspect(&ray)
+            .hit
+            .expect("the ray meets the tip");
+        assert!(
+            (hit.normal - DVec3::NEG_X).length() < 1e-12,
+            "{shape}: normal {}",
+            hit.normal
+        );
+    }
+}

@@ -252,14 +252,47 @@ fn cap_slab<V: F64x4>(
     )
 }
 
+/// `cylinder::near_start` for four rays: the origins each quadratic is formed from, the s
+/// each lies at along its ray, and all ones where an origin was moved there.
+#[inline(always)]
+fn near_start<V: F64x4>(rays: &RayLanes<V>, (centre, far2): (DVec3, f64)) -> ([V; 3], V, V) {
+    let c = splat3(centre);
+    let w: [V; 3] = axes(|k| rays.origin[k] - c[k]);
+    let far = dot(w, w).simd_gt(V::splat(far2));
+    // The usual: every origin near (secondary rays, an eye a few sizes away).
+    if !far.any() {
+        return (rays.origin, V::ZERO, far);
+    }
+    let d2 = dot(rays.dir, rays.dir);
+    let far = far & d2.simd_gt(V::ZERO);
+    let s = -dot(w, rays.dir) / d2;
+    let origin = axes(|k| far.bitselect(rays.origin[k] + s * rays.dir[k], rays.origin[k]));
+    (origin, s, far)
+}
+
+/// `cylinder::started_at`: the interval found from origins moved by s (where `far`), in the
+/// rays' own t.
+#[inline(always)]
+fn started_at<V: F64x4>(cut: Interval<V>, s: V, far: V) -> Interval<V> {
+    if !far.any() {
+        return cut;
+    }
+    Interval {
+        t0: far.bitselect(cut.t0 + s, cut.t0),
+        t1: far.bitselect(cut.t1 + s, cut.t1),
+        ..cut
+    }
+}
+
 /// `Cylinder::span`: the infinite cylinder |w⊥|² = r² clipped by the slab between the caps.
 #[inline(always)]
 pub fn cylinder<V: F64x4>(shape: &Cylinder, rays: &RayLanes<V>) -> SpanLanes<V> {
+    let (origin, s, far) = near_start(rays, shape.far_sphere());
     let axis = shape.top - shape.base;
     let h = axis.length();
     let a = splat3(axis / h);
     let base = splat3(shape.base);
-    let w: [V; 3] = axes(|k| rays.origin[k] - base[k]);
+    let w: [V; 3] = axes(|k| origin[k] - base[k]);
     let (wa, da) = (dot(w, a), dot(rays.dir, a));
     let w_perp: [V; 3] = axes(|k| w[k] - wa * a[k]);
     let d_perp: [V; 3] = axes(|k| rays.dir[k] - da * a[k]);
@@ -278,7 +311,7 @@ pub fn cylinder<V: F64x4>(shape: &Cylinder, rays: &RayLanes<V>) -> SpanLanes<V> 
     let (caps, caps_exist) = cap_slab(wa, da, h, BASE_CAP, TOP_CAP);
     let (cut, overlaps) = side.overlap(caps);
     let odd = is_nan(qa) | is_nan(qc) | is_nan(wa) | is_nan(da) | (!parallel & roots_odd);
-    cut.span(side_exists & caps_exist & overlaps, odd)
+    started_at(cut, s, far).span(side_exists & caps_exist & overlaps, odd)
 }
 
 /// `Cone::span`: where f(t) = ((x − apex)·a)² − cos²θ·|x − apex|² ≥ 0 (one interval or two
@@ -286,12 +319,13 @@ pub fn cylinder<V: F64x4>(shape: &Cylinder, rays: &RayLanes<V>) -> SpanLanes<V> 
 #[inline(always)]
 pub fn cone<V: F64x4>(shape: &Cone, rays: &RayLanes<V>) -> SpanLanes<V> {
     let zero = V::ZERO;
+    let (origin, s, far) = near_start(rays, shape.far_sphere());
     let axis = shape.base - shape.apex;
     let h = axis.length();
     let a = splat3(axis / h);
     let k = V::splat(shape.cos2());
     let apex = splat3(shape.apex);
-    let w: [V; 3] = axes(|i| rays.origin[i] - apex[i]);
+    let w: [V; 3] = axes(|i| origin[i] - apex[i]);
     let (wa, da) = (dot(w, a), dot(rays.dir, a));
     let qa = da * da - k * dot(rays.dir, rays.dir);
     let qb = da * wa - k * dot(rays.dir, w);
@@ -353,7 +387,7 @@ pub fn cone<V: F64x4>(shape: &Cone, rays: &RayLanes<V>) -> SpanLanes<V> {
         // Ends that tie at zero in the hull (±0 again).
         | (in0 & in1 & zero_tie(cut0.t0, cut1.t0))
         | (in0 & in1 & zero_tie(cut0.t1, cut1.t1));
-    result.span(slab_exists & (in0 | in1), odd)
+    started_at(result, s, far).span(slab_exists & (in0 | in1), odd)
 }
 
 /// `Transform::ray_to_local` for four rays: the same products and sums as glam's

@@ -4,7 +4,10 @@
 
 use glam::DVec3;
 
-use super::cylinder::{cap_slab, crossings, quadratic, AxialQuadratic, Interval, BASE_CAP, SIDE};
+use super::cylinder::{
+    cap_slab, crossings, far_sphere, near_start, quadratic, started_at, AxialQuadratic, Interval,
+    BASE_CAP, SIDE,
+};
 use super::{Ray, Span};
 
 /// A finite cone primitive, in object space: the apex, a circular base disc of `radius` around
@@ -18,6 +21,9 @@ pub struct Cone {
     /// Radius of the base disc.
     pub radius: f64,
 }
+
+/// How near the apex, in heights, a point takes the apex's normal.
+const APEX_REACH: f64 = 1e-12;
 
 /// The cone has no top cap: the apex end of the slab never contributes a face of its own.
 const APEX: u8 = SIDE;
@@ -57,6 +63,16 @@ impl Cone {
     /// the ray gives a quadratic f(t) ≥ 0. The slab 0 ≤ (x − apex)·a ≤ h keeps the one nappe
     /// between apex and base.
     pub fn span(&self, ray: &Ray) -> Option<Span> {
+        let (ray, s) = near_start(ray, self.far_sphere());
+        started_at(self.span_from(&ray), s)
+    }
+
+    /// `far_sphere` of the cone.
+    pub(crate) fn far_sphere(&self) -> (DVec3, f64) {
+        far_sphere(self.apex, self.base, self.radius)
+    }
+
+    fn span_from(&self, ray: &Ray) -> Option<Span> {
         let AxialQuadratic {
             h,
             wa,
@@ -147,6 +163,11 @@ impl Cone {
     /// axis lies in [0, h): the apex belongs to the surface, the rim circle, an edge, does not
     /// (as The Ray Tracer Challenge's open cones). No inside: the span's ends are the crossings.
     pub fn open_span(&self, ray: &Ray) -> Option<Span> {
+        let (ray, s) = near_start(ray, self.far_sphere());
+        started_at(self.open_span_from(&ray), s)
+    }
+
+    fn open_span_from(&self, ray: &Ray) -> Option<Span> {
         let AxialQuadratic {
             h,
             wa,
@@ -175,13 +196,20 @@ impl Cone {
 
     /// Outward normal of the side: the gradient of cos²θ·|w|² − (w·a)², i.e. cos²θ·w − (w·a)·a
     /// with w = x − apex. (Seed 003 writes a different expression that is not perpendicular to
-    /// the surface; this one is.) At the apex itself the normal is undefined; use −a.
+    /// the surface; this one is.) At the apex itself the normal is undefined; use −a, also
+    /// within rounding of it (`APEX_REACH` of the height): there w is the rounding's own
+    /// direction, which depends on how the cone was placed (a turned cone's tip faced sideways).
     pub fn normal(&self, p: DVec3, face: u8) -> DVec3 {
         let a = self.axis();
         if face == BASE_CAP {
             return a;
         }
         let w = p - self.apex;
+        if w.length_squared()
+            <= (APEX_REACH * APEX_REACH) * (self.base - self.apex).length_squared()
+        {
+            return -a;
+        }
         let n = self.cos2() * w - w.dot(a) * a;
         n.try_normalize().unwrap_or(-a)
     }

@@ -128,6 +128,56 @@ pub(crate) fn quadratic(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
     Some((x.min(y), x.max(y)))
 }
 
+/// How many bounding radii from a cylinder's or cone's centre an origin may lie before the ray
+/// is started nearer (`near_start`).
+const FAR_RADII: f64 = 64.0;
+
+/// Where a cylinder's or cone's quadratic is formed from a ray whose origin lies beyond
+/// `FAR_RADII` of the shape's bounding sphere (`centre`, and that distance squared, `far2`):
+/// the point of the ray nearest the centre, o' = o + s·d with s = −(o − centre)·d / |d|², and s
+/// (roots found from o' lie at t = s + t'). From far off, qc = |w⊥|² − r² and qb² − qa·qc
+/// subtract numbers of the distance's size squared, and keep few of their digits; from o' they
+/// hold numbers of the shape's own size, as the sphere's r² − ℓ² does. Nearer origins (all
+/// secondary rays off the shape) are kept as they are, s = None.
+pub(crate) fn near_start(ray: &Ray, (centre, far2): (DVec3, f64)) -> (Ray, Option<f64>) {
+    let w = ray.origin - centre;
+    let d2 = ray.dir.length_squared();
+    if !(w.length_squared() > far2 && d2 > 0.0) {
+        return (*ray, None);
+    }
+    let s = -w.dot(ray.dir) / d2;
+    let origin = ray.origin + s * ray.dir;
+    (
+        Ray {
+            origin,
+            dir: ray.dir,
+        },
+        Some(s),
+    )
+}
+
+/// The bounding sphere of an axis segment from `p` to `q` with radius `r` around it (its
+/// centre, the midpoint, and its radius² (|q − p|/2)² + r²), as `near_start` takes it: the
+/// centre and `FAR_RADII` of that radius, squared.
+pub(crate) fn far_sphere(p: DVec3, q: DVec3, r: f64) -> (DVec3, f64) {
+    let centre = (p + q) * 0.5;
+    let extent2 = (q - p).length_squared() * 0.25 + r * r;
+    (centre, FAR_RADII * FAR_RADII * extent2)
+}
+
+/// The span found from a ray started `s` along (`near_start`), in the ray's own t.
+pub(crate) fn started_at(span: Option<Span>, s: Option<f64>) -> Option<Span> {
+    match (span, s) {
+        (Some(span), Some(s)) => Some(Span::new(
+            span.t_in + s,
+            span.face_in,
+            span.t_out + s,
+            span.face_out,
+        )),
+        _ => span,
+    }
+}
+
 impl Cylinder {
     /// Unit vector along the axis, from `base` towards `top`.
     pub fn axis(&self) -> DVec3 {
@@ -156,6 +206,16 @@ impl Cylinder {
     /// Infinite cylinder |w⊥|² = r² (w⊥ = the part of o + t·d − base across the axis),
     /// clipped by the slab between the caps.
     pub fn span(&self, ray: &Ray) -> Option<Span> {
+        let (ray, s) = near_start(ray, self.far_sphere());
+        started_at(self.span_from(&ray), s)
+    }
+
+    /// `far_sphere` of the cylinder.
+    pub(crate) fn far_sphere(&self) -> (DVec3, f64) {
+        far_sphere(self.base, self.top, self.radius)
+    }
+
+    fn span_from(&self, ray: &Ray) -> Option<Span> {
         let AxialQuadratic {
             h,
             wa,
@@ -188,6 +248,11 @@ impl Cylinder {
     /// the span is not an interval inside it: its ends are the crossings, the nearer first (one
     /// crossing twice if there is one).
     pub fn open_span(&self, ray: &Ray) -> Option<Span> {
+        let (ray, s) = near_start(ray, self.far_sphere());
+        started_at(self.open_span_from(&ray), s)
+    }
+
+    fn open_span_from(&self, ray: &Ray) -> Option<Span> {
         let AxialQuadratic {
             h,
             wa,
