@@ -1819,6 +1819,31 @@ fn the_message_line_says_what_esc_and_the_tree_will_do() {
     assert!(app.quit);
 }
 
+/// An exercise asked at another depth renders the preview at that depth (the preview used to
+/// be requested before the tree was traced there, at the depth before: lesson 07's depth-1
+/// showed the depth-5 picture with "depth 1" beside it).
+#[test]
+fn an_exercise_at_another_depth_renders_the_preview_at_it() {
+    let mut app = open("lessons/07-recursion-depth", ColorMode::TrueColor, (160, 48));
+    app.render_now();
+    assert_eq!(app.tree.depth(), 5);
+    select_exercise(&mut app, 0);
+    let l = app.lesson.as_ref().unwrap();
+    assert_eq!(l.lesson.exercises[l.exercise].id, "depth-1");
+    assert_eq!(app.tree.depth(), 1);
+    assert_eq!(app.preview.depth, Some(1));
+    // The same picture and rays as depth 1 reached by keys.
+    let mut keyed = open("lessons/07-recursion-depth", ColorMode::TrueColor, (160, 48));
+    for _ in 0..4 {
+        press(&mut keyed, KeyCode::Char('-'));
+    }
+    assert_eq!(keyed.tree.depth(), 1);
+    let rays = |a: &App| a.preview.stats.map(|s| s.rays());
+    assert_eq!(rays(&app), rays(&keyed));
+    let pixels = |a: &App| a.preview.image.as_ref().unwrap().pixels.clone();
+    assert_eq!(pixels(&app), pixels(&keyed));
+}
+
 /// Lesson 08's pixel-p-phong has a note longer than a 140-column line: its subject is cut
 /// short, not its keys, so "Esc: back" stays on screen (it used to be the part cut off).
 #[test]

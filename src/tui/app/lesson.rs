@@ -103,10 +103,11 @@ impl App {
                 AimAt::Pixel(x, y) => self.tree.aim((x, y), aim.depth, scene_depth),
                 AimAt::Ray(r) => self.tree.aim_ray(r, aim.depth, scene_depth),
             };
+            // The preview renders at the depth the tree is traced to: trace it first.
+            self.retrace();
             if changed {
                 self.request_render();
             }
-            self.retrace();
             let moved = self.tree.select_kinds(&aim.node);
             self.follow_selection(moved);
         }
