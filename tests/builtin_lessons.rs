@@ -348,3 +348,85 @@ fn a_lessons_folder_in_the_current_folder_does_not_hide_the_built_in_lessons() {
         String::from_utf8_lossy(&o.stderr)
     );
 }
+
+/// A built-in lesson's cached copy edited by hand (the explorer shows its path and reloads it
+/// on save) is put back as built on the next run: lesson 08's ambient raised to 0.9 made
+/// local-a's answer 0.559904 "right", where the lesson's is 0.439904.
+#[test]
+fn a_built_in_lesson_edited_in_the_cache_is_put_back() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (_, doc) = listed_lessons(tmp.path(), &["lessons", "--format", "json"]);
+    let scene = PathBuf::from(doc["root"].as_str().unwrap()).join("08-pixel-intensity/scene.yaml");
+    let built = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(&scene, built.replace("ambient: 0.3", "ambient: 0.9")).unwrap();
+    let check = |answer: &str| {
+        raytree_in(
+            tmp.path(),
+            &[
+                "check",
+                "08-pixel-intensity",
+                "--exercise",
+                "local-a",
+                "--answer",
+                answer,
+            ],
+        )
+        .status
+        .code()
+    };
+    assert_eq!(
+        check("0.559904"),
+        Some(1),
+        "the edited scene's answer is wrong"
+    );
+    assert_eq!(check("0.439904"), Some(0), "the lesson's answer is right");
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), built);
+    // A removed file comes back too.
+    std::fs::remove_file(&scene).unwrap();
+    assert_eq!(check("0.439904"), Some(0));
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), built);
+}
+
+/// In an explorer open on that copy, edited meanwhile, an answer is checked against the
+/// changed scene and says so, and is not recorded as the built-in lesson's.
+#[test]
+fn an_answer_to_an_edited_built_in_lesson_is_not_recorded() {
+    use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+    use raytree::render::preview::ColorMode;
+    use raytree::tui::{input, ui, update, App, Msg};
+
+    let tmp = tempfile::tempdir().unwrap();
+    // This test binary's own process: the other tests run raytree with their own folders.
+    std::env::set_var("RAYTREE_CACHE", tmp.path().join("cache"));
+    std::env::set_var("RAYTREE_DATA", tmp.path().join("data"));
+    let dir = raytree::lessons::builtin::cached()
+        .unwrap()
+        .join("08-pixel-intensity");
+    let mut app = App::open(Some(&dir), ColorMode::TrueColor).expect("opens");
+    update(&mut app, Msg::Resize(160, 48));
+    let scene = dir.join("scene.yaml");
+    let built = std::fs::read_to_string(&scene).unwrap();
+    std::fs::write(&scene, built.replace("ambient: 0.3", "ambient: 0.9")).unwrap();
+    update(&mut app, Msg::Tick);
+    let mut press = |code: KeyCode| {
+        if let Some(msg) = input::key(&app, &KeyEvent::new(code, KeyModifiers::NONE)) {
+            update(&mut app, msg);
+        }
+    };
+    press(KeyCode::Char('a'));
+    press(KeyCode::Enter);
+    for c in "0.559904".chars() {
+        press(KeyCode::Char(c));
+    }
+    press(KeyCode::Enter);
+    let text = ui::screen_text(&app, 160, 48);
+    assert!(
+        text.contains("right") && text.contains("checked against the changed scene.yaml"),
+        "{text}"
+    );
+    let progress = std::fs::read_to_string(tmp.path().join("data/progress.json"));
+    assert!(
+        progress.as_deref().map_or(true, |p| !p.contains("local-a")),
+        "{progress:?}"
+    );
+}

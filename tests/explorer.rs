@@ -1824,7 +1824,11 @@ fn the_message_line_says_what_esc_and_the_tree_will_do() {
 /// showed the depth-5 picture with "depth 1" beside it).
 #[test]
 fn an_exercise_at_another_depth_renders_the_preview_at_it() {
-    let mut app = open("lessons/07-recursion-depth", ColorMode::TrueColor, (160, 48));
+    let mut app = open(
+        "lessons/07-recursion-depth",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
     app.render_now();
     assert_eq!(app.tree.depth(), 5);
     select_exercise(&mut app, 0);
@@ -1833,7 +1837,11 @@ fn an_exercise_at_another_depth_renders_the_preview_at_it() {
     assert_eq!(app.tree.depth(), 1);
     assert_eq!(app.preview.depth, Some(1));
     // The same picture and rays as depth 1 reached by keys.
-    let mut keyed = open("lessons/07-recursion-depth", ColorMode::TrueColor, (160, 48));
+    let mut keyed = open(
+        "lessons/07-recursion-depth",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
     for _ in 0..4 {
         press(&mut keyed, KeyCode::Char('-'));
     }

@@ -89,16 +89,61 @@ fn write_staging(parent: &Path) -> Result<tempfile::TempDir, LessonError> {
     Ok(staging)
 }
 
-/// The built-in lessons as a folder: the copy in the user's cache folder (`RAYTREE_CACHE`, else
-/// the platform's), written on first use.
-pub fn cached() -> Result<PathBuf, LessonError> {
-    let cache = crate::files::cache_dir().ok_or(LessonError::NoCacheDir)?;
-    let dir = cache.join(format!(
+/// Where the built-in lessons' copy lies in the user's cache folder.
+fn cached_path() -> Option<PathBuf> {
+    let cache = crate::files::cache_dir()?;
+    Some(cache.join(format!(
         "lessons-{}-{:016x}",
         env!("CARGO_PKG_VERSION"),
         fingerprint()
-    ));
+    )))
+}
+
+/// The built-in files whose copy under `root` is not theirs byte for byte (edited, or gone),
+/// among those whose path starts with `within`.
+fn changed_in(root: &Path, within: &Path) -> Vec<(&'static Path, &'static [u8])> {
+    files()
+        .into_iter()
+        .filter(|(path, _)| path.starts_with(within))
+        .filter(|(path, bytes)| std::fs::read(root.join(path)).ok().as_deref() != Some(*bytes))
+        .collect()
+}
+
+/// The files of the lesson in `dir` that differ from the built-in ones, where `dir` is a
+/// lesson of the built-in copy in the cache (a student who edits that copy, which the explorer
+/// reloads, changes what its answers are checked against); none for any other folder.
+pub fn edited(dir: &Path) -> Vec<PathBuf> {
+    let canonical = |p: &Path| std::fs::canonicalize(p).ok();
+    let (Some(root), Some(dir)) = (cached_path().and_then(|r| canonical(&r)), canonical(dir))
+    else {
+        return vec![];
+    };
+    match dir.strip_prefix(&root) {
+        Ok(lesson) if !lesson.as_os_str().is_empty() => changed_in(&root, lesson)
+            .into_iter()
+            .map(|(path, _)| root.join(path))
+            .collect(),
+        _ => vec![],
+    }
+}
+
+/// The built-in lessons as a folder: the copy in the user's cache folder (`RAYTREE_CACHE`, else
+/// the platform's), written on first use. A file of the copy that was edited (or removed) is
+/// put back as it was built: a cache is not the place for a student's changes, and the
+/// built-in lessons are what answers are checked against.
+pub fn cached() -> Result<PathBuf, LessonError> {
+    let cache = crate::files::cache_dir().ok_or(LessonError::NoCacheDir)?;
+    let dir = cached_path().ok_or(LessonError::NoCacheDir)?;
     if dir.is_dir() {
+        for (path, bytes) in changed_in(&dir, Path::new("")) {
+            let target = dir.join(path);
+            if let Some(parent) = target.parent() {
+                std::fs::create_dir_all(parent)
+                    .map_err(|e| LessonError::io(parent, "create the folder", e))?;
+            }
+            crate::render::write_atomically(&target, bytes)
+                .map_err(|e| LessonError::io(&target, "restore", std::io::Error::other(e)))?;
+        }
         return Ok(dir);
     }
     std::fs::create_dir_all(&cache).map_err(|e| LessonError::io(&cache, "create the folder", e))?;

@@ -274,7 +274,16 @@ impl LessonPanel {
             ),
             Err(e) => (format!("{}: {e}", ex.id), Tone::Bad),
         };
-        if result.as_ref().is_ok_and(|v| v.correct) {
+        // A built-in lesson edited in its cached copy is checked as it now is, but its marks
+        // are the lesson's as built.
+        let edited = crate::lessons::builtin::edited(&self.lesson.dir);
+        if let Some(file) = edited.first().and_then(|f| f.file_name()) {
+            note.0.push_str(&format!(
+                " (checked against the changed {}, not recorded: raytree puts the built-in \
+                 lesson back when it next starts)",
+                file.to_string_lossy()
+            ));
+        } else if result.as_ref().is_ok_and(|v| v.correct) {
             self.solved.insert(ex.id.clone());
             if let Err(e) = Progress::record(&self.lesson, &ex.id) {
                 note.0.push_str(&format!(" (progress not saved: {e})"));
