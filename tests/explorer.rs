@@ -1852,6 +1852,38 @@ fn an_exercise_at_another_depth_renders_the_preview_at_it() {
     assert_eq!(pixels(&app), pixels(&keyed));
 }
 
+/// The levels line keeps the level being stepped: at 80 columns lesson 08's five levels do
+/// not fit, and the earliest give way to "…" (the line used to end at "5:", cut mid-value).
+#[test]
+fn the_levels_line_keeps_the_latest_levels() {
+    let mut app = open("lessons/08-pixel-intensity", ColorMode::TrueColor, (80, 24));
+    for _ in 0..5 {
+        press(&mut app, KeyCode::Char('n'));
+    }
+    let text = screen(&app);
+    let line = text
+        .lines()
+        .find(|l| l.contains("levels:"))
+        .unwrap_or_else(|| panic!("{text}"));
+    let line = line.trim_end().trim_end_matches('│').trim_end();
+    assert!(line.contains("levels: … → "), "{line}");
+    assert!(line.ends_with("4: 0.8702 → 5: 0.8702"), "{line}");
+}
+
+/// The first path's line in lesson 15's tree, too long for an 80-column pane, ends in "…"
+/// (it used to stop mid-word: "… → back → righ").
+#[test]
+fn a_paths_line_cut_short_says_so() {
+    let app = open("lessons/15-path-tracing", ColorMode::TrueColor, (80, 24));
+    let text = screen(&app);
+    let paths: Vec<&str> = text.lines().filter(|l| l.contains(" path 1: ")).collect();
+    assert!(!paths.is_empty(), "{text}");
+    for line in paths {
+        let inside = line.trim_end().trim_end_matches('│').trim_end();
+        assert!(inside.ends_with('…'), "{line}");
+    }
+}
+
 /// Lesson 08's pixel-p-phong has a note longer than a 140-column line: its subject is cut
 /// short, not its keys, so "Esc: back" stays on screen (it used to be the part cut off).
 #[test]

@@ -62,10 +62,12 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
             } else {
                 short_color(*value)
             };
+            let head = format!(" path {}: {value} ", k + 1);
+            let room = (area.width.saturating_sub(2) as usize).saturating_sub(width(&head));
             lines.push(Line::from(vec![
-                Span::raw(format!(" path {}: {value} ", k + 1)),
+                Span::raw(head),
                 Span::styled(
-                    format!("eye → {steps}"),
+                    cut(&format!("eye → {steps}"), room),
                     themed(app, Style::new().fg(Color::DarkGray)),
                 ),
             ]));
@@ -86,22 +88,25 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         ]));
     }
     if let Some(k) = t.level() {
-        let mut spans = vec![Span::styled(
-            "levels:",
-            themed(app, Style::new().fg(Color::Yellow)),
-        )];
-        for (i, c) in t.partials().iter().enumerate().take(k as usize) {
-            let c = if t.hidden() {
-                "?".to_string()
-            } else {
-                short_color(*c)
-            };
-            spans.push(Span::raw(format!(" {}: {c}", i + 1)));
-            if i + 1 < k as usize {
-                spans.push(Span::raw(" →"));
-            }
-        }
-        lines.push(Line::from(spans));
+        let levels: Vec<String> = t
+            .partials()
+            .iter()
+            .enumerate()
+            .take(k as usize)
+            .map(|(i, c)| {
+                let c = if t.hidden() {
+                    "?".to_string()
+                } else {
+                    short_color(*c)
+                };
+                format!("{}: {c}", i + 1)
+            })
+            .collect();
+        let room = area.width.saturating_sub(2) as usize;
+        lines.push(Line::from(vec![
+            Span::styled("levels: ", themed(app, Style::new().fg(Color::Yellow))),
+            Span::raw(latest_that_fit(&levels, room - room.min(width("levels: ")))),
+        ]));
     }
     for row in shown {
         let n = tree::node_at(root, &row.path).expect("row of this tree");
@@ -156,4 +161,17 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
         lines.push(line);
     }
     f.render_widget(Paragraph::new(lines).block(block), area);
+}
+
+/// The levels' partial intensities joined by " → " within `room` cells: the latest ones, the
+/// level being stepped last, with "… → " in place of the earlier ones that do not fit.
+fn latest_that_fit(levels: &[String], room: usize) -> String {
+    let whole = levels.join(" → ");
+    if width(&whole) <= room {
+        return whole;
+    }
+    (1..levels.len())
+        .map(|first| format!("… → {}", levels[first..].join(" → ")))
+        .find(|line| width(line) <= room)
+        .unwrap_or_else(|| cut(levels.last().map_or("", String::as_str), room))
 }
