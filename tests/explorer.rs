@@ -658,6 +658,54 @@ fn the_key_hint_follows_the_focus() {
     );
     press(&mut app, KeyCode::BackTab);
     assert!(screen(&app).contains("↑↓ select a ray"), "{}", screen(&app));
+    // A click moves the focus, and the hint with it (it stayed the preview's).
+    press(&mut app, KeyCode::BackTab);
+    assert!(screen(&app).contains("←↑↓→ pick a pixel"));
+    let p = app.panes();
+    update(&mut app, Msg::Click(p.tree.x + 5, p.tree.y + 2));
+    assert_eq!(app.focus, Focus::Tree);
+    let text = screen(&app);
+    assert!(
+        text.contains("↑↓ select a ray") && !text.contains("pick a pixel"),
+        "{text}"
+    );
+}
+
+/// A good pick after a refused one leaves the keys' hint on the message line, not nothing.
+#[test]
+fn a_good_pick_after_a_bad_one_shows_the_keys_again() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (120, 36));
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "abc");
+    press(&mut app, KeyCode::Enter);
+    let refused = app.message_text().unwrap().0;
+    assert!(!refused.contains("pick a pixel"), "{refused}");
+    press(&mut app, KeyCode::Char('g'));
+    keys(&mut app, "7,7");
+    press(&mut app, KeyCode::Enter);
+    assert_eq!(app.tree.pixel(), (7, 7));
+    let text = screen(&app);
+    assert!(text.contains("←↑↓→ pick a pixel"), "{text}");
+}
+
+/// Level stepping, then another pixel: the message line speaks of the new pixel's levels
+/// (it kept the old pixel's "level 1 gave …").
+#[test]
+fn the_level_note_follows_the_picked_pixel() {
+    let mut app = open(
+        "lessons/08-pixel-intensity",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    press(&mut app, KeyCode::Char('n'));
+    press(&mut app, KeyCode::Char('n'));
+    let before = app.message_text().unwrap().0;
+    assert!(before.starts_with("level 2 of 5"), "{before}");
+    press(&mut app, KeyCode::Right);
+    assert_eq!(app.tree.pixel(), (31, 30));
+    let after = app.message_text().unwrap().0;
+    assert_eq!(Some(after.clone()), app.tree.level_note().map(|n| n.0));
+    assert_ne!(after, before);
 }
 
 #[test]

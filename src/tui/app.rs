@@ -325,6 +325,10 @@ impl App {
         match (&self.file.error, &self.message) {
             (Some(e), _) => Some((format!("✗ {e} (the last good scene stays)"), Tone::Bad)),
             (None, Some(m)) => Some(m.clone()),
+            // Nothing to say: what the keys do where the focus is.
+            (None, None) if self.screen == Screen::Scene => {
+                Some((panes::focus_hint(self.focus).into(), Tone::Info))
+            }
             (None, None) => None,
         }
     }
@@ -430,12 +434,38 @@ impl App {
 
 impl App {
     fn move_pixel(&mut self, dx: i32, dy: i32) {
+        let levels = self.levels_said();
         if self.tree.move_by(dx, dy, self.image_size()) {
             self.retrace();
+            self.say_levels_again(levels);
+        }
+    }
+
+    /// Which of the level-stepping notes the message line shows, if one: the level reached
+    /// (false) or all levels collected (true).
+    fn levels_said(&self) -> Option<bool> {
+        let said = self.message.as_ref()?;
+        if Some(said) == self.tree.level_note().as_ref() {
+            Some(false)
+        } else if self.tree.level().is_some() && *said == self.tree.collected_note() {
+            Some(true)
+        } else {
+            None
+        }
+    }
+
+    /// After another pixel's tree is traced: a level-stepping note on the message line is
+    /// said again of the new tree (it kept the old pixel's intensities).
+    fn say_levels_again(&mut self, said: Option<bool>) {
+        match said {
+            Some(true) => self.message = Some(self.tree.collected_note()),
+            Some(false) => self.message = self.tree.level_note(),
+            None => {}
         }
     }
 
     fn pick(&mut self, x: u32, y: u32) {
+        let levels = self.levels_said();
         match self.tree.pick(x, y, self.image_size()) {
             Ok(()) => {
                 // The refusal of an earlier pick (a mistyped or outside pixel) is stale now;
@@ -444,6 +474,7 @@ impl App {
                     self.message = None;
                 }
                 self.retrace();
+                self.say_levels_again(levels);
             }
             Err(note) => self.message = Some(note),
         }

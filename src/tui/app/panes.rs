@@ -34,7 +34,12 @@ impl App {
         } else {
             (i + n - 1) % n
         }];
-        // The keys' hint follows the focus (a warning or an error stays until it is read).
+        self.hint_focus();
+    }
+
+    /// The keys' hint follows the focus, moved by Tab or by a click (a warning or an error
+    /// stays until it is read).
+    fn hint_focus(&mut self) {
         if self
             .message
             .as_ref()
@@ -140,6 +145,14 @@ impl App {
     }
 
     pub(super) fn click(&mut self, col: u16, row: u16) {
+        let focus = self.focus;
+        self.click_at(col, row);
+        if self.focus != focus {
+            self.hint_focus();
+        }
+    }
+
+    fn click_at(&mut self, col: u16, row: u16) {
         let at = Position::new(col, row);
         let p = self.panes();
         if let Some((x, y)) = layout::cell_pixel(&p, self.image_size(), col, row) {
@@ -218,7 +231,7 @@ impl App {
 }
 
 /// What the arrows and the other keys do where the focus is, for the message line.
-fn focus_hint(focus: Focus) -> &'static str {
+pub(super) fn focus_hint(focus: Focus) -> &'static str {
     match focus {
         Focus::Preview => "←↑↓→ pick a pixel · Tab tree · +/- depth · n/p levels · ? keys",
         Focus::Tree => "↑↓ select a ray · → ← open / close · Enter toggle · Tab next pane · ? keys",
