@@ -975,6 +975,44 @@ fn quitting() {
     assert!(app.quit);
 }
 
+/// Esc goes back a step: it closes the diagram, then the CSG panel, and only then quits (it
+/// used to quit with a panel open, where a student presses it to close the panel).
+#[test]
+fn esc_closes_the_open_panels_before_it_quits() {
+    let mut app = open(CSG, ColorMode::TrueColor, (160, 48));
+    press(&mut app, KeyCode::Char('c'));
+    press(&mut app, KeyCode::Char('d'));
+    assert!(app.diagram.open && app.csg.shown());
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.diagram.open && app.csg.shown() && !app.quit);
+    press(&mut app, KeyCode::Esc);
+    assert!(!app.csg.shown() && !app.quit);
+    press(&mut app, KeyCode::Esc);
+    assert!(app.quit);
+}
+
+/// The help in a terminal too short for it says how many rows it leaves out; in the lesson
+/// list it shows the list's keys, not the scene's.
+#[test]
+fn the_help_fits_its_terminal_and_its_screen() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (100, 20));
+    press(&mut app, KeyCode::Char('?'));
+    let text = screen(&app);
+    assert!(
+        text.contains("more rows: a taller terminal shows every key"),
+        "{text}"
+    );
+    let root = demo_lesson("help-in-the-list");
+    let mut app = App::open_lessons(&root, ColorMode::TrueColor);
+    update(&mut app, Msg::Resize(80, 24));
+    press(&mut app, KeyCode::Char('?'));
+    let text = screen(&app);
+    assert!(
+        text.contains("choose a lesson") && !text.contains("PICK A PIXEL"),
+        "{text}"
+    );
+}
+
 #[test]
 fn the_tree_root_is_the_rendered_pixel() {
     let mut app = open(MIRROR, ColorMode::TrueColor, (80, 24));

@@ -94,9 +94,14 @@ pub fn key(app: &App, k: &KeyEvent) -> Option<Msg> {
     // Keys that mean the same everywhere on the scene screen.
     match k.code {
         KeyCode::Char('q') => return Some(Msg::Quit),
+        // Esc goes back a step: out of the exercises, then closes the panels, then quits.
         KeyCode::Esc => {
             return Some(if app.exercises_active() {
                 Msg::Cancel
+            } else if app.diagram.open {
+                Msg::ToggleDiagram
+            } else if app.csg.shown() {
+                Msg::ToggleCsg
             } else {
                 Msg::Quit
             });

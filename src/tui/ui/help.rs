@@ -7,7 +7,7 @@ use ratatui::widgets::{Block, Clear, Paragraph};
 use ratatui::Frame;
 
 use super::themed;
-use crate::tui::app::App;
+use crate::tui::app::{App, Screen};
 
 /// (keys, what they do); a key of "" starts a section named by the description.
 pub const KEYS: &[(&str, &str)] = &[
@@ -30,26 +30,40 @@ pub const KEYS: &[(&str, &str)] = &[
         "d v b m < >",
         "rays drawn · view · BVH boxes · hit marks · zoom",
     ),
-    ("r s", "lesson README · s: the lesson's next scene"),
+    ("r s o", "lesson README · its next scene · lesson list"),
     ("a", "lesson exercises: ↑↓ choose, Enter answer"),
     ("w", "the selected exercise's worked solution"),
     (
         "PgUp PgDn ← →",
         "scroll the panel · ← →: a README's figures sideways",
     ),
-    ("o", "lesson list"),
-    ("? q Esc ^Z", "this help · quit · stop until fg"),
+    ("Esc", "back: out of the exercises, close a panel, quit"),
+    ("? q ^Z", "this help · quit · stop until fg"),
+];
+
+/// The lesson list's keys.
+pub const LIST_KEYS: &[(&str, &str)] = &[
+    ("", "lesson list"),
+    ("↑↓ jk PgUp PgDn", "choose a lesson"),
+    ("Enter → l", "open it"),
+    ("Esc", "back to the scene shown before (else quit)"),
+    ("? q", "this help · quit"),
 ];
 
 pub fn draw(f: &mut Frame, app: &App, area: Rect) {
-    let key_w = KEYS
+    let keys = if app.screen == Screen::Lessons {
+        LIST_KEYS
+    } else {
+        KEYS
+    };
+    let key_w = keys
         .iter()
         .map(|(k, _)| k.chars().count())
         .max()
         .unwrap_or(0)
         + 2;
     let mut lines: Vec<Line> = Vec::new();
-    for (k, what) in KEYS {
+    for (k, what) in keys {
         if k.is_empty() {
             lines.push(Line::styled(
                 what.to_uppercase(),
@@ -72,6 +86,16 @@ pub fn draw(f: &mut Frame, app: &App, area: Rect) {
     let w = (content_w + 4)
         .min(area.width.saturating_sub(2))
         .max(20.min(area.width));
+    // Too few rows for every key: the last row says how many are left out.
+    let rows = area.height.saturating_sub(2) as usize;
+    if lines.len() > rows && rows > 0 {
+        let left_out = lines.len() - (rows - 1);
+        lines.truncate(rows - 1);
+        lines.push(Line::styled(
+            format!("… {left_out} more rows: a taller terminal shows every key"),
+            themed(app, Style::new().fg(Color::DarkGray)),
+        ));
+    }
     let h = (lines.len() as u16 + 2).min(area.height);
     let r = Rect::new(
         area.x + (area.width - w) / 2,
