@@ -991,6 +991,40 @@ fn esc_closes_the_open_panels_before_it_quits() {
     assert!(app.quit);
 }
 
+/// In a scene without a BVH, b says so each time and switches nothing (the second b used to
+/// say "BVH boxes hidden"); v without the diagram says how to open it.
+#[test]
+fn b_in_a_scene_without_a_bvh_switches_nothing() {
+    let mut app = open(MIRROR, ColorMode::TrueColor, (120, 36));
+    for _ in 0..2 {
+        press(&mut app, KeyCode::Char('b'));
+        let note = app.message_text().unwrap().0;
+        assert!(
+            note.starts_with("this scene has no BVH: ") && note.contains(" few enough"),
+            "{note}"
+        );
+    }
+    press(&mut app, KeyCode::Char('v'));
+    let note = app.message_text().unwrap().0;
+    assert!(note.ends_with("(d opens the diagram)"), "{note}");
+}
+
+/// s in a lesson of one scene says so, rather than "(1 of 1) · s: the lesson's next scene".
+#[test]
+fn s_in_a_lesson_of_one_scene_says_so() {
+    let mut app = open(
+        "lessons/08-pixel-intensity",
+        ColorMode::TrueColor,
+        (120, 36),
+    );
+    press(&mut app, KeyCode::Char('s'));
+    let note = app.message_text().unwrap().0;
+    assert_eq!(
+        note,
+        "this lesson has one scene, scene.yaml, and it is shown"
+    );
+}
+
 /// The help in a terminal too short for it says how many rows it leaves out; in the lesson
 /// list it shows the list's keys, not the scene's.
 #[test]

@@ -194,6 +194,13 @@ pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
         .filter(|p| !p.trim().is_empty())
         .map(|p| number(p, segments))
         .collect::<Result<_, _>>()?;
+    if parts.is_empty() && s.trim().is_empty() {
+        return Err(AnswerError::Empty(if segments {
+            "pairs t_in, t_out (e.g. `13, 16; 22, 23`), or `none` for an empty list"
+        } else {
+            "a number, or three (x, y, z)"
+        }));
+    }
     if parts.is_empty() {
         return Err(if segments {
             AnswerError::NoSegments(s.trim().into())
@@ -245,6 +252,21 @@ mod tests {
         ] {
             assert_eq!(Answer::color(c), Answer::Vector(c));
         }
+    }
+
+    /// An empty answer says that nothing was given, not that "``" holds no numbers.
+    #[test]
+    fn an_empty_answer_says_none_was_given() {
+        for segments in [false, true] {
+            for empty in ["", "   "] {
+                let e = parse_answer(empty, segments).unwrap_err().to_string();
+                assert!(e.starts_with("no answer given: give "), "{e}");
+            }
+        }
+        assert!(matches!(
+            parse_answer(" ; ", false),
+            Err(AnswerError::NoNumbers(_))
+        ));
     }
 
     #[test]

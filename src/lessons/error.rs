@@ -161,6 +161,9 @@ pub enum AnswerError {
     /// ∞ where the answer is a finite number (∞ only ends segments).
     #[error("`{0}`: this answer is a finite number (∞ only ends segments)")]
     Infinite(String),
+    /// No answer at all (an empty line), and the form an answer takes here.
+    #[error("no answer given: give {0}")]
+    Empty(&'static str),
     /// An answer without a number in it, where a number or a vector is asked.
     #[error("`{0}` holds no numbers: give a number, or three (x, y, z)")]
     NoNumbers(String),

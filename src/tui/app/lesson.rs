@@ -145,6 +145,13 @@ impl App {
         };
         let scenes = l.scenes();
         let current = self.scene_name();
+        if scenes.len() == 1 && scenes[0] == current {
+            self.message = Some((
+                format!("this lesson has one scene, {current}, and it is shown"),
+                Tone::Info,
+            ));
+            return;
+        }
         let k = scenes
             .iter()
             .position(|s| *s == current)

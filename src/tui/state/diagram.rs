@@ -60,7 +60,12 @@ impl DiagramPane {
     pub fn cycle_view(&mut self) -> Note {
         self.view = self.view.next();
         self.reset();
-        (format!("diagram view: {}", self.view), Tone::Info)
+        let open = if self.open {
+            ""
+        } else {
+            " (d opens the diagram)"
+        };
+        (format!("diagram view: {}{open}", self.view), Tone::Info)
     }
 
     /// Back to the rays framed whole.
@@ -94,17 +99,24 @@ impl DiagramPane {
 
     /// b: shows or hides the BVH boxes.
     pub fn toggle_bvh(&mut self, scene: Option<&Scene>) -> Note {
+        let nodes = scene.map_or(0, |s| s.bvh_nodes());
+        if nodes == 0 {
+            // Nothing to show or hide: the switch stays as it is.
+            let n = scene.map_or(0, |s| s.objects.len());
+            let objects = if n == 1 { "1 object is" } else { "objects are" };
+            let count = if n == 1 {
+                String::new()
+            } else {
+                format!("{n} ")
+            };
+            return (
+                format!("this scene has no BVH: {count}{objects} few enough to test every one"),
+                Tone::Info,
+            );
+        }
         self.bvh = !self.bvh;
         if !self.bvh {
             return ("BVH boxes hidden".into(), Tone::Info);
-        }
-        let nodes = scene.map_or(0, |s| s.bvh_nodes());
-        if nodes == 0 {
-            let n = scene.map_or(0, |s| s.objects.len());
-            return (
-                format!("this scene has no BVH: {n} objects are few enough to test every one"),
-                Tone::Info,
-            );
         }
         let open = if self.open {
             ""
