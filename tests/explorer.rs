@@ -1025,6 +1025,22 @@ fn s_in_a_lesson_of_one_scene_says_so() {
     );
 }
 
+/// The CSG panel writes a secondary ray's origin and its segments against the size of the
+/// tree's numbers, as the details pane does: lesson 08's reflection ray leaves the floor at the
+/// origin, (0, 0, 0), not (4.44089e-16, 3.46409e-10, 0), and its segment at the bias is 0.
+#[test]
+fn the_csg_panel_writes_rounding_as_zero() {
+    let mut app = open(
+        "lessons/08-pixel-intensity",
+        ColorMode::TrueColor,
+        (160, 48),
+    );
+    press(&mut app, KeyCode::Char('c'));
+    let text = screen(&app);
+    assert!(text.contains("reflection ray (0, 0, 0) → "), "{text}");
+    assert!(!text.contains("e-1"), "{text}");
+}
+
 /// The help in a terminal too short for it says how many rows it leaves out; in the lesson
 /// list it shows the list's keys, not the scene's.
 #[test]

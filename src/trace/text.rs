@@ -376,14 +376,26 @@ const SAMPLES_SHOWN: usize = 3;
 
 /// A CSG trace drawn bottom-up readable: every node with its segment list.
 pub fn csg_trace(scene: &Scene, ray: &Ray, trace: &CsgTrace) -> String {
+    csg_trace_at(scene, ray, trace, 0.0)
+}
+
+/// `csg_trace` for a ray of a tree whose numbers are of size `scale` (`tree_scale`): a
+/// secondary ray leaving a surface near the origin has an origin of the bias's size, and its
+/// segments' t and points below `NOISE` of the tree's size are rounding, written as 0.
+pub fn csg_trace_at(scene: &Scene, ray: &Ray, trace: &CsgTrace, scale: f64) -> String {
     let mut out = String::new();
-    draw_csg(scene, ray, trace, "", "", &mut out);
+    draw_csg(scene, ray, trace, scale, ("", ""), &mut out);
     out
 }
 
 /// A segment list as text: each segment's [t_in, t_out] and the points at its ends ("(empty)" for
 /// none).
 pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String {
+    segment_list_at(ray, segments, 0.0)
+}
+
+/// `segment_list` among numbers of size at least `scale`.
+fn segment_list_at(ray: &Ray, segments: &[crate::geometry::Segment], scale: f64) -> String {
     if segments.is_empty() {
         return "(empty)".into();
     }
@@ -391,7 +403,9 @@ pub fn segment_list(ray: &Ray, segments: &[crate::geometry::Segment]) -> String 
         .iter()
         .flat_map(|s| [s.t_in, s.t_out])
         .filter(|t| t.is_finite())
-        .fold(ray.origin.abs().max_element(), |m, t| m.max(t.abs()));
+        .fold(ray.origin.abs().max_element().max(scale), |m, t| {
+            m.max(t.abs())
+        });
     segments
         .iter()
         .map(|s| {
@@ -559,7 +573,14 @@ pub fn pruned_reason(p: Pruned) -> &'static str {
     }
 }
 
-fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out: &mut String) {
+fn draw_csg(
+    scene: &Scene,
+    ray: &Ray,
+    t: &CsgTrace,
+    scale: f64,
+    (first, rest): (&str, &str),
+    out: &mut String,
+) {
     let kind = match (t.op, t.leaf) {
         (Some(op), _) => op.name().to_string(),
         (None, Some(leaf)) => scene.leaves[leaf as usize].shape.kind().to_string(),
@@ -573,7 +594,7 @@ fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out
     let body = match t.pruned {
         Some(Pruned::ParentPruned) => "not evaluated: its parent was pruned".to_string(),
         Some(p) => format!("pruned: {}", pruned_reason(p)),
-        None => segment_list(ray, &t.segments),
+        None => segment_list_at(ray, &t.segments, scale),
     };
     out.push_str(&format!("{first}{label}: {body}\n"));
     for (i, c) in t.children.iter().enumerate() {
@@ -587,8 +608,8 @@ fn draw_csg(scene: &Scene, ray: &Ray, t: &CsgTrace, first: &str, rest: &str, out
             scene,
             ray,
             c,
-            &format!("{rest}{f}"),
-            &format!("{rest}{r}"),
+            scale,
+            (&format!("{rest}{f}"), &format!("{rest}{r}")),
             out,
         );
     }

@@ -105,6 +105,8 @@ impl CsgPanel {
             return;
         };
         let mut lines = Vec::new();
+        // The size of the tree's numbers, below whose rounding a coordinate reads 0.
+        let scale = text::tree_scale(root);
         let paths = tree::ray_paths(root);
         let more = paths.len().saturating_sub(CSG_MAX_RAYS);
         for path in paths.into_iter().take(CSG_MAX_RAYS) {
@@ -127,7 +129,7 @@ impl CsgPanel {
                 header: true,
                 text: format!(
                     "{name} {} → {}",
-                    text::point(ray.origin),
+                    text::ray_origin(n, scale),
                     text::vec3(ray.dir)
                 ),
             });
@@ -144,7 +146,7 @@ impl CsgPanel {
             }
             for m in &survey.met {
                 line(format!("  object {}", m.name));
-                for l in text::csg_trace(scene, &ray, &m.trace).lines() {
+                for l in text::csg_trace_at(scene, &ray, &m.trace, scale).lines() {
                     line(format!("    {l}"));
                 }
                 line(format!("    → {}", m.verdict(&ray)));
