@@ -12,6 +12,7 @@ const CASES: &[(&str, &str, &str)] = &[
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials: { m: { kd: 1 } }\nobjects:\n  - { name: s, sphere: { center: [0, 0, 0], radius: -1 }, material: m }", "4:53", "sphere radius must be > 0"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nlights:\n  - { direction: [0, 0, 0] }", "3:18", "zero vector"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0], up: [0, 0, 0] }", "1:52", "zero vector"),
+    ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nlights:\n  - { direction: [0, 1e-200, 0] }", "3:18", "light direction is too short to have a direction"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0], up: [0, 0, 1] }", "1:52", "parallel to the view direction"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials:\n  glass: { ior: 0 }", "3:17", "ior must be between 0.01 and 100"),
     ("camera: { eye: [0, 0, -5], look_at: [0, 0, 0] }\nmaterials:\n  glass: { ior: 1e-16 }", "3:17", "ior must be between 0.01 and 100"),

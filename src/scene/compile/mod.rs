@@ -187,7 +187,14 @@ fn printable_name(name: &str, p: Pos, what: &str) -> Result<(), Invalid> {
 
 fn nonzero(v: DVec3, p: Pos, what: &str) -> Result<DVec3, Invalid> {
     v.try_normalize().map_or_else(
-        || invalid(p, format!("{what} must not be the zero vector")),
+        || {
+            let why = if v == DVec3::ZERO {
+                "must not be the zero vector"
+            } else {
+                "is too short to have a direction (its length squared underflows)"
+            };
+            invalid(p, format!("{what} {why}"))
+        },
         Ok,
     )
 }
