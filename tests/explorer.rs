@@ -553,6 +553,11 @@ fn live_reload_keeps_the_last_good_scene_and_shows_the_error() {
     assert!(app.file.error.is_none());
     assert_eq!(app.image_size(), (24, 18));
     assert_eq!(app.tree.pixel(), (23, 17));
+    let note = app.message_text().unwrap().0;
+    assert!(
+        note.ends_with("(fixed) · the image is now 24 × 18: pixel 40,30 moved to 23,17"),
+        "{note}"
+    );
     assert!(app.preview.job.is_some(), "the preview renders again");
     // Nothing changed: nothing happens.
     let generation = app.preview.generation;

@@ -258,9 +258,19 @@ impl App {
             let note = l.poll();
             self.note(note);
         }
-        if let Some((scene, note)) = self.file.poll() {
+        if let Some((scene, (mut note, tone))) = self.file.poll() {
+            let pixel = self.tree.pixel();
             self.set_scene(scene);
-            self.message = Some(note);
+            // A smaller image keeps the picked pixel inside it: said, not done silently.
+            let (x, y) = self.tree.pixel();
+            if (x, y) != pixel && self.tree.aimed_ray().is_none() {
+                let (w, h) = self.image_size();
+                note.push_str(&format!(
+                    " · the image is now {w} × {h}: pixel {},{} moved to {x},{y}",
+                    pixel.0, pixel.1
+                ));
+            }
+            self.message = Some((note, tone));
         }
     }
 }
