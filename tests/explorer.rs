@@ -1415,6 +1415,12 @@ fn m_marks_where_the_rays_landed_on_the_preview() {
     assert!(marks.contains(&cell), "{cell:?} in {marks:?}");
     press(&mut app, KeyCode::Char('m'));
     assert!(!screen(&app).contains('◆'));
+    // A pixel of the background has no rays to mark: m says so.
+    update(&mut app, Msg::Pick(0, 0));
+    assert!(app.tree.full_tree().unwrap().hit.is_none());
+    press(&mut app, KeyCode::Char('m'));
+    let note = app.message_text().unwrap().0;
+    assert!(note.starts_with("hit marks on: none to show"), "{note}");
 }
 
 // ---------------------------------------------------------------------------------------

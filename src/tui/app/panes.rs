@@ -209,10 +209,13 @@ impl App {
             }
             Msg::ToggleMarks => {
                 self.preview.marks = !self.preview.marks;
-                let note = if self.preview.marks {
-                    "hit points marked on the preview: ◆ where the rays landed (reflection, refraction)"
-                } else {
+                let note = if !self.preview.marks {
                     "hit marks hidden"
+                } else if self.marks_in_view() == 0 {
+                    "hit marks on: none to show, this tree's reflection and refraction rays land \
+                     outside the picture (or it has none)"
+                } else {
+                    "hit points marked on the preview: ◆ where the rays landed (reflection, refraction)"
                 };
                 self.message = Some((note.into(), Tone::Info));
             }
@@ -227,6 +230,20 @@ impl App {
             Msg::Release => self.diagram.drag = None,
             _ => {}
         }
+    }
+}
+
+impl App {
+    /// How many of the tree's reflection and refraction hits land inside the picture.
+    fn marks_in_view(&self) -> usize {
+        let (Some(scene), Some(root)) = (self.file.scene.as_deref(), self.tree.shown_tree()) else {
+            return 0;
+        };
+        let (w, h) = self.image_size();
+        crate::diagram::marks::hit_marks(&scene.camera, root)
+            .iter()
+            .filter(|m| m.at.x >= 0.0 && m.at.y >= 0.0 && m.at.x < w as f64 && m.at.y < h as f64)
+            .count()
     }
 }
 
