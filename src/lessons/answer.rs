@@ -164,14 +164,16 @@ fn number(s: &str, infinite_allowed: bool) -> Result<f64, AnswerError> {
     Ok(value)
 }
 
-/// Parses an answer: `tir`, `none` (an empty segment list, whatever is asked), a number, `x, y, z`, or a segment
+/// Parses an answer: `tir` (or `total internal reflection`), `none` (an empty segment list, whatever is asked), a number, `x, y, z`, or a segment
 /// list `a, b; c, d` (brackets and parentheses are ignored). An answer without a number in it
 /// (empty, or punctuation alone) is refused: an empty segment list is written `none`.
 pub fn parse_answer(s: &str, segments: bool) -> Result<Answer, AnswerError> {
     // Words in any case; the numbers as typed, so that an error quotes them so.
     let t = s.trim();
     let word = t.to_ascii_lowercase();
-    if word == "tir" {
+    // Total internal reflection, as a student names it: `tir`, or the words themselves.
+    let words: Vec<&str> = word.split_whitespace().collect();
+    if word == "tir" || words == ["total", "internal", "reflection"] {
         return Ok(Answer::Tir);
     }
     // An empty segment list, whatever is asked: where something else is, it is an answer of
@@ -267,6 +269,15 @@ mod tests {
             parse_answer(" ; ", false),
             Err(AnswerError::NoNumbers(_))
         ));
+    }
+
+    /// Total internal reflection is `tir` or its name in words, in any case and spacing.
+    #[test]
+    fn total_internal_reflection_is_named_in_words_too() {
+        for said in ["tir", " TIR ", "total internal reflection", "Total  Internal Reflection"] {
+            assert_eq!(parse_answer(said, false).unwrap(), Answer::Tir, "{said}");
+        }
+        assert!(parse_answer("total reflection", false).is_err());
     }
 
     #[test]

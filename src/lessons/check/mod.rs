@@ -428,6 +428,9 @@ fn kind_hint(ask: Ask, given: &Answer, expected: &Answer) -> Option<String> {
             "1 − η²(1 − c1²) is negative here: there is no refracted ray (total internal reflection, answer tir)".into()
         }
         (Answer::Tir, _) => format!("tir is an answer for a refracted direction only; {what} is asked"),
+        (Answer::Segments(s), Answer::Tir) if s.is_empty() => {
+            "no ray is refracted, right: that is total internal reflection, which is answered tir".into()
+        }
         (Answer::Segments(s), _) if s.is_empty() && !matches!(expected, Answer::Segments(_)) => {
             format!("none is an answer for a segment list only (an empty one); {what} is asked")
         }
