@@ -404,11 +404,33 @@ fn each_common_mistake_gets_its_hint() {
         ),
         // s = 1 at P under the sphere light, where the shelf's edge x = 0 blocks the 8 of its
         // 4 × 4 shadow rays that aim at x > 0 (the pattern is symmetric about the centre).
+        // s is what is asked: the hint names the mistake, not s = 0.5.
         (
             "14-monte-carlo-glossy",
             "half-shadow",
             "1",
-            "here s = 0.5 for bulb",
+            "s = 1 would mean every shadow ray reaches the light",
+        ),
+        // The reflection node's 0.512254 times kr = 0.8, what the root adds of it.
+        (
+            "07-recursion-depth",
+            "depth-3-ball",
+            "0.409803",
+            "times kr, what its parent adds",
+        ),
+        // Ray c's 0.972132 times kt = 0.3: what the root adds of the refraction ray.
+        (
+            "08-pixel-intensity",
+            "node-c",
+            "0.29164",
+            "times kt, what its parent adds",
+        ),
+        // u = 1 for the seam's u = 0: the formula right, the wrap into [0, 1) missed.
+        (
+            "16-textures",
+            "globe-seam-u",
+            "1",
+            "u = 1 is u = 0 on the seam",
         ),
         // The floor's 0.712384 through the slab weighted by kt once: 0.9·0.712384.
         ("06-refraction", "through-slab", "0.641146", "every surface"),

@@ -1771,7 +1771,7 @@ fn a_hint_on_how_many_numbers_names_the_exercises_own_count() {
 fn none_where_no_segment_list_is_asked_is_wrong() {
     for (lesson, exercise, what) in [
         ("02-intersection", "chord-t", "t is asked"),
-        ("06-refraction", "beyond-critical", "a direction is asked"),
+        ("06-refraction", "entry-direction", "a direction is asked"),
     ] {
         let o = raytree(&["check", lesson, "--exercise", exercise, "--answer", "none"]);
         assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
@@ -1782,6 +1782,17 @@ fn none_where_no_segment_list_is_asked_is_wrong() {
         );
         assert!(said.contains(what), "{said}");
     }
+    // Where no ray is refracted, none is the right idea in the wrong words: the hint says tir.
+    let o = raytree(&[
+        "check",
+        "06-refraction",
+        "--exercise",
+        "beyond-critical",
+        "--answer",
+        "none",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}{}", out(&o), err(&o));
+    assert!(out(&o).contains("which is answered tir"), "{}", out(&o));
 }
 
 /// "José" with é (NFC) and with e and a combining accent (NFD, as macOS and some

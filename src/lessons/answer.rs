@@ -274,7 +274,12 @@ mod tests {
     /// Total internal reflection is `tir` or its name in words, in any case and spacing.
     #[test]
     fn total_internal_reflection_is_named_in_words_too() {
-        for said in ["tir", " TIR ", "total internal reflection", "Total  Internal Reflection"] {
+        for said in [
+            "tir",
+            " TIR ",
+            "total internal reflection",
+            "Total  Internal Reflection",
+        ] {
             assert_eq!(parse_answer(said, false).unwrap(), Answer::Tir, "{said}");
         }
         assert!(parse_answer("total reflection", false).is_err());

@@ -147,9 +147,19 @@ fn nearest_hit(w: &Worked, n: &RayNode) -> Vec<String> {
         out.push("the ray hits nothing".into());
         return out;
     };
+    let csg = !h.csg_path.is_empty();
+    if csg {
+        out.push(format!(
+            "the hit is on {}, an operand of the CSG object {}: its own roots first",
+            h.leaf, h.object
+        ));
+    }
     match untransformed_shape(w, h) {
         Some(Shape::Sphere(s)) => out.extend(sphere_roots(n, s, h.t)),
         _ => out.push(format!("nearest hit on {}: t = {}", h.leaf, text::num(h.t))),
+    }
+    if csg {
+        out.extend(csg_hit(w, n, h));
     }
     out.push(format!("point p = o + t·d = {}", text::vec3(h.point)));
     out.push(format!(
@@ -159,31 +169,60 @@ fn nearest_hit(w: &Worked, n: &RayNode) -> Vec<String> {
     out
 }
 
+/// A CSG object's hit: its segment list along the ray, and which end of which segment is the
+/// first past t = 0, entering the object or leaving it.
+fn csg_hit(w: &Worked, n: &RayNode, h: &HitInfo) -> Vec<String> {
+    let Some(object) = w.scene.object_index(&h.object) else {
+        return vec![];
+    };
+    let ray = Ray {
+        origin: n.origin,
+        dir: n.direction,
+    };
+    let list = w.scene.object_trace(object, &ray, false).0;
+    vec![
+        format!(
+            "{}'s segment list along the ray: {}",
+            h.object,
+            text::segment_list(&ray, &list)
+        ),
+        format!(
+            "its first segment end past t = 0 is t = {}, where the ray {} {}",
+            text::num(h.t),
+            if h.inside { "leaves" } else { "enters" },
+            h.object
+        ),
+    ]
+}
+
 /// The ray–sphere quadratic for a unit direction, its discriminant, and the root taken.
 fn sphere_roots(n: &RayNode, s: &Sphere, t: f64) -> Vec<String> {
+    // Lesson 02's names: a·t² + b·t + c = 0 with a = d·d, b = 2 d·(o − c), D = b² − 4ac.
     let oc = n.origin - s.center;
-    let b = n.direction.dot(oc);
+    let a = n.direction.length_squared();
+    let b = 2.0 * n.direction.dot(oc);
     let c = oc.length_squared() - s.radius * s.radius;
-    let disc = b * b - c;
-    let tangent = if disc.abs() < 1e-9 {
+    let disc = b * b - 4.0 * a * c;
+    let tangent = if disc.abs() < 4e-9 * a {
         " (zero: the ray is tangent, a double root)"
     } else {
         ""
     };
     vec![
         format!(
-            "sphere c = {}, r = {}: t² + 2(d·(o − c))t + |o − c|² − r² = 0",
+            "sphere centre {}, r = {}: |o + t·d − centre|² = r², a·t² + b·t + c = 0",
             text::vec3(s.center),
             text::num(s.radius)
         ),
         format!(
-            "b = d·(o − c) = {}, c' = |o − c|² − r² = {}",
+            "a = d·d = {}, b = 2 d·(o − centre) = {}, c = |o − centre|² − r² = {}",
+            text::num(a),
             text::num(b),
             text::num(c)
         ),
-        format!("discriminant b² − c' = {}{tangent}", text::num(disc)),
+        format!("discriminant D = b² − 4ac = {}{tangent}", text::num(disc)),
         format!(
-            "t = −b ± √(b² − c') → nearest positive root t = {}",
+            "t = (−b ± √D)/2a → nearest positive root t = {}",
             text::num(t)
         ),
     ]

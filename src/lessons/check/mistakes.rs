@@ -16,6 +16,30 @@ use crate::scene::Scene;
 use crate::shading::{Highlight, LightKind};
 use crate::trace::{text, RayKind, RayNode, TraceOptions};
 
+/// A secondary ray's intensity already multiplied by its coefficient (kr or kt): what its
+/// parent adds, where the exercise asks what the ray brings back.
+fn weighted_by_parent(w: &Worked, ex: &Exercise) -> (Option<Answer>, String) {
+    let node = (!ex.node.is_empty())
+        .then(|| w.tree.find(&ex.node))
+        .flatten()
+        .filter(|n| matches!(n.kind, RayKind::Reflection | RayKind::Refraction));
+    let answer = node
+        .filter(|n| n.coefficient != 1.0)
+        .and_then(|n| match &w.expected {
+            Answer::Number(x) => Some(Answer::Number(x * n.coefficient)),
+            Answer::Vector(v) => Some(Answer::Vector(*v * n.coefficient)),
+            _ => None,
+        });
+    let name = match node.map(|n| n.kind) {
+        Some(RayKind::Refraction) => "kt",
+        _ => "kr",
+    };
+    (
+        answer,
+        format!("that is the ray's intensity times {name}, what its parent adds: the question asks what the ray itself brings back, before its parent weights it"),
+    )
+}
+
 /// Every mistake in the order the hints are tried: the more specific first (glass blocking a
 /// shadow ray is a case of leaving out the shadow term, and is named as such when it is).
 pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
@@ -69,17 +93,23 @@ pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
         kt_once(w, ex),
         "kt weights the ray at every surface it passes: entering the glass and leaving it each multiply by kt (kt² through a slab)".into(),
     ));
+    tries.push(weighted_by_parent(w, ex));
     let d = w.depth;
+    let bounces = if d == 2 {
+        "1 bounce".to_string()
+    } else {
+        format!("{} bounces", d - 1)
+    };
     if d > 1 {
         tries.push((
             retrace(w, ex, &w.scene, TraceOptions { max_depth: d - 1, ..full }),
-            format!("max_depth counts the rays on a path, the primary ray included: max_depth {d} traces {d} rays on a path ({} bounces); you cut the tree one level short", d - 1),
+            format!("max_depth counts the rays on a path, the primary ray included: max_depth {d} traces {d} rays on a path ({bounces}); you cut the tree one level short"),
         ));
     }
     if d < 64 {
         tries.push((
             retrace(w, ex, &w.scene, TraceOptions { max_depth: d + 1, ..full }),
-            format!("max_depth counts the rays on a path, the primary ray included: max_depth {d} traces {d} rays on a path ({} bounces); you went one level deeper", d - 1),
+            format!("max_depth counts the rays on a path, the primary ray included: max_depth {d} traces {d} rays on a path ({bounces}); you went one level deeper"),
         ));
     }
     tries
@@ -92,6 +122,12 @@ pub(super) fn tree_mistakes(w: &Worked, ex: &Exercise) -> Vec<Mistake> {
 /// node where one is under 1 there (a fraction for a light sampled by several shadow rays),
 /// else that a shadow ray further down the tree is blocked.
 fn shadow_hint(w: &Worked, ex: &Exercise) -> String {
+    // Where s itself is asked, its value is the answer: the hint names the mistake only.
+    if ex.ask == crate::lessons::Ask::ShadowFactor {
+        return "s = 1 would mean every shadow ray reaches the light: count the ones an object \
+                stops on their way"
+            .into();
+    }
     let shaded = (w.tree.find(&ex.node).and_then(|n| n.local.as_ref()))
         .map(|local| {
             (local.lights.iter())

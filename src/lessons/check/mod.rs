@@ -352,12 +352,6 @@ pub fn highlight_model(w: &Worked, ex: &Exercise) -> Option<String> {
     if !asks_intensity(ex.ask) || w.scene.integrator == crate::scene::Integrator::Path {
         return None;
     }
-    if let Some(m) = ex.model {
-        return Some(format!(
-            "highlight model: {}, as the exercise states",
-            m.name()
-        ));
-    }
     let mut shiny: Vec<(String, Highlight)> = Vec::new();
     fn walk(n: &RayNode, scene: &Scene, out: &mut Vec<(String, Highlight)>) {
         if let Some(h) = &n.hit {
@@ -372,7 +366,12 @@ pub fn highlight_model(w: &Worked, ex: &Exercise) -> Option<String> {
         }
     }
     walk(node(&w.tree, ex).ok()?, &w.scene, &mut shiny);
+    // No lit surface with a highlight: no model to name.
     let (_, first) = shiny.first()?;
+    if let Some(m) = ex.model {
+        // The exercise's `model:` (its exercises.yaml; the question may not say it).
+        return Some(format!("highlight model: {}, the exercise's", m.name()));
+    }
     if shiny.iter().all(|(_, h)| h == first) {
         Some(format!(
             "highlight model: {}, as the material{} set{}",

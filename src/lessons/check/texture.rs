@@ -59,6 +59,14 @@ impl Question for TextureCoordinate {
             }
             _ => return vec![],
         };
+        // On the seam (u = 0) the other end is u = 1 itself: the formula is right, its wrap is
+        // not.
+        let hint = if x == 0.0 && !self.v {
+            "u = 1 is u = 0 on the seam: the sign of a zero in atan2 gives θ = ±π there, and \
+             raytree wraps u into [0, 1)"
+        } else {
+            hint
+        };
         vec![Mistake {
             answer: Answer::Number(1.0 - x),
             hint: hint.into(),
