@@ -31,6 +31,20 @@ fn raytree(args: &[&str]) -> Output {
     raytree_in(&scratch_data(), args)
 }
 
+/// `raytree grade LESSON --answers SHEET --format json`, which must succeed, as JSON.
+fn grade_json(lesson: &str, sheet: &Path) -> Value {
+    let o = raytree(&[
+        "grade",
+        lesson,
+        "--answers",
+        sheet.to_str().unwrap(),
+        "--format",
+        "json",
+    ]);
+    assert!(o.status.success(), "{}{}", out(&o), err(&o));
+    serde_json::from_str(&out(&o)).unwrap_or_else(|e| panic!("{e}: {}", out(&o)))
+}
+
 /// A class's answers, `rows` of CSV, written as c.csv in a scratch folder of its own.
 fn answer_sheet(name: &str, rows: impl AsRef<[u8]>) -> PathBuf {
     let dir = scratch(name);
@@ -423,15 +437,7 @@ fn two_students_homework_differ_and_grade_against_their_own_values() {
         format!("alice,diffuse,{da}\nbob,diffuse,{db}\ncarol,diffuse,{da}\n"),
     )
     .unwrap();
-    let o = raytree(&[
-        "grade",
-        "lessons/03-local-illumination",
-        "--answers",
-        csv.to_str().unwrap(),
-        "--format",
-        "json",
-    ]);
-    let report: Value = serde_json::from_str(&out(&o)).unwrap();
+    let report = grade_json("lessons/03-local-illumination", &csv);
     let right = |k: usize| {
         report["students"][k]["exercises"]
             .as_array()
@@ -1510,15 +1516,7 @@ fn an_exercise_a_students_values_make_impossible_is_set_aside() {
         .map(|s| format!("{s},graze,4.56\n"))
         .collect();
     let sheet = answer_sheet("impossible-sheet", &rows);
-    let o = raytree(&[
-        "grade",
-        dir.to_str().unwrap(),
-        "--answers",
-        sheet.to_str().unwrap(),
-        "--format",
-        "json",
-    ]);
-    let v: Value = serde_json::from_str(&out(&o)).unwrap();
+    let v = grade_json(dir.to_str().unwrap(), &sheet);
     let problems: Vec<String> = v["problems"]
         .as_array()
         .unwrap()
@@ -1826,15 +1824,7 @@ fn a_student_id_is_one_student_in_either_unicode_form() {
         format!("{composed},diffuse,{answer}\n{decomposed},specular-blinn,0\n"),
     )
     .unwrap();
-    let o = raytree(&[
-        "grade",
-        "03-local-illumination",
-        "--answers",
-        sheet.to_str().unwrap(),
-        "--format",
-        "json",
-    ]);
-    let report: serde_json::Value = serde_json::from_str(&out(&o)).unwrap();
+    let report = grade_json("03-local-illumination", &sheet);
     let students = report["students"].as_array().unwrap();
     assert_eq!(students.len(), 1, "{report}");
     assert_eq!(students[0]["score"], 1, "{report}");

@@ -442,6 +442,13 @@ impl App {
 
 // --- Pixel, depth, levels
 
+/// A level-stepping note on the message line: the level reached, or all levels collected.
+#[derive(Clone, Copy)]
+enum LevelNote {
+    Reached,
+    Collected,
+}
+
 impl App {
     fn move_pixel(&mut self, dx: i32, dy: i32) {
         let levels = self.levels_said();
@@ -451,14 +458,13 @@ impl App {
         }
     }
 
-    /// Which of the level-stepping notes the message line shows, if one: the level reached
-    /// (false) or all levels collected (true).
-    fn levels_said(&self) -> Option<bool> {
+    /// Which of the level-stepping notes the message line shows, if one.
+    fn levels_said(&self) -> Option<LevelNote> {
         let said = self.message.as_ref()?;
         if Some(said) == self.tree.level_note().as_ref() {
-            Some(false)
+            Some(LevelNote::Reached)
         } else if self.tree.level().is_some() && *said == self.tree.collected_note() {
-            Some(true)
+            Some(LevelNote::Collected)
         } else {
             None
         }
@@ -466,10 +472,10 @@ impl App {
 
     /// After another pixel's tree is traced: a level-stepping note on the message line is
     /// said again of the new tree (it kept the old pixel's intensities).
-    fn say_levels_again(&mut self, said: Option<bool>) {
+    fn say_levels_again(&mut self, said: Option<LevelNote>) {
         match said {
-            Some(true) => self.message = Some(self.tree.collected_note()),
-            Some(false) => self.message = self.tree.level_note(),
+            Some(LevelNote::Collected) => self.message = Some(self.tree.collected_note()),
+            Some(LevelNote::Reached) => self.message = self.tree.level_note(),
             None => {}
         }
     }

@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use super::tree::tree_explanation;
 use super::{Mistake, Question, Traced, Worked};
-use crate::geometry::{Ray, Shape, Sphere, Triangle};
+use crate::geometry::{Ray, SegmentList, Shape, Sphere, Triangle};
 use crate::lessons::{Answer, Exercise};
 use crate::trace::tree::HitInfo;
 use crate::trace::{text, RayNode};
@@ -119,14 +119,21 @@ impl Question for Barycentric {
 fn far_exit(w: &Worked, ex: &Exercise) -> Option<(Ray, f64)> {
     let n = w.tree.find(&ex.node)?;
     let h = n.hit.as_ref()?;
+    let (ray, list) = segments_of_hit(w, n, h)?;
+    let s = list.iter().find(|s| (s.t_in - h.t).abs() < 1e-9)?;
+    Some((ray, s.t_out))
+}
+
+/// The node's ray, and the segment list of the object its hit is on along that ray (the whole
+/// object, without its bounding boxes).
+fn segments_of_hit(w: &Worked, n: &RayNode, h: &HitInfo) -> Option<(Ray, SegmentList)> {
     let object = w.scene.object_index(&h.object)?;
     let ray = Ray {
         origin: n.origin,
         dir: n.direction,
     };
     let list = w.scene.object_trace(object, &ray, false).0;
-    let s = list.iter().find(|s| (s.t_in - h.t).abs() < 1e-9)?;
-    Some((ray, s.t_out))
+    Some((ray, list))
 }
 
 /// The shape a hit is on, when it is written in world space (no transform), so that its
@@ -172,14 +179,9 @@ fn nearest_hit(w: &Worked, n: &RayNode) -> Vec<String> {
 /// A CSG object's hit: its segment list along the ray, and which end of which segment is the
 /// first past t = 0, entering the object or leaving it.
 fn csg_hit(w: &Worked, n: &RayNode, h: &HitInfo) -> Vec<String> {
-    let Some(object) = w.scene.object_index(&h.object) else {
+    let Some((ray, list)) = segments_of_hit(w, n, h) else {
         return vec![];
     };
-    let ray = Ray {
-        origin: n.origin,
-        dir: n.direction,
-    };
-    let list = w.scene.object_trace(object, &ray, false).0;
     vec![
         format!(
             "{}'s segment list along the ray: {}",
