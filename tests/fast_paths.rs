@@ -23,7 +23,7 @@ use raytree::scene::{parse, Accel, Hit, Limits, Scene, Search};
 use raytree::shading::LightKind;
 use raytree::stats::Stats;
 use raytree::trace::path::PathTracer;
-use raytree::trace::Tracer;
+use raytree::trace::{TraceOptions, Tracer};
 
 // --- Whole images ---
 
@@ -279,6 +279,12 @@ fn scenes_with_mirrors_glass_or_patterns_keep_the_cores_path_tracer() {
 /// four rays at a time, the counters of the searches' work (objects tested, boxes missed, CSG
 /// subtrees pruned) are the core's too.
 fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) -> Stats {
+    assert_pixels_traced_in_packets_with(scene, |_| {})
+}
+
+/// As `assert_pixels_traced_in_packets_are_traced_sample_by_sample`, both tracers' options set
+/// by `options`.
+fn assert_pixels_traced_in_packets_with(scene: &Scene, options: fn(&mut TraceOptions)) -> Stats {
     let fast = Film::new(scene, RenderOptions::of(scene));
     let core = Film::new(
         scene,
@@ -292,6 +298,8 @@ fn assert_pixels_traced_in_packets_are_traced_sample_by_sample(scene: &Scene) ->
     let (w, h) = (scene.camera.width, scene.camera.height);
     for (x, y) in (0..h).flat_map(|y| (0..w).map(move |x| (x, y))) {
         let (mut packed, mut one_by_one) = (fast.tracer(), core.tracer());
+        options(&mut packed.options);
+        options(&mut one_by_one.options);
         let value = fast.pixel(&mut packed, x, y, &no_corners);
         let expected = core.pixel(&mut one_by_one, x, y, &no_corners);
         assert_eq!(
@@ -701,6 +709,67 @@ objects:
         "{total:?}"
     );
     assert_engines_agree("checkers", &scene, 16);
+}
+
+/// Planes shaded in lanes from hit to light, without records: a checkered floor with Blinn's
+/// highlight, a plain wall leaning over it with Phong's, a ceiling seen from inside its
+/// half-space, a sixth plane beyond the most the lanes take, a plane of a fractional exponent
+/// and a mirror plane (both shaded as usual), beside a mirror and a glass sphere whose rays
+/// fall on them, under two lights; then with a third light at no finite distance, where every
+/// plane's surfaces go back to the usual shading; and without shadows. Every pixel is exactly
+/// its samples traced one by one.
+#[test]
+fn planes_shaded_in_lanes_are_shaded_as_the_core_shades_them() {
+    let yaml = "camera: { eye: [0, 2, -6], look_at: [0, 1.5, 2], width: 40, height: 30 }
+spp: 4
+ambient: 0.3
+max_depth: 3
+lights:
+  - { name: key, point: [-3, 3.5, -4], intensity: 0.9 }
+  - { name: fill, point: [2, 1, -5], intensity: [0.3, 0.2, 0.1] }
+materials:
+  floor: { color: { pattern: checker, colors: [[0.9, 0.8, 0.7], [0.2, 0.3, 0.1]] }, ka: 0.2, kd: 0.8, ks: 0.4, shininess: 30 }
+  wall: { color: [0.4, 0.6, 0.8], ka: 0.1, kd: 0.7, ks: 0.5, shininess: 12, highlight: phong }
+  ceiling: { color: 0.9, ka: 0.5, kd: 0.5 }
+  odd: { color: [0.8, 0.8, 0.3], kd: 0.6, ks: 0.5, shininess: 7.5 }
+  shiny: { color: 0.2, kd: 0.3, kr: 0.5 }
+  mirror: { color: 0.1, kd: 0.1, kr: 0.8 }
+  glass: { color: 1, kd: 0.05, kr: 0.1, kt: 0.9, ior: 1.5 }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { name: wall, plane: { point: [0, 0, 6], normal: [0.2, 0.3, -1] }, material: wall }
+  - { name: ceiling, plane: { point: [0, 4, 0], normal: [0, 1, 0] }, material: ceiling }
+  - { name: left, plane: { point: [-5, 0, 0], normal: [1, 0, 0.1] }, material: ceiling }
+  - { name: right, plane: { point: [5, 0, 0], normal: [-1, 0, 0] }, material: wall }
+  - { name: sixth, plane: { point: [0, 0, -9], normal: [0, 0, 1] }, material: floor }
+  - { name: odd, plane: { point: [-4.5, 0, 0], normal: [1, 0, -0.2] }, material: odd }
+  - { name: shiny, plane: { point: [4.5, 0, 0], normal: [-1, 0.1, 0] }, material: shiny }
+  - { name: mirror, sphere: { center: [-0.7, 0.6, -1], radius: 0.6 }, material: mirror }
+  - { name: glass, sphere: { center: [0.8, 0.6, -1.5], radius: 0.6 }, material: glass }
+";
+    let mut scene = parse(yaml, "planes.yaml", None, &Limits::default()).unwrap();
+    assert_eq!(FastScene::new(&scene).planes_in_lanes(), 4);
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.reflection_rays > 0
+            && total.refraction_rays > 0
+            && total.shadow_skipped_backfacing > 0,
+        "{total:?}"
+    );
+    assert_engines_agree("planes", &scene, 16);
+
+    // Beyond the range of a scene file: the distance to the light overflows to ∞.
+    let mut far = scene.lights[0].clone();
+    far.kind = LightKind::Point {
+        position: DVec3::new(1e300, 1e300, -1e300),
+        attenuation: [1.0, 0.0, 0.0],
+    };
+    scene.lights.push(far);
+    scene.features = raytree::scene::Features::of(&scene);
+    assert_eq!(FastScene::new(&scene).planes_in_lanes(), 4);
+    assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+
+    assert_pixels_traced_in_packets_with(&scene, |options| options.shadows = false);
 }
 
 /// Every kind of light: point (attenuated), directional, an area light (its grid of shadow rays

@@ -85,9 +85,19 @@ pub(super) fn paint_checkers<V: F64x4, const N: usize>(
 /// Bit k set where the checker's cell of `points[k]` is even (its colour is A).
 #[inline(always)]
 fn even_cells<V: F64x4>([p0, p1, p2, p3]: [DVec3; LANES]) -> u32 {
-    let cell = |a: f64, b: f64, c: f64, d: f64| (V::new([a, b, c, d]) + V::splat(BOUNDARY)).floor();
-    let n =
-        cell(p0.x, p1.x, p2.x, p3.x) + cell(p0.y, p1.y, p2.y, p3.y) + cell(p0.z, p1.z, p2.z, p3.z);
+    let axis = |a: f64, b: f64, c: f64, d: f64| V::new([a, b, c, d]);
+    even_cells_of::<V>([
+        axis(p0.x, p1.x, p2.x, p3.x),
+        axis(p0.y, p1.y, p2.y, p3.y),
+        axis(p0.z, p1.z, p2.z, p3.z),
+    ])
+}
+
+/// Bit k set where the checker's cell of the point in lane k is even (its colour is A).
+#[inline(always)]
+pub(super) fn even_cells_of<V: F64x4>([x, y, z]: [V; 3]) -> u32 {
+    let cell = |a: V| (a + V::splat(BOUNDARY)).floor();
+    let n = cell(x) + cell(y) + cell(z);
     let half = n * V::splat(0.5);
     (half.floor().simd_eq(half) & n.is_finite()).to_bitmask()
 }

@@ -16,9 +16,9 @@ use super::search::FastScene;
 use super::shadow_cones::{self, TowardLight};
 use super::simd::F64x4;
 use crate::geometry::Ray;
-use crate::scene::{Interaction, Scene};
+use crate::scene::Interaction;
 use crate::shading::local::whole_exponent;
-use crate::shading::{Highlight, Light, LightKind};
+use crate::shading::{Highlight, Light, LightKind, Material};
 use crate::trace::Tracer;
 
 /// The light's position and intensity where the lanes can take it: a point light without
@@ -32,6 +32,28 @@ pub(super) fn lanes_light(light: &Light) -> Option<(DVec3, DVec3)> {
             Some((*position, light.intensity))
         }
         _ => None,
+    }
+}
+
+/// What the lanes need to know of a material's highlight.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LaneHighlight {
+    /// Hall's transmitted highlight: the surface takes `light_share`.
+    pub transmitted: bool,
+    /// The exponent m where it is whole, up to 1024 (`whole_exponent`); None takes
+    /// `light_share` where ks > 0.
+    pub whole: Option<u32>,
+    /// Blinn's highlight (h·n), else Phong's (r·v).
+    pub blinn: bool,
+}
+
+impl LaneHighlight {
+    pub fn of(m: &Material) -> LaneHighlight {
+        LaneHighlight {
+            transmitted: m.transmitted_highlight,
+            whole: whole_exponent(m.shininess),
+            blinn: m.highlight == Highlight::Blinn,
+        }
     }
 }
 
@@ -76,14 +98,14 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
 
     /// Chooses among the first `n` surfaces those lit in lanes.
     #[inline(always)]
-    pub fn choose(&mut self, scene: &Scene, n: usize) {
+    pub fn choose(&mut self, fast: &FastScene, n: usize) {
         for (i, si) in self.shaded[..n].iter().enumerate() {
             let Some(si) = si else { continue };
-            let m = scene.material(si.material);
-            let exponent = if m.transmitted_highlight {
+            let highlight = fast.highlight(si.material);
+            let exponent = if highlight.transmitted {
                 None
             } else if si.paint.ks > 0.0 {
-                whole_exponent(m.shininess)
+                highlight.whole
             } else {
                 // No highlight (ks ≤ 0 or NaN): nothing to raise.
                 Some(0)
@@ -92,7 +114,7 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
                 Some(e) => {
                     (self.chosen[self.count], self.exponent[i]) = (i, e);
                     self.count += 1;
-                    if m.highlight == Highlight::Blinn {
+                    if highlight.blinn {
                         self.blinn |= 1 << i;
                     }
                     if si.inside {
@@ -121,30 +143,7 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
         let mut far = 0;
         for group in self.chosen[..self.count].chunks(LANES) {
             let lit = self.group::<V>(t, k, light, group);
-            let mut blocked = 0;
-            if lit.cast != 0 {
-                let rays = RayLanes::from_lanes(lit.origin, lit.l);
-                // Written out, not `Option::map`: a closure holding lanes may be compiled
-                // outside the wing's copy.
-                let toward = match fast.shadow_cones.get(k) {
-                    Some(cones) => Some(TowardLight {
-                        cones,
-                        l: lit.l,
-                        slack: lit.slack,
-                    }),
-                    None => None,
-                };
-                blocked =
-                    fast.occluded_lanes(&rays, lit.reach, lit.cast, toward.as_ref(), &mut t.stats);
-            }
-            // color += s·terms: s = 1 where the shadow ray reaches the light, else 0.
-            let s = lane_mask::<V>(lit.cast & !blocked).bitselect(V::ONE, V::ZERO);
-            let [sx, sy, sz] = lit.terms.map(|term| (s * term).to_array());
-            for (j, &i) in group.iter().enumerate() {
-                if lit.far & 1 << j == 0 {
-                    out[i] += DVec3::new(sx[j], sy[j], sz[j]);
-                }
-            }
+            lit.add_shadowed(t, fast, k, group, out);
             far |= lit.far_lanes(group);
         }
         far
@@ -221,6 +220,37 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
             blinn: lane_mask(lane_bits(at, |i| self.blinn >> i & 1 != 0)),
             exponent: at.map(|i| self.exponent[i % N]),
         };
+        let inside = if self.inside != 0 {
+            (0..len).fold(0, |bits, j| bits | (si[j].inside as u32) << j)
+        } else {
+            0
+        };
+        let objects = si.map(|s| s.object);
+        GroupLit::new(
+            t,
+            k,
+            (position, intensity),
+            &surfaces,
+            used,
+            inside,
+            objects,
+        )
+    }
+}
+
+impl<V: F64x4> GroupLit<V> {
+    /// A light (at `position`, of `intensity`) at four `surfaces`, of which the lanes `used`
+    /// (bits 0–3) are shaded: the points in the lanes `inside` are inside their `objects`.
+    #[inline(always)]
+    pub(super) fn new(
+        t: &mut Tracer,
+        k: usize,
+        (position, intensity): (DVec3, DVec3),
+        surfaces: &Surfaces<V>,
+        used: u32,
+        inside: u32,
+        objects: [u32; LANES],
+    ) -> GroupLit<V> {
         let (l, d, far) = toward(position, surfaces.point);
         let far = far & used;
         let (terms, n_dot_l) = surfaces.terms(l, intensity);
@@ -229,11 +259,12 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
         // outside of.
         let features = &t.scene.features;
         let behind = n_dot_l.simd_le(V::ZERO).to_bitmask() & used & !far;
-        let inside = if self.inside != 0 {
-            (0..len).fold(0, |bits, j| {
-                let hidden = si[j].inside && features.hides_light_inside(si[j].object, k);
+        let inside = if inside & used != 0 {
+            (0..LANES).fold(0, |bits, j| {
+                let hidden = inside >> j & 1 != 0 && features.hides_light_inside(objects[j], k);
                 bits | (hidden as u32) << j
-            }) & !behind
+            }) & used
+                & !behind
                 & !far
         } else {
             0
@@ -246,7 +277,7 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
         // `Tracer::shadow_ray`: from the point moved off the surface by the bias, toward l, as
         // far as the light less the bias.
         let (origin, reach, bias) = if cast != 0 {
-            shadow_rays(t.scene.shadow_bias, &surfaces, n_dot_l, d)
+            shadow_rays(t.scene.shadow_bias, surfaces, n_dot_l, d)
         } else {
             ([V::ZERO; 3], V::ZERO, V::ZERO)
         };
@@ -260,10 +291,48 @@ impl<'a, const N: usize> SurfaceLanes<'a, N> {
             slack: shadow_cones::slack(bias, &surfaces.point, d),
         }
     }
+
+    /// Searches the shadow rays in lanes (a scene without a BVH) and adds each term with its
+    /// shadow factor, `out[group[j]] += s·term` with s = 1 where the shadow ray reaches the
+    /// light, else 0 (also where lane j casts none), except in the lanes left to `light_share`.
+    #[inline(always)]
+    pub(super) fn add_shadowed(
+        &self,
+        t: &mut Tracer,
+        fast: &FastScene,
+        k: usize,
+        group: &[usize],
+        out: &mut [DVec3],
+    ) {
+        let mut blocked = 0;
+        if self.cast != 0 {
+            let rays = RayLanes::from_lanes(self.origin, self.l);
+            // Written out, not `Option::map`: a closure holding lanes may be compiled
+            // outside the wing's copy.
+            let toward = match fast.shadow_cones.get(k) {
+                Some(cones) => Some(TowardLight {
+                    cones,
+                    l: self.l,
+                    slack: self.slack,
+                }),
+                None => None,
+            };
+            blocked =
+                fast.occluded_lanes(&rays, self.reach, self.cast, toward.as_ref(), &mut t.stats);
+        }
+        // color += s·terms: s = 1 where the shadow ray reaches the light, else 0.
+        let s = lane_mask::<V>(self.cast & !blocked).bitselect(V::ONE, V::ZERO);
+        let [sx, sy, sz] = self.terms.map(|term| (s * term).to_array());
+        for (j, &i) in group.iter().enumerate() {
+            if self.far & 1 << j == 0 {
+                out[i] += DVec3::new(sx[j], sy[j], sz[j]);
+            }
+        }
+    }
 }
 
 /// A light at four surfaces, before their shadow rays are searched.
-struct GroupLit<V> {
+pub(super) struct GroupLit<V> {
     /// The diffuse plus specular term, before the shadow factor.
     terms: [V; 3],
     /// Toward the light.
@@ -291,21 +360,21 @@ impl<V> GroupLit<V> {
 }
 
 /// Four surfaces in lanes: what a light's terms and shadow rays need of them.
-struct Surfaces<V> {
-    point: [V; 3],
+pub(super) struct Surfaces<V> {
+    pub point: [V; 3],
     /// The largest |coordinate| of the origin of the ray that found each point
     /// (`Interaction::origin_size`).
-    origin_size: V,
-    normal: [V; 3],
+    pub origin_size: V,
+    pub normal: [V; 3],
     /// v = −d, toward the viewer.
-    view: [V; 3],
-    color: [V; 3],
-    kd: V,
-    ks: V,
+    pub view: [V; 3],
+    pub color: [V; 3],
+    pub kd: V,
+    pub ks: V,
     /// All ones where the highlight is Blinn's (h·n), zero where it is Phong's (r·v).
-    blinn: V,
+    pub blinn: V,
     /// The highlight's exponent m (0 where ks ≤ 0).
-    exponent: [u32; LANES],
+    pub exponent: [u32; LANES],
 }
 
 impl<V: F64x4> Surfaces<V> {
@@ -420,13 +489,13 @@ fn shadow_rays<V: F64x4>(
 
 /// Four numbers in lanes.
 #[inline(always)]
-fn lanes<V: F64x4>(x: [f64; LANES]) -> V {
+pub(super) fn lanes<V: F64x4>(x: [f64; LANES]) -> V {
     V::setr(x[0], x[1], x[2], x[3])
 }
 
 /// Four vectors in lanes, axis by axis.
 #[inline(always)]
-fn axes<V: F64x4>(v: [DVec3; LANES]) -> [V; 3] {
+pub(super) fn axes<V: F64x4>(v: [DVec3; LANES]) -> [V; 3] {
     [
         lanes(v.map(|v| v.x)),
         lanes(v.map(|v| v.y)),

@@ -8,10 +8,11 @@
 //! the boxes and spheres a pixel's rays cannot meet known from where each can appear,
 //! `footprint`), plain spheres and planes tested without spans and in groups of four (`probe`,
 //! `sphere_group`), the usual point lights' terms and shadow rays four surfaces at a time
-//! (`light_lanes`), and the usual checkers' colours (`checker_lanes`), flat CSG objects read
-//! off their primitives' spans (`csg_crossing`) or in lanes (`csg_lanes`, `span_lanes`), and
-//! the path tracer for scenes of diffuse surfaces (`diffuse_paths`). The binary's allocator maps large blocks in
-//! huge pages (`huge_pages`).
+//! (`light_lanes`), the usual checkers' colours (`checker_lanes`), the usual floor shaded from
+//! hit to light without shading records (`plane_lanes`), flat CSG objects read off their
+//! primitives' spans (`csg_crossing`) or in lanes (`csg_lanes`, `span_lanes`), and the path
+//! tracer for scenes of diffuse surfaces (`diffuse_paths`). The binary's allocator maps large
+//! blocks in huge pages (`huge_pages`).
 //!
 //! The contract: every image the wing renders equals, bit for bit, the image of the core's
 //! recursion with the core's search, and so do the counters of rays and of skipped shading
@@ -37,6 +38,7 @@ mod light_share;
 mod outgoing;
 mod packet_search;
 mod packet_trace;
+mod plane_lanes;
 mod probe;
 mod search;
 mod shadow_cones;

@@ -21,6 +21,7 @@ use super::footprint::Missed;
 use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
 use super::outgoing::{outgoing, send, Children, Outgoing};
+use super::plane_lanes::MOST_PLANES;
 use super::search::FastScene;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
@@ -195,23 +196,44 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized, const N: usize>(
     let n = hits.len();
     let mut shaded: [Option<Interaction>; N] = [None; N];
     // The records are written in their places (`Scene::record_interaction`), the usual
-    // checkers painted four at a time.
+    // checkers painted four at a time. The usual floor's hits are set aside, and shaded in
+    // lanes without records (`plane_lanes`).
+    let planes = if t.options.shadows {
+        &fast.planes[..]
+    } else {
+        &[]
+    };
+    let mut on_planes = [0u32; MOST_PLANES];
     let mut checkers = 0u32;
     for i in 0..n {
         t.count(tasks.kind(i));
         match &hits[i] {
             None => out[i] = scene.background,
-            Some(hit) => {
-                let si = shaded[i].insert(Interaction::default());
-                let m = scene.record_surface(tasks.ray(i), hit, si);
-                if checker_lanes::in_lanes(fast, m, si) {
-                    checkers |= 1 << i;
-                } else {
-                    scene.paint_patterns(m, si);
-                    out[i] = ambient(m, &si.paint, scene.ambient);
+            Some(hit) => match planes.iter().position(|plane| plane.holds(hit)) {
+                Some(p) => on_planes[p] |= 1 << i,
+                None => {
+                    let checker = record(fast, tasks.ray(i), hit, &mut shaded[i], &mut out[i]);
+                    checkers |= (checker as u32) << i;
                 }
+            },
+        }
+    }
+    for (plane, &taken) in planes.iter().zip(&on_planes) {
+        if taken != 0 {
+            // The lanes beside a light are shaded as usual.
+            let mut left = plane.shade::<V>(t, fast, |i| tasks.ray(i), hits, taken, out);
+            while left != 0 {
+                let i = left.trailing_zeros() as usize;
+                left &= left - 1;
+                let hit = hits[i].as_ref().expect("a hit on the plane");
+                let checker = record(fast, tasks.ray(i), hit, &mut shaded[i], &mut out[i]);
+                checkers |= (checker as u32) << i;
             }
         }
+    }
+    let surfaces_hit = (0..n).fold(0u32, |bits, i| bits | (shaded[i].is_some() as u32) << i);
+    if surfaces_hit == 0 {
+        return;
     }
     if checkers != 0 {
         checker_lanes::paint_checkers::<V, N>(fast, &mut shaded, checkers);
@@ -239,9 +261,8 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized, const N: usize>(
     }
     let mut surfaces = some_in_lanes.then(|| SurfaceLanes::new(&shaded, &view));
     if let Some(surfaces) = &mut surfaces {
-        surfaces.choose(scene, n);
+        surfaces.choose(fast, n);
     }
-    let surfaces_hit = (0..n).fold(0u32, |bits, i| bits | (shaded[i].is_some() as u32) << i);
     for (k, light) in scene.lights.iter().enumerate() {
         let single = single(light);
         let mut shadows = ShadowPacket::new();
@@ -294,6 +315,27 @@ fn shade_packet<V: F64x4, L: Lanes + ?Sized, const N: usize>(
     } else {
         secondary_packet(t, fast, tasks, &shaded[..n], out);
     }
+}
+
+/// The shading record of a ray's hit, written in its place `si`, and its ambient term `out`;
+/// or, where the lanes paint its checker (`checker_lanes`), true, the record left unpainted.
+#[inline(always)]
+fn record(
+    fast: &FastScene,
+    ray: &Ray,
+    hit: &Hit,
+    si: &mut Option<Interaction>,
+    out: &mut DVec3,
+) -> bool {
+    let scene = fast.scene;
+    let si = si.insert(Interaction::default());
+    let m = scene.record_surface(ray, hit, si);
+    if checker_lanes::in_lanes(fast, m, si) {
+        return true;
+    }
+    scene.paint_patterns(m, si);
+    *out = ambient(m, &si.paint, scene.ambient);
+    false
 }
 
 /// `Tracer::secondary` for every surface of a packet (where no material draws random numbers,

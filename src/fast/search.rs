@@ -14,7 +14,8 @@ use super::checker_lanes::checker_colors;
 use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
 use super::lanes::LANES;
-use super::light_lanes::lanes_light;
+use super::light_lanes::{lanes_light, LaneHighlight};
+use super::plane_lanes::LanePlane;
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
 use super::shadow_cones::{Cone, ShadowCones};
 use super::simd::{with_lanes, F64x4};
@@ -52,8 +53,13 @@ pub struct FastScene<'s> {
     pub(super) in_lanes: bool,
     /// Per material: the colours of its checker, when the lanes paint it (`checker_lanes`).
     checkers: Vec<Option<[DVec3; 2]>>,
+    /// Per material: its highlight, as the lanes light it.
+    highlights: Vec<LaneHighlight>,
     /// Per light: the cones of the boxes its shadow rays test in lanes (`shadow_cones`).
     pub(super) shadow_cones: Vec<ShadowCones>,
+    /// The planes whose surfaces are shaded in lanes from hit to light (`plane_lanes`), where
+    /// the objects are tested in lanes.
+    pub(super) planes: Vec<LanePlane>,
 }
 
 impl LeafSpans for Scene {
@@ -90,7 +96,9 @@ impl<'s> FastScene<'s> {
             boxed_objects: false,
             in_lanes: false,
             checkers: scene.materials.iter().map(checker_colors).collect(),
+            highlights: scene.materials.iter().map(LaneHighlight::of).collect(),
             shadow_cones: vec![],
+            planes: vec![],
         };
         fast.bounded = index.bounded.iter().map(|&o| fast.probe(o)).collect();
         fast.unbounded = grouped(index.unbounded.iter().map(|&o| fast.probe(o)).collect());
@@ -105,6 +113,9 @@ impl<'s> FastScene<'s> {
         fast.in_lanes = fast.bounded.is_empty();
         if fast.in_lanes && fast.boxes_outside_bvh {
             fast.shadow_cones = scene.lights.iter().map(|l| fast.cones_from(l)).collect();
+        }
+        if fast.in_lanes {
+            fast.planes = LanePlane::of_scene(scene, &fast.checkers);
         }
         fast
     }
@@ -150,6 +161,17 @@ impl<'s> FastScene<'s> {
     #[inline(always)]
     pub(super) fn checker(&self, material: u32) -> Option<&[DVec3; 2]> {
         self.checkers[material as usize].as_ref()
+    }
+
+    /// The highlight of material `material`, as the lanes light it.
+    #[inline(always)]
+    pub(super) fn highlight(&self, material: u32) -> LaneHighlight {
+        self.highlights[material as usize]
+    }
+
+    /// How many planes are shaded in lanes from hit to light (`plane_lanes`).
+    pub fn planes_in_lanes(&self) -> usize {
+        self.planes.len()
     }
 
     /// Whether packets of rays go four at a time through the objects (no BVH: `intersect_in_lanes`).

@@ -13,7 +13,7 @@ use crate::shading::{Material, Paint, PatternPoint};
 /// Cosines of the normal and the ray within this of zero are a tangent's, rounded: the error
 /// of a unit normal computed at a point far from the ray's origin (t ≈ 10⁶ radii) is about
 /// 10⁻¹⁰.
-const TANGENT_COSINE: f64 = 1e-9;
+pub const TANGENT_COSINE: f64 = 1e-9;
 
 /// The cheap record of an intersection: enough to find everything else later.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -33,7 +33,7 @@ pub use compile::Limits;
 pub use error::{Pos, SceneError};
 pub use features::Features;
 pub use format::Integrator;
-pub use hit::{Hit, Interaction};
+pub use hit::{Hit, Interaction, TANGENT_COSINE};
 pub use load::{load, parse};
 pub use objects::{Geometry, Group, Leaf, Object};
 pub use search::{Accel, Search, SearchIndex, Visited};
