@@ -13,7 +13,8 @@ use super::packet_trace::SHADED;
 use crate::scene::Interaction;
 use crate::shading::optics::{fresnel_weights, reflect, refract};
 use crate::shading::{Fresnel, Material};
-use crate::trace::{Across, Task, Tracer};
+use crate::trace::tree::Indices;
+use crate::trace::{Media, Task, Tracer};
 
 /// Where the rays a surface sends on go, before they are built: kr and kt after the Fresnel
 /// term, the mirror direction, and each ray's fate. A ray the depth limit or the adaptive
@@ -28,9 +29,23 @@ pub(super) struct Outgoing {
     mirror: DVec3,
     /// The reflected ray.
     reflection: Fate<()>,
-    /// The refracted ray: the media across the surface and the refracted direction (None past
-    /// the limiting angle).
-    transmission: Fate<(Across, Option<DVec3>)>,
+    /// The refracted ray: n1 and n2 across the surface, the media beyond it, and the refracted
+    /// direction (None past the limiting angle).
+    transmission: Fate<(f64, f64, Beyond, Option<DVec3>)>,
+}
+
+/// The media a refracted ray travels inside, before they are built (in the child's task
+/// itself: a stack of media built here and moved on with the plan waits, at each move, for
+/// the narrow stores that built it).
+enum Beyond {
+    /// Those of the ray that hit the surface (a sheet has no inside).
+    Same,
+    /// Those with the surface's object entered through its material.
+    Entering,
+    /// Those without the surface's object.
+    Leaving,
+    /// As the geometry has them (`Tracer::across`, where transparent objects may touch).
+    Found(Media),
 }
 
 /// What becomes of one of the rays a surface may send on.
@@ -54,22 +69,22 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
     // transmits nothing and has no Fresnel term needs neither index nor the media beyond:
     // its kr and kt are the material's.
     let (kr, kt, across) = if refracts(si, m) {
-        let across = across(t, task, si, m);
+        let (n1, n2, beyond) = across(t, task, si, m);
         let (kr, kt) = fresnel_weights(
             m.fresnel,
             -d.dot(si.normal),
-            (across.n1, across.n2),
+            (n1, n2),
             (si.paint.kr, si.paint.kt),
         );
-        (kr, kt, Some(across))
+        (kr, kt, Some((n1, n2, beyond)))
     } else {
         (si.paint.kr, si.paint.kt, None)
     };
     let reflection = fate(t, task, kr);
     let transmission = match (across, fate(t, task, kt)) {
-        (Some(across), Fate::Traced(())) => {
-            let refracted = refract(d, si.normal, across.n1, across.n2);
-            Fate::Traced((across, refracted))
+        (Some((n1, n2, beyond)), Fate::Traced(())) => {
+            let refracted = refract(d, si.normal, n1, n2);
+            Fate::Traced((n1, n2, beyond, refracted))
         }
         (Some(_), Fate::CutOff) => Fate::CutOff,
         _ => Fate::None,
@@ -129,12 +144,19 @@ pub(super) fn send(
     match &plan.transmission {
         Fate::None => {}
         Fate::CutOff => transmitted.cut_off(lane),
-        Fate::Traced((across, Some(dir))) => {
+        Fate::Traced((n1, n2, beyond, Some(dir))) => {
             let ray = t.spawn_through(si, *dir);
-            let child = task.refraction(ray, kt, across.beyond, across.indices());
-            transmitted.add(lane, child);
+            let media = &task.media;
+            let beyond = match beyond {
+                Beyond::Same => *media,
+                Beyond::Entering => media.entering(si.object, si.material),
+                Beyond::Leaving => media.leaving(si.object),
+                Beyond::Found(media) => *media,
+            };
+            let indices = Indices { n1: *n1, n2: *n2 };
+            transmitted.add(lane, task.refraction(ray, kt, beyond, indices));
         }
-        Fate::Traced((_, None)) => {
+        Fate::Traced((.., None)) => {
             let ray = t.spawn(si, mirror);
             transmitted.add(lane, task.mirror_inside(ray, kt));
             t.stats.total_internal_reflections += 1;
@@ -187,26 +209,30 @@ fn refracts(si: &Interaction, m: &Material) -> bool {
     si.paint.kt != 0.0 || m.fresnel != Fresnel::None
 }
 
-/// `Tracer::across` for a surface that refracts, written out to be compiled into the packet
-/// loop where the geometry need not be asked (a scene with at most one transparent object):
-/// n1 and n2 returned from a call come back through memory, and the one wide load that reads
-/// them there waits for the call's two narrow stores.
+/// `Tracer::across` for a surface that refracts: n1, n2 and the media beyond, those built
+/// only where the geometry must be asked (more than one transparent object). Written out to be
+/// compiled into the packet loop: n1 and n2 returned from a call come back through memory, and
+/// the one wide load that reads them there waits for the call's two narrow stores.
 #[inline(always)]
-fn across(t: &mut Tracer, task: &Task, si: &Interaction, m: &Material) -> Across {
+fn across(t: &mut Tracer, task: &Task, si: &Interaction, m: &Material) -> (f64, f64, Beyond) {
     let scene = t.scene;
     if scene.features.transparent_objects.len() > 1 {
-        return t.across(task, si, m);
+        let across = t.across(task, si, m);
+        return (across.n1, across.n2, Beyond::Found(across.beyond));
     }
     let media = &task.media;
-    let solid = scene.leaves[si.leaf as usize].shape.is_solid();
-    let (n1, beyond) = if !solid {
-        (media.current(scene), *media)
-    } else if si.inside {
-        let within = media.entering(si.object, si.material);
-        (within.current(scene), media.leaving(si.object))
+    if !scene.leaves[si.leaf as usize].shape.is_solid() {
+        let n1 = media.current(scene);
+        return (n1, n1, Beyond::Same);
+    }
+    let entered = media.entering(si.object, si.material).current(scene);
+    if si.inside {
+        (
+            entered,
+            media.leaving(si.object).current(scene),
+            Beyond::Leaving,
+        )
     } else {
-        (media.current(scene), media.entering(si.object, si.material))
-    };
-    let n2 = if solid { beyond.current(scene) } else { n1 };
-    Across { n1, n2, beyond }
+        (media.current(scene), entered, Beyond::Entering)
+    }
 }
