@@ -1,28 +1,28 @@
-//! One portable program, two copies of the fast wing: compiled for any x86-64 (SSE2) and for
-//! x86-64-v3 (AVX2), picked when it runs (`raytree::fast::simd`). Both copies must render every
-//! image to the last bit as the other does, so as the textbook core does (`fast_paths.rs`
-//! checks the copy this processor picks against the core).
+//! One portable program, three copies of the fast wing: compiled for any x86-64 (SSE2), for
+//! x86-64-v3 (AVX2) and for x86-64-v4 (AVX-512), picked when it runs (`raytree::fast::simd`).
+//! Every copy must render every image to the last bit as the others do, so as the textbook
+//! core does (`fast_paths.rs` checks the copy this processor picks against the core).
 //!
 //! The level is asked of the processor once per process, so each copy is run in a process of
-//! its own: `RAYTREE_CPU_LEVEL=x86-64` makes the program use the baseline copy on a newer
-//! processor.
+//! its own: `RAYTREE_CPU_LEVEL=x86-64` (or `x86-64-v3`) makes the program use that copy on a
+//! newer processor.
 
 mod common;
 
 use std::path::Path;
 use std::process::Command;
 
-/// The PPM image `raytree render` writes for a scene, small, with the level forced down or
-/// not, and the level `--stats` reports.
-fn render(scene: &Path, baseline: bool, extra: &[&str]) -> (Vec<u8>, String) {
+/// The PPM image `raytree render` writes for a scene, small, with the level forced down to
+/// `level` or not, and the level `--stats` reports.
+fn render(scene: &Path, level: Option<&str>, extra: &[&str]) -> (Vec<u8>, String) {
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_raytree"));
     cmd.arg("render")
         .arg(scene)
         .args(["-o", "-", "--width", "40", "--height", "30", "--stats"])
         .args(extra)
         .env_remove("RAYTREE_CPU_LEVEL");
-    if baseline {
-        cmd.env("RAYTREE_CPU_LEVEL", "x86-64");
+    if let Some(level) = level {
+        cmd.env("RAYTREE_CPU_LEVEL", level);
     }
     let out = cmd.output().expect("raytree runs");
     assert!(
@@ -41,45 +41,60 @@ fn render(scene: &Path, baseline: bool, extra: &[&str]) -> (Vec<u8>, String) {
     (out.stdout, level)
 }
 
-/// Whether this processor runs the x86-64-v3 copy (then the two runs below do use both).
-fn processor_is_v3() -> bool {
+/// The best copy this processor runs: every feature `raytree::fast::simd` asks for it.
+fn best_level() -> &'static str {
     #[cfg(target_arch = "x86_64")]
     {
         use std::arch::is_x86_feature_detected as has;
-        // Every feature `raytree::fast::simd` asks for its x86-64-v3 copy.
-        has!("avx")
+        let v3 = has!("avx")
             && has!("avx2")
             && has!("fma")
             && has!("bmi1")
             && has!("bmi2")
             && has!("lzcnt")
             && has!("movbe")
-            && has!("popcnt")
+            && has!("popcnt");
+        let v4 = v3
+            && has!("avx512f")
+            && has!("avx512vl")
+            && has!("avx512dq")
+            && has!("avx512bw")
+            && has!("avx512cd");
+        if v4 {
+            return "x86-64-v4";
+        }
+        if v3 {
+            return "x86-64-v3";
+        }
     }
-    #[cfg(not(target_arch = "x86_64"))]
-    {
-        false
-    }
+    "x86-64"
 }
 
+/// The copies this processor runs (each level named), from the best, render the same image.
 fn assert_copies_agree(scene: &Path, extra: &[&str]) {
-    let (best, best_level) = render(scene, false, extra);
-    let (baseline, baseline_level) = render(scene, true, extra);
-    assert_eq!(baseline_level, "x86-64", "{}", scene.display());
-    if processor_is_v3() {
-        assert_eq!(best_level, "x86-64-v3", "{}", scene.display());
-    }
+    let (best, level) = render(scene, None, extra);
+    assert_eq!(level, best_level(), "{}", scene.display());
     assert!(best.starts_with(b"P6"), "{}: not a PPM", scene.display());
-    assert!(
-        best == baseline,
-        "{} {extra:?}: the {best_level} and x86-64 copies render different images",
-        scene.display()
-    );
+    let lower = match best_level() {
+        "x86-64-v4" => &["x86-64-v3", "x86-64"][..],
+        "x86-64-v3" => &["x86-64"][..],
+        _ => &[],
+    };
+    for &forced in lower {
+        let (image, level) = render(scene, Some(forced), extra);
+        assert_eq!(level, forced, "{}", scene.display());
+        assert!(
+            image == best,
+            "{} {extra:?}: the {} and {forced} copies render different images",
+            scene.display(),
+            best_level()
+        );
+    }
 }
 
 /// Every lesson scene, with the scene's own samples per pixel.
 #[test]
-fn every_lesson_scene_renders_the_same_with_both_copies() {
+fn every_lesson_scene_renders_the_same_with_every_copy() {
     let scenes = common::lesson_scene_files();
     assert!(
         scenes.len() >= 40,
@@ -94,7 +109,7 @@ fn every_lesson_scene_renders_the_same_with_both_copies() {
 /// The peer scenes (Whitted's spheres, CSG objects, 10 000 spheres in a BVH), at 16 samples
 /// per pixel as they are measured, and without the BVH (every object in lanes).
 #[test]
-fn every_peer_scene_renders_the_same_with_both_copies() {
+fn every_peer_scene_renders_the_same_with_every_copy() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/peers");
     let many = std::env::temp_dir().join(format!("raytree-cpu-levels-{}.yaml", std::process::id()));
     std::fs::write(&many, common::many_spheres(10_000)).unwrap();

@@ -105,7 +105,7 @@ pub(super) fn even_cells_of<V: F64x4>([x, y, z]: [V; 3]) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fast::simd::{level, Level, Wide};
+    use crate::fast::simd::{with_lanes, Wide};
     use crate::shading::PatternPoint;
 
     /// The core's checker of A = (1, 1, 1) and B = (0, 0, 0) at p: whether it is A.
@@ -174,10 +174,7 @@ mod tests {
         }
         points.truncate(points.len() / 4 * 4);
         assert_lanes_agree::<Wide>(&points);
-        #[cfg(target_arch = "x86_64")]
-        if level() == Level::V3 {
-            assert_lanes_agree::<crate::fast::simd::Avx>(&points);
-        }
+        with_lanes!(V => assert_lanes_agree::<V>(&points));
         // Both colours are picked, somewhere.
         let evens = points.iter().filter(|p| core_says_even(**p)).count();
         assert!(

@@ -38,8 +38,8 @@ impl<V: F64x4> RayLanes<V> {
         } = ray.dir;
         let o = ray.origin;
         RayLanes {
-            origin: [o.x, o.y, o.z].map(V::splat),
-            dir: [dx, dy, dz].map(V::splat),
+            origin: [V::splat(o.x), V::splat(o.y), V::splat(o.z)],
+            dir: [V::splat(dx), V::splat(dy), V::splat(dz)],
             a: V::splat(dx * dx + dy * dy + dz * dz),
         }
     }
@@ -110,12 +110,20 @@ pub struct SlabLanes<V> {
 impl<V: F64x4> SlabLanes<V> {
     #[inline(always)]
     pub fn new(rays: &RayLanes<V>) -> SlabLanes<V> {
-        let inv_dir = rays.dir.map(|d| V::ONE / d);
+        // Written out, not `array::map`: a closure over lanes may be compiled outside the
+        // wing's copy, and call each lane operation there.
+        let [dx, dy, dz] = rays.dir;
+        let inv_dir = [V::ONE / dx, V::ONE / dy, V::ONE / dz];
+        let [ix, iy, iz] = inv_dir;
         SlabLanes {
             origin: rays.origin,
             dir: rays.dir,
             inv_dir,
-            negative: inv_dir.map(V::is_sign_negative),
+            negative: [
+                ix.is_sign_negative(),
+                iy.is_sign_negative(),
+                iz.is_sign_negative(),
+            ],
         }
     }
 

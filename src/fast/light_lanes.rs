@@ -322,7 +322,12 @@ impl<V: F64x4> GroupLit<V> {
         }
         // color += s·terms: s = 1 where the shadow ray reaches the light, else 0.
         let s = lane_mask::<V>(self.cast & !blocked).bitselect(V::ONE, V::ZERO);
-        let [sx, sy, sz] = self.terms.map(|term| (s * term).to_array());
+        let [tx, ty, tz] = self.terms;
+        let [sx, sy, sz] = [
+            (s * tx).to_array(),
+            (s * ty).to_array(),
+            (s * tz).to_array(),
+        ];
         for (j, &i) in group.iter().enumerate() {
             if self.far & 1 << j == 0 {
                 out[i] += DVec3::new(sx[j], sy[j], sz[j]);

@@ -118,7 +118,7 @@ impl<V: F64x4> TowardLight<'_, V> {
 mod tests {
     use super::*;
     use crate::accel::SlabRay;
-    use crate::fast::simd::{level, Level, Wide};
+    use crate::fast::simd::{with_lanes, Wide};
     use crate::scene::{parse, Interaction, Limits, Scene};
     use crate::trace::whitted::shadow_reach;
     use rand::{Rng, SeedableRng};
@@ -234,10 +234,7 @@ mod tests {
                 let slabs = SlabRay::new(origin, l.recip());
                 let through = bounds.hit_slabs(&slabs, 0.0, reach);
                 let wide = missed::<Wide>(&cone, l, slack);
-                #[cfg(target_arch = "x86_64")]
-                if level() == Level::V3 {
-                    assert_eq!(missed::<crate::fast::simd::Avx>(&cone, l, slack), wide);
-                }
+                assert_eq!(with_lanes!(V => missed::<V>(&cone, l, slack)), wide);
                 // Stronger: the ray's whole segment stays out of the ball itself.
                 if wide {
                     let ball = Cone::ball(&bounds);

@@ -1,14 +1,16 @@
 //! Four f64 lanes, in whichever instructions the processor running raytree has.
 //!
-//! The wing's lane code is written once, over the trait `F64x4`, and compiled twice: with
-//! `wide::f64x4` for any x86-64 (two SSE2 halves) and other processors, and with `Avx` (one
-//! 256-bit AVX register) for processors of the x86-64-v3 level (AVX2 and FMA: Intel since
-//! 2013, AMD since 2015). `level()` asks the processor once; the wing's entry points
-//! (`with_lanes`) pick their copy by it. Both types give every lane the same bits: the same
-//! IEEE operations, and comparisons, minimum and maximum with `wide`'s rules for NaN.
+//! The wing's lane code is written once, over the trait `F64x4`, and compiled three times:
+//! with `wide::f64x4` for any x86-64 (two SSE2 halves) and other processors, and with `Avx`
+//! (one 256-bit AVX register) for processors of the x86-64-v3 level (AVX2 and FMA: Intel
+//! since 2013, AMD since 2015) and of the x86-64-v4 level (AVX-512 as well: the same four
+//! lanes, with 32 registers and mask registers to hold them). `level()` asks the processor
+//! once; the wing's entry points (`with_lanes`) pick their copy by it. Every type gives every
+//! lane the same bits: the same IEEE operations, and comparisons, minimum and maximum with
+//! `wide`'s rules for NaN.
 //!
 //! The rest of raytree is compiled for any x86-64. A build for x86-64-v3 or later
-//! (`-C target-cpu=...`) makes `wide::f64x4` one AVX register too; both copies are then alike.
+//! (`-C target-cpu=...`) makes `wide::f64x4` one AVX register too; the copies are then alike.
 
 use std::fmt::Debug;
 use std::ops::{Add, BitAnd, BitOr, BitOrAssign, BitXor, Div, Mul, Neg, Not, Sub};
@@ -107,8 +109,15 @@ macro_rules! with_lanes {
     (=> $body:expr) => {
         match $crate::fast::simd::level() {
             #[cfg(target_arch = "x86_64")]
+            $crate::fast::simd::Level::V4 => {
+                <$crate::fast::simd::Avx<$crate::fast::simd::V4> as $crate::fast::simd::F64x4>::outlined(
+                    #[inline(always)]
+                    || $body,
+                )
+            }
+            #[cfg(target_arch = "x86_64")]
             $crate::fast::simd::Level::V3 => {
-                <$crate::fast::simd::Avx as $crate::fast::simd::F64x4>::outlined(
+                <$crate::fast::simd::Avx<$crate::fast::simd::V3> as $crate::fast::simd::F64x4>::outlined(
                     #[inline(always)]
                     || $body,
                 )
@@ -119,8 +128,16 @@ macro_rules! with_lanes {
     ($v:ident => $body:expr) => {
         match $crate::fast::simd::level() {
             #[cfg(target_arch = "x86_64")]
+            $crate::fast::simd::Level::V4 => {
+                type $v = $crate::fast::simd::Avx<$crate::fast::simd::V4>;
+                <$v as $crate::fast::simd::F64x4>::outlined(
+                    #[inline(always)]
+                    || $body,
+                )
+            }
+            #[cfg(target_arch = "x86_64")]
             $crate::fast::simd::Level::V3 => {
-                type $v = $crate::fast::simd::Avx;
+                type $v = $crate::fast::simd::Avx<$crate::fast::simd::V3>;
                 <$v as $crate::fast::simd::F64x4>::outlined(
                     #[inline(always)]
                     || $body,
@@ -250,52 +267,118 @@ impl F64x4 for Wide {
     }
 }
 
+#[cfg(all(test, target_arch = "x86_64"))]
+use avx::Isa;
 #[cfg(target_arch = "x86_64")]
-pub(crate) use avx::Avx;
+pub(crate) use avx::{Avx, V3, V4};
 
 #[cfg(target_arch = "x86_64")]
 mod avx {
     use std::arch::x86_64::*;
+    use std::fmt::Debug;
+    use std::marker::PhantomData;
     use std::ops::{Add, BitAnd, BitOr, BitOrAssign, BitXor, Div, Mul, Neg, Not, Sub};
 
     use super::F64x4;
 
-    /// Four lanes in one AVX register.
+    /// Four lanes in one AVX register, in code compiled for the instruction set `I`
+    /// (x86-64-v3, or x86-64-v4 with AVX-512's 32 registers and mask registers: the same
+    /// instructions on four lanes, fewer of them spilled).
     ///
-    /// Only code that runs where `level()` is `Level::V3` touches one: the wing's entry points
-    /// create them inside their x86-64-v3 copies (`with_lanes`), where every method below is
-    /// inlined and becomes one or two AVX instructions. That is the safety argument of each
-    /// `unsafe` block here: the processor has AVX and AVX2.
+    /// Only code that runs where `level()` is `I`'s level or higher touches one: the wing's
+    /// entry points create them inside their copies for `I` (`with_lanes`), where every method
+    /// below is inlined and becomes one or two AVX instructions. That is the safety argument
+    /// of each `unsafe` block here: the processor has AVX and AVX2.
     #[derive(Clone, Copy, Debug)]
     #[repr(transparent)]
-    pub struct Avx(__m256d);
+    pub struct Avx<I = V3>(__m256d, PhantomData<I>);
+
+    /// An instruction set the wing has a copy for, and how code is compiled for it.
+    pub trait Isa: Copy + Debug {
+        /// `f()` compiled for this instruction set, out of line (`F64x4::outlined`).
+        fn outlined<R>(f: impl FnOnce() -> R) -> R;
+    }
+
+    /// x86-64-v3: AVX, AVX2, FMA, BMI1, BMI2, LZCNT, MOVBE.
+    #[derive(Clone, Copy, Debug)]
+    pub struct V3;
+
+    /// x86-64-v4: x86-64-v3 and AVX-512 (F, VL, DQ, BW, CD).
+    #[derive(Clone, Copy, Debug)]
+    pub struct V4;
+
+    // rustc drops `#[inline(never)]` from a function with `#[target_feature]`, and LLVM would
+    // then inline a copy into another that calls it (the CSG pieces into a search, whose loop
+    // then spills its registers). `run` keeps the attribute and `copy` stays behind it: a
+    // build for any x86-64 cannot inline `copy` into `run`, and in a build for the level
+    // itself `run` becomes the copy.
+    impl Isa for V3 {
+        #[inline(always)]
+        fn outlined<R>(f: impl FnOnce() -> R) -> R {
+            // The features `processor_is_v3` checks.
+            #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt")]
+            fn copy<R>(f: impl FnOnce() -> R) -> R {
+                f()
+            }
+            #[inline(never)]
+            fn run<R>(f: impl FnOnce() -> R) -> R {
+                // SAFETY: see `Avx`'s comment: the processor has these features.
+                unsafe { copy(f) }
+            }
+            run(f)
+        }
+    }
+
+    impl Isa for V4 {
+        #[inline(always)]
+        fn outlined<R>(f: impl FnOnce() -> R) -> R {
+            // The features `processor_is_v4` checks.
+            #[target_feature(
+                enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt,avx512f,avx512vl,avx512dq,avx512bw,avx512cd"
+            )]
+            fn copy<R>(f: impl FnOnce() -> R) -> R {
+                f()
+            }
+            #[inline(never)]
+            fn run<R>(f: impl FnOnce() -> R) -> R {
+                // SAFETY: see `Avx`'s comment: the processor has these features.
+                unsafe { copy(f) }
+            }
+            run(f)
+        }
+    }
 
     /// All 64 bits of a lane set.
     const ONES: u64 = u64::MAX;
 
-    impl Avx {
+    impl<I: Isa> Avx<I> {
         /// The lanes as they sit in memory (a transmute: no instruction at all).
         #[inline(always)]
-        const fn from_array(lanes: [f64; 4]) -> Avx {
+        const fn from_array(lanes: [f64; 4]) -> Avx<I> {
             // SAFETY: __m256d is four f64 (the transmute checks the sizes).
-            Avx(unsafe { std::mem::transmute::<[f64; 4], __m256d>(lanes) })
+            Avx::wrap(unsafe { std::mem::transmute::<[f64; 4], __m256d>(lanes) })
         }
 
         #[inline(always)]
-        fn cmp<const IMM: i32>(self, rhs: Avx) -> Avx {
+        const fn wrap(v: __m256d) -> Avx<I> {
+            Avx(v, PhantomData)
+        }
+
+        #[inline(always)]
+        fn cmp<const IMM: i32>(self, rhs: Avx<I>) -> Avx<I> {
             // SAFETY: see the type's comment.
-            Avx(unsafe { _mm256_cmp_pd::<IMM>(self.0, rhs.0) })
+            Avx::wrap(unsafe { _mm256_cmp_pd::<IMM>(self.0, rhs.0) })
         }
     }
 
     macro_rules! binary {
         ($trait:ident, $method:ident, $intrinsic:ident) => {
-            impl $trait for Avx {
-                type Output = Avx;
+            impl<I: Isa> $trait for Avx<I> {
+                type Output = Avx<I>;
                 #[inline(always)]
-                fn $method(self, rhs: Avx) -> Avx {
+                fn $method(self, rhs: Avx<I>) -> Avx<I> {
                     // SAFETY: see the type's comment.
-                    Avx(unsafe { $intrinsic(self.0, rhs.0) })
+                    Avx::wrap(unsafe { $intrinsic(self.0, rhs.0) })
                 }
             }
         };
@@ -309,38 +392,38 @@ mod avx {
     binary!(BitOr, bitor, _mm256_or_pd);
     binary!(BitXor, bitxor, _mm256_xor_pd);
 
-    impl BitOrAssign for Avx {
+    impl<I: Isa> BitOrAssign for Avx<I> {
         #[inline(always)]
-        fn bitor_assign(&mut self, rhs: Avx) {
+        fn bitor_assign(&mut self, rhs: Avx<I>) {
             *self = *self | rhs;
         }
     }
 
-    impl Neg for Avx {
-        type Output = Avx;
+    impl<I: Isa> Neg for Avx<I> {
+        type Output = Avx<I>;
         /// The sign bit flipped, as `wide` negates.
         #[inline(always)]
-        fn neg(self) -> Avx {
+        fn neg(self) -> Avx<I> {
             self ^ Avx::splat(-0.0)
         }
     }
 
-    impl Not for Avx {
-        type Output = Avx;
+    impl<I: Isa> Not for Avx<I> {
+        type Output = Avx<I>;
         #[inline(always)]
-        fn not(self) -> Avx {
+        fn not(self) -> Avx<I> {
             self ^ Avx::splat(f64::from_bits(ONES))
         }
     }
 
-    impl F64x4 for Avx {
+    impl<I: Isa> F64x4 for Avx<I> {
         const ZERO: Self = Avx::from_array([0.0; 4]);
         const ONE: Self = Avx::from_array([1.0; 4]);
 
         #[inline(always)]
         fn splat(x: f64) -> Self {
             // SAFETY: see the type's comment.
-            Avx(unsafe { _mm256_set1_pd(x) })
+            Avx::wrap(unsafe { _mm256_set1_pd(x) })
         }
         #[inline(always)]
         fn new(lanes: [f64; 4]) -> Self {
@@ -349,7 +432,7 @@ mod avx {
         #[inline(always)]
         fn setr(a: f64, b: f64, c: f64, d: f64) -> Self {
             // SAFETY: see the type's comment.
-            Avx(unsafe { _mm256_setr_pd(a, b, c, d) })
+            Avx::wrap(unsafe { _mm256_setr_pd(a, b, c, d) })
         }
         #[inline(always)]
         fn to_array(self) -> [f64; 4] {
@@ -359,7 +442,7 @@ mod avx {
         #[inline(always)]
         fn bitselect(self, if_one: Self, if_zero: Self) -> Self {
             // SAFETY: see the type's comment.
-            Avx(unsafe {
+            Avx::wrap(unsafe {
                 _mm256_or_pd(
                     _mm256_and_pd(if_one.0, self.0),
                     _mm256_andnot_pd(self.0, if_zero.0),
@@ -408,7 +491,7 @@ mod avx {
         fn is_sign_negative(self) -> Self {
             // SAFETY: see the type's comment. A lane read as a signed integer is negative
             // exactly when its sign bit is set.
-            Avx(unsafe {
+            Avx::wrap(unsafe {
                 let bits = _mm256_castpd_si256(self.0);
                 _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_setzero_si256(), bits))
             })
@@ -420,12 +503,14 @@ mod avx {
         #[inline(always)]
         fn sqrt(self) -> Self {
             // SAFETY: see the type's comment.
-            Avx(unsafe { _mm256_sqrt_pd(self.0) })
+            Avx::wrap(unsafe { _mm256_sqrt_pd(self.0) })
         }
         #[inline(always)]
         fn floor(self) -> Self {
             // SAFETY: see the type's comment. Rounding toward −∞ keeps −0, ±∞ and NaN.
-            Avx(unsafe { _mm256_round_pd::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(self.0) })
+            Avx::wrap(unsafe {
+                _mm256_round_pd::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(self.0)
+            })
         }
         #[inline(always)]
         fn min(self, rhs: Self) -> Self {
@@ -439,51 +524,39 @@ mod avx {
         #[inline(always)]
         fn fast_min(self, rhs: Self) -> Self {
             // SAFETY: see the type's comment.
-            Avx(unsafe { _mm256_min_pd(self.0, rhs.0) })
+            Avx::wrap(unsafe { _mm256_min_pd(self.0, rhs.0) })
         }
         #[inline(always)]
         fn fast_max(self, rhs: Self) -> Self {
             // SAFETY: see the type's comment.
-            Avx(unsafe { _mm256_max_pd(self.0, rhs.0) })
+            Avx::wrap(unsafe { _mm256_max_pd(self.0, rhs.0) })
         }
         #[inline(always)]
         fn outlined<R>(f: impl FnOnce() -> R) -> R {
-            // The features of x86-64-v3, which `processor_is_v3` checks.
-            #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt")]
-            fn copy<R>(f: impl FnOnce() -> R) -> R {
-                f()
-            }
-            // rustc drops `#[inline(never)]` from a function with `#[target_feature]`, and
-            // LLVM would then inline a copy into another that calls it (the CSG pieces into
-            // a search, whose loop then spills its registers). `run` keeps the attribute and
-            // `copy` stays behind it: a build for any x86-64 cannot inline `copy` into `run`,
-            // and in a build for x86-64-v3 `run` becomes the copy.
-            #[inline(never)]
-            fn run<R>(f: impl FnOnce() -> R) -> R {
-                // SAFETY: see the type's comment: the processor has these features.
-                unsafe { copy(f) }
-            }
-            run(f)
+            I::outlined(f)
         }
     }
 
-    impl Avx {
+    impl<I: Isa> Avx<I> {
         /// A mask picks by its lanes' sign bits: `if_set` where set (one BLENDVPD).
         #[inline(always)]
-        fn blend(self, if_set: Avx, if_clear: Avx) -> Avx {
+        fn blend(self, if_set: Avx<I>, if_clear: Avx<I>) -> Avx<I> {
             // SAFETY: see the type's comment.
-            Avx(unsafe { _mm256_blendv_pd(if_clear.0, if_set.0, self.0) })
+            Avx::wrap(unsafe { _mm256_blendv_pd(if_clear.0, if_set.0, self.0) })
         }
     }
 }
 
-/// The instruction sets the wing has copies for.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The instruction sets the wing has copies for, from the oldest.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Level {
     /// Any x86-64 (SSE2), or a processor of another architecture.
     Baseline,
     /// x86-64-v3: AVX, AVX2, FMA, BMI1, BMI2, LZCNT, MOVBE.
     V3,
+    /// x86-64-v4: x86-64-v3 and AVX-512 (F, VL, DQ, BW, CD). The lanes are still four:
+    /// the copy gains AVX-512's 32 registers and its mask registers.
+    V4,
 }
 
 impl Level {
@@ -492,12 +565,21 @@ impl Level {
         match self {
             Level::Baseline => "x86-64",
             Level::V3 => "x86-64-v3",
+            Level::V4 => "x86-64-v4",
         }
+    }
+
+    /// The level named `name` (`x86-64`, `x86-64-v3` or `x86-64-v4`).
+    pub fn named(name: &str) -> Option<Level> {
+        [Level::Baseline, Level::V3, Level::V4]
+            .into_iter()
+            .find(|level| level.name() == name)
     }
 }
 
-/// The best level this processor runs, or a lower one that `RAYTREE_CPU_LEVEL=x86-64` asks
-/// for (to measure or test the baseline copies on a newer processor). Asked once.
+/// The best level this processor runs, or a lower one that `RAYTREE_CPU_LEVEL` names
+/// (`x86-64` or `x86-64-v3`, to measure or test those copies on a newer processor). Asked
+/// once.
 pub fn level() -> Level {
     use std::sync::atomic::{AtomicU8, Ordering};
     // 0: not asked yet, else 1 + the level.
@@ -505,16 +587,26 @@ pub fn level() -> Level {
     match LEVEL.load(Ordering::Relaxed) {
         1 => Level::Baseline,
         2 => Level::V3,
+        3 => Level::V4,
         _ => {
-            let forced_down = std::env::var("RAYTREE_CPU_LEVEL").is_ok_and(|l| l == "x86-64");
-            let found = if processor_is_v3() && !forced_down {
-                Level::V3
-            } else {
-                Level::Baseline
-            };
+            let asked = std::env::var("RAYTREE_CPU_LEVEL")
+                .ok()
+                .and_then(|name| Level::named(&name));
+            let found = level_of_processor().min(asked.unwrap_or(Level::V4));
             LEVEL.store(1 + found as u8, Ordering::Relaxed);
             found
         }
+    }
+}
+
+/// The best level whose features the processor has.
+pub fn level_of_processor() -> Level {
+    if processor_is_v4() {
+        Level::V4
+    } else if processor_is_v3() {
+        Level::V3
+    } else {
+        Level::Baseline
     }
 }
 
@@ -531,6 +623,24 @@ fn processor_is_v3() -> bool {
             && has!("lzcnt")
             && has!("movbe")
             && has!("popcnt")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Whether the processor has every feature the wing's x86-64-v4 copies are compiled with.
+fn processor_is_v4() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::is_x86_feature_detected as has;
+        processor_is_v3()
+            && has!("avx512f")
+            && has!("avx512vl")
+            && has!("avx512dq")
+            && has!("avx512bw")
+            && has!("avx512cd")
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
@@ -564,10 +674,9 @@ mod tests {
         v.to_array().map(f64::to_bits)
     }
 
-    /// Every operation, on both types, to the last bit of every lane.
-    fn same(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> Result<(), TestCaseError> {
-        let (wa, wb, wc) = (Wide::new(a), Wide::new(b), Wide::new(c));
-        let (xa, xb, xc) = (Avx::new(a), Avx::new(b), Avx::new(c));
+    /// Every operation, on `wide`'s lanes and on AVX lanes compiled for `I` (inside `I`'s
+    /// copy), to the last bit of every lane.
+    fn same<I: Isa>(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> Result<(), TestCaseError> {
         type Op<V> = fn(V, V, V) -> V;
         fn ops<V: F64x4>() -> Vec<(&'static str, Op<V>)> {
             vec![
@@ -604,47 +713,67 @@ mod tests {
                 }),
             ]
         }
-        for ((name, wide_op), (_, avx_op)) in ops::<Wide>().into_iter().zip(ops::<Avx>()) {
-            prop_assert_eq!(
-                bits(wide_op(wa, wb, wc)),
-                bits(avx_op(xa, xb, xc)),
-                "{}",
-                name
-            );
+        // Each lane type's results: the operations' bits, then the masks' bits, any and all,
+        // then ZERO, ONE and a splat.
+        type Results = (Vec<[u64; 4]>, Vec<(u32, bool, bool)>, [[u64; 4]; 3]);
+        #[inline(always)]
+        fn results<V: F64x4>(a: [f64; 4], b: [f64; 4], c: [f64; 4]) -> Results {
+            let (va, vb, vc) = (V::new(a), V::new(b), V::new(c));
+            let values = ops::<V>()
+                .iter()
+                .map(|(_, op)| bits(op(va, vb, vc)))
+                .collect();
+            let masks = [va, vb, va.simd_lt(vb)]
+                .iter()
+                .map(|m| (m.to_bitmask(), m.any(), m.all()))
+                .collect();
+            (
+                values,
+                masks,
+                [bits(V::ZERO), bits(V::ONE), bits(V::splat(a[0]))],
+            )
         }
-        for (x, y) in [(wa, xa), (wb, xb), (wa.simd_lt(wb), xa.simd_lt(xb))] {
-            prop_assert_eq!(x.to_bitmask(), y.to_bitmask());
-            prop_assert_eq!(x.any(), y.any());
-            prop_assert_eq!(x.all(), y.all());
+        let wide = results::<Wide>(a, b, c);
+        let avx = Avx::<I>::outlined(
+            #[inline(always)]
+            || results::<Avx<I>>(a, b, c),
+        );
+        for (k, (name, _)) in ops::<Wide>().iter().enumerate() {
+            prop_assert_eq!(wide.0[k], avx.0[k], "{}", name);
         }
-        prop_assert_eq!(bits(Wide::ZERO), bits(Avx::ZERO));
-        prop_assert_eq!(bits(Wide::ONE), bits(Avx::ONE));
-        prop_assert_eq!(bits(Wide::splat(a[0])), bits(Avx::splat(a[0])));
+        prop_assert_eq!(&wide.1, &avx.1);
+        prop_assert_eq!(wide.2, avx.2);
         Ok(())
     }
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(3000))]
 
-        /// The AVX lanes compute what `wide`'s lanes compute, bit for bit, NaN and signed
-        /// zeros included (on a processor without AVX2 there is nothing to compare).
+        /// The AVX lanes, in the x86-64-v3 and x86-64-v4 copies, compute what `wide`'s lanes
+        /// compute, bit for bit, NaN and signed zeros included (each where the processor
+        /// runs that copy).
         #[test]
         fn avx_lanes_are_wides_lanes(
             a in [number(), number(), number(), number()],
             b in [number(), number(), number(), number()],
             c in [number(), number(), number(), number()],
         ) {
-            if level_of_processor() == Level::V3 {
-                same(a, b, c)?;
+            if level_of_processor() >= Level::V3 {
+                same::<V3>(a, b, c)?;
+            }
+            if level_of_processor() >= Level::V4 {
+                same::<V4>(a, b, c)?;
             }
         }
     }
 
-    fn level_of_processor() -> Level {
-        if processor_is_v3() {
-            Level::V3
-        } else {
-            Level::Baseline
+    /// `RAYTREE_CPU_LEVEL` names a level, never a higher one than the processor runs.
+    #[test]
+    fn levels_are_named_as_stats_prints_them() {
+        for level in [Level::Baseline, Level::V3, Level::V4] {
+            assert_eq!(Level::named(level.name()), Some(level));
         }
+        assert_eq!(Level::named("x86-64-v5"), None);
+        assert!(level() <= level_of_processor());
     }
 }
