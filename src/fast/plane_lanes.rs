@@ -56,11 +56,7 @@ impl LanePlane {
     /// (`checkers`, by material) and a whole highlight exponent. None where some light is not
     /// one the lanes take.
     pub fn of_scene(scene: &Scene, checkers: &[Option<[DVec3; 2]>]) -> Vec<LanePlane> {
-        let lights_in_lanes = scene
-            .lights
-            .iter()
-            .all(|light| light.shadow_rays() == 1 && lanes_light(light).is_some());
-        if !lights_in_lanes {
+        if lights_in_lanes(scene).is_none() {
             return vec![];
         }
         let mut planes = vec![];
@@ -115,8 +111,8 @@ impl LanePlane {
     }
 
     /// Shades the packet lanes `taken` (rays `ray(i)`, hits on this plane), four at a time:
-    /// `out[i]` is what `Tracer::shade` gives them. Returns the lanes it leaves to the
-    /// packet's usual shading (a light at the point, or at no finite distance from it).
+    /// `out[i]` is what `Tracer::shade` gives them. Returns the lanes it leaves to the packet's usual shading (a light at the point,
+    /// or at no finite distance from it).
     #[inline(always)]
     pub fn shade<'r, V: F64x4>(
         &self,
@@ -127,6 +123,7 @@ impl LanePlane {
         mut taken: u32,
         out: &mut [DVec3],
     ) -> u32 {
+        let lights = &fast.plane_lights;
         let mut left = 0;
         while taken != 0 {
             // Up to four lanes; a short group repeats its first.
@@ -149,7 +146,7 @@ impl LanePlane {
                 o[1] + hit_t * d[1],
                 o[2] + hit_t * d[2],
             ];
-            if self.beside_a_light(fast, point) & used != 0 {
+            if beside_a_light(lights, point) & used != 0 {
                 left |= group.iter().fold(0, |bits, &i| bits | 1 << i);
                 continue;
             }
@@ -169,33 +166,13 @@ impl LanePlane {
             for (j, &i) in group.iter().enumerate() {
                 out[i] = DVec3::new(r[j], g[j], b[j]);
             }
-            for (k, light) in fast.scene.lights.iter().enumerate() {
-                let light = lanes_light(light).expect("a light the lanes take");
+            for (k, &light) in lights.iter().enumerate() {
                 let objects = [self.object; LANES];
                 let lit = GroupLit::new(t, k, light, &surfaces, used, inside, objects);
                 lit.add_shadowed(t, fast, k, group, out);
             }
         }
         left
-    }
-
-    /// The lanes whose point is at a light, or at no finite distance from it: where
-    /// `light_lanes::toward`'s d = √(d²) is 0 or not finite, d² is too.
-    #[inline(always)]
-    fn beside_a_light<V: F64x4>(&self, fast: &FastScene, [px, py, pz]: [V; 3]) -> u32 {
-        let mut beside = 0;
-        for light in &fast.scene.lights {
-            if let Some((position, _)) = lanes_light(light) {
-                let (tx, ty, tz) = (
-                    V::splat(position.x) - px,
-                    V::splat(position.y) - py,
-                    V::splat(position.z) - pz,
-                );
-                let d2 = tx * tx + ty * ty + tz * tz;
-                beside |= (d2.simd_eq(V::ZERO) | !d2.is_finite()).to_bitmask();
-            }
-        }
-        beside
     }
 
     /// n·d > 10⁻⁹ in each lane: the ray leaves the solid half-space.
@@ -251,6 +228,33 @@ impl LanePlane {
     }
 }
 
+/// Every light's position and intensity, where the lanes take every light of the scene (a
+/// point light that does not fade, `lanes_light`, with one shadow ray).
+pub(super) fn lights_in_lanes(scene: &Scene) -> Option<Vec<(DVec3, DVec3)>> {
+    scene
+        .lights
+        .iter()
+        .map(|light| lanes_light(light).filter(|_| light.shadow_rays() == 1))
+        .collect()
+}
+
+/// The lanes whose point is at one of the `lights`, or at no finite distance from it: where
+/// `light_lanes::toward`'s d = √(d²) is 0 or not finite, d² is too.
+#[inline(always)]
+fn beside_a_light<V: F64x4>(lights: &[(DVec3, DVec3)], [px, py, pz]: [V; 3]) -> u32 {
+    let mut beside = 0;
+    for (position, _) in lights {
+        let (tx, ty, tz) = (
+            V::splat(position.x) - px,
+            V::splat(position.y) - py,
+            V::splat(position.z) - pz,
+        );
+        let d2 = tx * tx + ty * ty + tz * tz;
+        beside |= (d2.simd_eq(V::ZERO) | !d2.is_finite()).to_bitmask();
+    }
+    beside
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -269,8 +273,7 @@ materials: { floor: { color: 0.5 } }
 objects: [ { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor } ]
 ";
         let scene = parse(yaml, "floor.yaml", None, &Limits::default()).unwrap();
-        let fast = FastScene::new(&scene);
-        let plane = &fast.planes[0];
+        let lights = lights_in_lanes(&scene).expect("a point light");
         let light = &scene.lights[0];
         let position = DVec3::new(-6.0, 10.0, -6.0);
         let mut rng = Rng::for_pixel(3, 1, 4);
@@ -284,8 +287,8 @@ objects: [ { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, materi
         let (mut beside, mut away) = (0, 0);
         for four in points.chunks_exact(LANES) {
             let p: [DVec3; LANES] = std::array::from_fn(|j| four[j]);
-            let own = with_lanes!(V => plane.beside_a_light::<V>(&fast, axes(p)));
-            let wide = plane.beside_a_light::<Wide>(&fast, axes(p));
+            let own = with_lanes!(V => beside_a_light::<V>(&lights, axes(p)));
+            let wide = beside_a_light::<Wide>(&lights, axes(p));
             for (j, p) in p.iter().enumerate() {
                 let at_the_point = light.sample(*p).attenuation == 0.0;
                 assert_eq!(own >> j & 1 == 1, at_the_point, "{p}");

@@ -15,7 +15,7 @@ use super::csg_crossing::{Crossing, FlatCsg, LeafSpans};
 use super::csg_lanes::CsgLanes;
 use super::lanes::LANES;
 use super::light_lanes::{lanes_light, LaneHighlight};
-use super::plane_lanes::LanePlane;
+use super::plane_lanes::{lights_in_lanes, LanePlane};
 use super::probe::{grouped, plane_hit, sphere_hit, Probe};
 use super::shadow_cones::{Cone, ShadowCones};
 use super::simd::{with_lanes, F64x4};
@@ -58,8 +58,9 @@ pub struct FastScene<'s> {
     /// Per light: the cones of the boxes its shadow rays test in lanes (`shadow_cones`).
     pub(super) shadow_cones: Vec<ShadowCones>,
     /// The planes whose surfaces are shaded in lanes from hit to light (`plane_lanes`), where
-    /// the objects are tested in lanes.
+    /// the objects are tested in lanes, and the lights they are shaded under.
     pub(super) planes: Vec<LanePlane>,
+    pub(super) plane_lights: Vec<(DVec3, DVec3)>,
 }
 
 impl LeafSpans for Scene {
@@ -99,6 +100,7 @@ impl<'s> FastScene<'s> {
             highlights: scene.materials.iter().map(LaneHighlight::of).collect(),
             shadow_cones: vec![],
             planes: vec![],
+            plane_lights: vec![],
         };
         fast.bounded = index.bounded.iter().map(|&o| fast.probe(o)).collect();
         fast.unbounded = grouped(index.unbounded.iter().map(|&o| fast.probe(o)).collect());
@@ -116,6 +118,7 @@ impl<'s> FastScene<'s> {
         }
         if fast.in_lanes {
             fast.planes = LanePlane::of_scene(scene, &fast.checkers);
+            fast.plane_lights = lights_in_lanes(scene).unwrap_or_default();
         }
         fast
     }
