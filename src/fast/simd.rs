@@ -577,9 +577,9 @@ impl Level {
     }
 }
 
-/// The best level this processor runs, or a lower one that `RAYTREE_CPU_LEVEL` names
-/// (`x86-64` or `x86-64-v3`, to measure or test those copies on a newer processor). Asked
-/// once.
+/// The copy the wing runs: the one `RAYTREE_CPU_LEVEL` names (`x86-64`, `x86-64-v3` or
+/// `x86-64-v4`, to measure or test a copy), if the processor runs it, else the fastest
+/// (`preferred_level`). Asked once.
 pub fn level() -> Level {
     use std::sync::atomic::{AtomicU8, Ordering};
     // 0: not asked yet, else 1 + the level.
@@ -592,10 +592,30 @@ pub fn level() -> Level {
             let asked = std::env::var("RAYTREE_CPU_LEVEL")
                 .ok()
                 .and_then(|name| Level::named(&name));
-            let found = level_of_processor().min(asked.unwrap_or(Level::V4));
+            let found = match asked {
+                Some(asked) => asked.min(level_of_processor()),
+                None => preferred_level(),
+            };
             LEVEL.store(1 + found as u8, Ordering::Relaxed);
             found
         }
+    }
+}
+
+/// The fastest copy on this processor: the best it runs, except on an Intel processor with
+/// AVX-512, where the x86-64-v4 copy is only the fastest in a build tuned for 256-bit vectors
+/// (`-C target-feature=+prefer-256-bit`, which `build.rs` reports as the cfg
+/// `raytree_v4_in_256_bits`). Otherwise LLVM copies structs through 512-bit registers in that
+/// copy, and on Intel's cores any 512-bit instruction idles a vector port for a while:
+/// the CSG peer scene then takes 1.06× the x86-64-v3 copy's time, where the tuned build's
+/// x86-64-v4 copy takes 0.92× (docs/performance.md, *Build levels*). AMD's cores run 512-bit
+/// instructions as two halves and lose nothing.
+pub fn preferred_level() -> Level {
+    let best = level_of_processor();
+    if best == Level::V4 && !cfg!(raytree_v4_in_256_bits) && processor_is_intel() {
+        Level::V3
+    } else {
+        best
     }
 }
 
@@ -641,6 +661,20 @@ fn processor_is_v4() -> bool {
             && has!("avx512dq")
             && has!("avx512bw")
             && has!("avx512cd")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+/// Whether the processor says it is Intel's (CPUID leaf 0: "GenuineIntel").
+fn processor_is_intel() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        let id = std::arch::x86_64::__cpuid(0);
+        let word = |bytes: &[u8; 4]| u32::from_le_bytes(*bytes);
+        (id.ebx, id.edx, id.ecx) == (word(b"Genu"), word(b"ineI"), word(b"ntel"))
     }
     #[cfg(not(target_arch = "x86_64"))]
     {
@@ -765,6 +799,20 @@ mod tests {
                 same::<V4>(a, b, c)?;
             }
         }
+    }
+
+    /// The vendor CPUID gives is the one Linux reads off it.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn the_vendor_is_the_one_linux_names() {
+        let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").expect("/proc/cpuinfo");
+        let vendor = cpuinfo
+            .lines()
+            .find_map(|line| line.strip_prefix("vendor_id"))
+            .and_then(|rest| rest.split(':').nth(1))
+            .expect("a vendor_id line")
+            .trim();
+        assert_eq!(processor_is_intel(), vendor == "GenuineIntel", "{vendor}");
     }
 
     /// `RAYTREE_CPU_LEVEL` names a level, never a higher one than the processor runs.
