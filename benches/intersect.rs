@@ -425,6 +425,24 @@ fn render(c: &mut Criterion) {
     .unwrap();
     many.spp = 16;
     core_against_wing(c, "render 10 000 spheres 160×120, 16 spp", &many);
+    // The CSG peer scene's floor and light alone: the wing shades the floor's hits four at a
+    // time from hit to light, its checker and shadow rays included, without shading records.
+    let floor = parse(
+        "camera: { eye: [0, 3.0, -8.0], look_at: [0, 1.0, 0], fov: 38.55, width: 160, height: 120 }
+spp: 16
+lights: [ { point: [-5, 10, -7], intensity: 1 } ]
+materials:
+  floor: { color: { pattern: checker, colors: [0.75, 0.45] }, ka: 0.05, kd: 0.8, ks: 0.3 }
+objects:
+  - { plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - { sphere: { center: [0, 1, 0], radius: 1 }, material: floor }
+",
+        "floor.yaml",
+        None,
+        &Limits::default(),
+    )
+    .unwrap();
+    core_against_wing(c, "render a checkered floor 160×120, 16 spp", &floor);
 }
 
 /// The whole render of `scene` by the core and by the fast wing, with the scene's own options.
