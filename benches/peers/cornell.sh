@@ -6,13 +6,13 @@
 # efficiencies 1/(seconds·MSE), RMSE over every pixel and channel of linear radiance.
 # Usage: benches/peers/cornell.sh [REFERENCE.exr] [SPP,SPP,...]
 #   (default: the shipped 4096-spp reference of ../shared/peers, at 16 and 64 spp;
-#    needs `pip install mitsuba` and libLLVM, e.g. `apt-get install libllvm19`)
+#    needs `pip install mitsuba numpy` and libLLVM, e.g. `apt-get install libllvm19`)
 set -euo pipefail
 cd "$(dirname "$0")"
 reference=$(realpath "${1:-../../../shared/peers/cornell-mitsuba-4096spp.exr}")
 spps=${2:-16,64}
-if ! python3 -c "import mitsuba" 2>/dev/null; then
-    echo "mitsuba not found: install it with 'pip install mitsuba' to compare (skipping)"
+if ! python3 -c "import mitsuba, numpy" 2>/dev/null; then
+    echo "mitsuba or numpy not found: install them with 'pip install mitsuba numpy' to compare (skipping)"
     exit 0
 fi
 if [ -z "${DRJIT_LIBLLVM_PATH:-}" ]; then

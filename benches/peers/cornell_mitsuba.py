@@ -3,7 +3,7 @@
 the 4096-spp reference in ../shared/peers (linear RGB, all pixels and channels).
 
 Usage: python3 benches/peers/cornell_mitsuba.py [--reference=EXR] VARIANT SPP [SPP ...]
-(pip install mitsuba; llvm_ad_rgb also needs an LLVM shared library.) --reference compares
+(pip install mitsuba numpy; llvm_ad_rgb also needs an LLVM shared library.) --reference compares
 against another image, such as the one cornell_reference.py renders."""
 import sys
 import time

@@ -4,7 +4,7 @@
     python3 benches/peers/cornell_reference.py render OUT.exr [RUNS]
         Mitsuba 3 llvm_ad_rgb, RUNS (default 4) independent runs of 4096 samples per pixel
         (seeds 1 … RUNS, each in 16 passes of 256), averaged: RUNS·4096 spp, written as EXR.
-        About a minute a run on 2 cores. pip install mitsuba; needs libLLVM (apt-get install
+        About a minute a run on 2 cores. pip install mitsuba numpy; needs libLLVM (apt-get install
         libllvm19; DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so).
 
     python3 benches/peers/cornell_reference.py edges IMAGE.exr [IMAGE.exr ...]

@@ -312,41 +312,32 @@ mod avx {
     // then spills its registers). `run` keeps the attribute and `copy` stays behind it: a
     // build for any x86-64 cannot inline `copy` into `run`, and in a build for the level
     // itself `run` becomes the copy.
-    impl Isa for V3 {
-        #[inline(always)]
-        fn outlined<R>(f: impl FnOnce() -> R) -> R {
-            // The features `processor_is_v3` checks.
-            #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt")]
-            fn copy<R>(f: impl FnOnce() -> R) -> R {
-                f()
+    macro_rules! isa {
+        ($level:ty, $features:literal) => {
+            impl Isa for $level {
+                #[inline(always)]
+                fn outlined<R>(f: impl FnOnce() -> R) -> R {
+                    #[target_feature(enable = $features)]
+                    fn copy<R>(f: impl FnOnce() -> R) -> R {
+                        f()
+                    }
+                    #[inline(never)]
+                    fn run<R>(f: impl FnOnce() -> R) -> R {
+                        // SAFETY: see `Avx`'s comment: the processor has these features.
+                        unsafe { copy(f) }
+                    }
+                    run(f)
+                }
             }
-            #[inline(never)]
-            fn run<R>(f: impl FnOnce() -> R) -> R {
-                // SAFETY: see `Avx`'s comment: the processor has these features.
-                unsafe { copy(f) }
-            }
-            run(f)
-        }
+        };
     }
 
-    impl Isa for V4 {
-        #[inline(always)]
-        fn outlined<R>(f: impl FnOnce() -> R) -> R {
-            // The features `processor_is_v4` checks.
-            #[target_feature(
-                enable = "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt,avx512f,avx512vl,avx512dq,avx512bw,avx512cd"
-            )]
-            fn copy<R>(f: impl FnOnce() -> R) -> R {
-                f()
-            }
-            #[inline(never)]
-            fn run<R>(f: impl FnOnce() -> R) -> R {
-                // SAFETY: see `Avx`'s comment: the processor has these features.
-                unsafe { copy(f) }
-            }
-            run(f)
-        }
-    }
+    // The features `processor_is_v3` and `processor_is_v4` check.
+    isa!(V3, "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt");
+    isa!(
+        V4,
+        "avx,avx2,fma,bmi1,bmi2,lzcnt,movbe,popcnt,avx512f,avx512vl,avx512dq,avx512bw,avx512cd"
+    );
 
     /// All 64 bits of a lane set.
     const ONES: u64 = u64::MAX;
