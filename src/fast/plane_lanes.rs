@@ -111,8 +111,8 @@ impl LanePlane {
     }
 
     /// Shades the packet lanes `taken` (rays `ray(i)`, hits on this plane), four at a time:
-    /// `out[i]` is what `Tracer::shade` gives them. Returns the lanes it leaves to the packet's usual shading (a light at the point,
-    /// or at no finite distance from it).
+    /// `out[i]` is what `Tracer::shade` gives them. Returns the lanes it leaves to the
+    /// packet's usual shading (a light at the point, or at no finite distance from it).
     #[inline(always)]
     pub fn shade<'r, V: F64x4>(
         &self,
