@@ -17,13 +17,11 @@ use glam::DVec3;
 
 use super::checker_lanes::even_cells_of;
 use super::lanes::{lane_mask, LANES};
-use super::light_lanes::{axes, lanes, lanes_light, GroupLit, Surfaces};
+use super::light_lanes::{axes, lanes, lanes_light, GroupLit, LaneHighlight, Surfaces};
 use super::search::FastScene;
 use super::simd::F64x4;
 use crate::geometry::{Ray, Shape};
 use crate::scene::{Geometry, Hit, Scene, TANGENT_COSINE};
-use crate::shading::local::whole_exponent;
-use crate::shading::Highlight;
 use crate::trace::Tracer;
 
 /// The most planes of a scene the lanes shade (the first ones).
@@ -53,12 +51,13 @@ pub(super) struct LanePlane {
 impl LanePlane {
     /// The planes of `scene` the lanes shade: leaves that are a whole object's plane, without
     /// a transform, whose material sends no rays on and has at most a checker of two colours
-    /// (`checkers`, by material) and a whole highlight exponent. None where some light is not
-    /// one the lanes take.
-    pub fn of_scene(scene: &Scene, checkers: &[Option<[DVec3; 2]>]) -> Vec<LanePlane> {
-        if lights_in_lanes(scene).is_none() {
-            return vec![];
-        }
+    /// (`checkers`, by material) and a whole highlight exponent (`highlights`, by material).
+    /// Only for a scene whose every light the lanes take (`lights_in_lanes`).
+    pub fn of_scene(
+        scene: &Scene,
+        checkers: &[Option<[DVec3; 2]>],
+        highlights: &[LaneHighlight],
+    ) -> Vec<LanePlane> {
         let mut planes = vec![];
         for (object, o) in scene.objects.iter().enumerate() {
             let Geometry::Leaf(leaf) = o.geometry else {
@@ -70,14 +69,11 @@ impl LanePlane {
             };
             let m = &scene.materials[l.material as usize];
             let checker = checkers[l.material as usize];
+            let highlight = highlights[l.material as usize];
             let plain = m.patterns.is_none();
             let sends_rays = m.kr > 0.0 || m.kt > 0.0;
-            let exponent = if m.ks > 0.0 {
-                whole_exponent(m.shininess)
-            } else {
-                Some(0)
-            };
-            let (Some(exponent), false, false) = (exponent, sends_rays, m.transmitted_highlight)
+            let exponent = if m.ks > 0.0 { highlight.whole } else { Some(0) };
+            let (Some(exponent), false, false) = (exponent, sends_rays, highlight.transmitted)
             else {
                 continue;
             };
@@ -98,7 +94,7 @@ impl LanePlane {
                 kd: m.kd,
                 ks: m.ks,
                 exponent,
-                blinn: m.highlight == Highlight::Blinn,
+                blinn: highlight.blinn,
             });
         }
         planes

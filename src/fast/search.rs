@@ -117,8 +117,10 @@ impl<'s> FastScene<'s> {
             fast.shadow_cones = scene.lights.iter().map(|l| fast.cones_from(l)).collect();
         }
         if fast.in_lanes {
-            fast.planes = LanePlane::of_scene(scene, &fast.checkers);
-            fast.plane_lights = lights_in_lanes(scene).unwrap_or_default();
+            if let Some(lights) = lights_in_lanes(scene) {
+                fast.planes = LanePlane::of_scene(scene, &fast.checkers, &fast.highlights);
+                fast.plane_lights = lights;
+            }
         }
         fast
     }

@@ -107,48 +107,28 @@ pub trait F64x4:
 /// compiler inlines into it, and its copies of structs, use the wider instructions too.
 macro_rules! with_lanes {
     (=> $body:expr) => {
-        match $crate::fast::simd::level() {
-            #[cfg(target_arch = "x86_64")]
-            $crate::fast::simd::Level::V4 => {
-                <$crate::fast::simd::Avx<$crate::fast::simd::V4> as $crate::fast::simd::F64x4>::outlined(
-                    #[inline(always)]
-                    || $body,
-                )
-            }
-            #[cfg(target_arch = "x86_64")]
-            $crate::fast::simd::Level::V3 => {
-                <$crate::fast::simd::Avx<$crate::fast::simd::V3> as $crate::fast::simd::F64x4>::outlined(
-                    #[inline(always)]
-                    || $body,
-                )
-            }
-            _ => $body,
-        }
+        $crate::fast::simd::with_lanes!(_Lanes => $body)
     };
     ($v:ident => $body:expr) => {
         match $crate::fast::simd::level() {
             #[cfg(target_arch = "x86_64")]
-            $crate::fast::simd::Level::V4 => {
-                type $v = $crate::fast::simd::Avx<$crate::fast::simd::V4>;
-                <$v as $crate::fast::simd::F64x4>::outlined(
-                    #[inline(always)]
-                    || $body,
-                )
-            }
+            $crate::fast::simd::Level::V4 => $crate::fast::simd::with_lanes!(@copy V4, $v => $body),
             #[cfg(target_arch = "x86_64")]
-            $crate::fast::simd::Level::V3 => {
-                type $v = $crate::fast::simd::Avx<$crate::fast::simd::V3>;
-                <$v as $crate::fast::simd::F64x4>::outlined(
-                    #[inline(always)]
-                    || $body,
-                )
-            }
+            $crate::fast::simd::Level::V3 => $crate::fast::simd::with_lanes!(@copy V3, $v => $body),
             _ => {
                 type $v = $crate::fast::simd::Wide;
                 $body
             }
         }
     };
+    // The copy for the instruction set `$isa`, `$body` inlined into it.
+    (@copy $isa:ident, $v:ident => $body:expr) => {{
+        type $v = $crate::fast::simd::Avx<$crate::fast::simd::$isa>;
+        <$v as $crate::fast::simd::F64x4>::outlined(
+            #[inline(always)]
+            || $body,
+        )
+    }};
 }
 pub(crate) use with_lanes;
 
