@@ -15,6 +15,7 @@ use glam::{DVec2, DVec3};
 
 use super::bvh_packet::PACKET;
 use super::lanes::LANES;
+use super::push_in_place;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
 use crate::scene::{plane_x, plane_y, Camera, Projection};
@@ -156,7 +157,7 @@ impl ImagePlane {
             let recip = V::ONE / length;
             let [dx, dy, dz] = [d[0] * recip, d[1] * recip, d[2] * recip].map(V::to_array);
             for k in 0..count {
-                rays.push(Ray::raw(self.eye, DVec3::new(dx[k], dy[k], dz[k])));
+                push_in_place(rays, Ray::raw(self.eye, DVec3::new(dx[k], dy[k], dz[k])));
             }
         }
     }

@@ -55,3 +55,14 @@ pub use probe::{plane_hit, sphere_hit};
 pub use search::FastScene;
 pub use simd::{level, Level};
 pub use sphere_group::SphereGroup;
+
+/// `ArrayVec::push` for a value built where it is pushed: `push` panics with the value when
+/// the vector is full, so the value must exist whole before the test, and a large one (a
+/// 168-byte task) is built in a stack slot and copied in; here the full vector's value is
+/// dropped, and the value is built in its place.
+#[inline(always)]
+fn push_in_place<T, const N: usize>(v: &mut arrayvec::ArrayVec<T, N>, value: T) {
+    if v.try_push(value).is_err() {
+        panic!("an ArrayVec of {N} is full");
+    }
+}

@@ -9,6 +9,7 @@ use arrayvec::ArrayVec;
 use glam::DVec3;
 
 use super::packet_trace::SHADED;
+use super::push_in_place;
 
 use crate::scene::Interaction;
 use crate::shading::optics::{fresnel_weights, reflect, refract};
@@ -188,7 +189,7 @@ impl Children {
     #[inline(always)]
     fn add(&mut self, lane: usize, task: Task) {
         self.lanes[self.tasks.len()] = lane;
-        self.tasks.push(task);
+        push_in_place(&mut self.tasks, task);
     }
 
     /// The surface in lane `lane` has a child that is cut off: it brings nothing.

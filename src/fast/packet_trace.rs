@@ -22,6 +22,7 @@ use super::light_lanes::{lanes_light, SurfaceLanes};
 use super::light_share::light_share;
 use super::outgoing::{outgoing, send, Children, Outgoing};
 use super::plane_lanes::MOST_PLANES;
+use super::push_in_place;
 use super::search::FastScene;
 use super::simd::{with_lanes, F64x4};
 use crate::geometry::Ray;
@@ -416,7 +417,7 @@ fn trace_children_inline<V: F64x4>(t: &mut Tracer, fast: &FastScene, children: &
     // here whole, its wide loads waiting on the narrow stores just made.
     let mut rays: ArrayVec<Ray, SHADED> = ArrayVec::new();
     for task in &children.tasks {
-        rays.push(task.ray);
+        push_in_place(&mut rays, task.ray);
     }
     let mut hits = [None; SHADED];
     fast.intersect_packet(&rays, &mut hits[..n], &mut t.stats);
