@@ -8,7 +8,8 @@ through `addr2line -i`, which lists the chain of functions inlined at that addre
 counts each sample twice over:
 
 - self: for the innermost raytree function of the chain, passing over the lanes'
-  one-instruction helpers (`fast/simd.rs`, glam, core);
+  one-instruction helpers (`fast/simd.rs`), the wing's `push_in_place` (`fast/mod.rs`), glam
+  and core;
 - inclusive: for every raytree function on the chain, once per sample: the share of the time
   spent in that step and everything it calls, as a flame graph would show it.
 
@@ -36,9 +37,9 @@ import tempfile
 from pathlib import Path
 
 BINARY = Path(__file__).resolve().parent.parent / "target" / "release" / "raytree"
-# Lane helpers and library code: a sample in them counts (for self) toward the raytree
-# function that called them.
-HELPER = re.compile(r"fast/simd\.rs|/glam-|/rustc/|/core_arch/|/arrayvec-|/wide-")
+# Lane helpers, the wing's `push_in_place` (`fast/mod.rs`) and library code: a sample in them
+# counts (for self) toward the raytree function that called them.
+HELPER = re.compile(r"fast/simd\.rs|fast/mod\.rs|/glam-|/rustc/|/core_arch/|/arrayvec-|/wide-")
 
 
 def record(args: list[str], data: Path) -> None:
