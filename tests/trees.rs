@@ -29,6 +29,46 @@ fn glass_in_front_of_a_mirror() {
     insta::assert_snapshot!("glass_mirror_json", json);
 }
 
+/// Past the limiting angle the glass (kr = 0.1, kt = 0.8) sends one mirror ray for both
+/// shares: its reflection ray, of weight w·(0.1 + 0.8), whose intensity the refraction node
+/// (ended by total internal reflection, without a child of its own) receives too. Every such
+/// surface in every pixel of the scene.
+#[test]
+fn past_the_limiting_angle_one_mirror_ray_carries_both_shares() {
+    use raytree::trace::tree::{RayKind, RayNode, Termination};
+    fn check(n: &RayNode, found: &mut usize) {
+        let tir = n.children.iter().find(|c| {
+            c.kind == RayKind::Refraction
+                && c.terminated == Some(Termination::TotalInternalReflection)
+        });
+        if let Some(tir) = tir {
+            *found += 1;
+            assert!(tir.children.is_empty(), "no second mirror ray");
+            let reflection = n
+                .children
+                .iter()
+                .find(|c| c.kind == RayKind::Reflection)
+                .expect("the glass reflects");
+            assert_eq!(reflection.coefficient, 0.1);
+            let weight = n.weight * 0.9;
+            assert!((reflection.weight - weight).abs() <= 1e-15 * weight);
+            assert_eq!(tir.color, reflection.color, "the same ray's intensity");
+        }
+        for c in &n.children {
+            check(c, found);
+        }
+    }
+    let s = scene("lessons/examples/glass-mirror.yaml");
+    let mut tracer = Tracer::new(&s);
+    let mut found = 0;
+    for y in 0..s.camera.height {
+        for x in 0..s.camera.width {
+            check(&tracer.inspect_pixel(x, y).tree, &mut found);
+        }
+    }
+    assert!(found > 200, "{found} surfaces past the limiting angle");
+}
+
 /// A glossy floor: its reflection is a cone of 4 sampled rays, the cone's intensity their
 /// mean, each ray weighted 1/4.
 #[test]

@@ -15,13 +15,14 @@ use crate::scene::Interaction;
 use crate::shading::optics::{fresnel_weights, reflect, refract};
 use crate::shading::{Fresnel, Material};
 use crate::trace::tree::Indices;
+use crate::trace::Termination::Adaptive;
 use crate::trace::{Media, Task, Tracer};
 
 /// Where the rays a surface sends on go, before they are built: kr and kt after the Fresnel
 /// term, the mirror direction, and each ray's fate. A ray the depth limit or the adaptive
 /// threshold cuts off is counted where its fate is decided, and no refracted direction (two
-/// square roots and two divisions) is found for it: at the last level of a glass every ray
-/// is one.
+/// square roots and two divisions) is found for it where nothing depends on it: at the last
+/// level of a glass every ray is one.
 pub(super) struct Outgoing {
     pub kr: f64,
     pub kt: f64,
@@ -30,9 +31,20 @@ pub(super) struct Outgoing {
     mirror: DVec3,
     /// The reflected ray.
     reflection: Fate<()>,
-    /// The refracted ray: n1 and n2 across the surface, the media beyond it, and the refracted
-    /// direction (None past the limiting angle).
-    transmission: Fate<(f64, f64, Beyond, Option<DVec3>)>,
+    /// The transmitted share.
+    transmission: Fate<Transmitted>,
+}
+
+/// Where the transmitted share goes.
+enum Transmitted {
+    /// Along the refracted ray: n1 and n2 across the surface, the media beyond it, and the
+    /// refracted direction.
+    Refracted(f64, f64, Beyond, DVec3),
+    /// Past the limiting angle, along the mirror ray that stays inside.
+    Inside,
+    /// Past the limiting angle at a surface that reflects too, along its reflection ray
+    /// (`Tracer::along_reflection`).
+    AlongReflection,
 }
 
 /// The media a refracted ray travels inside, before they are built (in the child's task
@@ -81,14 +93,31 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
     } else {
         (si.paint.kr, si.paint.kt, None)
     };
-    let reflection = fate(t, task, kr);
-    let transmission = match (across, fate(t, task, kt)) {
-        (Some((n1, n2, beyond)), Fate::Traced(())) => {
-            let refracted = refract(d, si.normal, n1, n2);
-            Fate::Traced((n1, n2, beyond, refracted))
+    // The refracted direction, where it is needed: for a transmitted ray that is traced, and
+    // past the limiting angle, for the share a reflection ray may carry.
+    let transmitted = child(task, kt);
+    let cut = t.limit(&transmitted);
+    let direction = match &across {
+        Some((n1, n2, _)) if kt > 0.0 && (cut.is_none() || kr > 0.0 && cut == Some(Adaptive)) => {
+            Some(refract(d, si.normal, *n1, *n2))
         }
-        (Some(_), Fate::CutOff) => Fate::CutOff,
-        _ => Fate::None,
+        _ => None,
+    };
+    let shared = kr > 0.0 && matches!(direction, Some(None));
+    let reflection = fate(t, task, if shared { kr + kt } else { kr });
+    let transmission = match (across, direction) {
+        _ if !(kt > 0.0) => Fate::None,
+        _ if shared && matches!(reflection, Fate::Traced(())) => {
+            Fate::Traced(Transmitted::AlongReflection)
+        }
+        _ if cut.is_some() => {
+            t.stopped(&transmitted);
+            Fate::CutOff
+        }
+        (Some((n1, n2, beyond)), Some(Some(dir))) => {
+            Fate::Traced(Transmitted::Refracted(n1, n2, beyond, dir))
+        }
+        _ => Fate::Traced(Transmitted::Inside),
     };
     Outgoing {
         kr,
@@ -96,6 +125,26 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
         mirror: reflect(d, si.normal),
         reflection,
         transmission,
+    }
+}
+
+impl Outgoing {
+    /// Whether the transmitted share follows the reflection ray.
+    pub fn along_reflection(&self) -> bool {
+        matches!(
+            self.transmission,
+            Fate::Traced(Transmitted::AlongReflection)
+        )
+    }
+}
+
+/// A child of `task` weighted by k: one level deeper, of weight weight·k.
+#[inline(always)]
+fn child(task: &Task, k: f64) -> Task {
+    Task {
+        depth: task.depth + 1,
+        weight: task.weight * k,
+        ..*task
     }
 }
 
@@ -108,12 +157,7 @@ fn fate(t: &mut Tracer, task: &Task, k: f64) -> Fate<()> {
     if k <= 0.0 || k.is_nan() {
         return Fate::None;
     }
-    let child = Task {
-        depth: task.depth + 1,
-        weight: task.weight * k,
-        ..*task
-    };
-    match t.stopped(&child) {
+    match t.stopped(&child(task, k)) {
         Some(_) => Fate::CutOff,
         None => Fate::Traced(()),
     }
@@ -139,13 +183,18 @@ pub(super) fn send(
         Fate::CutOff => reflected.cut_off(lane),
         Fate::Traced(()) => {
             let ray = t.spawn(si, mirror);
-            reflected.add(lane, task.reflection(ray, kr));
+            let task = if plan.along_reflection() {
+                task.reflection_and_transmission(ray, kr, kt)
+            } else {
+                task.reflection(ray, kr)
+            };
+            reflected.add(lane, task);
         }
     }
     match &plan.transmission {
         Fate::None => {}
         Fate::CutOff => transmitted.cut_off(lane),
-        Fate::Traced((n1, n2, beyond, Some(dir))) => {
+        Fate::Traced(Transmitted::Refracted(n1, n2, beyond, dir)) => {
             let ray = t.spawn_through(si, *dir);
             let media = &task.media;
             let beyond = match beyond {
@@ -157,11 +206,12 @@ pub(super) fn send(
             let indices = Indices { n1: *n1, n2: *n2 };
             transmitted.add(lane, task.refraction(ray, kt, beyond, indices));
         }
-        Fate::Traced((.., None)) => {
+        Fate::Traced(Transmitted::Inside) => {
             let ray = t.spawn(si, mirror);
             transmitted.add(lane, task.mirror_inside(ray, kt));
             t.stats.total_internal_reflections += 1;
         }
+        Fate::Traced(Transmitted::AlongReflection) => t.stats.total_internal_reflections += 1,
     }
 }
 

@@ -377,15 +377,21 @@ fn secondary_packet<L: Lanes + ?Sized>(
     trace_children(t, fast, &mut reflected);
     trace_children(t, fast, &mut transmitted);
     for (i, plan) in plans.iter().enumerate() {
-        let Some(Outgoing { kr, kt, .. }) = *plan else {
+        let Some(plan) = plan else {
             continue;
         };
         let mut sum = DVec3::ZERO;
         if let Some(color) = reflected.colors[i] {
-            sum += kr * color;
+            sum += plan.kr * color;
         }
-        if let Some(color) = transmitted.colors[i] {
-            sum += kt * color;
+        // Past the limiting angle, the transmitted share may follow the reflection ray.
+        let through = if plan.along_reflection() {
+            reflected.colors[i]
+        } else {
+            transmitted.colors[i]
+        };
+        if let Some(color) = through {
+            sum += plan.kt * color;
         }
         out[i] += sum;
     }

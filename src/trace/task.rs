@@ -73,6 +73,16 @@ impl Task {
         }
     }
 
+    /// Past the limiting angle at a surface that also reflects: the reflection ray, which
+    /// the transmitted share follows too (there is no refracted ray), so that it weighs
+    /// weight·(kr + kt) while its intensity is multiplied by kr and by kt.
+    pub fn reflection_and_transmission(&self, ray: Ray, kr: f64, kt: f64) -> Task {
+        Task {
+            weight: self.weight * (kr + kt),
+            ..self.reflection(ray, kr)
+        }
+    }
+
     /// Past the limiting angle, the mirror ray that stays inside: it carries the transmitted
     /// share kt in its weight, and its intensity goes to the (cut-off) refraction ray whole.
     pub fn mirror_inside(&self, ray: Ray, kt: f64) -> Task {

@@ -122,6 +122,10 @@ pub fn node_title(n: &RayNode) -> String {
             super::Termination::Background => "background".to_string(),
             super::Termination::MaxDepth => "not traced: max depth".to_string(),
             super::Termination::Adaptive => "not traced: adaptive cut-off".to_string(),
+            // Without a child the share follows the surface's reflection ray, the same ray.
+            super::Termination::TotalInternalReflection if n.children.is_empty() => {
+                "total internal reflection, along the reflection ray".to_string()
+            }
             super::Termination::TotalInternalReflection => "total internal reflection".to_string(),
             super::Termination::Light => format!(
                 "reaches light {} (stop rule)",

@@ -271,18 +271,40 @@ impl<R: Recorder> Tracer<'_, R> {
         let (across, kr, kt) = self.coefficients(task, si, m);
         let indices = across.indices();
         let mirror = reflect(d, si.normal);
+        let refracted = if kt > 0.0 {
+            refract(d, si.normal, indices.n1, indices.n2)
+        } else {
+            None
+        };
+        // Past the limiting angle the transmitted light turns back along the mirror ray. A
+        // surface that reflects too already sends that very ray (unless a lobe spreads either):
+        // it is traced once, for both shares.
+        let shared = kt > 0.0
+            && refracted.is_none()
+            && kr > 0.0
+            && m.glossy.is_none()
+            && m.frosted.is_none();
         let mut sum = DVec3::ZERO;
+        let mut reflected = None;
         if kr > 0.0 {
-            let reflection = task.reflection(self.spawn(si, mirror), kr);
-            sum += kr
-                * match m.glossy {
-                    None => self.child(&reflection),
-                    Some(lobe) => self.cone(&reflection, si, (lobe, LobeKind::Glossy)),
-                };
+            let ray = self.spawn(si, mirror);
+            let reflection = if shared {
+                task.reflection_and_transmission(ray, kr, kt)
+            } else {
+                task.reflection(ray, kr)
+            };
+            let color = match m.glossy {
+                None => self.child(&reflection),
+                Some(lobe) => self.cone(&reflection, si, (lobe, LobeKind::Glossy)),
+            };
+            if shared && self.limit(&reflection).is_none() {
+                reflected = Some(color);
+            }
+            sum += kr * color;
         }
         if kt > 0.0 {
             sum += kt
-                * match refract(d, si.normal, indices.n1, indices.n2) {
+                * match refracted {
                     Some(dir) => {
                         let ray = self.spawn_through(si, dir);
                         let refraction = task.refraction(ray, kt, across.beyond, indices);
@@ -291,6 +313,7 @@ impl<R: Recorder> Tracer<'_, R> {
                             Some(lobe) => self.cone(&refraction, si, (lobe, LobeKind::Frosted)),
                         }
                     }
+                    None if shared => self.along_reflection(task, si, kt, indices, reflected),
                     None => self.total_internal_reflection(task, si, mirror, kt, indices),
                 };
         }
@@ -319,7 +342,8 @@ impl<R: Recorder> Tracer<'_, R> {
     /// "total_internal_reflection" with that mirror ray as its child. A frosted surface
     /// spreads it too, drawn from the frosted lobe about the mirror direction: the rough face
     /// that blurs the light it lets through blurs the light it turns back (a perfect mirror
-    /// there would keep a ray in a sphere at one angle, bouncing until the depth limit).
+    /// there would keep a ray in a sphere at one angle, bouncing until the depth limit). (A
+    /// surface that reflects as well sends that mirror ray already: `along_reflection`.)
     fn total_internal_reflection(
         &mut self,
         task: &Task,
@@ -349,6 +373,32 @@ impl<R: Recorder> Tracer<'_, R> {
         color
     }
 
+    /// Total internal reflection at a surface that also reflects: the refraction node ends
+    /// there, and its share follows the reflection ray (`reflected`, its intensity, None where
+    /// that ray was cut off, and then so is this one).
+    fn along_reflection(
+        &mut self,
+        task: &Task,
+        si: &Interaction,
+        kt: f64,
+        indices: Indices,
+        reflected: Option<DVec3>,
+    ) -> DVec3 {
+        let straight_on = Ray {
+            origin: si.point,
+            dir: task.ray.dir,
+        };
+        let refraction = task.refraction(straight_on, kt, task.media, indices);
+        let Some(color) = reflected else {
+            return self.child(&refraction);
+        };
+        self.stats.total_internal_reflections += 1;
+        refraction.begin(&mut self.rec);
+        self.rec
+            .end(color, Some(Termination::TotalInternalReflection));
+        color
+    }
+
     // --- Depth control: the maximum depth and the adaptive threshold ---
 
     /// Traces a secondary ray unless the depth limit or the adaptive threshold stops it; its
@@ -373,7 +423,7 @@ impl<R: Recorder> Tracer<'_, R> {
     /// Why a secondary ray is not traced, if it is not: its depth reached the limit, or its
     /// weight fell below the adaptive threshold (it could change the pixel too little).
     #[inline]
-    fn limit(&self, task: &Task) -> Option<Termination> {
+    pub(crate) fn limit(&self, task: &Task) -> Option<Termination> {
         if task.depth >= self.options.max_depth {
             Some(Termination::MaxDepth)
         } else if task.weight < self.scene.adaptive_threshold {

@@ -79,6 +79,10 @@ fn node(w: &Worked, n: &RayNode, name: &str, out: &mut Vec<String>) {
                 "I({name}): {ray} is not traced (its weight {} is below the adaptive threshold): 0",
                 text::num(n.weight)
             ),
+            Some(Termination::TotalInternalReflection) if n.children.is_empty() => format!(
+                "I({name}): total internal reflection: no refracted ray; its share follows the surface's reflection ray, the same mirror ray = {}",
+                text::color(n.color)
+            ),
             Some(Termination::TotalInternalReflection) => format!(
                 "I({name}): total internal reflection: no refracted ray; its share goes into a mirror ray inside = {}",
                 text::color(n.color)

@@ -88,6 +88,10 @@ pub fn details_lines(n: &RayNode, max_depth: u32, scale: f64) -> Vec<(String, Op
                 "not traced: its weight {} is below the adaptive threshold",
                 num(n.weight)
             ))),
+            Some(Termination::TotalInternalReflection) if n.children.is_empty() => out.push(plain(
+                "total internal reflection: no light is transmitted; the share kt follows the surface's reflection ray, the same mirror ray (traced once, weighted kr + kt)"
+                    .into(),
+            )),
             Some(Termination::TotalInternalReflection) => out.push(plain(
                 "total internal reflection: no light is transmitted; the energy follows the mirror ray"
                     .into(),
