@@ -103,10 +103,12 @@ pub(super) fn outgoing(t: &mut Tracer, task: &Task, d: DVec3, si: &Interaction) 
         }
         _ => None,
     };
+    // Past the limiting angle the reflection ray carries both shares (`Tracer::secondary`;
+    // packets of surfaces have no glossy or frosted lobes, `secondary_packet`).
     let shared = kr > 0.0 && matches!(direction, Some(None));
     let reflection = fate(t, task, if shared { kr + kt } else { kr });
     let transmission = match (across, direction) {
-        _ if !(kt > 0.0) => Fate::None,
+        _ if kt <= 0.0 || kt.is_nan() => Fate::None,
         _ if shared && matches!(reflection, Fate::Traced(())) => {
             Fate::Traced(Transmitted::AlongReflection)
         }
