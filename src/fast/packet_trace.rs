@@ -330,7 +330,7 @@ fn record(
 ) -> bool {
     let scene = fast.scene;
     let si = si.insert(Interaction::default());
-    let m = scene.record_surface(ray, hit, si);
+    let m = fast.record_surface(ray, hit, si);
     if checker_lanes::in_lanes(fast, m, si) {
         return true;
     }

@@ -22,8 +22,8 @@ use super::simd::{with_lanes, F64x4};
 use crate::accel::Aabb;
 use crate::geometry::csg::CsgWork;
 use crate::geometry::{first_crossing, Aabox, Ray, Shape, Span, Surface};
-use crate::scene::{Geometry, Hit, Scene, Search};
-use crate::shading::Light;
+use crate::scene::{Geometry, Hit, Interaction, Leaf, Scene, Search};
+use crate::shading::{Light, Material};
 use crate::stats::Stats;
 
 /// A compiled scene with what the fast search needs beside it.
@@ -61,6 +61,10 @@ pub struct FastScene<'s> {
     /// the objects are tested in lanes, and the lights they are shaded under.
     pub(super) planes: Vec<LanePlane>,
     pub(super) plane_lights: Vec<(DVec3, DVec3)>,
+    /// Per leaf: a turned box's six faces' outward normals in world space (its normal at a
+    /// hit depends on the face alone), found once rather than carried out of the box's space
+    /// at every hit.
+    box_normals: Vec<Option<Box<[DVec3; 6]>>>,
 }
 
 impl LeafSpans for Scene {
@@ -101,6 +105,7 @@ impl<'s> FastScene<'s> {
             shadow_cones: vec![],
             planes: vec![],
             plane_lights: vec![],
+            box_normals: scene.leaves.iter().map(box_normals).collect(),
         };
         fast.bounded = index.bounded.iter().map(|&o| fast.probe(o)).collect();
         fast.unbounded = grouped(index.unbounded.iter().map(|&o| fast.probe(o)).collect());
@@ -123,6 +128,20 @@ impl<'s> FastScene<'s> {
             }
         }
         fast
+    }
+
+    /// The shading record of a ray's hit without its patterns (`Scene::record_surface`), a
+    /// turned box's normal read from the table.
+    #[inline(always)]
+    pub(super) fn record_surface(&self, ray: &Ray, hit: &Hit, si: &mut Interaction) -> &Material {
+        let scene = self.scene;
+        match &self.box_normals[hit.surface.leaf as usize] {
+            Some(normals) => {
+                let outward = normals[hit.surface.face as usize];
+                scene.record_with_normal(ray, hit, ray.at(hit.t), outward, si)
+            }
+            None => scene.record_surface(ray, hit, si),
+        }
     }
 
     /// The cones of the boxes tested behind them, seen from `light` where the lanes light it
@@ -633,5 +652,15 @@ mod tests {
             let wing = crosses.then_some((t.to_bits(), face));
             prop_assert_eq!(wing, core_crossing(&aabox, &ray, t_min), "{:?} {:?}", aabox, ray);
         }
+    }
+}
+
+/// A turned box's faces' outward normals in world space, as `Leaf::normal` finds them.
+fn box_normals(leaf: &Leaf) -> Option<Box<[DVec3; 6]>> {
+    match (&leaf.shape, &leaf.transform) {
+        (Shape::Box(b), Some(tf)) => Some(Box::new(std::array::from_fn(|face| {
+            tf.normal_to_world(b.normal(face as u8))
+        }))),
+        _ => None,
     }
 }

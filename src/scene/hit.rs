@@ -78,7 +78,22 @@ impl Scene {
     pub fn record_surface(&self, ray: &Ray, hit: &Hit, si: &mut Interaction) -> &Material {
         let leaf = &self.leaves[hit.surface.leaf as usize];
         let point = ray.at(hit.t);
-        let mut outward = leaf.normal(point, hit.surface.face, -ray.dir);
+        let outward = leaf.normal(point, hit.surface.face, -ray.dir);
+        self.record_with_normal(ray, hit, point, outward, si)
+    }
+
+    /// `record_surface` with the hit's point and the leaf's outward normal there already
+    /// found.
+    #[inline(always)]
+    pub fn record_with_normal(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        point: DVec3,
+        mut outward: DVec3,
+        si: &mut Interaction,
+    ) -> &Material {
+        let leaf = &self.leaves[hit.surface.leaf as usize];
         if hit.surface.flip {
             outward = -outward;
         }
