@@ -613,6 +613,16 @@ fn select<T>(c: bool, a: T, b: T) -> T {
     }
 }
 
+/// A turned box's faces' outward normals in world space, as `Leaf::normal` finds them.
+fn box_normals(leaf: &Leaf) -> Option<Box<[DVec3; 6]>> {
+    match (&leaf.shape, &leaf.transform) {
+        (Shape::Box(b), Some(tf)) => Some(Box::new(std::array::from_fn(|face| {
+            tf.normal_to_world(b.normal(face as u8))
+        }))),
+        _ => None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -652,15 +662,5 @@ mod tests {
             let wing = crosses.then_some((t.to_bits(), face));
             prop_assert_eq!(wing, core_crossing(&aabox, &ray, t_min), "{:?} {:?}", aabox, ray);
         }
-    }
-}
-
-/// A turned box's faces' outward normals in world space, as `Leaf::normal` finds them.
-fn box_normals(leaf: &Leaf) -> Option<Box<[DVec3; 6]>> {
-    match (&leaf.shape, &leaf.transform) {
-        (Shape::Box(b), Some(tf)) => Some(Box::new(std::array::from_fn(|face| {
-            tf.normal_to_world(b.normal(face as u8))
-        }))),
-        _ => None,
     }
 }
