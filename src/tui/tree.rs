@@ -196,6 +196,9 @@ pub fn outcome(n: &RayNode) -> String {
         (Some(T::Background), _) => "background".into(),
         (Some(T::MaxDepth), _) => "not traced: max depth".into(),
         (Some(T::Adaptive), _) => "not traced: adaptive cut-off".into(),
+        (Some(T::TotalInternalReflection), _) if n.children.is_empty() => {
+            "total internal reflection, along the reflection ray".into()
+        }
         (Some(T::TotalInternalReflection), _) => "total internal reflection".into(),
         (Some(T::Light), _) => format!("light {}", n.light.as_deref().unwrap_or("?")),
         (Some(T::Diffuse), Some(h)) => format!("hit {} (diffuse: stops)", h.object),
