@@ -503,7 +503,6 @@ impl<R: Recorder> Tracer<'_, R> {
 
     /// The one place secondary rays leave a surface: the origin moves off the surface, along
     /// the normal, to the side the new ray travels into, so it cannot hit its own surface.
-    #[inline(always)]
     pub(crate) fn spawn(&self, si: &Interaction, dir: DVec3) -> Ray {
         Ray {
             origin: self.scene.offset(si, dir).0,
@@ -514,7 +513,6 @@ impl<R: Recorder> Tracer<'_, R> {
     /// A refracted ray leaves from the far side of the surface, the side it goes through to:
     /// also at the limiting angle, where it runs along the surface (Snell's k = 0) and its
     /// direction alone would not say which side.
-    #[inline(always)]
     pub(crate) fn spawn_through(&self, si: &Interaction, dir: DVec3) -> Ray {
         Ray {
             origin: self.scene.offset_to(si, false).0,
