@@ -11,6 +11,7 @@ use glam::DVec3;
 use super::packet_trace::SHADED;
 use super::push_in_place;
 
+use crate::geometry::Ray;
 use crate::scene::Interaction;
 use crate::shading::optics::{fresnel_weights, reflect, refract};
 use crate::shading::{Fresnel, Material};
@@ -184,7 +185,7 @@ pub(super) fn send(
         Fate::None => {}
         Fate::CutOff => reflected.cut_off(lane),
         Fate::Traced(()) => {
-            let ray = t.spawn(si, mirror);
+            let ray = spawn(t, si, mirror);
             let task = if plan.along_reflection() {
                 task.reflection_and_transmission(ray, kr, kt)
             } else {
@@ -197,7 +198,7 @@ pub(super) fn send(
         Fate::None => {}
         Fate::CutOff => transmitted.cut_off(lane),
         Fate::Traced(Transmitted::Refracted(n1, n2, beyond, dir)) => {
-            let ray = t.spawn_through(si, *dir);
+            let ray = spawn_through(t, si, *dir);
             let media = &task.media;
             let beyond = match beyond {
                 Beyond::Same => *media,
@@ -209,11 +210,30 @@ pub(super) fn send(
             transmitted.add(lane, task.refraction(ray, kt, beyond, indices));
         }
         Fate::Traced(Transmitted::Inside) => {
-            let ray = t.spawn(si, mirror);
+            let ray = spawn(t, si, mirror);
             transmitted.add(lane, task.mirror_inside(ray, kt));
             t.stats.total_internal_reflections += 1;
         }
         Fate::Traced(Transmitted::AlongReflection) => t.stats.total_internal_reflections += 1,
+    }
+}
+
+/// `Tracer::spawn`, compiled into the packet loop: called, it hands its ray back through
+/// memory, and the task's wide loads of it wait for the call's narrow stores.
+#[inline(always)]
+fn spawn(t: &Tracer, si: &Interaction, dir: DVec3) -> Ray {
+    Ray {
+        origin: t.scene.offset(si, dir).0,
+        dir,
+    }
+}
+
+/// `Tracer::spawn_through`, compiled into the packet loop (as `spawn`).
+#[inline(always)]
+fn spawn_through(t: &Tracer, si: &Interaction, dir: DVec3) -> Ray {
+    Ray {
+        origin: t.scene.offset_to(si, false).0,
+        dir,
     }
 }
 

@@ -173,14 +173,14 @@ impl Scene {
     /// The hit point moved off the surface to the side `dir` leaves by (so a ray from there
     /// cannot hit the surface again), and how far it moved: by the bias of the ray that found
     /// the point, whose error it must clear, whether the new ray is a shadow ray or a child.
-    #[inline]
+    #[inline(always)]
     pub fn offset(&self, si: &Interaction, dir: DVec3) -> (DVec3, f64) {
         self.offset_to(si, dir.dot(si.normal) >= 0.0)
     }
 
     /// The hit point moved off the surface by the bias: to the side the normal faces (the
     /// incoming ray's), or `through` to the other.
-    #[inline]
+    #[inline(always)]
     pub fn offset_to(&self, si: &Interaction, facing: bool) -> (DVec3, f64) {
         let bias = self.bias_of_sizes(si.origin_size, si.point);
         let side = if facing { bias } else { -bias };
