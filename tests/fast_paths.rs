@@ -836,6 +836,37 @@ secondary_attenuation: [1, 0.05, 0]
     );
 }
 
+/// Past the limiting angle a glass that also reflects sends one mirror ray for both shares,
+/// of weight w·(kr + kt): with kr = kt = 0.3 and a threshold of 0.05, rays deep inside the
+/// turned glass block are cut off where their transmitted share alone (w·kt) would be, and
+/// traced for both. Every pixel is exactly its samples traced one by one, counters included.
+#[test]
+fn a_mirror_ray_carrying_both_shares_is_cut_off_by_its_own_weight_in_the_wing_too() {
+    let yaml = "camera: { eye: [0, 1.5, -6], look_at: [0, 1, 0], width: 24, height: 18 }
+spp: 4
+ambient: 0.2
+max_depth: 8
+adaptive_threshold: 0.05
+lights: [ { name: key, point: [-4, 6, -5], intensity: 1 } ]
+materials:
+  floor: { color: 0.6, ka: 0.2, kd: 0.8 }
+  glass: { color: 1, kd: 0.05, ks: 0.5, shininess: 60, kr: 0.3, kt: 0.3, ior: 1.5 }
+objects:
+  - { name: floor, plane: { point: [0, 0, 0], normal: [0, 1, 0] }, material: floor }
+  - name: block
+    box: { min: [-1, 0, -1], max: [1, 2, 1] }
+    transform: [ { rotate_y: 40 }, { rotate_x: 12 }, { translate: [0, 0.3, 0] } ]
+    material: glass
+";
+    let scene = parse(yaml, "shared-mirror.yaml", None, &Limits::default()).unwrap();
+    assert!(FastScene::new(&scene).tests_in_lanes());
+    let total = assert_pixels_traced_in_packets_are_traced_sample_by_sample(&scene);
+    assert!(
+        total.total_internal_reflections > 0 && total.adaptive_cutoffs > 0,
+        "{total:?}"
+    );
+}
+
 /// A lone triangle, an open tube or an open cone of glass is a sheet with no inside: a ray
 /// passes it unbent (n2 = n1) and stays in the medium it was in, and being no medium it leaves
 /// at most one transparent solid in the scene (a glass ball), so the wing's own copy of
