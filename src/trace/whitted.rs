@@ -352,11 +352,7 @@ impl<R: Recorder> Tracer<'_, R> {
         kt: f64,
         indices: Indices,
     ) -> DVec3 {
-        let straight_on = Ray {
-            origin: si.point,
-            dir: task.ray.dir,
-        };
-        let refraction = task.refraction(straight_on, kt, task.media, indices);
+        let refraction = turned_back(task, si, kt, indices);
         if self.limit(&refraction).is_some() {
             // The refraction ray would not be traced anyway: record it as cut off.
             return self.child(&refraction);
@@ -384,11 +380,7 @@ impl<R: Recorder> Tracer<'_, R> {
         indices: Indices,
         reflected: Option<DVec3>,
     ) -> DVec3 {
-        let straight_on = Ray {
-            origin: si.point,
-            dir: task.ray.dir,
-        };
-        let refraction = task.refraction(straight_on, kt, task.media, indices);
+        let refraction = turned_back(task, si, kt, indices);
         let Some(color) = reflected else {
             return self.child(&refraction);
         };
@@ -519,6 +511,16 @@ impl<R: Recorder> Tracer<'_, R> {
             dir,
         }
     }
+}
+
+/// The refraction node of a ray past the limiting angle: it would go on straight from the
+/// hit, in the media it is in, and is never traced.
+fn turned_back(task: &Task, si: &Interaction, kt: f64, indices: Indices) -> Task {
+    let straight_on = Ray {
+        origin: si.point,
+        dir: task.ray.dir,
+    };
+    task.refraction(straight_on, kt, task.media, indices)
 }
 
 /// How far a shadow ray that starts `moved` off the surface looks for blockers: up to the light
